@@ -1,0 +1,475 @@
+"""Compiled core of the integrator: one Dormand–Prince 5(4) trajectory with events and resets.
+
+Everything here is ``@njit(cache=True, nogil=True)`` and works on float64 arrays only. The model's
+kernels (``rhs``, ``events``, ``reset``) arrive as arguments; numba compiles and caches one
+specialisation per model. Python code never calls into a step: see ``_api.py`` for the public
+interface and ``_ensemble.py`` for the parallel driver.
+
+Step-size control is a line-by-line match of SciPy's ``RK45`` (RMS norm with scale
+``atol + rtol * max(|y|, |y_new|)``, factor ``min(10, 0.9 err^-1/5)``, no growth right after a
+rejection, ``max(0.2, ...)`` on rejection, Hairer's initial-step heuristic), so step counts match
+``solve_ivp(method="RK45")`` and the C references in ``shared/bench`` to round-off.
+
+Events (see :mod:`rotorlab.models._base`): after each accepted step every active event function
+is compared at both ends; a sign change in the allowed direction is located to round-off on the
+quartic dense output (Illinois method). The earliest ``reset``/``stop`` event truncates the step
+there; ``count`` events are only recorded. After a reset the integrator restarts at the event time
+with the new state and the step size the controller had proposed: a run of impacts never makes
+the step size collapse, and an accumulation of impacts is resolved by the model's reset map
+switching to a sustained-contact mode (a discrete state).
+"""
+
+import math
+
+import numpy as np
+from numba import njit
+
+from rotorlab.integrate._tableau import (
+    A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65,
+    B1, B3, B4, B5, B6,
+    C2, C3, C4, C5,
+    E1, E3, E4, E5, E6, E7,
+    ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY,
+    P11, P12, P13, P14, P32, P33, P34, P42, P43, P44, P52, P53, P54, P62, P63, P64,
+    P72, P73, P74,
+)  # fmt: skip
+
+# status codes (mirrored by rotorlab.integrate.Status)
+SUCCESS = 0
+EVENT_STOP = 1
+MAX_STEPS = -1
+STEP_UNDERFLOW = -2
+NONFINITE = -3
+EVENT_LOOP = -4
+
+# event actions
+ACT_RESET = 0
+ACT_STOP = 1
+ACT_COUNT = 2
+ACT_OFF = 3
+
+# indices into the per-trajectory stats vector
+ST_NFEV = 0
+ST_NACCEPT = 1
+ST_NREJECT = 2
+ST_NEVENTS = 3
+N_STATS = 4
+
+_MAX_RESETS_WITHOUT_PROGRESS = 1000
+_PROBES = (1e-7, 1e-10, 1e-13)  # step fractions probing an event function that starts at zero
+
+
+@njit(cache=True, nogil=True)
+def _dense(y, h, k1, k3, k4, k5, k6, k7, s, out):
+    """State at ``t + s h`` from the quartic continuous extension of the last step."""
+    s2 = s * s
+    s3 = s2 * s
+    s4 = s3 * s
+    b1 = P11 * s + P12 * s2 + P13 * s3 + P14 * s4
+    b3 = P32 * s2 + P33 * s3 + P34 * s4
+    b4 = P42 * s2 + P43 * s3 + P44 * s4
+    b5 = P52 * s2 + P53 * s3 + P54 * s4
+    b6 = P62 * s2 + P63 * s3 + P64 * s4
+    b7 = P72 * s2 + P73 * s3 + P74 * s4
+    for i in range(y.shape[0]):
+        out[i] = y[i] + h * (
+            b1 * k1[i] + b3 * k3[i] + b4 * k4[i] + b5 * k5[i] + b6 * k6[i] + b7 * k7[i]
+        )
+
+
+@njit(cache=True, nogil=True)
+def _rms_scaled(v, a, b, atol, rtol, n_cont):
+    """RMS over the continuous components of ``v / (atol + rtol max(|a|, |b|))``."""
+    acc = 0.0
+    for i in range(n_cont):
+        sc = atol[i] + rtol * max(abs(a[i]), abs(b[i]))
+        q = v[i] / sc
+        acc += q * q
+    return math.sqrt(acc / n_cont)
+
+
+@njit(cache=True, nogil=True)
+def _all_finite(v):
+    for i in range(v.shape[0]):
+        if not math.isfinite(v[i]):
+            return False
+    return True
+
+
+@njit(cache=True, nogil=True)
+def _crosses(ga, gb, direction):
+    """True if the event function changes sign from ``ga`` to ``gb`` in the allowed direction."""
+    if direction <= 0 and ga > 0.0 and gb <= 0.0:
+        return True
+    if direction >= 0 and ga < 0.0 and gb >= 0.0:
+        return True
+    return False
+
+
+@njit(cache=True, nogil=True)
+def _g_at(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zero):
+    """Event function ``k`` at fraction ``s`` of the step (divided by ``s`` if ``from_zero``)."""
+    _dense(y, h, k1, k3, k4, k5, k6, k7, s, ybuf)
+    events(t + s * h, ybuf, p, gbuf)
+    return gbuf[k] / s if from_zero else gbuf[k]
+
+
+@njit(cache=True, nogil=True)
+def _locate(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, gb, ybuf, gbuf, from_zero):
+    """Locate the zero of event ``k`` in the step (Illinois method on the dense output).
+
+    Returns the fraction ``s`` in (0, 1] of the step at which the event function has reached
+    (or just passed) zero: the bracket's "after" end, so the state there is on the far side.
+    With ``from_zero`` the step starts on the event surface (g(0) = 0, e.g. right after a
+    reset) and the zero of g(s)/s is sought instead, which excludes the root at s = 0.
+    """
+    sa = 0.0
+    sb = 1.0
+    xtol = 4.0 * 2.220446049250313e-16 * max(abs(t), abs(t + h)) / abs(h)
+    xtol = max(xtol, 1e-15)
+    side = 0
+    for _ in range(200):
+        if sb - sa <= xtol:
+            break
+        if gb != ga:
+            s = (sa * gb - sb * ga) / (gb - ga)
+        else:
+            s = 0.5 * (sa + sb)
+        if not (sa < s < sb):
+            s = 0.5 * (sa + sb)
+        gs = _g_at(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zero)
+        if gs == 0.0:
+            return s
+        if (gs > 0.0) == (gb > 0.0) and gb != 0.0:
+            sb = s
+            gb = gs
+            if side == -1:
+                ga *= 0.5
+            side = -1
+        else:
+            sa = s
+            ga = gs
+            if side == 1:
+                gb *= 0.5
+            side = 1
+    return sb
+
+
+@njit(cache=True, nogil=True)
+def _initial_step(rhs, p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
+    """Hairer's initial step heuristic (as SciPy's ``select_initial_step``, order 5 method)."""
+    n = y0.shape[0]
+    interval = abs(t1 - t0)
+    d0 = 0.0
+    d1 = 0.0
+    for i in range(n_cont):
+        sc = atol[i] + abs(y0[i]) * rtol
+        d0 += (y0[i] / sc) ** 2
+        d1 += (f0[i] / sc) ** 2
+    d0 = math.sqrt(d0 / n_cont)
+    d1 = math.sqrt(d1 / n_cont)
+    if d0 < 1e-5 or d1 < 1e-5:
+        h0 = 1e-6
+    else:
+        h0 = 0.01 * d0 / d1
+    h0 = min(h0, interval)
+    for i in range(n):
+        ytmp[i] = y0[i] + h0 * f0[i]
+    rhs(t0 + h0, ytmp, p, f1)
+    d2 = 0.0
+    for i in range(n_cont):
+        sc = atol[i] + abs(y0[i]) * rtol
+        d2 += ((f1[i] - f0[i]) / sc) ** 2
+    d2 = math.sqrt(d2 / n_cont) / h0
+    if d1 <= 1e-15 and d2 <= 1e-15:
+        h1 = max(1e-6, h0 * 1e-3)
+    else:
+        h1 = (0.01 / max(d1, d2)) ** (1.0 / 5.0)
+    return min(100.0 * h0, h1, interval)
+
+
+@njit(cache=True, nogil=True)
+def integrate_one(
+    rhs, events, reset, n_ev, y0, p, t0, t1, ts, rtol, atol, n_cont, first_step, max_step,
+    max_steps, ev_dir, ev_act, ys_out, y_final, ev_count, rec_t, rec_k, stats,
+):  # fmt: skip
+    """Integrate one trajectory from ``t0`` to ``t1``; return ``(status, t_end)``.
+
+    Parameters
+    ----------
+    rhs, events, reset : compiled model kernels (see :mod:`rotorlab.models._base`).
+    n_ev : int
+        Number of event functions.
+    y0 : float64, shape (n,)
+    p : float64, shape (n_param,)
+    t0, t1 : float
+        Start and end time (s), ``t1 > t0``.
+    ts : float64, shape (n_save,)
+        Increasing save times in [t0, t1]; the state there is written to ``ys_out``.
+    rtol : float
+    atol : float64, shape (n,)
+    n_cont : int
+        Number of leading continuous components (the rest are discrete modes).
+    first_step : float
+        Initial step (s); <= 0 selects it automatically.
+    max_step : float
+        Largest step allowed (s).
+    max_steps : int
+        Maximum number of step attempts.
+    ev_dir, ev_act : int64, shape (n_ev,)
+        Direction (-1, 0, +1) and action (``ACT_*``) of each event.
+    ys_out : float64, shape (n_save, n)   -- written; rows not reached are left untouched.
+    y_final : float64, shape (n,)         -- written: the state at ``t_end``.
+    ev_count : int64, shape (n_ev,)       -- written: occurrences of each event.
+    rec_t : float64, shape (max_rec,)     -- written: times of the first ``max_rec`` events.
+    rec_k : int64, shape (max_rec,)       -- written: which event each record is.
+    stats : int64, shape (N_STATS,)       -- written: nfev, naccept, nreject, nevents.
+    """
+    n = y0.shape[0]
+    n_save = ts.shape[0]
+    max_rec = rec_t.shape[0]
+    y = np.empty(n)
+    ynew = np.empty(n)
+    ytmp = np.empty(n)
+    ybuf = np.empty(n)
+    k1 = np.empty(n)
+    k2 = np.empty(n)
+    k3 = np.empty(n)
+    k4 = np.empty(n)
+    k5 = np.empty(n)
+    k6 = np.empty(n)
+    k7 = np.empty(n)
+    err = np.empty(n)
+    g_old = np.empty(max(n_ev, 1))
+    g_new = np.empty(max(n_ev, 1))
+    gbuf = np.empty(max(n_ev, 1))
+    s_ev = np.empty(max(n_ev, 1))
+    for i in range(n):
+        y[i] = y0[i]
+    nfev = 0
+    naccept = 0
+    nreject = 0
+    nrec = 0
+    n_events_total = 0
+    for k in range(n_ev):
+        ev_count[k] = 0
+    t = t0
+    i_save = 0
+    while i_save < n_save and ts[i_save] <= t0:
+        for j in range(n):
+            ys_out[i_save, j] = y[j]
+        i_save += 1
+
+    status = SUCCESS
+    rhs(t, y, p, k1)
+    nfev += 1
+    if not (_all_finite(y) and _all_finite(k1)):
+        status = NONFINITE
+    if n_ev > 0:
+        events(t, y, p, g_old)
+
+    if first_step > 0.0:
+        habs = min(first_step, t1 - t0)
+    elif status == SUCCESS:
+        habs = _initial_step(rhs, p, t0, y, k1, t1, rtol, atol, n_cont, ytmp, k2)
+        nfev += 1
+    else:
+        habs = 0.0
+    habs = min(habs, max_step)
+
+    resets_without_progress = 0
+    t_last_reset = -math.inf
+    while status == SUCCESS and t < t1:
+        min_step = 10.0 * abs(np.nextafter(t, math.inf) - t)
+        if habs > max_step:
+            habs = max_step
+        elif habs < min_step:
+            habs = min_step
+        rejected = False
+        last_nonfinite = False
+        accepted = False
+        tn = t
+        h = 0.0
+        while not accepted:
+            if habs < min_step:
+                status = NONFINITE if last_nonfinite else STEP_UNDERFLOW
+                break
+            if naccept + nreject >= max_steps:
+                status = MAX_STEPS
+                break
+            tn = t + habs
+            if tn > t1:
+                tn = t1
+            h = tn - t
+            habs = abs(h)
+            for i in range(n):
+                ytmp[i] = y[i] + h * (A21 * k1[i])
+            rhs(t + C2 * h, ytmp, p, k2)
+            for i in range(n):
+                ytmp[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
+            rhs(t + C3 * h, ytmp, p, k3)
+            for i in range(n):
+                ytmp[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
+            rhs(t + C4 * h, ytmp, p, k4)
+            for i in range(n):
+                ytmp[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i])
+            rhs(t + C5 * h, ytmp, p, k5)
+            for i in range(n):
+                ytmp[i] = y[i] + h * (
+                    A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]
+                )
+            rhs(tn, ytmp, p, k6)
+            for i in range(n):
+                ynew[i] = y[i] + h * (
+                    B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i]
+                )
+            rhs(tn, ynew, p, k7)
+            nfev += 6
+            for i in range(n):
+                err[i] = h * (
+                    E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]
+                )
+            err_norm = _rms_scaled(err, y, ynew, atol, rtol, n_cont)
+            if not math.isfinite(err_norm) or not _all_finite(k7):
+                last_nonfinite = True
+                habs *= MIN_FACTOR
+                rejected = True
+                nreject += 1
+            elif err_norm < 1.0:
+                if err_norm == 0.0:
+                    factor = MAX_FACTOR
+                else:
+                    factor = min(MAX_FACTOR, SAFETY * err_norm**ERROR_EXPONENT)
+                if rejected:
+                    factor = min(1.0, factor)
+                habs *= factor
+                accepted = True
+                naccept += 1
+            else:
+                habs *= max(MIN_FACTOR, SAFETY * err_norm**ERROR_EXPONENT)
+                rejected = True
+                nreject += 1
+        if not accepted:
+            break
+
+        # ---- events in (t, tn] -------------------------------------------------------------
+        s_cut = 2.0  # fraction of the step where a reset/stop event truncates it (>1: none)
+        k_cut = -1
+        if n_ev > 0:
+            events(tn, ynew, p, g_new)
+            for k in range(n_ev):
+                s_ev[k] = 2.0
+                if ev_act[k] == ACT_OFF:
+                    continue
+                ga = g_old[k]
+                from_zero = ga == 0.0
+                if from_zero:
+                    # The step starts on the event surface (typically right after a reset): the
+                    # zero at s = 0 is consumed, look for one of g(s)/s. Its sign at the start
+                    # is probed at shrinking fractions of the step, so that a very short
+                    # excursion (a tiny rebound) inside a long step is not missed.
+                    for probe in _PROBES:
+                        ga = _g_at(
+                            events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, probe, ybuf, gbuf, True
+                        )  # fmt: skip
+                        if _crosses(ga, g_new[k], ev_dir[k]):
+                            break
+                if _crosses(ga, g_new[k], ev_dir[k]):
+                    if g_new[k] == 0.0:
+                        s_ev[k] = 1.0
+                    else:
+                        s_ev[k] = _locate(
+                            events, k, p, t, h, y, k1, k3, k4, k5, k6, k7,
+                            ga, g_new[k], ybuf, gbuf, from_zero,
+                        )  # fmt: skip
+                    if ev_act[k] != ACT_COUNT and s_ev[k] < s_cut:
+                        s_cut = s_ev[k]
+                        k_cut = k
+            # record events up to the cut, in time order
+            while True:
+                kmin = -1
+                smin = 2.0
+                for k in range(n_ev):
+                    if s_ev[k] < smin and (s_ev[k] < s_cut or k == k_cut):
+                        smin = s_ev[k]
+                        kmin = k
+                if kmin < 0:
+                    break
+                ev_count[kmin] += 1
+                n_events_total += 1
+                if nrec < max_rec:
+                    rec_t[nrec] = t + smin * h
+                    rec_k[nrec] = kmin
+                    nrec += 1
+                s_ev[kmin] = 2.0
+                if kmin == k_cut:
+                    break
+
+        if k_cut < 0:
+            # ---- plain accepted step: save, advance ---------------------------------------
+            while i_save < n_save and ts[i_save] <= tn:
+                if ts[i_save] == tn:
+                    for j in range(n):
+                        ys_out[i_save, j] = ynew[j]
+                else:
+                    _dense(y, h, k1, k3, k4, k5, k6, k7, (ts[i_save] - t) / h, ybuf)
+                    for j in range(n):
+                        ys_out[i_save, j] = ybuf[j]
+                i_save += 1
+            t = tn
+            for i in range(n):
+                y[i] = ynew[i]
+                k1[i] = k7[i]
+            if n_ev > 0:
+                for k in range(n_ev):
+                    g_old[k] = g_new[k]
+            continue
+
+        # ---- truncated at a reset/stop event ----------------------------------------------
+        te = t + s_cut * h if s_cut < 1.0 else tn
+        if s_cut < 1.0:
+            _dense(y, h, k1, k3, k4, k5, k6, k7, s_cut, ybuf)
+        else:
+            for i in range(n):
+                ybuf[i] = ynew[i]
+        while i_save < n_save and ts[i_save] <= te:
+            if ts[i_save] == te:
+                for j in range(n):
+                    ys_out[i_save, j] = ybuf[j]
+            else:
+                _dense(y, h, k1, k3, k4, k5, k6, k7, (ts[i_save] - t) / h, ytmp)
+                for j in range(n):
+                    ys_out[i_save, j] = ytmp[j]
+            i_save += 1
+        t = te
+        if ev_act[k_cut] == ACT_STOP:
+            for i in range(n):
+                y[i] = ybuf[i]
+            status = EVENT_STOP
+            break
+        flag = reset(k_cut, te, ybuf, p, y)
+        if te - t_last_reset <= 8.0 * 2.220446049250313e-16 * max(1.0, abs(te)):
+            resets_without_progress += 1
+            if resets_without_progress > _MAX_RESETS_WITHOUT_PROGRESS:
+                status = EVENT_LOOP
+                break
+        else:
+            resets_without_progress = 0
+        t_last_reset = te
+        if not _all_finite(y):
+            status = NONFINITE
+            break
+        if flag != 0:
+            status = EVENT_STOP
+            break
+        rhs(t, y, p, k1)
+        nfev += 1
+        events(t, y, p, g_old)
+
+    for i in range(n):
+        y_final[i] = y[i]
+    stats[ST_NFEV] = nfev
+    stats[ST_NACCEPT] = naccept
+    stats[ST_NREJECT] = nreject
+    stats[ST_NEVENTS] = n_events_total
+    return status, t
