@@ -442,7 +442,7 @@ def solve_ensemble(
     array([[ 1. ,  0. ],
            [ 0. ,  1. ]])
     """
-    from rotorlab.integrate._ensemble import integrate_ensemble, integrate_serial
+    from rotorlab.integrate._specialize import drivers_for
 
     kernels = _kernels_of(model)
     n = kernels.n_state
@@ -480,7 +480,8 @@ def solve_ensemble(
     RECK = np.full((N, max_rec), -1, dtype=np.int64)
     STATS = np.zeros((N, 4), dtype=np.int64)
     first_step = -1.0 if control.first_step is None else float(control.first_step)
-    driver = integrate_serial if threads == 1 else integrate_ensemble
+    ensemble_driver, serial_driver = drivers_for(kernels)
+    driver = serial_driver if threads == 1 else ensemble_driver
     step = N if chunk_size is None else max(1, int(chunk_size))
 
     def sl(a: np.ndarray, lo: int, hi: int) -> np.ndarray:
@@ -490,7 +491,7 @@ def solve_ensemble(
         for lo in range(0, N, step):
             hi = min(N, lo + step)
             driver(
-                kernels.rhs, kernels.events, kernels.reset, n_ev, sl(Y0, lo, hi), sl(P, lo, hi),
+                n_ev, sl(Y0, lo, hi), sl(P, lo, hi),
                 t0, sl(T1, lo, hi), sl(TS, lo, hi), float(control.rtol), atol, n_cont,
                 first_step, float(control.max_step), int(control.max_steps), ev_dir, ev_act,
                 YS[lo:hi], YF[lo:hi], STATUS[lo:hi], TEND[lo:hi], EVC[lo:hi], RECT[lo:hi],

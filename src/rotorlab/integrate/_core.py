@@ -1,9 +1,10 @@
 """Compiled core of the integrator: one Dormand–Prince 5(4) trajectory with events and resets.
 
-Everything here is ``@njit(cache=True, nogil=True)`` and works on float64 arrays only. The model's
-kernels (``rhs``, ``events``, ``reset``) arrive as arguments; numba compiles and caches one
-specialisation per model. Python code never calls into a step: see ``_api.py`` for the public
-interface and ``_ensemble.py`` for the parallel driver.
+Everything here is ``@njit(cache=True, nogil=True)`` and works on float64 arrays only. The
+model's kernels are the module globals ``rhs``, ``events`` and ``reset`` bound by the three
+import lines marked ``# @kernel``: :mod:`rotorlab.integrate._specialize` compiles a copy of this
+module per model with those lines pointing at the model's kernels (so numba can cache it across
+processes). Python code never calls into a step: see ``_api.py`` for the public interface.
 
 Step-size control is a line-by-line match of SciPy's ``RK45`` (RMS norm with scale
 ``atol + rtol * max(|y|, |y_new|)``, factor ``min(10, 0.9 err^-1/5)``, no growth right after a
@@ -22,8 +23,11 @@ switching to a sustained-contact mode (a discrete state).
 import math
 
 import numpy as np
-from numba import njit
+from numba import njit, prange
 
+from rotorlab.models._base import no_events as events  # @kernel
+from rotorlab.models._base import no_reset as reset  # @kernel
+from rotorlab.models._base import no_rhs as rhs  # @kernel
 from rotorlab.integrate._tableau import (
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65,
     B1, B3, B4, B5, B6,
@@ -107,7 +111,7 @@ def _crosses(ga, gb, direction):
 
 
 @njit(cache=True, nogil=True)
-def _g_at(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zero):
+def _g_at(k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zero):
     """Event function ``k`` at fraction ``s`` of the step (divided by ``s`` if ``from_zero``)."""
     _dense(y, h, k1, k3, k4, k5, k6, k7, s, ybuf)
     events(t + s * h, ybuf, p, gbuf)
@@ -115,7 +119,7 @@ def _g_at(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zer
 
 
 @njit(cache=True, nogil=True)
-def _locate(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, gb, ybuf, gbuf, from_zero):
+def _locate(k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, gb, ybuf, gbuf, from_zero):
     """Locate the zero of event ``k`` in the step (Illinois method on the dense output).
 
     Returns the fraction ``s`` in (0, 1] of the step at which the event function has reached
@@ -137,7 +141,7 @@ def _locate(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, gb, ybuf, gbuf, f
             s = 0.5 * (sa + sb)
         if not (sa < s < sb):
             s = 0.5 * (sa + sb)
-        gs = _g_at(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zero)
+        gs = _g_at(k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zero)
         if gs == 0.0:
             return s
         if (gs > 0.0) == (gb > 0.0) and gb != 0.0:
@@ -156,7 +160,7 @@ def _locate(events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, gb, ybuf, gbuf, f
 
 
 @njit(cache=True, nogil=True)
-def _initial_step(rhs, p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
+def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     """Hairer's initial step heuristic (as SciPy's ``select_initial_step``, order 5 method)."""
     n = y0.shape[0]
     interval = abs(t1 - t0)
@@ -190,14 +194,13 @@ def _initial_step(rhs, p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
 
 @njit(cache=True, nogil=True)
 def integrate_one(
-    rhs, events, reset, n_ev, y0, p, t0, t1, ts, rtol, atol, n_cont, first_step, max_step,
+    n_ev, y0, p, t0, t1, ts, rtol, atol, n_cont, first_step, max_step,
     max_steps, ev_dir, ev_act, ys_out, y_final, ev_count, rec_t, rec_k, stats,
 ):  # fmt: skip
     """Integrate one trajectory from ``t0`` to ``t1``; return ``(status, t_end)``.
 
     Parameters
     ----------
-    rhs, events, reset : compiled model kernels (see :mod:`rotorlab.models._base`).
     n_ev : int
         Number of event functions.
     y0 : float64, shape (n,)
@@ -271,7 +274,7 @@ def integrate_one(
     if first_step > 0.0:
         habs = min(first_step, t1 - t0)
     elif status == SUCCESS:
-        habs = _initial_step(rhs, p, t0, y, k1, t1, rtol, atol, n_cont, ytmp, k2)
+        habs = _initial_step(p, t0, y, k1, t1, rtol, atol, n_cont, ytmp, k2)
         nfev += 1
     else:
         habs = 0.0
@@ -370,7 +373,7 @@ def integrate_one(
                     # excursion (a tiny rebound) inside a long step is not missed.
                     for probe in _PROBES:
                         ga = _g_at(
-                            events, k, p, t, h, y, k1, k3, k4, k5, k6, k7, probe, ybuf, gbuf, True
+                            k, p, t, h, y, k1, k3, k4, k5, k6, k7, probe, ybuf, gbuf, True
                         )  # fmt: skip
                         if _crosses(ga, g_new[k], ev_dir[k]):
                             break
@@ -379,7 +382,7 @@ def integrate_one(
                         s_ev[k] = 1.0
                     else:
                         s_ev[k] = _locate(
-                            events, k, p, t, h, y, k1, k3, k4, k5, k6, k7,
+                            k, p, t, h, y, k1, k3, k4, k5, k6, k7,
                             ga, g_new[k], ybuf, gbuf, from_zero,
                         )  # fmt: skip
                     if ev_act[k] != ACT_COUNT and s_ev[k] < s_cut:
@@ -473,3 +476,54 @@ def integrate_one(
     stats[ST_NREJECT] = nreject
     stats[ST_NEVENTS] = n_events_total
     return status, t
+
+
+@njit(cache=True, nogil=True, parallel=True)
+def integrate_ensemble(
+    n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, ev_dir, ev_act,
+    YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
+):  # fmt: skip
+    """Integrate ``STATUS.shape[0]`` trajectories in parallel (see :func:`integrate_one`).
+
+    Each trajectory writes only its own rows of the outputs, so results are bit-identical
+    whatever the number of threads. Inputs whose first dimension is 1 are shared by all
+    trajectories: ``Y0`` (1 or N, n), ``P`` (1 or N, n_param), ``T1`` (1 or N,), ``TS``
+    (1 or N, n_save).
+    """
+    N = STATUS.shape[0]
+    for i in prange(N):
+        _one_of_many(
+            i, n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps,
+            ev_dir, ev_act, YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
+        )  # fmt: skip
+
+
+@njit(cache=True, nogil=True)
+def integrate_serial(
+    n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, ev_dir, ev_act,
+    YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
+):  # fmt: skip
+    """Same as :func:`integrate_ensemble` on the calling thread."""
+    for i in range(STATUS.shape[0]):
+        _one_of_many(
+            i, n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps,
+            ev_dir, ev_act, YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
+        )  # fmt: skip
+
+
+@njit(cache=True, nogil=True)
+def _one_of_many(
+    i, n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, ev_dir,
+    ev_act, YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
+):  # fmt: skip
+    i = np.int64(i)  # the prange index may arrive unsigned; mixing it with int64 gives float64
+    iy = i if Y0.shape[0] > 1 else np.int64(0)
+    ip = i if P.shape[0] > 1 else np.int64(0)
+    it1 = i if T1.shape[0] > 1 else np.int64(0)
+    its = i if TS.shape[0] > 1 else np.int64(0)
+    st, te = integrate_one(
+        n_ev, Y0[iy], P[ip], t0, T1[it1], TS[its], rtol, atol, n_cont, first_step, max_step,
+        max_steps, ev_dir, ev_act, YS[i], YF[i], EVC[i], RECT[i], RECK[i], STATS[i],
+    )  # fmt: skip
+    STATUS[i] = st
+    TEND[i] = te

@@ -38,10 +38,18 @@ __all__ = [
     "Kernels",
     "AbstractModel",
     "no_events",
+    "no_rhs",
     "no_reset",
 ]
 
 EventAction = Literal["reset", "stop", "count"]
+
+
+@njit(cache=True, nogil=True)
+def no_rhs(t, y, p, out):  # pragma: no cover - compiled
+    """Placeholder right-hand side (zero derivative) bound in the integrator's template module."""
+    for i in range(y.shape[0]):
+        out[i] = 0.0
 
 
 @njit(cache=True, nogil=True)
