@@ -100,8 +100,10 @@ def block_reset(k, t, y, p, y_new):
     y_new[0] = y[0]
     y_new[1] = 0.0
     drive = _block_drive(t, y, p)
-    if abs(drive) <= p[0]:
-        y_new[2] = 0.0
+    if k == 0 and abs(drive) <= p[0]:
+        y_new[2] = 0.0  # came to rest and friction can hold it: stick
     else:
+        # break-away (k == 1): the drive is reaching the friction bound and will exceed it, so
+        # slip whatever round-off says about |drive| <= mu g at the located zero
         y_new[2] = 1.0 if drive > 0.0 else -1.0
     return 0
