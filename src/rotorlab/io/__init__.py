@@ -1,0 +1,69 @@
+"""Case files (TOML, validated, converted to SI) and result files (NetCDF).
+
+A case file describes one model and the analyses to run on it. Plain numbers are SI; strings
+carry units (``"14800 rpm"``, ``"882 kg*mm^2"``, ``"30 deg"``, ``"3 MN/m"``) and are converted
+with pint, which is imported only when a unit has to be read. Every problem in a case is
+reported in one :class:`CaseError` naming the key path, the value and what is allowed.
+
+Examples
+--------
+>>> from rotorlab.io import load_case
+>>> case = load_case("autobalancer")
+>>> round(case.model.critical_speed() / (2 * 3.141592653589793), 2)
+20.0
+"""
+
+from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, validate_case
+from rotorlab.io._errors import CaseError
+from rotorlab.io._results import load_netcdf, missing_units, save_netcdf
+from rotorlab.io._schema import (
+    ANALYSIS_SPECS,
+    MODEL_SPECS,
+    SCHEMA_VERSION,
+    SPEED_PROFILES,
+    AbstractAnalysisSpec,
+    AbstractModelSpec,
+    AbstractSpeedProfile,
+    Ball,
+    Case,
+    ConstantSpeed,
+    HillSpeed,
+    JeffcottBallsSpec,
+    RampSpeed,
+    SimulateSpec,
+    integer,
+    quantity,
+)
+from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
+
+__all__ = [
+    "ACCEPTED_UNITS",
+    "ANALYSIS_SPECS",
+    "DIMENSIONS",
+    "MODEL_SPECS",
+    "SCHEMA_VERSION",
+    "SPEED_PROFILES",
+    "AbstractAnalysisSpec",
+    "AbstractModelSpec",
+    "AbstractSpeedProfile",
+    "Ball",
+    "Case",
+    "CaseError",
+    "ConstantSpeed",
+    "Dimension",
+    "HillSpeed",
+    "JeffcottBallsSpec",
+    "RampSpeed",
+    "SimulateSpec",
+    "builtin_cases",
+    "dump_case",
+    "integer",
+    "load_case",
+    "load_netcdf",
+    "missing_units",
+    "parse_case",
+    "quantity",
+    "save_netcdf",
+    "to_si",
+    "validate_case",
+]
