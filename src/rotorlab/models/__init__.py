@@ -1,5 +1,11 @@
 """Models: frozen parameter objects plus compiled kernels (see :mod:`rotorlab.models._base`)."""
 
 from rotorlab.models._base import AbstractModel, EventSpec, Kernels, no_events, no_reset
+from rotorlab.models._jeffcott_balls import JeffcottBalls, fixed_to_rotating, rotating_to_fixed
+from rotorlab.models._jeffcott_params import BallParams, RotorParams
+from rotorlab.models._jeffcott_physics import Linearization
+from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp, speed_from_array
 
 __all__ = ["AbstractModel", "EventSpec", "Kernels", "no_events", "no_reset"]
+__all__ += ["JeffcottBalls", "RotorParams", "BallParams", "Linearization", "fixed_to_rotating",
+            "rotating_to_fixed", "ConstantSpeed", "LinearRamp", "HillRunUp", "speed_from_array"]
