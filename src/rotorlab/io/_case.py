@@ -289,7 +289,7 @@ def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, defa
     doc = dict(data)
     doc.setdefault("name", default)
     try:
-        case = Case.model_validate(doc)
+        case = Case.model_validate(doc, by_alias=True, by_name=False)
     except ValidationError as exc:
         problems = _problems(exc, doc) + _cross_problems(doc)
         unique = list(dict.fromkeys(problems))
@@ -362,7 +362,7 @@ def _line(
     if show and loc:
         raw = _lookup(doc, loc)
         shown = raw if raw is not _MISSING else value
-        if shown is not _MISSING and not isinstance(shown, Mapping):
+        if shown is not _MISSING:
             return f"{path} = {format_value(shown)}: {message}"
     return f"{path}: {message}"
 
@@ -462,7 +462,7 @@ def _field_description(owner: type[BaseModel] | None, key: Any) -> str:
     info = _fields_by_key(owner).get(key)
     if info is None or not info.description:
         return ""
-    return f" ({info.description})"
+    return f": {info.description}"
 
 
 # --------------------------------------------------------------------------- cross checks
