@@ -327,7 +327,7 @@ class HillSpeed(AbstractSpeedProfile):
     t_half : float
         Time at which half of ``max_speed`` is reached (s), > 0.
     exponent : float
-        Steepness n of the run-up (dimensionless), > 0.
+        Steepness n of the run-up (dimensionless), 0.01 <= n <= 1000.
 
     Notes
     -----
@@ -337,7 +337,9 @@ class HillSpeed(AbstractSpeedProfile):
     profile: Literal["hill"] = "hill"
     max_speed: quantity("angular_speed", gt=0) = Field(description="final speed (rad/s)")
     t_half: quantity("time", gt=0) = Field(description="time to reach half speed (s)")
-    exponent: quantity("dimensionless", gt=0) = Field(description="steepness n (-)")
+    exponent: quantity("dimensionless", ge=0.01, le=1000) = Field(
+        description="steepness n (-), 0.01 to 1000"
+    )
 
     def speed_at(self, t: float) -> float:
         """Return the spin speed at time ``t`` (s), in rad/s."""
@@ -406,7 +408,7 @@ class Ball(_Spec):
     @model_validator(mode="after")
     def _check_inertia(self) -> Ball:
         point = self.mass * self.radius**2
-        if self.inertia is not None and self.inertia < point * (1.0 - 1e-9):
+        if self.inertia is not None and self.inertia < point * (1.0 - 1e-12):
             raise IssueGroup(
                 [
                     Issue(
