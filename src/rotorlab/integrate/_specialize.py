@@ -125,6 +125,7 @@ def drivers_for(kernels: Kernels) -> tuple[Any, Any]:
     stem = f"drv_{rm.rsplit('.', 1)[-1]}_{rn}_{digest}"
     path = directory / f"{stem}.py"
     if not path.exists():
+        _prune(directory, stem.rsplit("_", 1)[0])
         fd, tmp = tempfile.mkstemp(dir=directory, suffix=".tmp")
         with os.fdopen(fd, "w") as fh:
             fh.write(_generate(names))  # type: ignore[arg-type]
@@ -137,6 +138,15 @@ def drivers_for(kernels: Kernels) -> tuple[Any, Any]:
     spec.loader.exec_module(module)
     _LOADED[key] = (module.integrate_ensemble, module.integrate_serial)
     return _LOADED[key]
+
+
+def _prune(directory: Path, prefix: str) -> None:
+    """Delete drivers of the same kernels generated from older sources (and their numba cache)."""
+    for old in directory.glob(f"{prefix}_*.py"):
+        if len(old.stem) == len(prefix) + 21:  # prefix + "_" + 20-hex digest
+            for cached in (directory / "__pycache__").glob(f"{old.stem}.*"):
+                cached.unlink(missing_ok=True)
+            old.unlink(missing_ok=True)
 
 
 def _uncached(kernels: Kernels) -> tuple[Any, Any]:
