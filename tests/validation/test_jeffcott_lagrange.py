@@ -1,0 +1,145 @@
+"""The compiled ``jeffcott_balls`` right-hand sides against an independent sympy derivation.
+
+The equations are re-derived from the Lagrangian (balls as rigid bodies, Koenig's theorem) and the
+Rayleigh function in ``dev/derive_jeffcott_balls.py`` for both frames, with unequal masses, radii,
+inertias and damping, and solved numerically for the accelerations; the kernels must agree to
+1e-12 (relative, max norm). For n = 2 point masses the fixed-frame kernel must be exactly
+``shared/bench/model.py``.
+
+References: Zhakash et al. 2024 eqs. (1)-(3); Filimonikhin & Filimonikhina eqs. (4), (7).
+"""
+
+from __future__ import annotations
+
+import functools
+import sys
+import zlib
+from pathlib import Path
+
+import numpy as np
+import pytest
+import sympy as sp
+
+from rotorlab.models import (
+    BallParams,
+    ConstantSpeed,
+    HillRunUp,
+    JeffcottBalls,
+    LinearRamp,
+    RotorParams,
+)
+
+ROOT = Path(__file__).resolve().parents[2]
+BENCH = Path("/work/shared/bench")
+
+ROTOR = RotorParams(disc_mass=2.0, eccentricity=0.012, stiffness=350.0, damping=0.4)
+BALLS = (
+    BallParams(mass=0.05, radius=0.10, damping=0.002),
+    BallParams(mass=0.08, radius=0.13, inertia=0.08 * 0.13**2 + 3e-4, damping=0.004),
+    BallParams(mass=0.03, radius=0.07, inertia=0.03 * 0.07**2 * 1.4, damping=0.0),
+)
+SPEEDS = {
+    "constant": (ConstantSpeed(31.0), (0.0, 5.0)),
+    "ramp": (LinearRamp(4.0, 45.0, 3.0), (0.0, 3.0)),
+    "hill": (HillRunUp(40.0, 1.3, 2.7), (0.05, 4.0)),
+}
+
+
+@functools.lru_cache(maxsize=None)
+def _symbolic(n: int, frame: str):
+    """Lambdified mass matrix and forcing of the derived equations."""
+    sys.path.insert(0, str(ROOT / "dev"))
+    try:
+        from derive_jeffcott_balls import derive
+    finally:
+        sys.path.pop(0)
+    Mm, f, q, qd, par = derive(n, frame)
+    args = [q, qd, par["th"], par["Om"], par["dOm"], par["M1"], par["e"], par["c"], par["d"],
+            par["m"], par["l"], par["J"], par["b"]]  # fmt: skip
+    return sp.lambdify(args, Mm, "numpy"), sp.lambdify(args, f, "numpy")
+
+
+def _reference(model: JeffcottBalls, t: float, y: np.ndarray) -> np.ndarray:
+    """dy/dt from the symbolic equations, in the kernel's state layout."""
+    n = model.n_balls
+    m_fun, f_fun = _symbolic(n, model.frame)
+    th, om, dom = (float(v) for v in model.spin(t))
+    r = model.rotor
+    q = [y[0], y[1], *y[4 : 4 + n]]
+    qd = [y[2], y[3], *y[4 + n : 4 + 2 * n]]
+    args = (q, qd, th, om, dom, r.disc_mass, r.eccentricity, r.stiffness, r.damping,
+            [b.mass for b in model.balls], [b.radius for b in model.balls],
+            [b.inertia for b in model.balls], [b.damping for b in model.balls])  # fmt: skip
+    acc = np.linalg.solve(np.array(m_fun(*args), dtype=float), np.array(f_fun(*args), dtype=float).ravel())
+    return np.concatenate([qd[:2], acc[:2], qd[2:], acc[2:]])
+
+
+def _random_states(model: JeffcottBalls, rng, count: int, span):
+    n = model.n_balls
+    for _ in range(count):
+        t = rng.uniform(*span)
+        om = float(model.speed.spin_speed(t))
+        y = np.empty(model.n_state)
+        y[:2] = rng.normal(scale=0.02, size=2)
+        y[2:4] = rng.normal(scale=0.5, size=2)
+        y[4 : 4 + n] = rng.uniform(-7.0, 7.0, size=n)
+        rates = rng.normal(scale=5.0, size=n)
+        y[4 + n : 4 + 2 * n] = rates if model.frame == "rotating" else om + rates
+        yield t, y
+
+
+@pytest.mark.parametrize("frame", ["fixed", "rotating"])
+@pytest.mark.parametrize("speed", sorted(SPEEDS))
+def test_rhs_matches_lagrange_three_unequal_balls(frame, speed):
+    profile, span = SPEEDS[speed]
+    model = JeffcottBalls(ROTOR, BALLS, speed=profile, frame=frame)
+    rng = np.random.default_rng(zlib.crc32(f"{frame}-{speed}".encode()))
+    for t, y in _random_states(model, rng, 12, span):
+        got = model.rhs(t, y)
+        ref = _reference(model, t, y)
+        err = np.max(np.abs(got - ref)) / np.max(np.abs(ref))
+        assert err < 1e-12, (t, y, got, ref)
+
+
+def test_rhs_matches_lagrange_without_balls():
+    rng = np.random.default_rng(7)
+    for balls in ((),):
+        for frame in ("fixed", "rotating"):
+            model = JeffcottBalls(ROTOR, balls, speed=SPEEDS["ramp"][0], frame=frame)
+            for t, y in _random_states(model, rng, 6, (0.0, 3.0)):
+                got, ref = model.rhs(t, y), _reference(model, t, y)
+                assert np.max(np.abs(got - ref)) <= 1e-12 * np.max(np.abs(ref))
+
+
+def _bench_model():
+    sys.path.insert(0, str(BENCH))
+    try:
+        import model as bench
+    finally:
+        sys.path.pop(0)
+    disc = bench.M - 2 * bench.m
+    rotor = RotorParams(disc, bench.EPS / disc, bench.K, bench.C)
+    ball = BallParams(bench.m, bench.R, damping=bench.BETA)
+    return bench, JeffcottBalls(rotor, (ball, ball), speed=ConstantSpeed(bench.OMEGA))
+
+
+def test_fixed_frame_is_the_bench_model():
+    """Zhakash et al. 2024 eqs. (1)-(3) as used by the benchmark: same layout, same numbers."""
+    bench, model = _bench_model()
+    assert model.n_state == 8
+    assert model.state_names == ("x", "y", "vx", "vy", "phi_1", "phi_2", "w_1", "w_2")
+    assert model.kernels.n_discrete == 0 and model.kernels.n_events == 0
+    assert model.total_mass == pytest.approx(bench.M, rel=1e-15)
+    assert model.imbalance == pytest.approx(bench.EPS, rel=1e-15)
+    rng = np.random.default_rng(0)
+    out = np.empty(8)
+    p = model.to_array()
+    for _ in range(300):
+        s = rng.normal(size=8)
+        s[4:6] *= 3.0
+        t = rng.uniform(0.0, 100.0)
+        model.kernels.rhs(t, s, p, out)
+        ref = bench.rhs_python(t, s)
+        assert np.max(np.abs(out - ref)) <= 1e-13 * np.max(np.abs(ref))
+        ref_solve = bench.rhs_python_linsolve(t, s)
+        assert np.max(np.abs(out - ref_solve)) <= 1e-13 * np.max(np.abs(ref_solve))
