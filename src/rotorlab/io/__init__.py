@@ -14,7 +14,7 @@ Examples
 """
 
 from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, validate_case
-from rotorlab.io._errors import CaseError
+from rotorlab.io._errors import CaseError, Issue
 from rotorlab.io._results import load_netcdf, missing_units, save_netcdf
 from rotorlab.io._schema import (
     ANALYSIS_SPECS,
@@ -52,6 +52,7 @@ __all__ = [
     "ConstantSpeed",
     "Dimension",
     "HillSpeed",
+    "Issue",
     "JeffcottBallsSpec",
     "RampSpeed",
     "SimulateSpec",

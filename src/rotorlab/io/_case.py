@@ -493,7 +493,8 @@ def _cross_problems(doc: Mapping[str, Any]) -> list[str]:
         cls = ANALYSIS_SPECS.get(kind) if isinstance(kind, str) else None
         if cls is not None:
             present = {k for k in raw if k in cls.model_fields}
-            issues += [_prefix(("analysis", i), x) for x in exclusive_issues(cls.exclusive, present)]
+            found = exclusive_issues(cls.exclusive, present)
+            issues += [_prefix(("analysis", i), x) for x in found]
         name = raw.get("name")
         entries.append((name if isinstance(name, str) else None, str(kind)))
     issues += [_prefix(("analysis",), x) for x in duplicate_name_issues(entries)]

@@ -51,6 +51,9 @@ class CaseError(ValueError):
         self.origin = origin
 
 
+CaseError.__module__ = "rotorlab.io"  # tracebacks name the public path
+
+
 @dataclass(frozen=True, slots=True)
 class Issue:
     """One problem found by a cross-field check.

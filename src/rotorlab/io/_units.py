@@ -275,7 +275,8 @@ def convert(value: Any, dimension: str | Dimension) -> float:
 def _expected(dim: Dimension, got: str) -> str:
     if dim.name == "dimensionless":
         return f"must be a number, got {got}"
-    return f'must be a number (SI, {dim.si}) or a string with a unit such as "1 {dim.si or "m"}", got {got}'
+    example = f'"1 {dim.si}"'
+    return f"must be a number (SI, {dim.si}) or a string with a unit such as {example}, got {got}"
 
 
 def to_si(value: Any, dimension: str, where: str) -> float:
@@ -323,10 +324,10 @@ def to_si(value: Any, dimension: str, where: str) -> float:
     0.000882
     >>> to_si(0.5, "length", "radius")
     0.5
-    >>> to_si("3 m", "mass", "model.disc_mass")
+    >>> to_si("3 m", "mass", "disc_mass")
     Traceback (most recent call last):
     ...
-    rotorlab.io._errors.CaseError: model.disc_mass = "3 m": wrong dimension: expected a mass (kg), got length
+    rotorlab.io.CaseError: disc_mass = "3 m": wrong dimension: expected a mass (kg), got length
     """
     if dimension not in DIMENSIONS:
         raise ValueError(f"unknown dimension {dimension!r} (known: {', '.join(DIMENSIONS)})")
