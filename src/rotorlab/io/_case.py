@@ -2,7 +2,7 @@
 
 All problems found in a case are gathered and raised together as one :class:`CaseError`::
 
-    invalid case file 'my.toml' (2 problems):
+    invalid case my.toml (2 problems):
       model.balls[1].mass = -0.03: must be > 0 (kg)
       analysis[0].rtoll = 1e-08: unknown key 'rtoll'; did you mean 'rtol'? (allowed: ...)
 """
@@ -392,7 +392,9 @@ def _strip(tp: Any) -> Any:
     return tp
 
 
-def _tag(cls: type[BaseModel]) -> str | None:
+def _tag(cls: Any) -> str | None:
+    if not (isinstance(cls, type) and issubclass(cls, BaseModel)):
+        return None
     for key in _DISCRIMINATORS:
         info = cls.model_fields.get(key)
         if info is not None and get_origin(info.annotation) is Literal:
