@@ -192,3 +192,32 @@ def test_balanced_state_stable_only_above_critical_speed():
     assert np.max(model.linearize(y, spin_speed=0.5 * p).eigenvalues.real) > 0
     with pytest.raises(ValueError, match="without Coulomb friction"):
         JeffcottBalls(rotor, (BallParams(0.02, 0.1, friction=0.1),), speed=ConstantSpeed(1.0)).linearize(np.zeros(7))
+
+
+@pytest.mark.parametrize("imbalance_factor", [0.6, 1.4])
+def test_fourth_side_motion_corrected_condition(imbalance_factor):
+    """(pi, pi): f of eq. (18) has a minimum iff Me > m1 l1 + m2 l2 (printed '<' in case ii)."""
+    b1, b2 = BallParams(0.05, 0.08), BallParams(0.07, 0.10)
+    capacity = b1.static_moment + b2.static_moment
+    rotor = RotorParams(1.5, imbalance_factor * capacity / 1.5, 600.0)
+    om = 40.0
+    model = JeffcottBalls(rotor, (b1, b2), speed=ConstantSpeed(om), frame="rotating")
+
+    def f_of(alpha):  # f = (u^2 + v^2)/2 from H~* on the rotor equilibrium (eq. (16))
+        z = model.locked_response(alpha)
+        y = np.zeros(model.n_state)
+        y[0], y[1], y[4:6] = z.real, z.imag, alpha
+        const = 0.5 * om**2 * (rotor.imbalance * rotor.eccentricity + b1.inertia + b2.inertia)
+        return -(model.reduced_hamiltonian(y) + const) * (rotor.stiffness - model.total_mass * om**2) / om**4
+
+    a0, h = np.array([math.pi, math.pi]), 1e-4
+    hess = np.empty((2, 2))
+    for i in range(2):
+        for j in range(2):
+            ei, ej = np.eye(2)[i] * h, np.eye(2)[j] * h
+            hess[i, j] = (f_of(a0 + ei + ej) - f_of(a0 + ei - ej) - f_of(a0 - ei + ej) + f_of(a0 - ei - ej)) / (4 * h * h)
+    me, s1, s2 = rotor.imbalance, b1.static_moment, b2.static_moment
+    expect = np.array([[s1 * (me - s2), s1 * s2], [s1 * s2, s2 * (me - s1)]])  # eq. (19)
+    np.testing.assert_allclose(hess, expect, rtol=1e-5, atol=1e-7 * s1 * s2)
+    is_minimum = bool(np.all(np.linalg.eigvalsh(hess) > 0))
+    assert is_minimum == (me > s1 + s2)

@@ -77,12 +77,16 @@ Zhakash et al. 2024 (seed 002):
 - (14): printed ``|dP_s/dalpha_j - delta_sj theta c| = theta`` -> ``det(dP_s/dalpha_j -
   kappa delta_sj) = 0``.
 - (21): printed ``A = (omega W / beta0)(-eta cos gamma + cos 2 gamma)`` -> ``omega^2 W / beta0``
-  (result ``-omega^2 W/beta0`` as printed); ``eta cos gamma^2`` -> ``eta cos^2 gamma``. Its
-  positivity means ``W < 0`` (printed "W > 0"), which by the corrected (10) is omega > p, (22).
-- (23): A^(3), B^(3), A^(4) carry a spurious leading minus (the printed results are right); in
-  B^(3) the last factor is cos(alpha_1 - alpha_2) = 1, not cos pi; ``B^(4) = -omega^4 W^2 eta^2/
-  (4 beta0^2)`` (printed eta). The third solution (both balls on the light side) is stable above
-  p only for eta > 2 (capacity short, seed 003 case 2b); under (17), eta < 2, it is unstable.
+  and ``eta cos gamma^2`` -> ``eta cos^2 gamma``; with the corrected P_s (no 1/2),
+  ``A^(1) = -2 K`` and ``B^(1) = (1 - eta^2/4) K^2 eta^2``, ``K = omega^2 W / beta0``. Positivity
+  of A^(1) means ``W < 0`` (printed "W > 0"), which by the corrected (10) is omega > p, (22).
+- (23): corrected, ``A^(2) = 2 K (1 + eta)``, ``B^(2) = K^2 eta (eta + 2)``,
+  ``A^(3) = 2 K (1 - eta)``, ``B^(3) = K^2 eta (eta - 2)``, ``A^(4) = -2 K``,
+  ``B^(4) = -K^2 eta^2``. Printed: a spurious leading minus on A^(3), B^(3), A^(4); in B^(3) the
+  last factor cos pi for cos(alpha_1 - alpha_2) = 1; B^(4) with eta for eta^2. The third solution
+  (both balls on the light side) is stable above p only for eta > 2 (capacity short, seed 003
+  case 2b); under (17), eta < 2, it is unstable (printed: stable for omega > p). Checked: A, B
+  from the Jacobian of the corrected P_s, and the eigenvalues of the full model (eta = 1.2, 2.6).
 - (24): potential printed ``1/2 C[(x0')^2 + (y0')^2]`` -> ``1/2 c[(x0)^2 + (y0)^2]``; (25):
   ``D = -M m omega^2 R^2 / M1 W [...]`` -> ``D = -m omega^2 R^2 W [eta sum_s cos alpha_s + 1/2
   sum_s sum_j cos(alpha_s - alpha_j)]`` (plus the constant ``-1/2 m omega^2 R^2 W eta^2``), which is
