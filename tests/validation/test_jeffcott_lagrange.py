@@ -143,3 +143,21 @@ def test_fixed_frame_is_the_bench_model():
         assert np.max(np.abs(out - ref)) <= 1e-13 * np.max(np.abs(ref))
         ref_solve = bench.rhs_python_linsolve(t, s)
         assert np.max(np.abs(out - ref_solve)) <= 1e-13 * np.max(np.abs(ref_solve))
+
+
+@pytest.mark.parametrize("frame", ["fixed", "rotating"])
+def test_stick_slip_path_equals_the_lean_path_without_friction(frame):
+    """The kernel's general (stick/slip) path with f = 0 and slipping modes reproduces the lean
+    frictionless path to round-off."""
+    model = JeffcottBalls(ROTOR, BALLS, speed=SPEEDS["ramp"][0], frame=frame)
+    p_lean = model.to_array()
+    p_general = p_lean.copy()
+    p_general[1] = 1.0
+    rng = np.random.default_rng(17)
+    for t, y in _random_states(model, rng, 10, (0.0, 3.0)):
+        y_modes = np.concatenate([y, rng.choice([-1.0, 1.0], size=3)])
+        lean, general = np.empty_like(y), np.empty_like(y_modes)
+        model.kernels.rhs(t, y, p_lean, lean)
+        model.kernels.rhs(t, y_modes, p_general, general)
+        np.testing.assert_allclose(general[: y.size], lean, rtol=1e-13, atol=1e-13 * np.max(np.abs(lean)))
+        np.testing.assert_array_equal(general[y.size :], 0.0)

@@ -44,6 +44,9 @@ with ``g0_i = -b_i (w_i - Omega) - sigma_i f_i m_i l_i^2 w_i^2`` and ``kap_i = s
 (sums over free balls, ``q_i = m_i l_i / J_i``; stuck balls add ``m_i l_i Omega' (s_i, -c_i)`` to
 the right side), solved by Cramer's rule; then each ``alpha_i''`` follows. The sines and cosines
 of the first pass are parked in the output array (scratch) so the second pass reuses them.
+Without modes (``p[1] == 0``) a lean path with the same equations (kap_i = 0, symmetric 2x2)
+runs; it matches the speed of the hand-written benchmark RHS. Helpers are inlined
+(``inline="always"``) so that no array crosses a call boundary inside a kernel.
 
 Stick/slip (when ``p[1] == 1``)
 -------------------------------
@@ -105,7 +108,7 @@ I_VY = 3
 I_ANGLE = 4
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _free_coefficients(k, rel, w, s, c, mode, p, has_modes):
     """Return ``(g0, A, B)`` of a free ball whose parameter block starts at ``p[k]``."""
     m = p[k + B_M]
@@ -121,12 +124,12 @@ def _free_coefficients(k, rel, w, s, c, mode, p, has_modes):
     return g0, ml * s + kap * c, -ml * c + kap * s
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _is_stuck(k, mode, has_modes, p):
     return has_modes and p[k + B_F] > 0.0 and mode == 0.0
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _solve(t, y, p, rotating, forced, scr, ks, kc, stride):
     """Solve for the absolute acceleration of O1 in working axes.
 
@@ -194,7 +197,7 @@ def _solve(t, y, p, rotating, forced, scr, ks, kc, stride):
     return ax, ay, theta, om, dom
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _drive_and_bound(k, s, c, ax, ay, om, dom, p):
     """Driving torque D (N m) on a stuck ball and the friction bound f l N (N m)."""
     m = p[k + B_M]
@@ -204,7 +207,7 @@ def _drive_and_bound(k, s, c, ax, ay, om, dom, p):
     return drive, bound
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _rhs(t, y, p, out, rotating):
     n = int(p[P_N])
     has_modes = p[P_MODES] != 0.0
@@ -242,19 +245,95 @@ def _rhs(t, y, p, out, rotating):
         out[I_ANGLE + n + i] = acc - dom if rotating else acc
 
 
+@njit(cache=True, nogil=True, inline="always")
+def _rhs_free(t, y, p, out, rotating):
+    """Right-hand side without stick/slip modes (the common, fast path; same equations)."""
+    n = int(p[P_N])
+    theta, om, dom = profile(t, p, P_SPEED)
+    m1e = p[P_M1] * p[P_E]
+    X = y[I_X]
+    Y = y[I_Y]
+    if rotating:
+        VX = y[I_VX] - om * Y
+        VY = y[I_VY] + om * X
+        cu = 1.0
+        su = 0.0
+    else:
+        VX = y[I_VX]
+        VY = y[I_VY]
+        cu = math.cos(theta)
+        su = math.sin(theta)
+    rx = m1e * (om * om * cu + dom * su) - p[P_C] * X - p[P_D] * VX
+    ry = m1e * (om * om * su - dom * cu) - p[P_C] * Y - p[P_D] * VY
+    mass = p[P_M1]
+    sss = 0.0  # sums of q_i m_i l_i s_i^2, ... (the 2x2 system of the module docstring)
+    ssc = 0.0
+    scc = 0.0
+    for i in range(n):
+        k = P_BALLS + BALL_STRIDE * i
+        m = p[k + B_M]
+        ml = m * p[k + B_L]
+        mass += m
+        rate = y[I_ANGLE + n + i]
+        s = math.sin(y[I_ANGLE + i])
+        c = math.cos(y[I_ANGLE + i])
+        out[I_ANGLE + i] = s
+        out[I_ANGLE + n + i] = c
+        w = rate + om if rotating else rate
+        g0 = -p[k + B_B] * (rate if rotating else rate - om)
+        q = ml / p[k + B_J]
+        qs = q * s
+        qc = q * c
+        sss += qs * ml * s
+        ssc += qs * ml * c
+        scc += qc * ml * c
+        mw2 = ml * w * w
+        rx += mw2 * c + qs * g0
+        ry += mw2 * s - qc * g0
+    a11 = mass - sss
+    a22 = mass - scc
+    inv_det = 1.0 / (a11 * a22 - ssc * ssc)
+    ax = (a22 * rx - ssc * ry) * inv_det
+    ay = (a11 * ry - ssc * rx) * inv_det
+    out[I_X] = y[I_VX]
+    out[I_Y] = y[I_VY]
+    if rotating:
+        out[I_VX] = ax + 2.0 * om * y[I_VY] + dom * y[I_Y] + om * om * y[I_X]
+        out[I_VY] = ay - 2.0 * om * y[I_VX] - dom * y[I_X] + om * om * y[I_Y]
+    else:
+        out[I_VX] = ax
+        out[I_VY] = ay
+    for i in range(n):
+        k = P_BALLS + BALL_STRIDE * i
+        s = out[I_ANGLE + i]
+        c = out[I_ANGLE + n + i]
+        rate = y[I_ANGLE + n + i]
+        ml = p[k + B_M] * p[k + B_L]
+        g0 = -p[k + B_B] * (rate if rotating else rate - om)
+        acc = (g0 + ml * (ax * s - ay * c)) / p[k + B_J]
+        out[I_ANGLE + i] = rate
+        out[I_ANGLE + n + i] = acc - dom if rotating else acc
+
+
 @njit(cache=True, nogil=True, fastmath=False)
 def rhs_fixed(t, y, p, out):
     """Right-hand side in the fixed frame (see the module docstring for y and p)."""
-    _rhs(t, y, p, out, False)
+    if p[P_MODES] != 0.0:
+        _rhs(t, y, p, out, False)
+    else:
+        _rhs_free(t, y, p, out, False)
 
 
 @njit(cache=True, nogil=True, fastmath=False)
 def rhs_rotating(t, y, p, out):
     """Right-hand side in the co-rotating frame (see the module docstring for y and p)."""
-    _rhs(t, y, p, out, True)
+    if p[P_MODES] != 0.0:
+        _rhs(t, y, p, out, True)
+    else:
+        _rhs_free(t, y, p, out, True)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _events(t, y, p, g, rotating):
     n = int(p[P_N])
     ax, ay, theta, om, dom = _solve(t, y, p, rotating, -1, g, 0, 1, 2)
@@ -289,7 +368,7 @@ def events_rotating(t, y, p, g):
     _events(t, y, p, g, True)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def _reset(k_event, t, y, p, y_new, rotating):
     n = int(p[P_N])
     i = k_event // 2

@@ -172,7 +172,7 @@ def _hill_g(z, n, g_a, g_b):
     return g_b + (z - b) - _tail_series(b, z, n)
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")
 def profile(t, p, k):
     """Return ``(theta, omega, domega)`` of the profile stored at ``p[k:k+6]``.
 
