@@ -1,0 +1,31 @@
+"""Analyses: pure functions from models (or validated cases) to labelled xarray Datasets.
+
+Nothing here plots or writes files; see :mod:`rotorlab.plot`, :mod:`rotorlab.report` and the
+command line (:mod:`rotorlab.cli`) for that.
+"""
+
+from rotorlab.analyses._case import build_model, run_analysis, run_case, summarize
+from rotorlab.analyses._outcome import (
+    BALANCED_FRACTION,
+    SETTLE_RATE,
+    SIDE_TOLERANCE,
+    classify,
+    reference_amplitude,
+    wrap_angle,
+)
+from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
+
+__all__ = [
+    "BALANCED_FRACTION",
+    "SETTLE_RATE",
+    "SETTLE_REVOLUTIONS",
+    "SIDE_TOLERANCE",
+    "build_model",
+    "classify",
+    "reference_amplitude",
+    "run_analysis",
+    "run_case",
+    "simulate",
+    "summarize",
+    "wrap_angle",
+]

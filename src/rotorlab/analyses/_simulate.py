@@ -1,0 +1,269 @@
+"""Time simulation of a ball balancer from many start configurations, with outcome labels."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rotorlab.analyses._outcome import (
+    BALANCED_FRACTION,
+    SETTLE_RATE,
+    SIDE_TOLERANCE,
+    classify,
+    reference_amplitude,
+    wrap_angle,
+)
+
+if TYPE_CHECKING:
+    import xarray
+
+    from rotorlab.models import JeffcottBalls
+
+__all__ = ["simulate", "SETTLE_REVOLUTIONS"]
+
+#: Length of the final window (revolutions at the final speed) over which the final amplitude is
+#: averaged and the balls must stay at rest relative to the rotor to count as settled.
+SETTLE_REVOLUTIONS = 10.0
+
+_RPM = 60.0 / (2.0 * math.pi)
+
+
+def _check_inputs(model: Any, speeds: Any, initial_ball_angles: Any, t_end: float,
+                  n_save: int) -> tuple[np.ndarray | None, np.ndarray]:  # fmt: skip
+    if not hasattr(model, "with_speed") or not hasattr(model, "balls"):
+        raise TypeError(f"model must be a JeffcottBalls model, got {type(model).__name__}")
+    if not (isinstance(t_end, (int, float)) and math.isfinite(t_end) and t_end > 0):
+        raise ValueError(f"t_end must be a finite number > 0 (s), got {t_end!r}")
+    if isinstance(n_save, bool) or int(n_save) != n_save or n_save < 2:
+        raise ValueError(f"n_save must be an integer >= 2, got {n_save!r}")
+    om = None
+    if speeds is not None:
+        om = np.atleast_1d(np.asarray(speeds, dtype=float))
+        if om.ndim != 1 or om.size == 0 or not np.all(np.isfinite(om)) or np.any(om <= 0):
+            raise ValueError(f"speeds must be finite numbers > 0 (rad/s), got {speeds!r}")
+    angles = np.asarray(initial_ball_angles, dtype=float)
+    if angles.ndim == 1 and model.n_balls == 1:
+        angles = angles[:, None]
+    if angles.ndim != 2 or angles.shape[0] == 0 or angles.shape[1] != model.n_balls:
+        raise ValueError(
+            f"initial_ball_angles must have shape (n_configurations, {model.n_balls}) "
+            f"(one angle per ball, rad), got shape {angles.shape}"
+        )
+    if not np.all(np.isfinite(angles)):
+        raise ValueError("initial_ball_angles must be finite (rad)")
+    return om, angles
+
+
+def simulate(
+    model: JeffcottBalls,
+    *,
+    speeds: Any,
+    initial_ball_angles: Any,
+    t_end: float,
+    n_save: int = 2000,
+    rtol: float = 1e-8,
+    atol: float = 1e-10,
+    progress: Callable[[int, int], None] | None = None,
+    threads: int | None = None,
+) -> xarray.Dataset:
+    """Simulate start-ups of a ball balancer at constant speeds and label where each one ends.
+
+    Every trajectory starts with the disc centre at rest on the shaft axis and the balls at
+    rest relative to the rotor at the given angles from the unbalance. All trajectories of one
+    speed are integrated in one parallel :func:`rotorlab.integrate.solve_ensemble` call, in the
+    co-rotating frame, where steady motions are equilibria; results are reported in both frames.
+
+    Parameters
+    ----------
+    model : JeffcottBalls
+        The rotor and its balls (any frame; its speed profile is replaced unless ``speeds`` is
+        None).
+    speeds : array_like, shape (n_speed,), or None
+        Constant spin speeds omega (rad/s), > 0. None: follow the model's own speed profile
+        (one entry on the ``speed`` dim, valued at its speed at ``t_end``).
+    initial_ball_angles : array_like, shape (n_ic, n_balls)
+        Start configurations: angle of each ball from the unbalance (rad).
+    t_end : float
+        Simulated time (s), > 0.
+    n_save : int
+        Points of the saved uniform time grid on [0, t_end], >= 2.
+    rtol, atol : float
+        Integrator tolerances (relative; absolute, in SI units of each state).
+    progress : callable, optional
+        Called as ``progress(done, total)`` with trajectories finished so far, over all speeds.
+    threads : int, optional
+        Number of threads (default: numba's). Results do not depend on it.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``speed``, ``ic``, ``time``, ``ball``; coordinates ``speed`` (rad/s),
+        ``speed_rpm``, ``speed_ratio`` (omega / p), ``time`` (s), ``ic``, ``ball`` (1..n).
+        Variables: ``amplitude`` (shaft deflection, m), ``x``, ``y`` (disc centre in the fixed
+        frame, m), ``ball_angle`` (from the unbalance, wrapped to (-pi, pi], rad),
+        ``ball_rate`` (relative to the rotor, rad/s), ``status``, ``n_steps``,
+        ``initial_ball_angle`` (ic, ball), ``final_amplitude`` (m, mean over the last
+        :data:`SETTLE_REVOLUTIONS` revolutions), ``final_ball_angle`` (rad),
+        ``max_final_rate`` (largest |relative rate| over that window, rad/s), ``outcome`` (str,
+        see :func:`rotorlab.analyses.classify`), ``reference_amplitude`` (speed; deflection
+        caused by the unbalance alone, m) and ``critical_speed`` (p, rad/s).
+
+    Raises
+    ------
+    ValueError
+        Bad speeds, angles, times or tolerances (nothing is integrated).
+
+    Notes
+    -----
+    Frames: x + i y = e^{i theta} (u + i v), phi_i = theta + psi_i (see
+    :mod:`rotorlab.models._jeffcott_balls`). Seed 002 predicts, for two balls with
+    eta = M1 e / (m R) < 2, the balanced state psi = +-(pi - arccos(eta / 2)) stable only for
+    omega > p, and both balls on the unbalance side stable for omega < p.
+
+    Examples
+    --------
+    >>> from rotorlab.models import JeffcottBalls, RotorParams, BallParams, ConstantSpeed
+    >>> rotor = RotorParams(disc_mass=1.0, eccentricity=1.5e-3, stiffness=16740.0, damping=13.32)
+    >>> ball = BallParams(mass=0.03, radius=0.05, damping=2e-3)
+    >>> model = JeffcottBalls(rotor, (ball, ball), speed=ConstantSpeed(1.0))
+    >>> ds = simulate(model, speeds=[2 * model.critical_speed], t_end=5.0, n_save=200,
+    ...               initial_ball_angles=[[0.5, 2.5]])
+    >>> import numpy as np
+    >>> str(ds.outcome.item()), np.round(np.degrees(ds.final_ball_angle.values[0, 0]), 1) + 0.0
+    ('balanced', array([ 120., -120.]))
+    """
+    import xarray as xr
+
+    from rotorlab.integrate import SaveAt, Status, StepControl, solve_ensemble
+    from rotorlab.models import ConstantSpeed
+
+    om_list, angles = _check_inputs(model, speeds, initial_ball_angles, t_end, n_save)
+    control = StepControl(rtol=float(rtol), atol=float(atol))
+    n_ic, n = angles.shape
+    t_end = float(t_end)
+    ts = np.linspace(0.0, t_end, int(n_save))
+    models = (
+        [model.with_frame("rotating")]
+        if om_list is None
+        else [model.with_speed(ConstantSpeed(float(om))).with_frame("rotating") for om in om_list]
+    )
+    total = n_ic * len(models)
+    chunk = None
+    if progress is not None:
+        import numba
+
+        chunk = max(int(threads or numba.get_num_threads()), math.ceil(n_ic / 20))
+    shape = (len(models), n_ic)
+    out = {
+        "amplitude": np.empty((*shape, ts.size)),
+        "x": np.empty((*shape, ts.size)),
+        "y": np.empty((*shape, ts.size)),
+        "ball_angle": np.empty((*shape, ts.size, n)),
+        "ball_rate": np.empty((*shape, ts.size, n)),
+        "status": np.empty(shape, dtype=np.int32),
+        "n_steps": np.empty(shape, dtype=np.int64),
+        "final_amplitude": np.empty(shape),
+        "final_ball_angle": np.empty((*shape, n)),
+        "max_final_rate": np.empty(shape),
+        "outcome": np.empty(shape, dtype=object),
+    }
+    speed_end = np.empty(len(models))
+    reference = np.empty(len(models))
+    r = model.rotor
+    for k, rot in enumerate(models):
+        y0 = np.array([rot.initial_state(row) for row in angles])
+
+        def report(done: int, _total: int, offset: int = k * n_ic) -> None:
+            progress(offset + done, total)  # type: ignore[misc]
+
+        sol = solve_ensemble(
+            rot, y0, (0.0, t_end), save_at=SaveAt(ts=ts), control=control, threads=threads,
+            chunk_size=chunk, progress=None if progress is None else report,
+        )  # fmt: skip
+        theta = np.asarray(rot.speed.spin_angle(ts), dtype=float)
+        om_end = float(rot.speed.spin_speed(t_end))
+        speed_end[k] = om_end
+        reference[k] = reference_amplitude(r.imbalance, r.stiffness, rot.total_mass, r.damping, om_end)
+        u, v = sol.ys[:, :, 0], sol.ys[:, :, 1]
+        c, s = np.cos(theta), np.sin(theta)
+        out["amplitude"][k] = np.hypot(u, v)
+        out["x"][k] = c * u - s * v
+        out["y"][k] = s * u + c * v
+        out["ball_angle"][k] = wrap_angle(sol.ys[:, :, 4 : 4 + n])
+        out["ball_rate"][k] = sol.ys[:, :, 4 + n : 4 + 2 * n]
+        out["status"][k] = sol.status
+        out["n_steps"][k] = sol.stats[:, 1] + sol.stats[:, 2]
+        window = ts >= t_end - SETTLE_REVOLUTIONS * 2.0 * math.pi / max(abs(om_end), 1e-300)
+        window[-1] = True
+        ok = sol.status >= 0
+        amp_win = out["amplitude"][k][:, window]
+        rate_win = np.abs(out["ball_rate"][k][:, window, :]).reshape(n_ic, -1)
+        out["final_amplitude"][k] = np.where(ok, amp_win.mean(axis=1), np.nan)
+        out["max_final_rate"][k] = np.where(ok, rate_win.max(axis=1, initial=0.0), np.nan)
+        out["final_ball_angle"][k] = np.where(
+            ok[:, None], wrap_angle(sol.y_final[:, 4 : 4 + n]), np.nan
+        )
+        for i in range(n_ic):
+            code = int(sol.status[i])
+            out["outcome"][k, i] = classify(
+                code, Status(code).message, float(out["final_amplitude"][k, i]),
+                float(reference[k]), out["final_ball_angle"][k, i],
+                float(out["max_final_rate"][k, i]), om_end,
+            )  # fmt: skip
+
+    p = model.critical_speed
+    dims2 = ("speed", "ic")
+    flags = " ".join(f"{int(st)}:{st.name.lower()}" for st in Status)
+    ds = xr.Dataset(
+        {
+            "amplitude": (("speed", "ic", "time"), out["amplitude"],
+                          {"units": "m", "long_name": "shaft deflection at the disc"}),
+            "x": (("speed", "ic", "time"), out["x"],
+                  {"units": "m", "long_name": "disc centre x (fixed frame)"}),
+            "y": (("speed", "ic", "time"), out["y"],
+                  {"units": "m", "long_name": "disc centre y (fixed frame)"}),
+            "ball_angle": (("speed", "ic", "time", "ball"), out["ball_angle"],
+                           {"units": "rad", "long_name": "ball angle from the unbalance"}),
+            "ball_rate": (("speed", "ic", "time", "ball"), out["ball_rate"],
+                          {"units": "rad/s", "long_name": "ball rate relative to the rotor"}),
+            "status": (dims2, out["status"], {"units": "1", "flag_meanings": flags}),
+            "n_steps": (dims2, out["n_steps"], {"units": "1", "long_name": "integrator steps"}),
+            "initial_ball_angle": (("ic", "ball"), angles,
+                                   {"units": "rad", "long_name": "initial ball angle"}),
+            "final_amplitude": (dims2, out["final_amplitude"],
+                                {"units": "m", "long_name": "mean deflection, final window"}),
+            "final_ball_angle": (("speed", "ic", "ball"), out["final_ball_angle"],
+                                 {"units": "rad", "long_name": "final ball angle"}),
+            "max_final_rate": (dims2, out["max_final_rate"],
+                               {"units": "rad/s", "long_name": "largest |ball rate|, final window"}),
+            "outcome": (dims2, out["outcome"].astype(str), {"long_name": "outcome"}),
+            "reference_amplitude": (("speed",), reference,
+                                    {"units": "m", "long_name": "deflection, unbalance alone"}),
+            "critical_speed": ((), p, {"units": "rad/s", "long_name": "critical speed p"}),
+        },  # fmt: skip
+        coords={
+            "speed": ("speed", speed_end, {"units": "rad/s", "long_name": "spin speed"}),
+            "speed_rpm": ("speed", speed_end * _RPM, {"units": "rpm"}),
+            "speed_ratio": ("speed", speed_end / p, {"units": "1", "long_name": "omega / p"}),
+            "time": ("time", ts, {"units": "s"}),
+            "ic": ("ic", np.arange(n_ic), {"units": "1", "long_name": "initial configuration"}),
+            "ball": ("ball", np.arange(1, n + 1), {"units": "1"}),
+        },
+        attrs={
+            "analysis": "simulate",
+            "model": "jeffcott_balls",
+            "integration_frame": "rotating",
+            "speed_profile": "constant" if om_list is not None else type(model.speed).__name__,
+            "t_end": t_end,
+            "rtol": float(rtol),
+            "atol": float(atol),
+            "settle_revolutions": SETTLE_REVOLUTIONS,
+            "balanced_fraction": BALANCED_FRACTION,
+            "settle_rate": SETTLE_RATE,
+            "side_tolerance": SIDE_TOLERANCE,
+        },
+    )
+    return ds
