@@ -242,3 +242,35 @@ def test_run_up_slips_then_sticks():
     t_stick = sol.event_times[0]
     assert 0.5 < t_stick < 1.0
     np.testing.assert_array_equal(sol.ys[ts > t_stick, 5], 0.0)
+
+
+def test_power_balance_while_slipping():
+    """Slipping balls at constant speed: dH*/dt = sum q' Q includes the Coulomb power T_i psi_i',
+    and dE/dt = omega tau_drive - 2 Phi + sum T_i psi_i' (fixed-frame energy)."""
+    model = JeffcottBalls(ROTOR, BALLS, speed=ConstantSpeed(40.0), frame="rotating")
+    y0 = model.initial_state([0.4, 2.0, -1.0], rotor="steady", ball_rates=[6.0, -5.0, 2.0])
+    np.testing.assert_array_equal(y0[-3:], [1.0, -1.0, 1.0])
+    f_l = np.array([b.friction * b.radius for b in BALLS])
+    k, p = model.kernels.rhs, model.to_array()
+
+    def coulomb_power(t, y):
+        _, _, normal, _ = model.stick_torques(t, y)
+        return np.sum(-y[-3:] * f_l * normal * y[7:10])  # f_l = 0 for the smooth ball
+
+    def f(t, z):
+        y = z[:-2]
+        out = np.empty_like(y)
+        k(t, y, p, out)
+        e_rate = 40.0 * model.drive_torque(t, y) - 2.0 * model.dissipation(y, t) + coulomb_power(t, y)
+        return np.concatenate([out, [model.hamiltonian_rate(y, t), e_rate]])
+
+    ts = np.linspace(0.0, 0.015, 6)
+    sol = solve_ivp(f, (0.0, ts[-1]), np.concatenate([y0, [0.0, 0.0]]), t_eval=ts, method="DOP853",
+                    rtol=1e-10, atol=1e-13)  # fmt: skip
+    ys = sol.y[:-2].T
+    assert np.all(np.sign(ys[:, 7:9]) == [1.0, -1.0])  # the rough balls still slip the same way
+    h = model.hamiltonian(ys)
+    np.testing.assert_allclose(h - h[0], sol.y[-2], rtol=0, atol=1e-8 * np.ptp(h))
+    e = model.energy(ts, ys)
+    np.testing.assert_allclose(e - e[0], sol.y[-1], rtol=0, atol=1e-8 * np.ptp(e))
+    assert np.ptp(h) > 1e-3 and np.ptp(e) > 1e-3

@@ -45,7 +45,7 @@ with ``g0_i = -b_i (w_i - Omega) - sigma_i f_i m_i l_i^2 w_i^2`` and ``kap_i = s
 the right side), solved by Cramer's rule; then each ``alpha_i''`` follows. The sines and cosines
 of the first pass are parked in the output array (scratch) so the second pass reuses them.
 Without modes (``p[1] == 0``) a lean path with the same equations (kap_i = 0, symmetric 2x2)
-runs; it matches the speed of the hand-written benchmark RHS. Helpers are inlined
+runs, within about 1.25x of the hand-written two-ball benchmark RHS. Helpers are inlined
 (``inline="always"``) so that no array crosses a call boundary inside a kernel.
 
 Stick/slip (when ``p[1] == 1``)

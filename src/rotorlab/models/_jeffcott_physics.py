@@ -189,22 +189,25 @@ def dissipation(model, y, t=0.0):
 
 
 def _friction_torques(model, yr, t):
-    """Coulomb torques on slipping balls, and accelerations, for rotating-frame states."""
+    """Coulomb torques on the balls (holding torque -D_i if stuck) and the acceleration of O1 in
+    the co-rotating axes, for rotating-frame states ``yr`` at times ``t``."""
+    from rotorlab._kernels.jeffcott_balls import stick_torques
+
     n = model.n_balls
-    flat = yr.reshape(-1, yr.shape[-1])
+    flat = np.ascontiguousarray(yr.reshape(-1, yr.shape[-1]))
     tt = np.broadcast_to(t, yr.shape[:-1]).reshape(-1)
-    rot = model.with_frame("rotating")
+    p = model.to_array()
     torque = np.zeros((flat.shape[0], n))
     acc = np.zeros((flat.shape[0], 2))
-    f = np.array([b.friction for b in model.balls])
-    l = np.array([b.radius for b in model.balls])
+    f_l = np.array([b.friction * b.radius for b in model.balls])
+    drive, bound, out = np.empty(n), np.empty(n), np.empty(2 + n)
     for j in range(flat.shape[0]):
-        d_i, _, normal, a = rot.stick_torques(float(tt[j]), flat[j])
-        acc[j] = a
+        stick_torques(float(tt[j]), flat[j], p, True, -1, drive, bound, out)
+        acc[j] = out[:2]
         if model.has_friction:
             mode = flat[j, 4 + 2 * n :]
-            stuck = (mode == 0.0) & (f > 0.0)
-            torque[j] = np.where(stuck, -d_i, -mode * f * l * normal)
+            stuck = (mode == 0.0) & (f_l > 0.0)
+            torque[j] = np.where(stuck, -drive, -mode * f_l * out[2:])
     shape = yr.shape[:-1]
     return torque.reshape(shape + (n,)), acc.reshape(shape + (2,))
 

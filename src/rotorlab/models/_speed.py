@@ -106,9 +106,7 @@ class _ProfileMixin:
         if n_rev < 1:
             return np.empty(0)
         targets = th[0] + sign * 2.0 * math.pi * np.arange(1, n_rev + 1)
-        lo = np.full(n_rev, float(t0))
-        hi = np.full(n_rev, float(t1))
-        idx = np.searchsorted(sign * th, sign * targets)
+        idx = np.searchsorted(sign * th, sign * targets)  # bracket each target on the grid
         lo = grid[np.clip(idx - 1, 0, grid.size - 1)]
         hi = grid[np.clip(idx, 0, grid.size - 1)]
         for _ in range(200):
