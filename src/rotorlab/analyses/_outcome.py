@@ -84,8 +84,8 @@ def reference_amplitude(imbalance: float, stiffness: float, total_mass: float, d
 
     Examples
     --------
-    >>> float(reference_amplitude(1e-3, 100.0, 1.0, 0.0, 20.0))  # 1e-3 * 400 / 300
-    0.0013333333333333333
+    >>> round(float(reference_amplitude(1e-3, 100.0, 1.0, 0.0, 20.0)), 12)  # 1e-3 * 400 / 300
+    0.001333333333
     """
     om = np.asarray(spin_speed, dtype=float)
     return imbalance * om**2 / np.abs(stiffness - total_mass * om**2 + 1j * damping * om)

@@ -133,7 +133,7 @@ def simulate(
     ...               initial_ball_angles=[[0.5, 2.5]])
     >>> import numpy as np
     >>> str(ds.outcome.item()), np.round(np.degrees(ds.final_ball_angle.values[0, 0]), 1) + 0.0
-    ('balanced', array([ 120., -120.]))
+    ('balanced', array([-120.,  120.]))
     """
     import xarray as xr
 
