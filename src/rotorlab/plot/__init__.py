@@ -1,0 +1,25 @@
+"""Matplotlib figures of rotorlab results (Datasets in, ``Figure`` objects out).
+
+Numerics never import this package. Figures are made without pyplot (Agg canvas), so importing
+or using it changes no global matplotlib state.
+"""
+
+from rotorlab.plot._simulate import (
+    amplitude_figure,
+    ball_angle_figure,
+    configuration_label,
+    final_positions_figure,
+    orbit_figure,
+    simulation_figures,
+    speed_label,
+)
+
+__all__ = [
+    "amplitude_figure",
+    "ball_angle_figure",
+    "configuration_label",
+    "final_positions_figure",
+    "orbit_figure",
+    "simulation_figures",
+    "speed_label",
+]

@@ -1,0 +1,243 @@
+"""Figures of simulation results (:func:`rotorlab.analyses.simulate` Datasets).
+
+Figures are built as :class:`matplotlib.figure.Figure` objects without pyplot, so nothing here
+touches matplotlib's global backend or figure registry; they render with the Agg canvas
+(``fig.savefig("f.png")``). Display units: deflection in mm, angles in degrees, speeds in rpm.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    import xarray
+    from matplotlib.axes import Axes
+    from matplotlib.figure import Figure
+
+__all__ = [
+    "amplitude_figure",
+    "ball_angle_figure",
+    "final_positions_figure",
+    "orbit_figure",
+    "simulation_figures",
+    "speed_label",
+    "configuration_label",
+]
+
+_LINESTYLES = ("-", "--", ":", "-.")
+
+
+def _new_figure(n_panels: int, *, polar: bool = False, width: float = 7.0,
+                height: float = 3.0) -> tuple[Figure, list[Axes]]:  # fmt: skip
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(width, height * n_panels + 0.4), layout="constrained")
+    kw = {"projection": "polar"} if polar else {}
+    axes = [fig.add_subplot(n_panels, 1, k + 1, **kw) for k in range(n_panels)]
+    return fig, axes
+
+
+def _colors(n: int) -> list:
+    from matplotlib import colormaps
+
+    cmap = colormaps["tab10" if n <= 10 else "viridis"]
+    return [cmap(i if n <= 10 else i / max(n - 1, 1)) for i in range(n)]
+
+
+def speed_label(ds: xarray.Dataset, k: int) -> str:
+    """Return the panel title of speed ``k``: rpm, Hz and omega/p.
+
+    Examples
+    --------
+    >>> import xarray as xr
+    >>> ds = xr.Dataset(coords={"speed": ("speed", [251.3]), "speed_ratio": ("speed", [2.0])})
+    >>> speed_label(ds, 0)
+    'omega = 2400 rpm (40.0 Hz), omega/p = 2.00'
+    """
+    om = float(ds.speed.values[k])
+    rpm = om * 60.0 / (2.0 * math.pi)
+    return f"omega = {rpm:.0f} rpm ({om / (2 * math.pi):.1f} Hz), omega/p = {float(ds.speed_ratio.values[k]):.2f}"
+
+
+def configuration_label(ds: xarray.Dataset, i: int) -> str:
+    """Return the legend entry of initial configuration ``i``: its ball angles in degrees.
+
+    Examples
+    --------
+    >>> import numpy as np, xarray as xr
+    >>> ds = xr.Dataset({"initial_ball_angle": (("ic", "ball"), np.radians([[0.0, 90.0]]))})
+    >>> configuration_label(ds, 0)
+    'start (0°, 90°)'
+    """
+    degs = np.degrees(ds.initial_ball_angle.values[i])
+    return "start (" + ", ".join(f"{d:.0f}°" for d in degs) + ")"
+
+
+def _break_wraps(values_deg: np.ndarray) -> np.ndarray:
+    """Insert NaN where a wrapped angle jumps by more than 180 degrees (no vertical lines)."""
+    out = np.array(values_deg, dtype=float)
+    jumps = np.abs(np.diff(out)) > 180.0
+    out[1:][jumps] = np.nan
+    return out
+
+
+def amplitude_figure(ds: xarray.Dataset, *, log: bool = False) -> Figure:
+    """Plot the shaft deflection against time: one panel per speed, one line per start.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.analyses.simulate`.
+    log : bool
+        Logarithmic deflection axis (shows the convergence to balance).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The dashed line is the deflection the unbalance alone causes.
+    """
+    n_speed, n_ic = ds.sizes["speed"], ds.sizes["ic"]
+    fig, axes = _new_figure(n_speed)
+    colors = _colors(n_ic)
+    t = ds.time.values
+    for k, ax in enumerate(axes):
+        for i in range(n_ic):
+            ax.plot(t, ds.amplitude.values[k, i] * 1e3, color=colors[i], lw=1.0,
+                    label=f"{configuration_label(ds, i)}: {ds.outcome.values[k, i]}")  # fmt: skip
+        ref = float(ds.reference_amplitude.values[k]) * 1e3
+        ax.axhline(ref, color="k", ls="--", lw=0.8, label="unbalance alone")
+        if log:
+            ax.set_yscale("log")
+        ax.set_title(speed_label(ds, k), fontsize=10)
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel("shaft deflection (mm)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="upper right", ncol=2 if n_ic > 4 else 1)
+    return fig
+
+
+def ball_angle_figure(ds: xarray.Dataset) -> Figure:
+    """Plot the ball angles from the unbalance against time (degrees, wrapped to (-180, 180]).
+
+    One panel per speed; colour = start configuration, line style = ball.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.analyses.simulate`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    n_speed, n_ic, n_ball = ds.sizes["speed"], ds.sizes["ic"], ds.sizes["ball"]
+    fig, axes = _new_figure(n_speed)
+    colors = _colors(n_ic)
+    t = ds.time.values
+    for k, ax in enumerate(axes):
+        for i in range(n_ic):
+            for b in range(n_ball):
+                label = configuration_label(ds, i) if b == 0 else None
+                ax.plot(t, _break_wraps(np.degrees(ds.ball_angle.values[k, i, :, b])),
+                        color=colors[i], ls=_LINESTYLES[b % len(_LINESTYLES)], lw=1.0,
+                        label=label)  # fmt: skip
+        ax.set_ylim(-185, 185)
+        ax.set_yticks(np.arange(-180, 181, 60))
+        ax.set_title(speed_label(ds, k) + "; line style = ball", fontsize=10)
+        ax.set_xlabel("time (s)")
+        ax.set_ylabel("ball angle from unbalance (deg)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="upper right", ncol=2 if n_ic > 4 else 1)
+    return fig
+
+
+def final_positions_figure(ds: xarray.Dataset) -> Figure:
+    """Show where the balls ended on the disc (polar; the unbalance points to 0 degrees).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.analyses.simulate`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One polar panel per speed; each start configuration's final ball angles are markers
+        on a ring of its own (inner ring = first start).
+    """
+    n_speed, n_ic = ds.sizes["speed"], ds.sizes["ic"]
+    fig, axes = _new_figure(n_speed, polar=True, width=7.0, height=3.6)
+    colors = _colors(n_ic)
+    for k, ax in enumerate(axes):
+        ax.annotate("", xy=(0.0, n_ic + 1.0), xytext=(0.0, 0.0),
+                    arrowprops={"arrowstyle": "->", "color": "k", "lw": 1.5})  # fmt: skip
+        ax.text(0.0, n_ic + 1.6, "unbalance", ha="left", va="bottom", fontsize=8)
+        for i in range(n_ic):
+            ang = ds.final_ball_angle.values[k, i]
+            ax.plot(ang, np.full(ang.shape, i + 1.0), "o", color=colors[i], ms=6,
+                    label=f"{configuration_label(ds, i)}: {ds.outcome.values[k, i]}")  # fmt: skip
+        ax.set_rmax(n_ic + 1.5)
+        ax.set_yticklabels([])
+        ax.set_title(speed_label(ds, k), fontsize=10)
+        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.05, 1.0))
+    return fig
+
+
+def orbit_figure(ds: xarray.Dataset, *, revolutions: float = 5.0) -> Figure:
+    """Plot the orbit of the disc centre in the fixed frame over the last revolutions.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.analyses.simulate`.
+    revolutions : float
+        How many revolutions (at the final speed) before the end to draw.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        x and y in mm; one panel per speed, one line per start. The saved points are drawn as
+        they are, so the orbit looks polygonal when fewer than ~20 points fall on a revolution.
+    """
+    n_speed, n_ic = ds.sizes["speed"], ds.sizes["ic"]
+    fig, axes = _new_figure(n_speed, width=5.0, height=4.5)
+    colors = _colors(n_ic)
+    t = ds.time.values
+    for k, ax in enumerate(axes):
+        om = float(ds.speed.values[k])
+        sel = t >= t[-1] - revolutions * 2.0 * math.pi / om
+        for i in range(n_ic):
+            ax.plot(ds.x.values[k, i, sel] * 1e3, ds.y.values[k, i, sel] * 1e3, ".-",
+                    color=colors[i], lw=0.6, ms=2, label=configuration_label(ds, i))  # fmt: skip
+        ax.set_aspect("equal", adjustable="datalim")
+        ax.set_title(speed_label(ds, k), fontsize=10)
+        ax.set_xlabel("x (mm)")
+        ax.set_ylabel("y (mm)")
+        ax.grid(alpha=0.3)
+        ax.legend(fontsize=7, loc="upper right")
+    return fig
+
+
+def simulation_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
+    """Return the standard figures of one simulation, keyed by file stem.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.analyses.simulate`.
+    name : str
+        Analysis name, the prefix of every key.
+
+    Returns
+    -------
+    dict of str to Figure
+        ``<name>_amplitude``, ``<name>_ball_angles``, ``<name>_final_positions``.
+    """
+    return {
+        f"{name}_amplitude": amplitude_figure(ds),
+        f"{name}_ball_angles": ball_angle_figure(ds),
+        f"{name}_final_positions": final_positions_figure(ds),
+    }
