@@ -1,0 +1,17 @@
+"""The output folder of a run: one self-contained HTML report plus NetCDF results and PNGs.
+
+The report has no network dependencies: CSS is inline and figures are embedded as base64
+``data:`` URIs, so the single ``report.html`` can be mailed or archived on its own.
+"""
+
+from rotorlab.report._html import parameter_rows, render_report, versions
+from rotorlab.report._write import REPORT_NAME, check_output_dir, write_report
+
+__all__ = [
+    "REPORT_NAME",
+    "check_output_dir",
+    "parameter_rows",
+    "render_report",
+    "versions",
+    "write_report",
+]
