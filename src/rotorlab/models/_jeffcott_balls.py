@@ -36,11 +36,11 @@ centripetal term dominates the radial acceleration of O1). Slip: T_i = -mode_i f
 the ball turns with the rotor, the race holds the driving torque D_i (see the kernel module).
 
 Inertia of a ball: J_i is Filimonikhin & Filimonikhina's J_Oi, the axial moment of inertia about
-the shaft axis (pendulum: exact). A ball rolling without slip on a race of radius l_i + r_b has
-spin theta' - (l_i / r_b) psi_i' instead of phi_i'; at constant speed its relative motion is
-reproduced exactly by J_i = m_i l_i^2 + J_c (l_i / r_b)^2 (the difference in the gyroscopic term
-is a constant times psi_i', a null Lagrangian), while J_i = m_i l_i^2 + J_c gives the seed's T0; the
-two differ in H* only by a constant.
+the shaft axis; the body turns with phi_i' (pendulum: exact; ball: J_i = m_i l_i^2 + J_c, which
+gives the seed's T0 and all steady motions). A ball rolling without slip on a race of radius
+l_i + r_b spins at theta' - (l_i / r_b) psi_i' instead; at constant speed its motion is
+reproduced exactly by J_i = m_i l_i^2 + J_c (l_i / r_b)^2 (the remaining difference, a constant
+times psi_i' in T1, is a null Lagrangian), with H* then shifted by a constant only.
 
 H* (Filimonikhin & Filimonikhina eq. (4)) in the rotating frame, constant speed Omega::
 
@@ -54,7 +54,7 @@ the drive torque.
 Corrections to the seeds
 ------------------------
 Each was found by re-deriving the printed formula and is checked in
-``tests/validation/test_jeffcott_seed002.py`` or ``test_jeffcott_lagrange.py``.
+``tests/validation/test_jeffcott_seed002.py`` or ``test_jeffcott_seed003.py``.
 
 Zhakash et al. 2024 (seed 002):
 
@@ -100,8 +100,9 @@ Filimonikhin & Filimonikhina (seed 003):
 - (6): ``i = 1..n`` -> ``i = 1..N`` (all coordinates; (11) differentiates by x, y too).
 - Case 2b: printed ``H~*(2^n) > H~*(k)`` -> ``H~*(2^n) < H~*(k)``: with c < M_S omega^2, (15)
   gives ``2 H~*(k) = omega^4 (Me + s(k))^2 / |c - M_S omega^2| + const``, least for all k_i = 1.
+  Checked: H~* on all 2^3 side motions of an example with Me > sum m_i l_i.
 - Fourth side motion, case ii: printed ``Me < m1 l1 + m2 l2`` (repeats case i) ->
-  ``Me > m1 l1 + m2 l2``.
+  ``Me > m1 l1 + m2 l2``. Checked: numerical Hessian of f against (19) and its definiteness.
 - (17) defines f = u^2 + v^2, (18) f = (u^2 + v^2)/2; (19) is the Hessian of the latter (a factor
   2, signs unaffected). The seed's M is the disc mass (our M1), M_S = M1 + sum m_i, its J_O the
   disc's inertia about O (constant, left out here).
