@@ -439,8 +439,8 @@ def solve_ensemble(
     >>> sol = solve_ensemble(osc, [[1.0, 0.0], [0.0, 1.0]], (0.0, np.pi),
     ...                      control=StepControl(rtol=1e-10, atol=1e-12))
     >>> np.round(sol.y_final, 8) + 0.0
-    array([[ 1. ,  0. ],
-           [ 0. ,  1. ]])
+    array([[1., 0.],
+           [0., 1.]])
     """
     from rotorlab.integrate._specialize import drivers_for
 
