@@ -1,0 +1,9 @@
+"""The ``rotorlab`` command line (typer): ``run``, ``simulate``, ``validate``, ``cases``.
+
+Importing this package stays light (no numpy, numba, xarray or matplotlib), so that
+``rotorlab --version`` answers in well under a second.
+"""
+
+from rotorlab.cli._app import app, main
+
+__all__ = ["app", "main"]

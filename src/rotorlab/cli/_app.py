@@ -1,0 +1,356 @@
+"""The ``rotorlab`` command line: a thin typer layer over :mod:`rotorlab.io`,
+:mod:`rotorlab.analyses`, :mod:`rotorlab.plot` and :mod:`rotorlab.report`.
+
+Exit codes: 0 success, 1 internal error, 2 bad input (case file, case name, option value).
+Nothing heavy (numpy, numba, xarray, matplotlib, pydantic) is imported at module import, so that
+``rotorlab --version`` answers at once.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import time
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+import typer
+
+from rotorlab._version import __version__
+from rotorlab.cli._output import (
+    BadInput,
+    Settings,
+    emit_json,
+    handled,
+    info,
+    outcome_table,
+    progress_bar,
+    stdout,
+    summary_table,
+)
+
+__all__ = ["app", "main"]
+
+DEFAULT_CASE = "autobalancer"
+DEFAULT_OUT = "rotorlab-out"
+_RPM = 60.0 / (2.0 * math.pi)
+
+app = typer.Typer(
+    name="rotorlab",
+    help="Dynamics of centrifuge rotors and automatic ball balancers.",
+    add_completion=False,
+    no_args_is_help=True,
+    pretty_exceptions_enable=False,
+    rich_markup_mode=None,
+    context_settings={"help_option_names": ["-h", "--help"]},
+)
+
+CaseArg = Annotated[str, typer.Argument(help="TOML case file or built-in case name (see 'rotorlab cases').",
+                                        metavar="CASE", show_default=False)]  # fmt: skip
+JsonOpt = Annotated[bool, typer.Option("--json", help="Print a machine-readable summary on stdout only.")]
+
+
+def _version(value: bool) -> None:
+    if value:
+        typer.echo(f"rotorlab {__version__}")
+        raise typer.Exit()
+
+
+@app.callback()
+def _root(
+    ctx: typer.Context,
+    version: Annotated[bool, typer.Option("--version", callback=_version, is_eager=True,
+                                          help="Show the version and exit.")] = False,  # fmt: skip
+    quiet: Annotated[bool, typer.Option("-q", "--quiet", help="Print only errors (and --json output).")] = False,
+    verbose: Annotated[bool, typer.Option("-v", "--verbose", help="Print more; tracebacks of internal errors.")] = False,
+) -> None:
+    """Dynamics of centrifuge rotors and automatic ball balancers.
+
+    CASE arguments take a TOML case file or the name of a built-in case.
+    """
+    if quiet and verbose:
+        typer.echo("error: -q/--quiet and -v/--verbose exclude each other", err=True)
+        raise typer.Exit(2)
+    ctx.obj = Settings(quiet=quiet, verbose=verbose)
+
+
+def _settings(ctx: typer.Context) -> Settings:
+    obj = ctx.find_root().obj
+    return obj if isinstance(obj, Settings) else Settings()
+
+
+def _load(source: str) -> Any:
+    from rotorlab.io import load_case
+
+    return load_case(source)
+
+
+def _trajectory_count(case_model: Any, analysis: Any) -> int:
+    return len(analysis.ball_angle_sets(case_model.n_balls))
+
+
+def _json_case(case: Any) -> dict[str, Any]:
+    return {"case": case.name, "source": case.source}
+
+
+# --------------------------------------------------------------------------- cases / validate
+
+
+@app.command("cases")
+def cases_command(ctx: typer.Context, json_out: JsonOpt = False) -> None:
+    """List the built-in cases with their one-line descriptions."""
+    settings = _settings(ctx)
+    with handled(settings):
+        from rotorlab.io import builtin_cases
+
+        found = builtin_cases()
+        if json_out:
+            emit_json({"cases": found})
+            return
+        if settings.quiet:
+            return
+        from rich.table import Table
+
+        table = Table(title="Built-in cases (use the name as CASE)", title_justify="left")
+        table.add_column("name")
+        table.add_column("description")
+        for name, description in found.items():
+            table.add_row(name, description)
+        stdout().print(table)
+
+
+def _speed_text(omega: float | None, p: float | None) -> str:
+    if omega is None:
+        return "follows the model's speed profile"
+    text = f"{omega:.6g} rad/s = {omega * _RPM:.6g} rpm = {omega / (2 * math.pi):.6g} Hz"
+    return text + (f" (ω/p = {omega / p:.3g})" if p else "")
+
+
+def _analysis_summary(case: Any) -> list[dict[str, Any]]:
+    out = []
+    for a in case.analyses:
+        omega = a.spin_speed(case.model)
+        out.append({
+            "name": a.name,
+            "type": a.type,
+            "speed": omega,
+            "speed_rpm": None if omega is None else omega * _RPM,
+            "configurations": _trajectory_count(case.model, a),
+            "t_end": a.duration(case.model),
+        })  # fmt: skip
+    return out
+
+
+@app.command("validate")
+def validate_command(ctx: typer.Context, case: CaseArg, json_out: JsonOpt = False) -> None:
+    """Check a case file and print a summary of it (exit code 2 and the problems if invalid)."""
+    settings = _settings(ctx)
+    with handled(settings):
+        from rotorlab.io import CaseError
+
+        try:
+            loaded = _load(case)
+        except CaseError as exc:
+            if json_out:
+                emit_json({"ok": False, "source": case, "problems": list(exc.problems)})
+            raise
+        p = loaded.model.critical_speed()
+        analyses = _analysis_summary(loaded)
+        if json_out:
+            emit_json({"ok": True, **_json_case(loaded), "description": loaded.description,
+                       "critical_speed": p, "n_balls": loaded.model.n_balls,
+                       "model": loaded.model_dump_si()["model"], "analyses": analyses})  # fmt: skip
+            return
+        if settings.quiet:
+            return
+        con = stdout()
+        con.print(f"OK: {loaded.name} ({loaded.source})", markup=False)
+        if loaded.description:
+            con.print(f"  {loaded.description}", markup=False)
+        con.print(f"  model: {loaded.model.type}, {loaded.model.n_balls} ball(s), "
+                  f"critical speed p = {_speed_text(p, None)}", markup=False)  # fmt: skip
+        for a, row in zip(loaded.analyses, analyses):
+            con.print(f"  analysis {a.name} ({a.type}): {row['configurations']} start "
+                      f"configuration(s), {row['t_end']:.6g} s at "
+                      f"{_speed_text(row['speed'], p)}", markup=False)  # fmt: skip
+
+
+# --------------------------------------------------------------------------- run
+
+
+@app.command("run")
+def run_command(
+    ctx: typer.Context,
+    case: Annotated[str, typer.Argument(
+        help="TOML case file or built-in case name.", metavar="CASE")] = DEFAULT_CASE,
+    out: Annotated[Path, typer.Option("--out", "-o", metavar="DIR", help="Output folder.")] = Path(DEFAULT_OUT),
+    json_out: JsonOpt = False,
+) -> None:
+    """Run every analysis of a case; write report.html, NetCDF results and PNG figures to --out."""
+    settings = _settings(ctx)
+    with handled(settings):
+        from rotorlab.report import check_output_dir
+
+        loaded = _load(case)
+        try:
+            check_output_dir(out)
+        except ValueError as exc:
+            raise BadInput(str(exc)) from None
+        if not loaded.analyses:
+            raise BadInput(f"case {loaded.name}: lists no [[analysis]] to run")
+        info(settings, f"Running {loaded.name} ({len(loaded.analyses)} analyses) ...", json_mode=json_out)
+        start = time.perf_counter()
+        from rotorlab.analyses import run_case, summarize
+
+        tasks = {a.name: _trajectory_count(loaded.model, a) for a in loaded.analyses}
+        with progress_bar(settings, tasks) as update:
+            results = run_case(loaded, progress=update)
+        computed = time.perf_counter() - start
+        from rotorlab.plot import simulation_figures
+        from rotorlab.report import write_report
+
+        tables = {name: summarize(ds) for name, ds in results.items()}
+        figures = {}
+        for name, ds in results.items():
+            figures.update(simulation_figures(ds, name))
+        report = write_report(out, loaded, results, figures, tables)
+        files = sorted(p.name for p in report.parent.iterdir()
+                       if p.name == report.name or p.stem in results or p.stem in figures)  # fmt: skip
+        total = time.perf_counter() - start
+        if json_out:
+            emit_json({**_json_case(loaded), "out_dir": str(report.parent), "report": str(report),
+                       "files": files, "seconds": round(total, 3),
+                       "analyses": {name: {"type": ds.attrs.get("analysis", ""), "rows": tables[name]}
+                                    for name, ds in results.items()}})  # fmt: skip
+            return
+        if settings.quiet:
+            return
+        con = stdout()
+        con.print(summary_table(tables))
+        if settings.verbose:
+            for name, rows in tables.items():
+                con.print(outcome_table(name, rows))
+            con.print(f"computed in {computed:.1f} s, total {total:.1f} s", markup=False)
+        con.print(f"Report: {report}", markup=False)
+
+
+# --------------------------------------------------------------------------- simulate
+
+
+def _positive(option: str, values: list[float] | None, unit: str) -> list[float]:
+    out = []
+    for v in values or ():
+        if not (math.isfinite(v) and v > 0):
+            raise BadInput(f"{option} = {v:g}: must be a finite number > 0 ({unit})")
+        out.append(float(v))
+    return out
+
+
+def _pick_analysis(loaded: Any, name: str | None) -> Any:
+    from rotorlab.io import SimulateSpec
+
+    sims = [a for a in loaded.analyses if a.type == "simulate"]
+    if name is not None:
+        for a in sims:
+            if a.name == name:
+                return a
+        names = ", ".join(a.name for a in sims) or "none"
+        raise BadInput(f"--analysis = {name}: no simulate analysis of that name (simulate analyses: {names})")
+    if sims:
+        return sims[0]
+    return SimulateSpec(name="simulate", ball_angle_grid=4 if loaded.model.n_balls <= 2 else 2,
+                        revolutions=200.0)  # fmt: skip
+
+
+@app.command("simulate")
+def simulate_command(
+    ctx: typer.Context,
+    case: CaseArg,
+    speed_rpm: Annotated[Optional[list[float]], typer.Option(  # noqa: UP007
+        "--speed-rpm", metavar="RPM", help="Constant spin speed (rpm); repeat for several speeds.")] = None,
+    speed_ratio: Annotated[Optional[list[float]], typer.Option(  # noqa: UP007
+        "--speed-ratio", metavar="RATIO", help="Spin speed as a multiple of the critical speed p; repeatable.")] = None,
+    t_end: Annotated[Optional[float], typer.Option(  # noqa: UP007
+        "--t-end", metavar="SECONDS", help="Simulated time (s).")] = None,
+    analysis: Annotated[Optional[str], typer.Option(  # noqa: UP007
+        "--analysis", metavar="NAME", help="Which simulate analysis of the case supplies the start configurations "
+        "and tolerances (default: the first).")] = None,
+    out: Annotated[Optional[Path], typer.Option(  # noqa: UP007
+        "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")] = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Simulate start-ups of a case's model from its start configurations and label the outcomes.
+
+    Without --speed-rpm/--speed-ratio the speed of the case's (first) simulate analysis is used;
+    without --t-end its simulated time. A case without simulate analyses uses a 4 x 4 grid of
+    ball angles and 200 revolutions.
+    """
+    settings = _settings(ctx)
+    with handled(settings):
+        rpm = _positive("--speed-rpm", speed_rpm, "rpm")
+        ratio = _positive("--speed-ratio", speed_ratio, "multiples of the critical speed")
+        if rpm and ratio:
+            raise BadInput("--speed-rpm and --speed-ratio exclude each other: give only one")
+        t_end_given = t_end is not None
+        if t_end_given:
+            _positive("--t-end", [t_end], "s")
+        if out is not None:
+            if out.is_dir():
+                raise BadInput(f"--out = {out}: is a folder (give a .nc file name)")
+            if not out.absolute().parent.is_dir():
+                raise BadInput(f"--out = {out}: folder {out.absolute().parent} does not exist")
+        loaded = _load(case)
+        spec = _pick_analysis(loaded, analysis)
+        model_spec = loaded.model
+        p = model_spec.critical_speed()
+        if ratio and p is None:
+            raise BadInput(f"--speed-ratio: model '{model_spec.type}' has no critical speed; give --speed-rpm")
+        speeds = [r / _RPM for r in rpm] or [r * p for r in ratio] or None
+        if speeds is None:
+            omega = spec.spin_speed(model_spec)
+            speeds = None if omega is None else [omega]
+        if speeds is None and spec.revolutions is not None and t_end is None:
+            raise BadInput("the model's speed profile changes: give --t-end or a constant speed")
+        if t_end is None:
+            t_end = spec.t_end if spec.t_end is not None else spec.revolutions * 2 * math.pi / min(speeds)
+        from rotorlab.analyses import build_model, simulate, summarize
+
+        model = build_model(model_spec)
+        angles = spec.ball_angle_sets(model.n_balls)
+        info(settings, f"Simulating {loaded.name}: {len(angles)} start(s) x "
+             f"{1 if speeds is None else len(speeds)} speed(s), {t_end:.6g} s ...", json_mode=json_out)  # fmt: skip
+        total = len(angles) * (1 if speeds is None else len(speeds))
+        with progress_bar(settings, {spec.name: total}) as update:
+            ds = simulate(model, speeds=speeds, initial_ball_angles=angles, t_end=t_end,
+                          n_save=spec.n_save, rtol=spec.rtol, atol=spec.atol,
+                          progress=lambda done, n: update(spec.name, done, n))  # fmt: skip
+        ds.attrs["name"] = spec.name
+        ds.attrs["case"] = loaded.name
+        rows = summarize(ds)
+        written = None
+        if out is not None:
+            from rotorlab.io import save_netcdf
+
+            written = str(save_netcdf(ds, out))
+            umask = os.umask(0)
+            os.umask(umask)
+            os.chmod(written, 0o666 & ~umask)
+        if json_out:
+            emit_json({**_json_case(loaded), "analysis": spec.name, "t_end": t_end,
+                       "out": written, "rows": rows})  # fmt: skip
+            return
+        if settings.quiet:
+            return
+        con = stdout()
+        title = f"{loaded.name}: {spec.name}" if not (rpm or ratio or t_end_given) else (
+            f"{loaded.name}: start configurations and tolerances of {spec.name}")
+        con.print(outcome_table(title, rows))
+        if written:
+            con.print(f"Wrote {written}", markup=False)
+
+
+def main() -> None:
+    """Run the ``rotorlab`` command line (the console-script entry point)."""
+    app(prog_name="rotorlab")
+
+

@@ -1,0 +1,217 @@
+"""Console output of the command line: messages, errors and exit codes, progress, tables, JSON.
+
+Everything meant for a person goes through rich consoles created per call (so that test runners
+that swap ``sys.stdout``/``sys.stderr`` see it); progress bars and messages go to stderr, results
+to stdout. With ``--json`` stdout carries only the JSON document. rich is imported inside the
+functions to keep ``rotorlab --version`` fast.
+"""
+
+from __future__ import annotations
+
+import contextlib
+import json
+import math
+import sys
+import traceback
+from collections.abc import Iterator, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+import typer
+
+__all__ = [
+    "Settings",
+    "BadInput",
+    "EXIT_BAD_INPUT",
+    "EXIT_INTERNAL",
+    "handled",
+    "stdout",
+    "stderr",
+    "info",
+    "emit_json",
+    "progress_bar",
+    "summary_table",
+    "outcome_table",
+]
+
+EXIT_INTERNAL = 1
+EXIT_BAD_INPUT = 2
+
+
+class BadInput(ValueError):
+    """A command-line option has a value that is not allowed (message names option and value)."""
+
+
+@dataclass(frozen=True, slots=True)
+class Settings:
+    """Global options: how much to print.
+
+    Parameters
+    ----------
+    quiet : bool
+        Print nothing but errors and requested JSON.
+    verbose : bool
+        Print more detail, and tracebacks of internal errors.
+    """
+
+    quiet: bool = False
+    verbose: bool = False
+
+
+def stdout() -> Any:
+    """Return a rich console on the current ``sys.stdout`` (120 columns when not a terminal)."""
+    from rich.console import Console
+
+    console = Console(file=sys.stdout, highlight=False, soft_wrap=True)
+    if not console.is_terminal:
+        console.width = max(console.width, 120)
+    return console
+
+
+def stderr() -> Any:
+    """Return a rich console on the current ``sys.stderr``."""
+    from rich.console import Console
+
+    return Console(file=sys.stderr, highlight=False, soft_wrap=True)
+
+
+def info(settings: Settings, message: str, *, json_mode: bool = False) -> None:
+    """Print a progress/status message (stderr in JSON mode, else stdout) unless quiet."""
+    if settings.quiet:
+        return
+    (stderr() if json_mode else stdout()).print(message, markup=False)
+
+
+def emit_json(document: Any) -> None:
+    """Write ``document`` as JSON to stdout (the only stdout output in ``--json`` mode)."""
+    sys.stdout.write(json.dumps(document, indent=2, allow_nan=False) + "\n")
+    sys.stdout.flush()
+
+
+@contextlib.contextmanager
+def handled(settings: Settings) -> Iterator[None]:
+    """Turn exceptions into one clear message on stderr and the documented exit code.
+
+    Bad input (:class:`rotorlab.io.CaseError`, :class:`BadInput`): the message, exit code 2.
+    Anything unexpected: a short message (traceback with ``-v``), exit code 1.
+    """
+    from rotorlab.io import CaseError
+
+    try:
+        yield
+    except (typer.Exit, typer.Abort):
+        raise
+    except (CaseError, BadInput) as exc:
+        sys.stderr.write(f"error: {exc}\n")
+        raise typer.Exit(EXIT_BAD_INPUT) from None
+    except KeyboardInterrupt:
+        sys.stderr.write("interrupted\n")
+        raise typer.Exit(130) from None
+    except Exception as exc:  # noqa: BLE001 - the last line of defence of the CLI
+        if settings.verbose:
+            sys.stderr.write("".join(traceback.format_exception(exc)))
+        sys.stderr.write(f"internal error: {type(exc).__name__}: {exc}\n")
+        if not settings.verbose:
+            sys.stderr.write("(run with -v for the traceback)\n")
+        raise typer.Exit(EXIT_INTERNAL) from None
+
+
+@contextlib.contextmanager
+def progress_bar(settings: Settings, tasks: Mapping[str, int]) -> Iterator[Any]:
+    """Show a progress bar on stderr with one line per task; yield ``update(name, done, total)``.
+
+    The bar is drawn only when stderr is a terminal (nothing is written otherwise).
+
+    Parameters
+    ----------
+    settings : Settings
+        No bar when quiet.
+    tasks : mapping of str to int
+        Task name to its number of steps (trajectories).
+    """
+    from rich.progress import (
+        BarColumn,
+        MofNCompleteColumn,
+        Progress,
+        SpinnerColumn,
+        TextColumn,
+        TimeElapsedColumn,
+    )
+
+    console = stderr()
+    bar = Progress(
+        SpinnerColumn(),
+        TextColumn("{task.description}"),
+        BarColumn(),
+        MofNCompleteColumn(),
+        TextColumn("trajectories"),
+        TimeElapsedColumn(),
+        console=console,
+        transient=True,
+        disable=settings.quiet or not console.is_terminal,
+    )
+    ids = {name: bar.add_task(name, total=total) for name, total in tasks.items()}
+
+    def update(name: str, done: int, total: int) -> None:
+        if name not in ids:
+            ids[name] = bar.add_task(name, total=total)
+        bar.update(ids[name], completed=done, total=total)
+
+    with bar:
+        yield update
+
+
+def _fmt_angles(values: Sequence[float | None]) -> str:
+    return "(" + ", ".join("-" if v is None else f"{v:.1f}" for v in values) + ")"
+
+
+def _fmt_mm(value: float | None) -> str:
+    return "-" if value is None else f"{value * 1e3:.4g}"
+
+
+def outcome_table(title: str, rows: Sequence[Mapping[str, Any]]) -> Any:
+    """Return a rich table with one line per (speed, start configuration)."""
+    from rich.table import Table
+
+    table = Table(title=title, title_justify="left")
+    for name, justify in (("speed (rpm)", "right"), ("ω/p", "right"), ("start (deg)", "left"),
+                          ("deflection (mm)", "right"), ("× unbalance alone", "right"),
+                          ("final angles (deg)", "left"), ("outcome", "left")):  # fmt: skip
+        table.add_column(name, justify=justify)
+    for r in rows:
+        ratio = r["amplitude_ratio"]
+        table.add_row(
+            f"{r['speed_rpm']:.0f}", f"{r['speed_ratio']:.3g}", _fmt_angles(r["initial_ball_angles_deg"]),
+            _fmt_mm(r["final_amplitude"]), "-" if ratio is None else f"{ratio:.3g}",
+            _fmt_angles(r["final_ball_angles_deg"]), r["outcome"],
+        )  # fmt: skip
+    return table
+
+
+def summary_table(results: Mapping[str, Sequence[Mapping[str, Any]]]) -> Any:
+    """Return a short rich table: per analysis and speed, how many starts ended how."""
+    from rich.table import Table
+
+    table = Table(title="Outcomes", title_justify="left")
+    for name, justify in (("analysis", "left"), ("speed (rpm)", "right"), ("ω/p", "right"),
+                          ("outcomes", "left"), ("deflection (mm)", "right")):  # fmt: skip
+        table.add_column(name, justify=justify)
+    for name, rows in results.items():
+        by_speed: dict[float, list[Mapping[str, Any]]] = {}
+        for r in rows:
+            by_speed.setdefault(r["speed"], []).append(r)
+        for group in by_speed.values():
+            counts: dict[str, int] = {}
+            for r in group:
+                counts[r["outcome"]] = counts.get(r["outcome"], 0) + 1
+            amps = [r["final_amplitude"] for r in group if r["final_amplitude"] is not None]
+            span = "-" if not amps else f"{min(amps) * 1e3:.3g} … {max(amps) * 1e3:.3g}"
+            text = ", ".join(f"{k} ×{v}" for k, v in counts.items())
+            first = group[0]
+            table.add_row(name, f"{first['speed_rpm']:.0f}", f"{first['speed_ratio']:.3g}", text, span)
+    return table
+
+
+def finite_or_none(value: float | None) -> float | None:
+    """Return ``value`` if it is a finite float, else None (for JSON)."""
+    return value if value is not None and math.isfinite(value) else None
