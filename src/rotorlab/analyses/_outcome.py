@@ -125,8 +125,9 @@ def classify(status: int, status_message: str, final_amplitude: float, reference
     -------
     str
         ``"failed: ..."``, ``"not settled"``, ``"balanced"``, ``"side (0°, 180°)"`` (balls on the
-        line through the unbalance; nominal angles, sorted) or ``"steady (a°, b°)"`` (settled
-        elsewhere, e.g. held by friction; measured angles, sorted).
+        line through the unbalance; nominal angles, sorted), ``"steady (a°, b°)"`` (settled
+        elsewhere, e.g. held by friction; measured angles, sorted) or, for a rotor without
+        balls, ``"unbalanced"``.
 
     Examples
     --------
@@ -145,6 +146,8 @@ def classify(status: int, status_message: str, final_amplitude: float, reference
         return "not settled"
     if final_amplitude <= balanced_fraction * reference + 1e-15:
         return "balanced"
+    if angles.size == 0:
+        return "unbalanced"
     near_zero = np.abs(angles) <= side_tolerance
     near_pi = np.abs(angles) >= math.pi - side_tolerance
     if np.all(near_zero | near_pi):

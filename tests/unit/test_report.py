@@ -1,0 +1,171 @@
+"""Unit tests of rotorlab.report (and the figures it embeds from rotorlab.plot)."""
+
+from __future__ import annotations
+
+import base64
+import os
+import re
+
+import numpy as np
+import pytest
+
+from rotorlab.analyses import run_case, summarize
+from rotorlab.io import load_netcdf, parse_case
+from rotorlab.plot import amplitude_figure, ball_angle_figure, orbit_figure, simulation_figures
+from rotorlab.report import REPORT_NAME, parameter_rows, versions, write_report
+
+_CASE = """
+name = "tiny"
+description = "two balls, two speeds, short runs"
+[model]
+type = "jeffcott_balls"
+disc_mass = "1 kg"
+eccentricity = "1.5 mm"
+stiffness = "16.74 kN/m"
+damping = "13.32 N*s/m"
+[[model.balls]]
+mass = "30 g"
+radius = "50 mm"
+damping = "2e-3 N*m*s"
+count = 2
+[[analysis]]
+type = "simulate"
+name = "below"
+speed = "720 rpm"
+initial_ball_angles = [["0 deg", "90 deg"], ["45 deg", "200 deg"]]
+t_end = "1 s"
+n_save = 50
+[[analysis]]
+type = "simulate"
+name = "above"
+speed_ratio = 2.0
+initial_ball_angles = [["120 deg", "240 deg"]]
+revolutions = 20
+n_save = 50
+"""
+
+
+@pytest.fixture(scope="module")
+def run():
+    case = parse_case(_CASE, origin="tiny.toml")
+    results = run_case(case)
+    tables = {name: summarize(ds) for name, ds in results.items()}
+    return case, results, tables
+
+
+def _figures(results):
+    figures = {}
+    for name, ds in results.items():
+        figures.update(simulation_figures(ds, name))
+    return figures
+
+
+def test_report_is_one_self_contained_file(run, tmp_path):
+    case, results, tables = run
+    figures = _figures(results)
+    out = tmp_path / "out"
+    report = write_report(out, case, results, figures, tables)
+    assert report == out / REPORT_NAME
+    text = report.read_text(encoding="utf-8")
+    # every figure embedded as a PNG data URI, decodable, and identical to the PNG file next to it
+    uris = re.findall(r'src="data:image/png;base64,([A-Za-z0-9+/=]+)"', text)
+    assert len(uris) == len(figures) == 6
+    pngs = {p.name: p.read_bytes() for p in out.glob("*.png")}
+    assert sorted(pngs) == sorted(f"{k}.png" for k in figures)
+    assert sorted(base64.b64decode(u) for u in uris) == sorted(pngs.values())
+    assert all(b.startswith(b"\x89PNG") for b in pngs.values())
+    # nothing is fetched from anywhere
+    assert not re.search(r"""(src|href)\s*=\s*["']?\s*(https?:)?//""", text, re.I)
+    assert not re.search(r"url\(\s*['\"]?(https?:)?//", text, re.I)
+    assert "<script" not in text.lower() and "<link" not in text.lower()
+    assert "<style>" in text
+
+
+def test_report_content(run, tmp_path):
+    case, results, tables = run
+    text = write_report(tmp_path / "o", case, results, _figures(results), tables).read_text()
+    assert "rotorlab report: tiny" in text and "two balls, two speeds, short runs" in text
+    for package, version in versions().items():
+        assert f"<td>{package}</td><td>{version}</td>" in text
+    # parameters in SI with units, speeds also in rpm and Hz
+    assert "<td>model.stiffness</td><td class=\"num\">16740</td><td>N/m</td>" in text
+    assert "720 rpm = 12 Hz" in text
+    assert "critical speed p = sqrt(c / M)" in text and "1200.04 rpm = 20.0007 Hz" in text
+    assert "±120°" in text
+    # one outcome row per trajectory, the case text (escaped), links to the result files
+    assert text.count('<span class="outcome-') == 3
+    assert 'speed = &quot;720 rpm&quot;' in text
+    assert '<a href="below.nc">below.nc</a>' in text
+
+
+def test_results_and_netcdf_round_trip(run, tmp_path):
+    case, results, tables = run
+    write_report(tmp_path / "o", case, results, {}, tables)
+    files = sorted(p.name for p in (tmp_path / "o").iterdir())
+    assert files == ["above.nc", "below.nc", REPORT_NAME]
+    back = load_netcdf(tmp_path / "o" / "below.nc")
+    np.testing.assert_array_equal(back.amplitude.values, results["below"].amplitude.values)
+    assert list(back.outcome.values.ravel()) == list(results["below"].outcome.values.ravel())
+    assert back.speed_rpm.attrs["units"] == "rpm"
+
+
+def test_failure_leaves_nothing(run, tmp_path):
+    case, results, tables = run
+
+    class Broken:
+        def savefig(self, *args, **kwargs):
+            raise RuntimeError("cannot render")
+
+    with pytest.raises(RuntimeError, match="cannot render"):
+        write_report(tmp_path / "o", case, results, {"below_bad": Broken()}, tables)
+    assert os.listdir(tmp_path) == []
+
+
+def test_existing_folder_updated_in_place(run, tmp_path):
+    case, results, tables = run
+    out = tmp_path / "o"
+    out.mkdir()
+    (out / "notes.txt").write_text("mine")
+    (out / REPORT_NAME).write_text("old")
+    write_report(out, case, results, {}, tables)
+    assert (out / "notes.txt").read_text() == "mine"
+    assert (out / REPORT_NAME).read_text().startswith("<!DOCTYPE html>")
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]  # no staging folder left
+
+
+def test_output_must_be_a_folder(run, tmp_path):
+    case, results, tables = run
+    target = tmp_path / "file"
+    target.write_text("x")
+    with pytest.raises(ValueError, match="exists and is not a folder"):
+        write_report(target, case, results, {}, tables)
+
+
+def test_bad_file_names_rejected(run, tmp_path):
+    case, results, tables = run
+    with pytest.raises(ValueError, match="plain file names"):
+        write_report(tmp_path / "o", case, {"../escape": results["below"]}, {}, tables)
+    assert not (tmp_path / "o").exists()
+
+
+def test_parameter_rows_units(run):
+    case = run[0]
+    rows = {r[0]: r for r in parameter_rows(case.model, "model")}
+    assert rows["model.disc_mass"][1:3] == ("1", "kg")
+    assert rows["model.balls[1].damping"][1:3] == ("0.002", "N*m*s/rad")
+    assert rows["model.balls[0].friction"][2] == "1"
+    assert "model.balls[0].count" not in rows
+    rows = {r[0]: r for r in parameter_rows(case.analyses[0], "a")}
+    assert rows["a.initial_ball_angles"][3] == "(0°, 90°), (45°, 200°)"
+
+
+def test_figures_have_labelled_axes(run):
+    ds = run[1]["below"]
+    fig = amplitude_figure(ds)
+    ax = fig.axes[0]
+    assert ax.get_xlabel() == "time (s)" and ax.get_ylabel() == "shaft deflection (mm)"
+    assert "720 rpm" in ax.get_title() and "omega/p = 0.60" in ax.get_title()
+    assert len(ax.get_lines()) == 2 + 1  # one per start + the reference
+    np.testing.assert_allclose(ax.get_lines()[0].get_ydata(), ds.amplitude.values[0, 0] * 1e3)
+    assert ball_angle_figure(ds).axes[0].get_ylabel() == "ball angle from unbalance (deg)"
+    assert orbit_figure(ds).axes[0].get_xlabel() == "x (mm)"

@@ -1,0 +1,127 @@
+"""Outcomes of the built-in ``autobalancer`` case against seed 002 (Zhakash, Dzhakashova,
+Yesilkhankyzy 2024, eqs. (9)-(23)).
+
+Seed 002: two equal balls with eta = M1 e / (m R) < 2 have four steady motions; the balanced one,
+psi = +-(pi - gamma), gamma = arccos(eta / 2), is stable only above the critical speed
+p = sqrt(c / M) (eq. (22)), both balls on the unbalance side only below it. The case has eta = 1,
+so the balanced angles are +-120 degrees.
+
+What the simulations show with the case's geometry:
+
+- Below p (omega = 0.6 p) every start ends with both balls next to the unbalance. With shaft
+  damping they lag it by the rotor's phase, -16.1 degrees here (computed below from the
+  locked-ball response), and the rotor whirls 2.97 times wider than without balancer.
+- Above p (omega = 2 p) with ball damping b = 2e-3 N m s every start balances except the
+  symmetric ones (both balls at the same angle, which keeps them together for ever).
+- With the case's own ball damping (2e-4 N m s, ten times lighter) half the supercritical starts
+  end instead in a non-synchronous motion: both balls together, turning slower than the rotor at
+  about 0.84 p, the rotor whirling at 3.5 times the unbalance response ("not settled"). A 12 x 12
+  grid of starts gives 65 of 144 such starts at b = 2e-4, 23 at 1e-3, 6 at 1.5e-3 and none at
+  2e-3 to 1e-2; at 2e-3 the balanced state is reached within 2 s and the subcritical side motion
+  within 11 s of the 20 s simulated.
+"""
+
+from __future__ import annotations
+
+import dataclasses
+import math
+
+import numpy as np
+import pytest
+from scipy.optimize import brentq
+
+from rotorlab.analyses import build_model, run_case, simulate
+from rotorlab.io import load_case
+
+ETA = 1.0
+BALANCED_DEG = 180.0 - math.degrees(math.acos(ETA / 2.0))  # 120
+
+
+@pytest.fixture(scope="module")
+def case():
+    return load_case("autobalancer")
+
+
+@pytest.fixture(scope="module")
+def results(case):
+    return run_case(case)
+
+
+def test_case_parameters(case):
+    m = case.model
+    assert m.disc_mass * m.eccentricity / (m.balls[0].mass * m.balls[0].radius) == pytest.approx(ETA)
+    assert BALANCED_DEG == pytest.approx(120.0)
+    assert [a.speed_ratio for a in case.analyses] == [0.6, 2.0]
+
+
+def _side_angle(model, omega: float) -> float:
+    """Angle psi of both balls in the subcritical side motion: each ball points along the rotor's
+    deflection z(psi) = omega^2 U / (c - M omega^2 + i d omega), U = M1 e + 2 m R e^{i psi}."""
+
+    def mismatch(psi: float) -> float:
+        z = model.locked_response([psi, psi], omega)
+        return math.remainder(math.atan2(z.imag, z.real) - psi, 2 * math.pi)
+
+    return brentq(mismatch, -math.pi / 2, math.pi / 4, xtol=1e-12)
+
+
+def test_subcritical_balls_gather_at_the_unbalance(case, results):
+    ds = results["subcritical"].isel(speed=0)
+    model = build_model(case.model)
+    omega = float(ds.speed)
+    assert omega / model.critical_speed == pytest.approx(0.6)
+    psi = _side_angle(model, omega)
+    assert math.degrees(psi) == pytest.approx(-16.11, abs=0.01)
+    assert list(ds.outcome.values) == ["side (0°, 0°)"] * 6
+    np.testing.assert_allclose(ds.final_ball_angle.values, psi, atol=math.radians(0.05))
+    # not balanced: the rotor whirls wider than without balls, by |U| / (M1 e)
+    ref = float(ds.reference_amplitude)
+    expected = abs(model.locked_response([psi, psi], omega))
+    assert expected / ref == pytest.approx(2.9737, abs=1e-3)
+    np.testing.assert_allclose(ds.final_amplitude.values, expected, rtol=1e-4)
+    assert np.all(ds.final_amplitude.values > 2.9 * ref)
+
+
+def test_supercritical_balances_with_damped_balls(case):
+    model = build_model(case.model)
+    balls = tuple(dataclasses.replace(b, damping=2e-3) for b in model.balls)
+    model = dataclasses.replace(model, balls=balls)
+    angles = list(case.analyses[1].initial_ball_angles) + [(math.pi / 2, math.pi / 2)]
+    ds = simulate(model, speeds=[2.0 * model.critical_speed], initial_ball_angles=angles,
+                  t_end=20.0, n_save=1000).isel(speed=0)  # fmt: skip
+    outcomes = list(ds.outcome.values)
+    assert outcomes[:6] == ["balanced"] * 6
+    final = np.sort(np.degrees(ds.final_ball_angle.values[:6]), axis=1)
+    np.testing.assert_allclose(final, [[-BALANCED_DEG, BALANCED_DEG]] * 6, atol=0.5)
+    ref = float(ds.reference_amplitude)
+    assert np.all(ds.final_amplitude.values[:6] < 0.01 * ref)
+    # the symmetric start keeps both balls together: they go to the light side, and the rotor
+    # whirls about as much as without balancer (|M1 e - 2 m R| = M1 e)
+    assert outcomes[6] == "side (180°, 180°)"
+    assert ds.final_ball_angle.values[6, 0] == pytest.approx(ds.final_ball_angle.values[6, 1], abs=1e-9)
+    assert float(ds.final_amplitude.values[6]) == pytest.approx(1.0045 * ref, rel=1e-3)
+
+
+def test_supercritical_with_the_case_ball_damping(case, results):
+    """Each start balances or ends in the non-synchronous motion with both balls together."""
+    ds = results["supercritical"].isel(speed=0)
+    omega = float(ds.speed)
+    p = float(ds.critical_speed)
+    assert omega / p == pytest.approx(2.0)
+    tail = ds.time.values >= ds.time.values[-1] - 5.0
+    ref = float(ds.reference_amplitude)
+    balanced = 0
+    for i, outcome in enumerate(ds.outcome.values):
+        angles = ds.final_ball_angle.values[i]
+        if outcome == "balanced":
+            balanced += 1
+            np.testing.assert_allclose(np.sort(np.degrees(angles)), [-BALANCED_DEG, BALANCED_DEG], atol=0.5)
+            assert ds.final_amplitude.values[i] < 0.01 * ref
+            continue
+        assert outcome == "not settled"
+        rates = ds.ball_rate.values[i, tail, :]
+        assert np.max(np.abs(ds.ball_angle.values[i, tail, 0] - ds.ball_angle.values[i, tail, 1])) < 1e-3
+        absolute = (omega + rates.mean()) / p
+        assert 0.75 < absolute < 0.95
+        assert 3.0 < ds.final_amplitude.values[i] / ref < 4.0
+    assert balanced >= 3  # the starts (45, 200), (120, 240), (170, 190) degrees balance
