@@ -58,7 +58,7 @@ def track_modes(track: np.ndarray, eigenvalues: np.ndarray, n_modes: int) -> np.
     order[0] = np.argsort(mag[0], kind="stable")[:n_modes]
     if S == 1:
         return order
-    mac = np.abs(np.einsum("skp,smp->skm", track[:-1].conj(), track[1:])) ** 2
+    mac = np.abs(np.matmul(track[:-1].conj(), track[1:].transpose(0, 2, 1))) ** 2
     scale = np.maximum(mag.max(axis=1), 1e-300)
     for s in range(S - 1):
         cur = order[s]
@@ -69,14 +69,36 @@ def track_modes(track: np.ndarray, eigenvalues: np.ndarray, n_modes: int) -> np.
     return order
 
 
-def _refine(solver: Solver, lo: float, hi: float, ref: np.ndarray, harmonic: int) -> float:
-    """Root of ``omega_branch(Omega) - h Omega`` in [lo, hi], the branch picked by MAC."""
+def _refine(solver: Solver, lo: float, hi: float, guess: float, ref: np.ndarray,
+            harmonic: int) -> float:
+    """Root of ``omega_branch(Omega) - h Omega`` in [lo, hi], the branch picked by MAC.
 
-    def g(speed: float) -> float:
+    Newton's method with the exact eigenvalue derivative where the solver has one (Hermitian
+    methods: 3-4 eigen-solves), else Brent's method.
+    """
+
+    def branch(speed: float):
         sp = solver.solve([speed])
         mac = np.abs(sp.track[0].conj() @ ref) ** 2
         k = int(np.argmax(mac))
-        return float(abs(sp.eigenvalues[0, k].imag)) - harmonic * speed
+        return float(abs(sp.eigenvalues[0, k].imag)) - harmonic * speed, sp.track[0, k]
+
+    x = guess
+    for _ in range(12):
+        gx, z = branch(x)
+        slope = solver.frequency_slope(x, z[None, :])
+        if slope is None:
+            break
+        step = gx / (float(slope[0]) - harmonic)
+        x_new = x - step
+        if not lo <= x_new <= hi:
+            break
+        if abs(step) <= 1e-13 * max(abs(x), 1.0):
+            return x_new
+        x = x_new
+
+    def g(speed: float) -> float:
+        return branch(speed)[0]
 
     glo, ghi = g(lo), g(hi)
     if glo == 0.0:
@@ -98,7 +120,7 @@ def _crossings(speeds, lam, whirl, track, harmonics, solver, refine):
                 lo, hi = speeds[s], speeds[s + 1]
                 root = lo - gk[s] * (hi - lo) / (gk[s + 1] - gk[s])
                 if refine:
-                    r = _refine(solver, lo, hi, track[s, k], h)
+                    r = _refine(solver, lo, hi, root, track[s, k], h)
                     root = r if np.isfinite(r) else root
                 w = whirl[s, k] if whirl[s, k] == whirl[s + 1, k] else whirl[s + 1, k]
                 out.append((root, h, k, w))

@@ -9,6 +9,7 @@ import numpy as np
 import scipy.linalg
 import xarray as xr
 
+from rotorlab.linear._blas import single_threaded_blas
 from rotorlab.linear._eigen import whirl_of_shapes
 from rotorlab.linear._modal import normalize_shapes
 from rotorlab.linear._system import LinearSystem
@@ -99,6 +100,18 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
         raise ValueError(f"harmonics must be integers >= 1, got {tuple(harmonics)!r}")
     K, M, G = system.K, system.M, system.G
     sym = np.abs(K - K.T).max() <= 1e-12 * max(np.abs(K).max(), 1e-300)
+    with single_threaded_blas():
+        speed, harmonic, shp = _pencils(K, M, G, hs, sym)
+    keep = np.ones(speed.size, bool) if max_speed is None else speed <= float(max_speed)
+    order = np.argsort(speed[keep], kind="stable")
+    speed, harmonic, shp = speed[keep][order], harmonic[keep][order], shp[keep][order]
+    L = system.length_scale
+    shp = normalize_shapes(shp, L)
+    _, code = whirl_of_shapes(shp, L)
+    return CriticalSpeeds(speed=speed, harmonic=harmonic, whirl=code, shapes=shp)
+
+
+def _pencils(K, M, G, hs, sym):
     speeds, harm, shapes = [], [], []
     for h in hs:
         B = h * h * M - 1j * h * G
@@ -117,13 +130,5 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
         speeds.append(np.sqrt(om2))
         harm.append(np.full(om2.size, h))
         shapes.append(U.T)
-    speed = np.concatenate(speeds)
-    harmonic = np.concatenate(harm).astype(np.int64)
-    shp = np.concatenate(shapes, axis=0)
-    keep = np.ones(speed.size, bool) if max_speed is None else speed <= float(max_speed)
-    order = np.argsort(speed[keep], kind="stable")
-    speed, harmonic, shp = speed[keep][order], harmonic[keep][order], shp[keep][order]
-    L = system.length_scale
-    shp = normalize_shapes(shp, L)
-    _, code = whirl_of_shapes(shp, L)
-    return CriticalSpeeds(speed=speed, harmonic=harmonic, whirl=code, shapes=shp)
+    return (np.concatenate(speeds), np.concatenate(harm).astype(np.int64),
+            np.concatenate(shapes, axis=0))

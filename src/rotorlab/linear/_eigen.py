@@ -41,6 +41,7 @@ from typing import NamedTuple
 import numpy as np
 import scipy.linalg
 
+from rotorlab.linear._blas import single_threaded_blas
 from rotorlab.linear._system import LinearSystem
 
 __all__ = ["METHODS", "Spectrum", "Solver", "whirl_of_shapes"]
@@ -89,6 +90,12 @@ class Solver:
         if method == "auto":
             method = self._pick()
         self.method = method
+        with single_threaded_blas():
+            self._setup(method)
+
+    def _setup(self, method: str) -> None:
+        s = self.system
+        xp, yp = self._xp, self._yp
         if method == "isotropic-hermitian":
             self._setup_hermitian(s.M[np.ix_(xp, xp)], s.K[np.ix_(xp, xp)],
                                   s.G[np.ix_(xp, yp)], complex_coordinate=True)
@@ -143,7 +150,8 @@ class Solver:
         # real system:        H = [[i Omega G~, iB], [-iB^T, 0]], G~ real skew.
         h1[:n, :n] = gt if complex_coordinate else 1j * gt
         self._h0, self._h1 = h0, h1
-        self._lk, self._n = lk, n
+        self._lkinv_t = scipy.linalg.solve_triangular(lk.T, np.eye(n), lower=False)
+        self._n = n
 
     # ----------------------------------------------------------------- solving
     def solve(self, speeds) -> Spectrum:
@@ -151,13 +159,34 @@ class Solver:
         w = np.atleast_1d(np.asarray(speeds, dtype=float))
         if w.ndim != 1 or not np.all(np.isfinite(w)):
             raise ValueError("speeds must be a finite 1-D array (rad/s)")
-        if self.method in ("isotropic-hermitian", "hermitian"):
-            return self._solve_hermitian(w)
-        if self.method == "isotropic":
-            return self._solve_isotropic(w)
-        if self.method == "state-space":
-            return self._solve_state_space(w)
-        return self._solve_dense(w)
+        solve = {"isotropic-hermitian": self._solve_hermitian, "hermitian": self._solve_hermitian,
+                 "isotropic": self._solve_isotropic, "state-space": self._solve_state_space,
+                 "dense": self._solve_dense}[self.method]
+        with single_threaded_blas():
+            return solve(w)
+
+    def frequency_slope(self, speed: float, track: np.ndarray) -> np.ndarray | None:
+        """Return d|omega|/dOmega of the modes given by their tracking vectors, if available.
+
+        For the Hermitian methods the eigenvalue derivative is ``z^H (dH/dOmega) z``
+        (Hellmann-Feynman); other methods return None.
+
+        Parameters
+        ----------
+        speed : float
+            Spin speed (rad/s) at which ``track`` was computed (unused by the formula, kept for
+            the contract).
+        track : ndarray, shape (k, p)
+            Tracking vectors returned by :meth:`solve` at that speed.
+        """
+        if self.method not in ("isotropic-hermitian", "hermitian"):
+            return None
+        d = np.einsum("kp,pq,kq->k", track.conj(), self._h1, track).real
+        if self.method == "isotropic-hermitian":
+            h0h1 = track.conj() @ self._h0 + speed * (track.conj() @ self._h1)
+            om = np.einsum("kp,kp->k", h0h1, track).real
+            d = np.where(om < 0, -d, d)
+        return d
 
     def _solve_hermitian(self, w: np.ndarray) -> Spectrum:
         n = self._n
@@ -165,10 +194,7 @@ class Solver:
         om, Z = np.linalg.eigh(H)  # ascending, orthonormal columns
         if self.method == "hermitian":
             om, Z = om[:, n:], Z[:, :, n:]  # positive half: one per +-omega pair
-        v = Z[:, n:, :]  # (S, n, m): L_K^T q
-        W = scipy.linalg.solve_triangular(self._lk.T, v.transpose(1, 0, 2).reshape(n, -1),
-                                          lower=False)
-        W = W.reshape(n, w.size, -1).transpose(1, 2, 0)  # (S, m, n)
+        W = np.matmul(self._lkinv_t, Z[:, n:, :]).transpose(0, 2, 1)  # q = L_K^-T v; (S, m, n)
         lam = 1j * np.abs(om)
         track = Z.transpose(0, 2, 1)
         if self.method == "hermitian":

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from rotorlab.linear._blas import single_threaded_blas
 from rotorlab.linear._system import LinearSystem
 
 __all__ = ["Unbalance", "unbalance_response"]
@@ -112,7 +113,8 @@ def unbalance_response(system: LinearSystem, speeds: Sequence[float],
     D = (system.K[None] - (w * w)[:, None, None] * system.M[None]
          + 1j * w[:, None, None] * (system.C[None] + w[:, None, None] * system.G[None]))
     rhs = (w * w)[:, None] * F[None, :]
-    Q = np.linalg.solve(D, rhs[:, :, None])[:, :, 0]
+    with single_threaded_blas():
+        Q = np.linalg.solve(D, rhs[:, :, None])[:, :, 0]
     X, Y = Q[:, 0::4], Q[:, 1::4]
     af = np.abs(X + 1j * Y) / 2.0
     ab = np.abs(X - 1j * Y) / 2.0
