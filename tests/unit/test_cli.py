@@ -226,7 +226,7 @@ def test_run_writes_report_results_and_figures(small, tmp_path):
     assert "below" in result.stdout and "side (0°, 0°) ×2" in result.stdout
     assert "balanced ×1" in result.stdout
     names = sorted(p.name for p in out.iterdir())
-    assert names == sorted(["report.html", "below.nc", "above.nc"] + [
+    assert names == sorted([".rotorlab-files", "report.html", "below.nc", "above.nc"] + [
         f"{a}_{k}.png" for a in ("below", "above") for k in ("amplitude", "ball_angles", "final_positions")
     ])  # fmt: skip
     assert sorted(p.name for p in tmp_path.iterdir()) == ["out", "small.toml"]

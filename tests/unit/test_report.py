@@ -12,7 +12,7 @@ import pytest
 from rotorlab.analyses import run_case, summarize
 from rotorlab.io import load_netcdf, parse_case
 from rotorlab.plot import amplitude_figure, ball_angle_figure, orbit_figure, simulation_figures
-from rotorlab.report import REPORT_NAME, parameter_rows, versions, write_report
+from rotorlab.report import MANIFEST_NAME, REPORT_NAME, parameter_rows, versions, write_report
 
 _CASE = """
 name = "tiny"
@@ -102,7 +102,8 @@ def test_results_and_netcdf_round_trip(run, tmp_path):
     case, results, tables = run
     write_report(tmp_path / "o", case, results, {}, tables)
     files = sorted(p.name for p in (tmp_path / "o").iterdir())
-    assert files == ["above.nc", "below.nc", REPORT_NAME]
+    assert files == [MANIFEST_NAME, "above.nc", "below.nc", REPORT_NAME]
+    assert (tmp_path / "o" / MANIFEST_NAME).read_text().split() == ["below.nc", "above.nc", REPORT_NAME]
     back = load_netcdf(tmp_path / "o" / "below.nc")
     np.testing.assert_array_equal(back.amplitude.values, results["below"].amplitude.values)
     assert list(back.outcome.values.ravel()) == list(results["below"].outcome.values.ravel())
@@ -131,6 +132,15 @@ def test_existing_folder_updated_in_place(run, tmp_path):
     assert (out / "notes.txt").read_text() == "mine"
     assert (out / REPORT_NAME).read_text().startswith("<!DOCTYPE html>")
     assert sorted(p.name for p in tmp_path.iterdir()) == ["o"]  # no staging folder left
+
+
+def test_rerun_removes_only_its_own_stale_files(run, tmp_path):
+    case, results, tables = run
+    out = tmp_path / "o"
+    write_report(out, case, results, {}, tables)
+    (out / "notes.txt").write_text("mine")
+    write_report(out, case, {"below": results["below"]}, {}, {"below": tables["below"]})
+    assert sorted(p.name for p in out.iterdir()) == [MANIFEST_NAME, "below.nc", "notes.txt", REPORT_NAME]
 
 
 def test_output_must_be_a_folder(run, tmp_path):

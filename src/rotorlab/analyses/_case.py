@@ -102,7 +102,8 @@ def run_analysis(case_model: Any, analysis: Any,
         raise ValueError(f"unknown analysis type {analysis.type!r}")
     model = build_model(case_model)
     omega = analysis.spin_speed(case_model)
-    angles = np.array(analysis.ball_angle_sets(model.n_balls), dtype=float).reshape(-1, model.n_balls)
+    sets = analysis.ball_angle_sets(model.n_balls)
+    angles = np.array(sets, dtype=float).reshape(len(sets), model.n_balls)
     ds = simulate(
         model,
         speeds=None if omega is None else [omega],

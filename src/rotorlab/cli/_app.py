@@ -198,7 +198,9 @@ def run_command(
             raise BadInput(str(exc)) from None
         if not loaded.analyses:
             raise BadInput(f"case {loaded.name}: lists no [[analysis]] to run")
-        info(settings, f"Running {loaded.name} ({len(loaded.analyses)} analyses) ...", json_mode=json_out)
+        count = len(loaded.analyses)
+        info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
+             json_mode=json_out)  # fmt: skip
         start = time.perf_counter()
         from rotorlab.analyses import run_case, summarize
 

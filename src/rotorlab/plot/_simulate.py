@@ -234,10 +234,11 @@ def simulation_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
     Returns
     -------
     dict of str to Figure
-        ``<name>_amplitude``, ``<name>_ball_angles``, ``<name>_final_positions``.
+        ``<name>_amplitude``, and for a model with balls ``<name>_ball_angles`` and
+        ``<name>_final_positions``.
     """
-    return {
-        f"{name}_amplitude": amplitude_figure(ds),
-        f"{name}_ball_angles": ball_angle_figure(ds),
-        f"{name}_final_positions": final_positions_figure(ds),
-    }
+    figures = {f"{name}_amplitude": amplitude_figure(ds)}
+    if ds.sizes.get("ball", 0) > 0:
+        figures[f"{name}_ball_angles"] = ball_angle_figure(ds)
+        figures[f"{name}_final_positions"] = final_positions_figure(ds)
+    return figures

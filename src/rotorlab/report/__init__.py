@@ -5,9 +5,10 @@ The report has no network dependencies: CSS is inline and figures are embedded a
 """
 
 from rotorlab.report._html import parameter_rows, render_report, versions
-from rotorlab.report._write import REPORT_NAME, check_output_dir, write_report
+from rotorlab.report._write import MANIFEST_NAME, REPORT_NAME, check_output_dir, write_report
 
 __all__ = [
+    "MANIFEST_NAME",
     "REPORT_NAME",
     "check_output_dir",
     "parameter_rows",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import contextlib
 import io
 import os
 import shutil
@@ -18,10 +19,22 @@ if TYPE_CHECKING:
 
     from rotorlab.io import Case
 
-__all__ = ["write_report", "check_output_dir", "REPORT_NAME"]
+__all__ = ["write_report", "check_output_dir", "REPORT_NAME", "MANIFEST_NAME"]
 
 #: File name of the HTML report inside the output folder.
 REPORT_NAME = "report.html"
+
+#: Hidden file listing the files a run wrote; the next run into the same folder removes those it
+#: does not write again (and never touches any other file).
+MANIFEST_NAME = ".rotorlab-files"
+
+
+def _manifest(folder: Path) -> list[str]:
+    try:
+        lines = (folder / MANIFEST_NAME).read_text(encoding="utf-8").splitlines()
+    except (OSError, UnicodeDecodeError):
+        return []
+    return [n for n in lines if n and Path(n).name == n and not n.startswith(".")]
 
 
 def check_output_dir(out_dir: str | os.PathLike[str]) -> Path:
@@ -60,7 +73,7 @@ def _apply_umask(staging: Path, names: Sequence[str]) -> None:
     umask = os.umask(0)
     os.umask(umask)
     os.chmod(staging, 0o777 & ~umask)
-    for name in names:
+    for name in [*names, MANIFEST_NAME]:
         os.chmod(staging / name, 0o666 & ~umask)
 
 
@@ -84,7 +97,8 @@ def write_report(
     Everything is first written into a temporary folder next to ``out_dir`` and moved into
     place only when all of it succeeded, so a failure leaves no partial output: a new
     ``out_dir`` is created by one rename; into an existing ``out_dir`` each finished file is
-    moved with an atomic replace (files of earlier runs with other names are left alone).
+    moved with an atomic replace, then the files an earlier run wrote there (listed in
+    :data:`MANIFEST_NAME`) and this one did not are removed; other files are left alone.
 
     Parameters
     ----------
@@ -134,13 +148,18 @@ def write_report(
         text = case.text or dump_case(case)
         page = render_report(case, results, pngs, summary_tables, names[:-1], text)
         (staging / REPORT_NAME).write_text(page, encoding="utf-8")
+        (staging / MANIFEST_NAME).write_text("".join(f"{n}\n" for n in names), encoding="utf-8")
         _apply_umask(staging, names)
         if not target.exists():
             os.rename(staging, target)
         else:
-            for name in names:
+            stale = set(_manifest(target)) - set(names)
+            for name in [*names, MANIFEST_NAME]:
                 os.replace(staging / name, target / name)
             staging.rmdir()
+            for name in stale:
+                with contextlib.suppress(FileNotFoundError):
+                    (target / name).unlink()
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
