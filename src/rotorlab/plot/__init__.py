@@ -4,6 +4,7 @@ Numerics never import this package. Figures are made without pyplot (Agg canvas)
 or using it changes no global matplotlib state.
 """
 
+from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
 from rotorlab.plot._simulate import (
     amplitude_figure,
     ball_angle_figure,
@@ -15,8 +16,10 @@ from rotorlab.plot._simulate import (
 )
 
 __all__ = [
+    "WHIRL_STYLES",
     "amplitude_figure",
     "ball_angle_figure",
+    "campbell_figure",
     "configuration_label",
     "final_positions_figure",
     "orbit_figure",
