@@ -216,8 +216,7 @@ def run_command(
         for name, ds in results.items():
             figures.update(simulation_figures(ds, name))
         report = write_report(out, loaded, results, figures, tables)
-        files = sorted(p.name for p in report.parent.iterdir()
-                       if p.name == report.name or p.stem in results or p.stem in figures)  # fmt: skip
+        files = sorted([report.name, *(f"{n}.nc" for n in results), *(f"{k}.png" for k in figures)])
         total = time.perf_counter() - start
         if json_out:
             emit_json({**_json_case(loaded), "out_dir": str(report.parent), "report": str(report),
