@@ -6,19 +6,21 @@ psi = +-(pi - gamma), gamma = arccos(eta / 2), is stable only above the critical
 p = sqrt(c / M) (eq. (22)), both balls on the unbalance side only below it. The case has eta = 1,
 so the balanced angles are +-120 degrees.
 
-What the simulations show with the case's geometry:
+What the simulations of the case show:
 
 - Below p (omega = 0.6 p) every start ends with both balls next to the unbalance. With shaft
   damping they lag it by the rotor's phase, -16.1 degrees here (computed below from the
   locked-ball response), and the rotor whirls 2.97 times wider than without balancer.
-- Above p (omega = 2 p) with ball damping b = 2e-3 N m s every start balances except the
-  symmetric ones (both balls at the same angle, which keeps them together for ever).
-- With the case's own ball damping (2e-4 N m s, ten times lighter) half the supercritical starts
-  end instead in a non-synchronous motion: both balls together, turning slower than the rotor at
-  about 0.84 p, the rotor whirling at 3.5 times the unbalance response ("not settled"). A 12 x 12
-  grid of starts gives 65 of 144 such starts at b = 2e-4, 23 at 1e-3, 6 at 1.5e-3 and none at
-  2e-3 to 1e-2; at 2e-3 the balanced state is reached within 2 s and the subcritical side motion
-  within 11 s of the 20 s simulated.
+- Above p (omega = 2 p) every start balances (balls at +-120.0 degrees, whirl below 1e-8 of the
+  unbalance response) except symmetric ones (both balls at the same angle, which keeps them
+  together for ever: they go to the light side).
+- This needs enough ball damping. The case has b = 2e-3 N m s. With b = 2e-4 N m s half the
+  supercritical starts end instead in a non-synchronous motion: both balls together, turning
+  slower than the rotor at about 0.84 p, the rotor whirling at 3.5 times the unbalance response
+  (labelled "not settled"; the regime seed 004 observed). A 12 x 12 grid of starts gives 65 of
+  144 such starts at b = 2e-4, 23 at 1e-3, 6 at 1.5e-3 and none from 2e-3 to 1e-2; at 2e-3 the
+  balanced state is reached within 2 s and the subcritical side motion within 11 s of the 20 s
+  simulated.
 """
 
 from __future__ import annotations
@@ -82,46 +84,51 @@ def test_subcritical_balls_gather_at_the_unbalance(case, results):
     assert np.all(ds.final_amplitude.values > 2.9 * ref)
 
 
-def test_supercritical_balances_with_damped_balls(case):
-    model = build_model(case.model)
-    balls = tuple(dataclasses.replace(b, damping=2e-3) for b in model.balls)
-    model = dataclasses.replace(model, balls=balls)
-    angles = list(case.analyses[1].initial_ball_angles) + [(math.pi / 2, math.pi / 2)]
-    ds = simulate(model, speeds=[2.0 * model.critical_speed], initial_ball_angles=angles,
-                  t_end=20.0, n_save=1000).isel(speed=0)  # fmt: skip
-    outcomes = list(ds.outcome.values)
-    assert outcomes[:6] == ["balanced"] * 6
-    final = np.sort(np.degrees(ds.final_ball_angle.values[:6]), axis=1)
+def test_supercritical_balances_from_every_start(results):
+    ds = results["supercritical"].isel(speed=0)
+    assert float(ds.speed_ratio) == pytest.approx(2.0)
+    assert list(ds.outcome.values) == ["balanced"] * 6
+    final = np.sort(np.degrees(ds.final_ball_angle.values), axis=1)
     np.testing.assert_allclose(final, [[-BALANCED_DEG, BALANCED_DEG]] * 6, atol=0.5)
     ref = float(ds.reference_amplitude)
-    assert np.all(ds.final_amplitude.values[:6] < 0.01 * ref)
-    # the symmetric start keeps both balls together: they go to the light side, and the rotor
-    # whirls about as much as without balancer (|M1 e - 2 m R| = M1 e)
-    assert outcomes[6] == "side (180°, 180°)"
-    assert ds.final_ball_angle.values[6, 0] == pytest.approx(ds.final_ball_angle.values[6, 1], abs=1e-9)
-    assert float(ds.final_amplitude.values[6]) == pytest.approx(1.0045 * ref, rel=1e-3)
+    assert np.all(ds.final_amplitude.values < 0.01 * ref)
+    assert np.all(ds.max_final_rate.values < 1e-6)
 
 
-def test_supercritical_with_the_case_ball_damping(case, results):
-    """Each start balances or ends in the non-synchronous motion with both balls together."""
-    ds = results["supercritical"].isel(speed=0)
-    omega = float(ds.speed)
-    p = float(ds.critical_speed)
-    assert omega / p == pytest.approx(2.0)
+def test_symmetric_start_keeps_the_balls_together(case):
+    """Both balls at the same angle stay together: they go to the light side, and the rotor whirls
+    about as much as without balancer (|M1 e - 2 m R| = M1 e)."""
+    model = build_model(case.model)
+    ds = simulate(model, speeds=[2.0 * model.critical_speed], initial_ball_angles=[(1.5, 1.5)],
+                  t_end=20.0, n_save=200).isel(speed=0, ic=0)  # fmt: skip
+    assert str(ds.outcome.values) == "side (180°, 180°)"
+    assert float(ds.final_ball_angle[0]) == pytest.approx(float(ds.final_ball_angle[1]), abs=1e-9)
+    assert float(ds.final_amplitude) == pytest.approx(1.0045 * float(ds.reference_amplitude), rel=1e-3)
+
+
+def test_light_ball_damping_leaves_non_synchronous_balls(case):
+    """With b = 2e-4 N m s each start balances or ends with both balls together, turning slower
+    than the rotor (about 0.84 p)."""
+    model = build_model(case.model)
+    model = dataclasses.replace(model, balls=tuple(dataclasses.replace(b, damping=2e-4) for b in model.balls))
+    p = model.critical_speed
+    omega = 2.0 * p
+    ds = simulate(model, speeds=[omega], initial_ball_angles=case.analyses[1].initial_ball_angles,
+                  t_end=20.0, n_save=2000).isel(speed=0)  # fmt: skip
     tail = ds.time.values >= ds.time.values[-1] - 5.0
     ref = float(ds.reference_amplitude)
-    balanced = 0
-    for i, outcome in enumerate(ds.outcome.values):
-        angles = ds.final_ball_angle.values[i]
+    outcomes = list(ds.outcome.values)
+    # measured: starts (0, 90), (300, 30), (10, 350) degrees are caught, the other three balance
+    assert outcomes.count("not settled") >= 2 and outcomes.count("balanced") >= 2
+    assert set(outcomes) == {"not settled", "balanced"}
+    for i, outcome in enumerate(outcomes):
         if outcome == "balanced":
-            balanced += 1
-            np.testing.assert_allclose(np.sort(np.degrees(angles)), [-BALANCED_DEG, BALANCED_DEG], atol=0.5)
+            angles = np.sort(np.degrees(ds.final_ball_angle.values[i]))
+            np.testing.assert_allclose(angles, [-BALANCED_DEG, BALANCED_DEG], atol=0.5)
             assert ds.final_amplitude.values[i] < 0.01 * ref
             continue
-        assert outcome == "not settled"
-        rates = ds.ball_rate.values[i, tail, :]
-        assert np.max(np.abs(ds.ball_angle.values[i, tail, 0] - ds.ball_angle.values[i, tail, 1])) < 1e-3
-        absolute = (omega + rates.mean()) / p
+        together = np.abs(ds.ball_angle.values[i, tail, 0] - ds.ball_angle.values[i, tail, 1])
+        assert np.max(together) < 1e-3
+        absolute = (omega + ds.ball_rate.values[i, tail, :].mean()) / p
         assert 0.75 < absolute < 0.95
         assert 3.0 < ds.final_amplitude.values[i] / ref < 4.0
-    assert balanced >= 3  # the starts (45, 200), (120, 240), (170, 190) degrees balance
