@@ -25,6 +25,7 @@ from rotorlab.cli._output import (
     info,
     outcome_table,
     progress_bar,
+    status,
     stdout,
     summary_table,
 )
@@ -212,10 +213,11 @@ def run_command(
         from rotorlab.report import write_report
 
         tables = {name: summarize(ds) for name, ds in results.items()}
-        figures = {}
-        for name, ds in results.items():
-            figures.update(simulation_figures(ds, name))
-        report = write_report(out, loaded, results, figures, tables)
+        with status(settings, "Drawing figures and writing the report ..."):
+            figures = {}
+            for name, ds in results.items():
+                figures.update(simulation_figures(ds, name))
+            report = write_report(out, loaded, results, figures, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results), *(f"{k}.png" for k in figures)])
         total = time.perf_counter() - start
         if json_out:

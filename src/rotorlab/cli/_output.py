@@ -30,6 +30,7 @@ __all__ = [
     "info",
     "emit_json",
     "progress_bar",
+    "status",
     "summary_table",
     "outcome_table",
 ]
@@ -159,6 +160,17 @@ def progress_bar(settings: Settings, tasks: Mapping[str, int]) -> Iterator[Any]:
 
     with bar:
         yield update
+
+
+@contextlib.contextmanager
+def status(settings: Settings, text: str) -> Iterator[None]:
+    """Show a spinner with ``text`` on stderr while the block runs (terminals only, not quiet)."""
+    console = stderr()
+    if settings.quiet or not console.is_terminal:
+        yield
+        return
+    with console.status(text):
+        yield
 
 
 def _fmt_angles(values: Sequence[float | None]) -> str:
