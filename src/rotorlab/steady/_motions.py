@@ -327,16 +327,15 @@ def _family_samples(imbalance: float, s: np.ndarray, per_dim: int, cap: int) -> 
 
 
 def _h_tilde(model: JeffcottBalls, om: float, z: complex, angles) -> float:
-    from rotorlab.models import ConstantSpeed
-
-    n = model.n_balls
-    y = np.zeros(4 + 2 * n)
-    y[0], y[1] = z.real, z.imag
-    y[4 : 4 + n] = angles
-    rot = model.with_frame("rotating").with_speed(ConstantSpeed(om))
-    if rot.has_friction:
-        y = np.concatenate([y, np.ones(n)])
-    return float(rot.reduced_hamiltonian(y))
+    """H~* = Pi - T0 at the co-rotating position (z, psi), as the model's ``reduced_hamiltonian``."""
+    r = model.rotor
+    s = _moments(model)
+    psi = np.asarray(angles, dtype=float)
+    u, v = z.real, z.imag
+    inertia = sum(b.inertia for b in model.balls)
+    work = r.imbalance * u + float(np.sum(s * (u * np.cos(psi) + v * np.sin(psi))))
+    return float(0.5 * (r.stiffness - model.total_mass * om * om) * (u * u + v * v) - om * om * work
+                 - 0.5 * om * om * (r.imbalance * r.eccentricity + inertia))  # fmt: skip
 
 
 def find_steady_motions(model: JeffcottBalls, spin_speed: float | None = None, *,

@@ -1,0 +1,197 @@
+"""Stability chart: which steady motions exist and which are stable, over speed (and a parameter).
+
+Each grid point is one :func:`rotorlab.steady.analyze_steady`; the chart keeps, per motion label,
+its existence, the three verdicts, the exact growth rate, the deflection and H~*.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rotorlab.steady._analysis import analyze_steady
+from rotorlab.steady._motions import motion_labels
+
+if TYPE_CHECKING:
+    import xarray
+
+    from rotorlab.models import JeffcottBalls
+
+__all__ = ["PARAMETERS", "stability_chart", "with_parameter"]
+
+#: Second parameters of a chart and their units.
+PARAMETERS = {
+    "ball_mass": "kg",
+    "ball_damping": "N m s/rad",
+    "eccentricity": "m",
+    "support_damping": "N s/m",
+}
+_RPM = 60.0 / (2.0 * math.pi)
+
+
+def with_parameter(model: JeffcottBalls, name: str, value: float) -> JeffcottBalls:
+    """Return a copy of ``model`` with one parameter changed.
+
+    Parameters
+    ----------
+    model : JeffcottBalls
+    name : {"ball_mass", "ball_damping", "eccentricity", "support_damping"}
+        ``ball_mass`` and ``ball_damping`` set the value of ball 1; the other balls keep their
+        ratio to ball 1 (equal balls stay equal); a ball's moment of inertia scales with its mass.
+        ``eccentricity`` is e of the disc, ``support_damping`` the external damping d.
+    value : float
+        In the unit of :data:`PARAMETERS`.
+
+    Returns
+    -------
+    JeffcottBalls
+
+    Raises
+    ------
+    ValueError
+        Unknown name, a model without balls for a ball parameter, or an invalid value.
+
+    Examples
+    --------
+    >>> from rotorlab.models import JeffcottBalls, RotorParams, BallParams, ConstantSpeed
+    >>> m = JeffcottBalls(RotorParams(1.0, 1e-3, 100.0), (BallParams(0.02, 0.1), BallParams(0.04, 0.1)),
+    ...                   speed=ConstantSpeed(1.0))
+    >>> [b.mass for b in with_parameter(m, "ball_mass", 0.03).balls]
+    [0.03, 0.06]
+    """
+    value = float(value)
+    if name == "eccentricity":
+        return replace(model, rotor=replace(model.rotor, eccentricity=value))
+    if name == "support_damping":
+        return replace(model, rotor=replace(model.rotor, damping=value))
+    if name not in PARAMETERS:
+        raise ValueError(f"unknown chart parameter {name!r}; choose one of {', '.join(PARAMETERS)}")
+    if not model.balls:
+        raise ValueError(f"parameter {name!r} needs a model with balls")
+    first = model.balls[0]
+    if name == "ball_mass":
+        if not value > 0:
+            raise ValueError(f"ball_mass must be > 0 (kg), got {value!r}")
+        k = value / first.mass
+        balls = tuple(replace(b, mass=b.mass * k, inertia=b.inertia * k) for b in model.balls)
+    else:
+        if first.damping > 0:
+            k = value / first.damping
+            balls = tuple(replace(b, damping=b.damping * k) for b in model.balls)
+        else:
+            balls = tuple(replace(b, damping=value) for b in model.balls)
+    return replace(model, balls=balls)
+
+
+def stability_chart(model: JeffcottBalls, speeds: Any, *, param: str | None = None, values: Any = None,
+                    family_samples: int = 8) -> xarray.Dataset:  # fmt: skip
+    """Compute which steady motions exist and which are stable over a grid of speeds.
+
+    Parameters
+    ----------
+    model : JeffcottBalls
+    speeds : array_like, shape (n_speed,)
+        Spin speeds Omega (rad/s), > 0.
+    param : str, optional
+        A second parameter (see :func:`with_parameter`), swept over ``values``.
+    values : array_like, shape (n_value,), optional
+        Its values, in the unit of :data:`PARAMETERS`.
+    family_samples : int
+        Samples per free angle of a family of main motions (n >= 3).
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ([param,] speed, motion, ball). Coordinates ``speed`` (rad/s), ``speed_rpm``,
+        ``speed_ratio`` (omega / p; depends on ``ball_mass``), ``motion``, ``kind``, the
+        parameter. Variables: ``exists``, ``stable_hamilton``, ``stable_averaged``,
+        ``stable_exact`` (bool), ``verdict_exact`` (str), ``growth_rate`` (1/s), ``amplitude``
+        (m), ``phase`` (rad), ``ball_angle`` (rad), ``h_tilde`` (J), ``disagreement`` (a
+        first-order method disagrees with the exact eigenvalues), ``n_stable_exact`` and
+        ``balanced`` (a main motion is exactly stable), ``critical_speed`` (rad/s).
+
+    Examples
+    --------
+    >>> from rotorlab.models import JeffcottBalls, RotorParams, BallParams, ConstantSpeed
+    >>> ball = BallParams(mass=0.03, radius=0.06, damping=2e-3)
+    >>> rotor = RotorParams(disc_mass=2.0, eccentricity=1.08e-3, stiffness=2e4, damping=8.0)
+    >>> model = JeffcottBalls(rotor, (ball, ball), speed=ConstantSpeed(1.0))
+    >>> ds = stability_chart(model, [50.0, 300.0])
+    >>> ds.stable_exact.sel(speed=300.0).values.tolist()
+    [True, True, False, False, False, False]
+    """
+    import xarray as xr
+
+    om = np.atleast_1d(np.asarray(speeds, dtype=float))
+    if om.ndim != 1 or om.size == 0 or not np.all(np.isfinite(om)) or np.any(om <= 0):
+        raise ValueError(f"speeds must be finite numbers > 0 (rad/s), got {speeds!r}")
+    if (param is None) != (values is None):
+        raise ValueError("give both param and values, or neither")
+    if param is not None and param not in PARAMETERS:
+        raise ValueError(f"unknown chart parameter {param!r}; choose one of {', '.join(PARAMETERS)}")
+    vals = np.atleast_1d(np.asarray(values, dtype=float)) if param is not None else np.array([np.nan])
+    n = model.n_balls
+    labels = motion_labels(n)
+    shape = (vals.size, om.size, len(labels))
+    out_b = {k: np.zeros(shape, dtype=bool) for k in ("exists", "stable_hamilton", "stable_averaged",
+                                                      "stable_exact", "disagreement")}  # fmt: skip
+    out_f = {k: np.full(shape, np.nan) for k in ("growth_rate", "amplitude", "phase", "h_tilde")}
+    verdict = np.empty(shape, dtype=object)
+    angle = np.full(shape + (n,), np.nan)
+    crit = np.empty(vals.size)
+    for a, v in enumerate(vals):
+        mod = model if param is None else with_parameter(model, param, float(v))
+        crit[a] = mod.critical_speed
+        for b, w in enumerate(om):
+            res = analyze_steady(mod, float(w), family_samples=family_samples)
+            bad = {d.label for d in res.disagreements}
+            for c, m in enumerate(res.motions):
+                st = m.stability
+                out_b["exists"][a, b, c] = m.exists
+                for meth in ("hamilton", "averaged", "exact"):
+                    out_b[f"stable_{meth}"][a, b, c] = m.exists and st.is_stable(meth)
+                out_b["disagreement"][a, b, c] = m.label in bad
+                verdict[a, b, c] = st.exact
+                out_f["growth_rate"][a, b, c] = st.growth_rate
+                if m.exists:
+                    out_f["amplitude"][a, b, c] = m.amplitude
+                    out_f["phase"][a, b, c] = m.phase
+                    out_f["h_tilde"][a, b, c] = m.h_tilde
+                    angle[a, b, c] = m.ball_angles
+    kinds = ["main" if lab.startswith("main") else "side" for lab in labels]
+    main = np.array([k == "main" for k in kinds])
+    dims = ("param", "speed", "motion")
+    attrs = {
+        "exists": ("1", "motion exists"),
+        "stable_hamilton": ("1", "stable by seed 003's method (least H~*, Hessian of f)"),
+        "stable_averaged": ("1", "stable by seed 002's averaged equations"),
+        "stable_exact": ("1", "exactly stable (eigenvalues of the full Jacobian)"),
+        "disagreement": ("1", "a first-order method disagrees with the exact eigenvalues"),
+        "growth_rate": ("1/s", "largest real part of the exact eigenvalues"),
+        "amplitude": ("m", "shaft deflection"),
+        "phase": ("rad", "angle of the deflection from the unbalance"),
+        "h_tilde": ("J", "H~* = Pi - T0 (seed 003 (10))"),
+    }
+    data = {k: (dims, arr, {"units": attrs[k][0], "long_name": attrs[k][1]}) for k, arr in {**out_b, **out_f}.items()}
+    data["verdict_exact"] = (dims, verdict.astype(str), {"units": "1", "long_name": "exact verdict"})
+    data["ball_angle"] = (dims + ("ball",), angle, {"units": "rad", "long_name": "ball angle from the unbalance"})
+    data["n_stable_exact"] = (dims[:2], out_b["stable_exact"].sum(axis=2), {"units": "1", "long_name": "exactly stable motions"})
+    data["balanced"] = (dims[:2], out_b["stable_exact"][:, :, main].any(axis=2) if main.any() else np.zeros(shape[:2], bool),
+                        {"units": "1", "long_name": "a main (balanced) motion is exactly stable"})  # fmt: skip
+    data["critical_speed"] = (("param",), crit, {"units": "rad/s", "long_name": "critical speed p"})
+    coords = {
+        "speed": ("speed", om, {"units": "rad/s", "long_name": "spin speed"}),
+        "speed_rpm": ("speed", om * _RPM, {"units": "rpm"}),
+        "speed_ratio": (("param", "speed"), om[None, :] / crit[:, None], {"units": "1", "long_name": "omega / p"}),
+        "motion": ("motion", list(labels), {"units": "1"}),
+        "kind": ("motion", kinds, {"units": "1"}),
+        "ball": ("ball", np.arange(1, n + 1), {"units": "1"}),
+    }
+    ds = xr.Dataset(data, coords=coords, attrs={"analysis": "stability-chart", "model": "jeffcott_balls"})
+    if param is None:
+        return ds.isel(param=0, drop=True).assign_attrs(critical_speed=float(crit[0]))
+    ds = ds.rename({"param": param}).assign_coords({param: (param, vals, {"units": PARAMETERS[param]})})
+    return ds.assign_attrs(parameter=param)
