@@ -347,11 +347,11 @@ def _shaft_compliance(model: InfluenceModel, z_stations: np.ndarray) -> np.ndarr
                 K[dof, dof] += k
     free = np.setdiff1d(np.arange(2 * n), fixed)
     kff = K[np.ix_(free, free)]
-    try:
-        factor = scipy.linalg.cho_factor(kff)
-    except np.linalg.LinAlgError:
+    ev = np.linalg.eigvalsh(kff) if kff.size else np.ones(1)
+    if ev.min() <= 1e-11 * ev.max():
         raise ValueError("InfluenceModel.shaft_supports do not hold the shaft: it can move as a "
-                         "rigid body relative to the housing") from None
+                         "rigid body relative to the housing")
+    factor = scipy.linalg.cho_factor(kff)
     sel = []
     for z in z_stations:
         i = int(np.argmin(np.abs(nodes - z)))
