@@ -152,7 +152,7 @@ def stability_chart(model: JeffcottBalls, speeds: Any, *, param: str | None = No
                 st = m.stability
                 out_b["exists"][a, b, c] = m.exists
                 for meth in ("hamilton", "averaged", "exact"):
-                    out_b[f"stable_{meth}"][a, b, c] = m.exists and st.is_stable(meth)
+                    out_b[f"stable_{meth}"][a, b, c] = st.is_stable(meth)
                 out_b["disagreement"][a, b, c] = m.label in bad
                 verdict[a, b, c] = st.exact
                 out_f["growth_rate"][a, b, c] = st.growth_rate

@@ -222,7 +222,7 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
             m = analysis.motion(lab)
             exists[k, j] = m.exists
             for meth in _METHODS:
-                stable[meth][k, j] = m.exists and m.stability.is_stable(meth)
+                stable[meth][k, j] = m.stability.is_stable(meth)
         for i in range(n_ic):
             status[k, i] = sol.status[i]
             yf = sol.y_final[i]
