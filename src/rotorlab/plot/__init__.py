@@ -5,6 +5,7 @@ or using it changes no global matplotlib state.
 """
 
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
+from rotorlab.plot._stability import stability_chart_figure
 from rotorlab.plot._simulate import (
     amplitude_figure,
     ball_angle_figure,
@@ -25,4 +26,5 @@ __all__ = [
     "orbit_figure",
     "simulation_figures",
     "speed_label",
+    "stability_chart_figure",
 ]
