@@ -224,3 +224,12 @@ def test_run_analysis_and_summarize():
     assert rows[0]["speed_hz"] == pytest.approx(40.0)
     assert rows[1]["initial_ball_angles_deg"] == [0.0, 180.0]
     assert all(isinstance(r["outcome"], str) for r in rows)
+
+
+def test_unrunnable_analysis_type_rejected_before_running():
+    from types import SimpleNamespace
+
+    case = parse_case(_SMALL)
+    other = SimpleNamespace(type="steady", name="eq")
+    with pytest.raises(ValueError, match="analysis eq: type 'steady' cannot be run here"):
+        run_analysis(case.model, other)

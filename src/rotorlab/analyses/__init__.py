@@ -4,7 +4,13 @@ Nothing here plots or writes files; see :mod:`rotorlab.plot`, :mod:`rotorlab.rep
 command line (:mod:`rotorlab.cli`) for that.
 """
 
-from rotorlab.analyses._case import build_model, run_analysis, run_case, summarize
+from rotorlab.analyses._case import (
+    RUNNABLE_ANALYSES,
+    build_model,
+    run_analysis,
+    run_case,
+    summarize,
+)
 from rotorlab.analyses._outcome import (
     BALANCED_FRACTION,
     SETTLE_RATE,
@@ -17,6 +23,7 @@ from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
 
 __all__ = [
     "BALANCED_FRACTION",
+    "RUNNABLE_ANALYSES",
     "SETTLE_RATE",
     "SETTLE_REVOLUTIONS",
     "SIDE_TOLERANCE",

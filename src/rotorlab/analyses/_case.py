@@ -14,7 +14,10 @@ if TYPE_CHECKING:
     from rotorlab.io import Case
     from rotorlab.models import JeffcottBalls
 
-__all__ = ["build_model", "run_analysis", "run_case", "summarize"]
+__all__ = ["RUNNABLE_ANALYSES", "build_model", "run_analysis", "run_case", "summarize"]
+
+#: Analysis types (the ``type`` of a case's ``[[analysis]]``) that :func:`run_case` can run.
+RUNNABLE_ANALYSES = ("simulate",)
 
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -98,8 +101,11 @@ def run_analysis(case_model: Any, analysis: Any,
     """
     from rotorlab.analyses._simulate import simulate
 
-    if analysis.type != "simulate":
-        raise ValueError(f"unknown analysis type {analysis.type!r}")
+    if analysis.type not in RUNNABLE_ANALYSES:
+        raise ValueError(
+            f"analysis {analysis.name}: type {analysis.type!r} cannot be run here "
+            f"(runnable: {', '.join(RUNNABLE_ANALYSES)})"
+        )
     model = build_model(case_model)
     omega = analysis.spin_speed(case_model)
     sets = analysis.ball_angle_sets(model.n_balls)
@@ -133,7 +139,18 @@ def run_case(case: Case,
     -------
     dict of str to xarray.Dataset
         Results by analysis name, in the case's order.
+
+    Raises
+    ------
+    ValueError
+        An analysis type is not in :data:`RUNNABLE_ANALYSES` (checked before anything runs).
     """
+    for analysis in case.analyses:
+        if analysis.type not in RUNNABLE_ANALYSES:
+            raise ValueError(
+                f"analysis {analysis.name}: type {analysis.type!r} cannot be run here "
+                f"(runnable: {', '.join(RUNNABLE_ANALYSES)})"
+            )
     results = {}
     for analysis in case.analyses:
         report = None

@@ -199,6 +199,12 @@ def run_command(
             raise BadInput(str(exc)) from None
         if not loaded.analyses:
             raise BadInput(f"case {loaded.name}: lists no [[analysis]] to run")
+        from rotorlab.analyses import RUNNABLE_ANALYSES
+
+        for i, a in enumerate(loaded.analyses):
+            if a.type not in RUNNABLE_ANALYSES:
+                raise BadInput(f'analysis[{i}].type = "{a.type}": rotorlab run cannot run this '
+                               f"analysis type yet (runnable: {', '.join(RUNNABLE_ANALYSES)})")  # fmt: skip
         count = len(loaded.analyses)
         info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
              json_mode=json_out)  # fmt: skip
