@@ -58,7 +58,7 @@ def test_autobalancer_numbers_follow_seed_002():
         assert ball.mass == pytest.approx(0.03)
         assert ball.radius == pytest.approx(0.05)
         assert ball.inertia == pytest.approx(0.03 * 0.05**2)  # point mass
-        assert ball.damping == pytest.approx(2e-4)
+        assert ball.damping == pytest.approx(2e-3)
         assert ball.friction == 0.0
     assert model.total_mass == pytest.approx(1.06)
     # critical speed p = 2*pi*20 rad/s, p^2 = c / (M1 + 2 m)
