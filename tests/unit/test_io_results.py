@@ -99,3 +99,15 @@ def test_interrupted_write_cleans_up(tmp_path, monkeypatch):
 def test_load_missing_file(tmp_path):
     with pytest.raises(FileNotFoundError, match="no such results file"):
         load_netcdf(tmp_path / "absent.nc")
+
+
+def test_saved_file_has_the_permissions_of_a_normal_file(tmp_path):
+    import os
+    import stat
+
+    umask = os.umask(0o022)
+    try:
+        path = save_netcdf(make_dataset(), tmp_path / "perm.nc")
+    finally:
+        os.umask(umask)
+    assert stat.S_IMODE(path.stat().st_mode) == 0o644
