@@ -18,12 +18,16 @@ Seed 002 (Zhakash et al. 2024)
   stationarity of D gives (11) (``P_s = -dD/dalpha_s / (beta0 m R^2) = 0``), hence (12), not (9).
 - (20)-(22) "the main solution is stable for omega > p" (first-order averaging, beta dropped) is
   contradicted by the exact eigenvalues just above p: the main motions are unstable in a window
-  ``p < omega < omega*`` (``zhakash-k2`` enough: omega* = 1.46 p) where no steady motion is
-  stable and the balls do not synchronise (they lag at about 0.35 omega relative to the rotor in
-  simulation); likewise the third solution for eta > 2 (``short``: unstable for
-  1.10 p < omega < 1.58 p) and solution 2 just below p (0.98 p < omega < p). Averaging assumes
-  the balls drift slowly compared with the decay of the rotor's free whirl; near p,
-  ``W = m omega^2 / (c - M omega^2)`` is large and the assumption fails.
+  ``p < omega < omega*`` (``zhakash-k2`` enough: omega* = 1.457 p) where no steady motion is
+  stable and the balls do not synchronise (in simulation they lag behind the rotor at about
+  0.35 omega); likewise the third solution for eta > 2 (``short``: unstable for
+  1.100 p < omega < 1.582 p). Averaging assumes the balls drift slowly compared with the decay
+  of the rotor's free whirl; near p, ``W = m omega^2 / (c - M omega^2)`` is large and the
+  assumption fails.
+- (23) "the second solution is stable for omega < p": with beta > 0 the side motions (13) come in
+  pairs k, k' (all bits flipped) that merge and vanish near p when ``|s(k)| > M1 r`` (see the
+  seed 003 note below): solutions 2 and 3 do not exist for 0.97 p < omega < 1.03 p
+  (``zhakash-k2`` enough), where again nothing is stable.
 - The support damping beta of (2)-(3) is a small parameter that the first-order averaged
   equations drop, so (20)-(22) do not depend on it; the exact stability does: with beta = 0 the
   main solution is unstable at *every* speed above p (the balls' damping acts as rotating damping
@@ -49,9 +53,9 @@ Seed 003 (Filimonikhin & Filimonikhina)
 - Case 1 ("below omega_cr only the first side motion, all k_i = 0, can be stable") and the
   side motions (13) themselves assume undamped supports. With support damping d the side
   motions k and k' (all bits flipped) with ``|s(k)| > Me`` merge and vanish where
-  ``d omega |s(k)| > Me |c - M_S omega^2 + i d omega|``: near p with a small unbalance
-  (``filimonikhin-n2`` dominant: 0.79 p < omega < p) no steady motion exists or is stable and
-  the pendulums do not synchronise.
+  ``d omega |s(k)| > Me |c - M_S omega^2 + i d omega|``: with a small unbalance this reaches far
+  below p (``filimonikhin-n2`` dominant: the first side motion vanishes above 0.782 p, and for
+  0.782 p < omega < p no steady motion is stable and the pendulums do not synchronise).
 - Conclusion 3 and the abstract ("at supercritical speeds only the main motions are stable"), for
   the seed's own assumption of supports without resistance, is contradicted by the exact
   eigenvalues: with d = 0 *no* steady motion is stable above omega_cr (``filimonikhin-n2``
@@ -62,7 +66,7 @@ Seed 003 (Filimonikhin & Filimonikhina)
   that (Kelvin-Tait-Chetaev). The "least H~* among steady motions" comparison (and the
   conditional extremum (16)-(19)) therefore gives necessary conditions at best; with support
   damping d > 0 the main motions are stable only above a speed omega* > omega_cr
-  (``filimonikhin-n2`` enough: omega* = 1.40 p).
+  (``filimonikhin-n2`` enough: omega* = 1.395 p; dominant: the side motion 01 above 1.459 p).
 """
 
 from __future__ import annotations
@@ -109,6 +113,9 @@ SEED_NOTES: tuple[SeedNote, ...] = (
     SeedNote("002", "(20)-(22)", "main solution stable for every omega > p",
              "exactly unstable for p < omega < omega* (window), balls do not synchronise",
              _V2 + "test_window_above_critical_speed_exact_and_simulated"),
+    SeedNote("002", "(23), solution 2", "stable for every omega < p",
+             "with beta > 0 it merges with solution 3 and vanishes for 0.97 p < omega < 1.03 p",
+             _V2 + "test_solutions_2_and_3_vanish_near_p"),
     SeedNote("002", "(2)-(3), (20)-(22)", "beta (support damping) a small parameter, dropped",
              "with beta = 0 the main solution is unstable at every omega > p",
              _V2 + "test_no_support_damping_destabilises_the_main_solution"),
