@@ -110,10 +110,13 @@ class Solver:
             self._mik = np.linalg.solve(mp, kc)
             self._mic = np.linalg.solve(mp, cc)
             self._mig = np.linalg.solve(mp, -1j * s.G[np.ix_(xp, yp)])
+            self._lm_t = np.linalg.cholesky(mp).T
         elif method == "state-space":
             self._mik = np.linalg.solve(s.M, s.K)
             self._mic = np.linalg.solve(s.M, s.C)
             self._mig = np.linalg.solve(s.M, s.G)
+        if method in ("state-space", "dense"):
+            self._lm_t = np.linalg.cholesky(s.M).T
 
     # ----------------------------------------------------------------- set-up
     def _pick(self) -> str:
@@ -220,9 +223,7 @@ class Solver:
         backward = lam.imag < 0
         lam = np.where(backward, lam.conj(), lam)
         W = V[:, :npl, :].transpose(0, 2, 1)
-        track = V.transpose(0, 2, 1)
-        track = track / np.linalg.norm(track, axis=2, keepdims=True)
-        return Spectrum(lam, self._planes(W, backward), track)
+        return Spectrum(lam, self._planes(W, backward), _mass_weighted(W, self._lm_t))
 
     def _solve_state_space(self, w: np.ndarray) -> Spectrum:
         n = self.system.n_dof
@@ -231,7 +232,7 @@ class Solver:
         A[:, n:, :n] = -self._mik
         A[:, n:, n:] = -(self._mic[None] + w[:, None, None] * self._mig[None])
         lam, V = np.linalg.eig(A)
-        return _select_half(lam, V, n)
+        return _select_half(lam, V, n, self._lm_t)
 
     def _solve_dense(self, w: np.ndarray) -> Spectrum:
         s = self.system
@@ -243,17 +244,22 @@ class Solver:
             lam, V = scipy.linalg.eig(Am, Bm)
             lams.append(lam)
             vecs.append(V)
-        return _select_half(np.array(lams), np.array(vecs), n)
+        return _select_half(np.array(lams), np.array(vecs), n, self._lm_t)
 
 
-def _select_half(lam: np.ndarray, V: np.ndarray, n: int) -> Spectrum:
+def _mass_weighted(shapes: np.ndarray, lm_t: np.ndarray) -> np.ndarray:
+    """Unit vectors ``L_M^T q``: modes are (nearly) orthogonal in this metric, so MAC works."""
+    u = np.matmul(shapes, lm_t.T)
+    return u / np.linalg.norm(u, axis=2, keepdims=True)
+
+
+def _select_half(lam: np.ndarray, V: np.ndarray, n: int, lm_t: np.ndarray) -> Spectrum:
     """Keep one eigenvalue per conjugate pair (largest imaginary parts first)."""
     order = np.argsort(-lam.imag, axis=1, kind="stable")[:, :n]
     lam = np.take_along_axis(lam, order, axis=1)
     V = np.take_along_axis(V, order[:, None, :], axis=2)
-    track = V.transpose(0, 2, 1)
-    track = track / np.linalg.norm(track, axis=2, keepdims=True)
-    return Spectrum(lam, V[:, :n, :].transpose(0, 2, 1), track)
+    shapes = V[:, :n, :].transpose(0, 2, 1)
+    return Spectrum(lam, shapes, _mass_weighted(shapes, lm_t))
 
 
 def whirl_of_shapes(shapes: np.ndarray, length_scale: float = 1.0,

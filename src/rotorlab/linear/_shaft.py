@@ -266,7 +266,7 @@ class ShaftElement:
             K = _euler_bernoulli_stiffness(m.youngs_modulus * I, self.length)
         R = m.density * I * pp
         M = m.density * A * ww + (R if self.rotary_inertia else 0.0)
-        return M, K, R
+        return tuple(0.5 * (a + a.T) for a in (M, K, R))  # exactly symmetric
 
     def M(self) -> np.ndarray:
         """Mass matrix (8, 8) (kg, kg m, kg m^2)."""
