@@ -86,7 +86,8 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
 
     References
     ----------
-    Friswell et al. (2010), Chapters 3 and 5 (critical speeds from the undamped model); seed 000 (resonances at the crossings of the Campbell diagram).
+    Friswell et al. (2010), Chapters 3 and 5 (critical speeds from the undamped model);
+    seed 000 (resonances at the crossings of the Campbell diagram).
 
     Examples
     --------

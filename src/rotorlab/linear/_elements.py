@@ -248,7 +248,8 @@ class Bearing:
             object.__setattr__(self, "node_b", nb)
         for name, unit, pair in (("kxx", "N/m", None), ("kyy", "N/m", "kxx"),
                                  ("cxx", "N s/m", None), ("cyy", "N s/m", "cxx"),
-                                 ("k_tilt_x", "N m/rad", None), ("k_tilt_y", "N m/rad", "k_tilt_x")):
+                                 ("k_tilt_x", "N m/rad", None),
+                                 ("k_tilt_y", "N m/rad", "k_tilt_x")):
             value = getattr(self, name)
             if value is None and pair is not None:
                 value = getattr(self, pair)
