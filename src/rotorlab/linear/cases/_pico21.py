@@ -100,7 +100,11 @@ from rotorlab.linear._influence import (
     influence_compliance,
 )
 from rotorlab.linear._system import LinearSystem
-from rotorlab.linear.cases._pico21_data import FORCES, PRINTED_ENERGY_IN_FORCES, PRINTED_STIFFNESS
+from rotorlab.linear.cases._pico21_data import (
+    FORCES,
+    PRINTED_ENERGY_IN_FORCES,
+    PRINTED_STIFFNESS,
+)
 
 __all__ = ["Pico21Data", "PICO21", "RESOLVED_COMPLIANCE", "pico21", "pico21_influence_model"]
 
