@@ -11,9 +11,9 @@ from typing import Any
 
 from rotorlab._version import __version__
 
-__all__ = ["__version__", "integrate", "models", "io", "cases", "plot", "report", "analyses"]
+_SUBMODULES = {"integrate", "models", "io", "plot", "report", "analyses", "linear", "steady", "explore"}
 
-_SUBMODULES = {"integrate", "models", "io", "cases", "plot", "report", "analyses"}
+__all__ = ["__version__", *sorted(_SUBMODULES)]
 
 
 def __getattr__(name: str) -> Any:
