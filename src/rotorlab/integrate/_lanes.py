@@ -66,8 +66,8 @@ from rotorlab.integrate._tableau import (
     ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY,
 )  # fmt: skip
 
-LANES = 4
-"""Trajectories per worker stepped together (4 doubles = one AVX2 register)."""
+LANES = 8  # @lanes
+"""Trajectories per worker stepped together (set per generated copy; see ``lane_driver``)."""
 
 # The model's kernel inlined at numba-IR level: LLVM does not inline a separately compiled
 # dispatcher of this size, and a call is opaque to the loop vectoriser. error_model="numpy"
@@ -223,6 +223,11 @@ def _worker(
     habs = np.zeros(L)
     min_step = np.zeros(L)
     acc = np.zeros(L)
+    take = np.zeros(L)
+    Q = np.zeros(nL)
+    AB = np.zeros(nL)  # atol broadcast over the lanes
+    for k in range(nL):
+        AB[k] = atol[k // L]
     ids = np.full(L, _EMPTY, dtype=np.int64)
     rejected = np.zeros(L, dtype=np.bool_)
     last_nonfinite = np.zeros(L, dtype=np.bool_)
@@ -356,31 +361,33 @@ def _worker(
         for k in range(nL):
             YN[k] = Y[k] + HB[k] * (B1 * K1[k] + B3 * K3[k] + B4 * K4[k] + B5 * K5[k] + B6 * K6[k])
         _eval(shared, tnl, YN, p0, PL, K7, n, n_par, nl)
-        # error norm (RMS over the continuous states, as _core._rms_scaled)
-        for lane in range(L):
+        # error norm (RMS over the continuous states, as _core._rms_scaled), summed over the
+        # states in the same order; K7 * 0.0 (NaN unless K7 is finite) folds in _core's
+        # "not _all_finite(k7)" test: adding +-0.0 leaves a finite sum unchanged.
+        for k in range(n_cont * L):
+            e = HB[k] * (
+                E1 * K1[k] + E3 * K3[k] + E4 * K4[k] + E5 * K5[k] + E6 * K6[k] + E7 * K7[k]
+            )
+            sc = AB[k] + rtol * max(abs(Y[k]), abs(YN[k]))
+            q = e / sc
+            Q[k] = q * q + K7[k] * 0.0
+        for k in range(n_cont * L, nL):
+            Q[k] = K7[k] * 0.0
+        for lane in range(nl):
             acc[lane] = 0.0
-        for i in range(n_cont):
-            for lane in range(L):
-                k = i * L + lane
-                e = HB[k] * (
-                    E1 * K1[k] + E3 * K3[k] + E4 * K4[k] + E5 * K5[k] + E6 * K6[k] + E7 * K7[k]
-                )
-                sc = atol[i] + rtol * max(abs(Y[k]), abs(YN[k]))
-                q = e / sc
-                acc[lane] += q * q
+        for i in range(n):
+            for lane in range(nl):
+                acc[lane] += Q[i * L + lane]
 
         # ---- scalar epilogue: accept or reject in every lane --------------------------------
         for lane in range(L):
+            take[lane] = 0.0
             j = ids[lane]
             if j < 0:
                 continue
             nfev[lane] += 6
             err_norm = math.sqrt(acc[lane] / n_cont)
-            finite_k7 = True
-            for i in range(n):
-                if not math.isfinite(K7[i * L + lane]):
-                    finite_k7 = False
-            if not math.isfinite(err_norm) or not finite_k7:
+            if not math.isfinite(err_norm):
                 last_nonfinite[lane] = True
                 habs[lane] *= MIN_FACTOR
                 rejected[lane] = True
@@ -421,10 +428,14 @@ def _worker(
                     s += 1
                 i_save[lane] = s
             tl[lane] = tn
-            for i in range(n):
-                Y[i * L + lane] = YN[i * L + lane]
-                K1[i * L + lane] = K7[i * L + lane]
+            take[lane] = 1.0
             new_step[lane] = True
+        for i in range(n):
+            for lane in range(nl):
+                k = i * L + lane
+                a = take[lane] != 0.0
+                Y[k] = YN[k] if a else Y[k]
+                K1[k] = K7[k] if a else K1[k]
 
 
 @njit(cache=True, nogil=True)
@@ -484,45 +495,101 @@ def integrate_lanes_serial(
 # Per-model compiled copies (Python side; unused inside the generated copies themselves)
 
 _LOADED: dict = {}
+_ACT_OFF = 3  # rotorlab.integrate._core.ACT_OFF
 
 
-def lane_drivers_for(kernels):
-    """Return ``(parallel, serial)`` lane drivers compiled for the model's ``rhs``.
+def lane_driver(kernels, lanes, n_ev, ev_act, serial):
+    """Return a function with the signature of the scalar drivers that runs the lane driver.
+
+    Parameters
+    ----------
+    kernels : Kernels
+    lanes : int
+        Trajectories per thread stepped together, 2 to 64; best a multiple of the SIMD width in
+        doubles (4 with AVX2, 8 with AVX-512). 8 is a good choice on both.
+    n_ev : int
+    ev_act : int64 array
+        Event actions (all must be "off": the lane driver does not locate events).
+    serial : bool
+        Run on the calling thread.
+
+    Raises
+    ------
+    ValueError
+        If ``lanes`` is out of range or an event is active.
+    """
+    import numba
+
+    if isinstance(lanes, bool) or not isinstance(lanes, (int, np.integer)) or not 2 <= lanes <= 64:
+        raise ValueError(f"lanes must be an integer in [2, 64] or None, got {lanes!r}")
+    if n_ev > 0 and np.any(np.asarray(ev_act) != _ACT_OFF):
+        raise ValueError(
+            "lanes= runs without event location; this model has active events: pass events=[] "
+            "to switch them off, or lanes=None to use the scalar driver"
+        )
+    width = int(lanes)
+    parallel, single = lane_drivers_for(kernels, width)
+
+    def run(
+        n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, ev_dir,
+        ev_act, YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
+    ):  # fmt: skip
+        drv = single if serial else parallel
+        drv(
+            Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, width,
+            YS, YF, STATUS, TEND, STATS, numba.get_num_threads(),
+        )  # fmt: skip
+
+    return run
+
+
+def _source(width):
+    """This module's source with ``LANES`` set to ``width``."""
+    import inspect
+    import sys
+    from pathlib import Path
+
+    lines = Path(inspect.getsourcefile(sys.modules[__name__])).read_text().splitlines()
+    marked = [i for i, line in enumerate(lines) if line.rstrip().endswith("# @lanes")]
+    if len(marked) != 1:
+        raise RuntimeError("rotorlab.integrate._lanes must have exactly one '# @lanes' line")
+    lines[marked[0]] = f"LANES = {int(width)}  # @lanes"
+    return lines
+
+
+def lane_drivers_for(kernels, width=LANES):
+    """Return ``(parallel, serial)`` lane drivers of ``width`` lanes for the model's ``rhs``.
 
     Both take the arguments of :func:`integrate_lanes`. The copy of this module with the
-    ``# @kernel`` line importing the model's ``rhs`` is written next to the scalar drivers of
-    :mod:`rotorlab.integrate._specialize` (same cache directory, naming and pruning); kernels
-    that are not importable module-level functions are compiled without on-disk caching.
+    ``# @kernel`` line importing the model's ``rhs`` and ``LANES = width`` is written next to the
+    scalar drivers of :mod:`rotorlab.integrate._specialize` (same cache directory and pruning);
+    kernels that are not importable module-level functions are compiled without on-disk caching.
     """
-    import importlib
     import importlib.util
-    import inspect
     import os
     import sys
     import tempfile
-    from pathlib import Path
 
     from rotorlab.integrate import _specialize as spec
 
     name = spec._importable_name(kernels.rhs)
     if name is None:
-        return _uncached(kernels)
-    key = f"{name[0]}.{name[1]}"
+        return _uncached(kernels, width)
+    key = (f"{name[0]}.{name[1]}", width)
     if key in _LOADED:
         return _LOADED[key]
     directory = spec._cache_dir()
     if directory is None:
-        return _uncached(kernels)
+        return _uncached(kernels, width)
     mod, fn = name
     deps = [mod, __name__, "rotorlab.integrate._core", "rotorlab.integrate._tableau"]
     deps += _kernel_dependencies(mod)
     digest = spec._source_hash(deps)
-    stem = f"lanes_{mod.rsplit('.', 1)[-1]}_{fn}_{digest}"
+    stem = f"lanes{width}_{mod.rsplit('.', 1)[-1]}_{fn}_{digest}"
     path = directory / f"{stem}.py"
     if not path.exists():
         spec._prune(directory, stem.rsplit("_", 1)[0])
-        template = Path(inspect.getsourcefile(sys.modules[__name__])).read_text()
-        lines = template.splitlines()
+        lines = _source(width)
         marked = [i for i, line in enumerate(lines) if line.rstrip().endswith("# @kernel")]
         if len(marked) != 1:
             raise RuntimeError("rotorlab.integrate._lanes must have exactly one '# @kernel' line")
@@ -553,15 +620,13 @@ def _kernel_dependencies(mod):
     return sorted(set(found))
 
 
-def _uncached(kernels):
+def _uncached(kernels, width):
     """Compile the lane driver with the kernel bound directly, without on-disk caching."""
-    import inspect
-    import sys
-    from pathlib import Path
-
-    source = Path(inspect.getsourcefile(sys.modules[__name__])).read_text()
-    source = source.replace("cache=True", "cache=False")
-    lines = [ln for ln in source.splitlines() if not ln.rstrip().endswith("# @kernel")]
+    key = (id(kernels.rhs), width)
+    if key in _LOADED:
+        return _LOADED[key][1:]
+    source = "\n".join(ln for ln in _source(width) if not ln.rstrip().endswith("# @kernel"))
     namespace = {"rhs": kernels.rhs, "__name__": "_rotorlab_lanes_uncached"}
-    exec(compile("\n".join(lines), "<rotorlab lane driver>", "exec"), namespace)  # noqa: S102
-    return namespace["integrate_lanes"], namespace["integrate_lanes_serial"]
+    exec(compile(source.replace("cache=True", "cache=False"), "<rotorlab lane driver>", "exec"), namespace)  # noqa: S102
+    _LOADED[key] = (kernels.rhs, namespace["integrate_lanes"], namespace["integrate_lanes_serial"])
+    return _LOADED[key][1:]
