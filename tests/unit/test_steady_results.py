@@ -179,3 +179,21 @@ def test_every_seed_note_names_an_existing_test():
     for note in SEED_NOTES:
         file, name = note.test.split("::")
         assert name in _test_functions(ROOT / file), note
+
+
+def test_results_round_trip_through_netcdf(tmp_path):
+    """Every Dataset carries units on its numeric variables and survives NetCDF (io.save_netcdf)."""
+    from rotorlab.io import load_netcdf, missing_units, save_netcdf
+
+    p = MODEL.critical_speed
+    datasets = {
+        "steady": analyze_steady(MODEL, 1.2 * p).to_dataset(),
+        "chart": stability_chart(MODEL, [0.5 * p, 2.0 * p], param="eccentricity", values=[5e-4, 1e-3]),
+        "verify": verify(MODEL, [2.0 * p], initial_ball_angles=[[0.5, 2.5]], t_end=5.0),
+        "run_up": run_up(MODEL, LinearRamp(0.3 * p, 2.0 * p, 1.0), t_end=2.0, n_save=50),
+    }
+    for name, ds in datasets.items():
+        assert missing_units(ds) == [], name
+        back = load_netcdf(save_netcdf(ds, tmp_path / f"{name}.nc"))
+        for var in ds.data_vars:
+            np.testing.assert_array_equal(back[var].values, ds[var].values, err_msg=f"{name}.{var}")

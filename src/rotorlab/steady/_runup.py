@@ -77,6 +77,19 @@ def run_up(model: JeffcottBalls, profile: Any, *, t_end: float, initial_ball_ang
     -----
     "Without the balancer" is the same disc, unbalance and shaft with the balls removed (its
     critical speed is sqrt(c / M1), slightly higher than sqrt(c / M)).
+
+    Examples
+    --------
+    A fast ramp through p: the balls synchronise and balance the rotor.
+
+    >>> from rotorlab.models import LinearRamp
+    >>> from rotorlab.steady import steady_case
+    >>> case = steady_case("zhakash-k2")
+    >>> p = case.critical_speed()
+    >>> ds = run_up(case.model("enough"), LinearRamp(0.3 * p, 2.5 * p, 0.22), t_end=12.0,
+    ...             initial_ball_angles=[[0.3, 2.0]], n_save=500)
+    >>> bool(ds.synchronised[0]), str(ds.final_motion.values[0]), float(ds.final_amplitude[0]) < 1e-5
+    (True, 'main-', True)
     """
     import xarray as xr
 

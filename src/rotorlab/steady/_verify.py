@@ -175,6 +175,16 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
     Starts: the disc centre at rest on the axis, the balls at rest relative to the rotor. A start
     counts as settled when, over the last ``settle_revolutions`` revolutions, it is at rest in the
     co-rotating frame; it is then matched by :func:`match_state`.
+
+    Examples
+    --------
+    Seed 002's case with enough capacity, twice the critical speed: every start balances.
+
+    >>> from rotorlab.steady import steady_case
+    >>> case = steady_case("zhakash-k2")
+    >>> ds = verify(case.model("enough"), [2.0 * case.critical_speed()], points=2, t_end=10.0)
+    >>> sorted(str(r) for r in set(ds.reached.values.ravel())), bool(ds.agrees_exact.values[0])
+    (['main+', 'main-'], True)
     """
     import xarray as xr
 
