@@ -4,8 +4,9 @@ The typos of the model equations already found are listed (and tested) in
 :mod:`rotorlab.models._jeffcott_balls` ("Corrections to the seeds"): seed 002 (1)-(3) axes, (5),
 (6), (10) W with M, (11) no factor 1/2 and a minus sign, (14), (21), (23), (24), (25); seed 003
 line before (2) and (2), (6), case 2b, fourth side motion case ii, (17) vs (18). They are used
-here as corrected. :data:`SEED_NOTES` adds what the steady-motion analysis finds; each entry names
-the test that checks it.
+here as corrected. The sections below add what the steady-motion analysis finds.
+:data:`SEED_NOTES` lists both (``origin`` "model" or "steady"), each entry with the test that
+checks it, for case-file comments and reports.
 
 Seed 002 (Zhakash et al. 2024)
 ------------------------------
@@ -85,54 +86,102 @@ class SeedNote:
     seed : {"002", "003"}
     where : str
         Equation number or place in the paper.
+    kind : {"typo", "conclusion"}
+        A misprinted formula or text, or a conclusion the exact analysis contradicts.
     printed : str
         What the paper says.
     corrected : str
         What holds (corrected formula, or the exact result).
     test : str
         The test that checks it (``tests/...::name``).
+    origin : {"model", "steady"}
+        Found with the model (listed in :mod:`rotorlab.models._jeffcott_balls`) or here.
     """
 
     seed: str
     where: str
+    kind: str
     printed: str
     corrected: str
     test: str
+    origin: str
 
 
+_M2 = "tests/validation/test_jeffcott_seed002.py::"
+_M3 = "tests/validation/test_jeffcott_seed003.py::"
 _V2 = "tests/validation/test_steady_seed002.py::"
 _V3 = "tests/validation/test_steady_seed003.py::"
 
+
+def _model(seed, where, printed, corrected, test):
+    return SeedNote(seed, where, "typo", printed, corrected, test, "model")
+
+
+def _new(seed, where, kind, printed, corrected, test):
+    return SeedNote(seed, where, kind, printed, corrected, test, "steady")
+
+
+#: Every typo and contradicted conclusion of seeds 002 and 003, those of the model's list first.
 SEED_NOTES: tuple[SeedNote, ...] = (
-    SeedNote("002", "(4), (7)", "mu_{omega^2 phi}, mu_{beta'} = beta", "omega^2 mu Phi, mu beta' = beta",
-             _V2 + "test_averaged_jacobian_is_the_corrected_P_s"),
-    SeedNote("002", "after (23)", "the main solution is unstable beyond the critical region",
-             "stable for omega > p by (21)-(22) (averaged equations)", _V2 + "test_main_solution_stable_above_p_by_22"),
-    SeedNote("002", "conclusion after (25)", "minima of D give (9)", "stationarity of D gives (11), hence (12)",
-             _V2 + "test_averaged_jacobian_is_the_corrected_P_s"),
-    SeedNote("002", "(20)-(22)", "main solution stable for every omega > p",
-             "exactly unstable for p < omega < omega* (window), balls do not synchronise",
-             _V2 + "test_window_above_critical_speed_exact_and_simulated"),
-    SeedNote("002", "(23), solution 2", "stable for every omega < p",
-             "with beta > 0 it merges with solution 3 and vanishes for 0.97 p < omega < 1.03 p",
-             _V2 + "test_solutions_2_and_3_vanish_near_p"),
-    SeedNote("002", "(2)-(3), (20)-(22)", "beta (support damping) a small parameter, dropped",
-             "with beta = 0 the main solution is unstable at every omega > p",
-             _V2 + "test_no_support_damping_destabilises_the_main_solution"),
-    SeedNote("002", "(22), run-up", "balancing above p", "a slow run-up can leave the balls captured at about p",
-             _V2 + "test_run_up_capture_and_synchronisation"),
-    SeedNote("003", "Russian abstract", "на критических скоростях", "на закритических (supercritical)",
-             _V3 + "test_supercritical_main_motions_need_support_damping"),
-    SeedNote("003", "case 2a", "Me <= sum m_i l_i: main motions", "polygon inequality for every ball as well",
-             _V3 + "test_dominating_pendulum_no_main_motion"),
-    SeedNote("003", "second side motion, case ii", "this is the main motion",
-             "a side motion (13) with nonzero deflection, the least unbalanced", _V3 + "test_dominating_pendulum_no_main_motion"),
-    SeedNote("003", "(16)", "2 H~* = -omega^4 f / (c - M omega^2)", "plus the constant -omega^2 [J_O + sum J_Oi]",
-             _V3 + "test_h_tilde_on_the_constraint_eq_16"),
-    SeedNote("003", "case 1, (13)", "below omega_cr the first side motion is stable",
-             "with support damping side motions vanish near p; none stable, no synchronisation",
-             _V3 + "test_damping_removes_side_motions_below_p"),
-    SeedNote("003", "conclusion 3, abstract, (5)", "supercritical: only the main motions are stable (d = 0)",
-             "with d = 0 no steady motion is stable above omega_cr; with d > 0 only above omega*",
-             _V3 + "test_supercritical_main_motions_need_support_damping"),
+    _model("002", "(1)-(3)", "axes read as y -> -y, phi -> -phi", "x_s = x, y_s = -y, phi_s = phi (mirrored axes)",
+           _M2 + "test_equations_1_to_3_in_mirrored_axes"),
+    _model("002", "(5)", "M x'' + c x'", "M x'' + c x (and z -> r)", _M2 + "test_equations_1_to_3_in_mirrored_axes"),
+    _model("002", "(6)", "+M1 z omega^2 sin(omega t)", "-M1 r omega^2 sin(omega t)",
+           _M2 + "test_equations_1_to_3_in_mirrored_axes"),
+    _model("002", "(10)", "W = m / M1 omega^2 / (p^2 - omega^2)", "W = m / M omega^2 / (p^2 - omega^2)",
+           _M2 + "test_steady_response_eqs_9_10_use_the_total_mass"),
+    _model("002", "(11), (15), (19), (21), (23)", "P_s = +1/2 omega^2 W / beta0 [...]",
+           "P_s = -(omega^2 W / beta0) [...] (no 1/2, minus sign)", _M2 + "test_averaged_equation_11_by_simulation"),
+    _model("002", "(14)", "|dP_s/dalpha_j - delta_sj theta c| = theta", "det(dP_s/dalpha_j - kappa delta_sj) = 0",
+           _V2 + "test_averaged_jacobian_is_the_corrected_P_s"),
+    _model("002", "(21)", "(omega W / beta0)(-eta cos gamma + cos 2 gamma), eta cos gamma^2, 'W > 0'",
+           "A(1) = -2 K, B(1) = (1 - eta^2/4) K^2 eta^2, K = omega^2 W / beta0; W < 0",
+           _M2 + "test_stability_coefficients_19_to_23"),
+    _model("002", "(23)", "leading minus on A(3), B(3), A(4); cos pi in B(3); eta in B(4); (3) stable above p",
+           "A(3) = 2K(1 - eta), B(3) = K^2 eta(eta - 2), B(4) = -K^2 eta^2; (3) stable only for eta > 2",
+           _M2 + "test_light_side_motion_needs_short_capacity"),
+    _model("002", "(24)-(25)", "1/2 C[(x0')^2 + (y0')^2]; D = -M m omega^2 R^2 / M1 W [...]",
+           "1/2 c[x0^2 + y0^2]; D = -m omega^2 R^2 W [...] = H~* + const",
+           _M2 + "test_eq_25_corrected_equals_reduced_hamiltonian"),
+    _model("003", "line before (2), (2)", "d/dt(...) = sum q_i' dL/dq_i'", "= sum q_i' Q_i, hence (5)",
+           _M3 + "test_hamiltonian_rate_equals_minus_twice_rayleigh"),
+    _model("003", "(6)", "i = 1..n", "i = 1..N (all coordinates)", _M3 + "test_steady_motions_and_their_hamiltonian"),
+    _model("003", "case 2b", "H~*(2^n) > H~*(k)", "H~*(2^n) < H~*(k)",
+           _M3 + "test_case_2b_corrected_least_hamiltonian_when_capacity_is_short"),
+    _model("003", "fourth side motion, case ii", "Me < m1 l1 + m2 l2", "Me > m1 l1 + m2 l2",
+           _M3 + "test_fourth_side_motion_corrected_condition"),
+    _model("003", "(17), (18)", "f = u^2 + v^2 and f = (u^2 + v^2) / 2", "(19) is the Hessian of the latter",
+           _M3 + "test_fourth_side_motion_corrected_condition"),
+    _new("002", "(4), (7)", "typo", "mu_{omega^2 phi}, mu_{beta'} = beta", "omega^2 mu Phi, mu beta' = beta",
+         _V2 + "test_averaged_jacobian_is_the_corrected_P_s"),
+    _new("002", "after (23)", "typo", "the main solution is unstable beyond the critical region",
+         "stable for omega > p by (21)-(22) (averaged equations)", _V2 + "test_main_solution_stable_above_p_by_22"),
+    _new("002", "conclusion after (25)", "typo", "minima of D give (9)", "stationarity of D gives (11), hence (12)",
+         _V2 + "test_averaged_jacobian_is_the_corrected_P_s"),
+    _new("002", "(20)-(22)", "conclusion", "main solution stable for every omega > p",
+         "exactly unstable for p < omega < omega* (window), balls do not synchronise",
+         _V2 + "test_window_above_critical_speed_exact_and_simulated"),
+    _new("002", "(23), solution 2", "conclusion", "stable for every omega < p",
+         "with beta > 0 it merges with solution 3 and vanishes for 0.97 p < omega < 1.03 p",
+         _V2 + "test_solutions_2_and_3_vanish_near_p"),
+    _new("002", "(2)-(3), (20)-(22)", "conclusion", "beta (support damping) a small parameter, dropped",
+         "with beta = 0 the main solution is unstable at every omega > p",
+         _V2 + "test_no_support_damping_destabilises_the_main_solution"),
+    _new("002", "(22), run-up", "conclusion", "balancing above p",
+         "a slow run-up can leave the balls captured at about p", _V2 + "test_run_up_capture_and_synchronisation"),
+    _new("003", "Russian abstract", "typo", "на критических скоростях", "на закритических (supercritical)",
+         _V3 + "test_supercritical_main_motions_need_support_damping"),
+    _new("003", "case 2a", "conclusion", "Me <= sum m_i l_i: main motions",
+         "polygon inequality for every ball as well", _V3 + "test_dominating_pendulum_no_main_motion"),
+    _new("003", "second side motion, case ii", "conclusion", "this is the main motion",
+         "a side motion (13) with nonzero deflection, the least unbalanced",
+         _V3 + "test_dominating_pendulum_no_main_motion"),
+    _new("003", "(16); fourth side motion heading", "typo", "2 H~* = -omega^4 f / (c - M omega^2); 'b)' twice",
+         "plus the constant -omega^2 [J_O + sum J_Oi]; read 'c)'", _V3 + "test_h_tilde_on_the_constraint_eq_16"),
+    _new("003", "case 1, (13)", "conclusion", "below omega_cr the first side motion is stable",
+         "with support damping side motions vanish near p; none stable, no synchronisation",
+         _V3 + "test_damping_removes_side_motions_below_p"),
+    _new("003", "conclusion 3, abstract, (5)", "conclusion", "supercritical: only the main motions are stable (d = 0)",
+         "with d = 0 no steady motion is stable above omega_cr; with d > 0 only above omega*",
+         _V3 + "test_supercritical_main_motions_need_support_damping"),
 )  # fmt: skip

@@ -311,7 +311,7 @@ def _family_samples(imbalance: float, s: np.ndarray, per_dim: int, cap: int) -> 
     candidates = list(itertools.product(grid, repeat=n - 2))
     rng = np.random.default_rng(0)
     rows: list[np.ndarray] = []
-    for attempt in range(2):
+    for _ in range(2):
         for free in candidates:
             for b in (+1, -1):
                 r = main_family_angles(imbalance, sp, free, b)
