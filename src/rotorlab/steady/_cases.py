@@ -6,7 +6,10 @@ balls, different eccentricity or support damping) that cover what the seeds disc
 balancing capacity (``M1 e < sum m_i l_i``) and too little (``M1 e > sum m_i l_i``), one ball
 dominating (``m_2 l_2 > M1 e + m_1 l_1``, seed 003 second side motion, case ii), and undamped
 supports (seed 003's assumption 1). The verification speeds are ratios omega / p (p = sqrt(c / M),
-M = M1 + sum m_i) below, just above and well above the critical speed.
+M = M1 + sum m_i) below, just above and well above the critical speed: 0.6, 1.2 (inside the
+window above p where nothing is stable), 2 and 3. Between the end of that window and about
+1.7-1.8 p a non-synchronous whirl near p coexists with the stable motions and captures part of
+the starts (see :mod:`rotorlab.steady._corrections`); a verification there shows it.
 
 ``zhakash-k2`` (Zhakash et al. 2024, seed 002)
     Two equal steel balls in an oil-filled race (eqs. (1)-(3), point masses J = m R^2):

@@ -20,11 +20,15 @@ Seed 002 (Zhakash et al. 2024)
 - (20)-(22) "the main solution is stable for omega > p" (first-order averaging, beta dropped) is
   contradicted by the exact eigenvalues just above p: the main motions are unstable in a window
   ``p < omega < omega*`` (``zhakash-k2`` enough: omega* = 1.457 p) where no steady motion is
-  stable and the balls do not synchronise (in simulation they lag behind the rotor at about
-  0.35 omega); likewise the third solution for eta > 2 (``short``: unstable for
-  1.100 p < omega < 1.582 p). Averaging assumes the balls drift slowly compared with the decay
-  of the rotor's free whirl; near p, ``W = m omega^2 / (c - M omega^2)`` is large and the
-  assumption fails.
+  stable and the balls do not synchronise (in simulation they whirl together at about 0.95 p,
+  captured near the critical speed, with a deflection of 10-15 mm); likewise the third solution
+  for eta > 2 (``short``: unstable for 1.100 p < omega < 1.582 p). Averaging assumes the balls
+  drift slowly compared with the decay of the rotor's free whirl; near p,
+  ``W = m omega^2 / (c - M omega^2)`` is large and the assumption fails.
+- Above omega* the balanced motions are stable but, up to about 1.7 p, not the only attractor:
+  the non-synchronous whirl near p coexists with them (``zhakash-k2`` enough at 1.6 p: 14 % of
+  the starts from rest end there, deflection 18 mm). No local (eigenvalue) criterion can see
+  this; only simulation (:func:`rotorlab.steady.verify`) does.
 - (23) "the second solution is stable for omega < p": with beta > 0 the side motions (13) come in
   pairs k, k' (all bits flipped) that merge and vanish near p when ``|s(k)| > M1 r`` (see the
   seed 003 note below): solutions 2 and 3 do not exist for 0.97 p < omega < 1.03 p
@@ -167,6 +171,9 @@ SEED_NOTES: tuple[SeedNote, ...] = (
     _new("002", "(2)-(3), (20)-(22)", "conclusion", "beta (support damping) a small parameter, dropped",
          "with beta = 0 the main solution is unstable at every omega > p",
          _V2 + "test_no_support_damping_destabilises_the_main_solution"),
+    _new("002", "(20)-(22), above omega*", "conclusion", "the main solution is where the balls go above p",
+         "up to about 1.7 p a non-synchronous whirl near p coexists and captures part of the starts",
+         _V2 + "test_coexisting_whirl_above_the_window"),
     _new("002", "(22), run-up", "conclusion", "balancing above p",
          "a slow run-up can leave the balls captured at about p", _V2 + "test_run_up_capture_and_synchronisation"),
     _new("003", "Russian abstract", "typo", "на критических скоростях", "на закритических (supercritical)",

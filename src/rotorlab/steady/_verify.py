@@ -159,6 +159,8 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
         ``"not settled"``, ``"other"`` (settled on no predicted motion) and ``"failed"``).
         Variables: ``initial_ball_angle`` (ic, ball; rad), ``final_ball_angle`` (speed, ic, ball;
         rad), ``final_amplitude`` (m), ``final_rate`` (largest |psi_i'| / Omega in the window),
+        ``mean_ball_speed`` (speed, ic, ball; absolute ball speed Omega + mean psi_i' over the
+        window, rad/s: about p for balls captured in a non-synchronous whirl),
         ``status``, ``reached`` (label or other outcome), ``fraction`` (speed, outcome; the basin
         fraction of each motion), ``exists`` and ``stable_hamilton`` / ``stable_averaged`` /
         ``stable_exact`` (speed, motion), ``consistent_<method>`` (speed, ic: the start ended as the
@@ -210,6 +212,7 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
     final_angle = np.full((n_sp, n_ic, n), np.nan)
     final_amp = np.full((n_sp, n_ic), np.nan)
     final_rate = np.full((n_sp, n_ic), np.nan)
+    ball_speed = np.full((n_sp, n_ic, n), np.nan)
     status = np.zeros((n_sp, n_ic), dtype=np.int32)
     reached = np.empty((n_sp, n_ic), dtype=object)
     fraction = np.zeros((n_sp, len(outcomes)))
@@ -242,6 +245,8 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
             ball_rate = float(np.max(np.abs(ys[:, 4 + n :]))) if n else 0.0
             rotor_rate = float(np.max(np.hypot(ys[:, 2], ys[:, 3]))) / scale
             final_rate[k, i] = ball_rate / om
+            if sol.status[i] >= 0:  # absolute ball speed, averaged over the window (angles unwrapped)
+                ball_speed[k, i] = om + (ys[-1, 4 : 4 + n] - ys[0, 4 : 4 + n]) / window
             if sol.status[i] < 0:
                 out = "failed"
             elif max(ball_rate, rotor_rate) > rate_tol * om:
@@ -259,6 +264,8 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
         "final_ball_angle": (("speed", "ic", "ball"), final_angle, {"units": "rad", "long_name": "final ball angle"}),
         "final_amplitude": (sic, final_amp, {"units": "m", "long_name": "final shaft deflection"}),
         "final_rate": (sic, final_rate, {"units": "1", "long_name": "largest |ball rate| / Omega, final window"}),
+        "mean_ball_speed": (("speed", "ic", "ball"), ball_speed,
+                            {"units": "rad/s", "long_name": "absolute ball speed, mean over the final window"}),
         "status": (sic, status, {"units": "1", "long_name": "integrator status"}),
         "reached": (sic, reached.astype(str), {"units": "1", "long_name": "motion reached"}),
         "fraction": (("speed", "outcome"), fraction, {"units": "1", "long_name": "basin fraction"}),
