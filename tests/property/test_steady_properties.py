@@ -136,3 +136,19 @@ def test_hamiltonian_decreases_along_trajectories(bs, ratio, seed):
     np.testing.assert_allclose(h - h[0], -2.0 * lost, rtol=0, atol=1e-4 * scale + 1e-2 * 2.0 * lost[-1])  # trapezoid rule
     np.testing.assert_allclose(rot.hamiltonian_rate(sol.ys), -2.0 * phi, rtol=1e-10, atol=1e-12 * scale)
     assert np.all(rot.reduced_hamiltonian(sol.ys) <= h + 1e-12 * scale)
+
+
+@SETTINGS
+@given(rotors, balls(min_size=2, max_size=4), st.floats(0.3, 4.0))
+def test_the_two_first_order_methods_agree(rotor, bs, ratio):
+    """f = |U|^2 / 2 has no local extremum other than the global ones, so seed 003's least-H~*
+    verdict equals seed 002's averaged verdict on every motion."""
+    assume(abs(ratio - 1.0) > 1e-3)
+    model = JeffcottBalls(rotor, bs, speed=ConstantSpeed(1.0))
+    res = analyze_steady(model, ratio * model.critical_speed, family_samples=4)
+    for m in res.motions:
+        st_ = m.stability
+        if st_.hessian != "degenerate":
+            assert st_.hamilton == st_.averaged, m.label
+    assert not any(d.against == "averaged" and res.motion(d.label).stability.hessian != "degenerate"
+                   for d in res.disagreements)  # fmt: skip

@@ -31,20 +31,23 @@ _METHOD_NAMES = {
 
 @dataclass(frozen=True)
 class Disagreement:
-    """A steady motion on which a first-order method and the exact eigenvalues disagree.
+    """A steady motion on which two of the three stability methods disagree.
 
     Attributes
     ----------
     label : str
         The motion.
     method : {"hamilton", "averaged"}
-        The first-order method that disagrees with the exact eigenvalues.
+        The first-order method whose verdict is questioned.
     predicted : str
         Its verdict.
     exact : str
         The exact verdict (``"absent"``: the motion does not exist with the support damping).
     message : str
         One line, with the speed ratio and the exact growth rate.
+    against : {"exact", "averaged"}
+        What ``method`` disagrees with: the exact eigenvalues, or (for ``method="hamilton"``) the
+        averaged equations.
     """
 
     label: str
@@ -52,6 +55,7 @@ class Disagreement:
     predicted: str
     exact: str
     message: str
+    against: str = "exact"
 
 
 @dataclass(frozen=True)
@@ -73,7 +77,8 @@ class SteadyAnalysis:
     motions : tuple of SteadyMotion
         In the order of :func:`rotorlab.steady.motion_labels`, each with its ``stability``.
     disagreements : tuple of Disagreement
-        Every motion on which a first-order method disagrees with the exact eigenvalues.
+        Every motion on which a first-order method disagrees with the exact eigenvalues, or the
+        two first-order methods disagree with each other.
     """
 
     spin_speed: float
@@ -150,7 +155,7 @@ class SteadyAnalysis:
             "stable_fraction": var(("motion",), [s.stable_fraction for s in st], "1",
                                    "fraction of the family exactly stable"),
             "disagreement": var(("motion",), [any(d.label == m.label for d in self.disagreements) for m in ms],
-                                "1", "a first-order method disagrees with the exact eigenvalues"),
+                                "1", "two of the three methods disagree"),
         }  # fmt: skip
         return xr.Dataset(
             data,
@@ -191,6 +196,11 @@ def _disagreements(motions, ratio: float) -> tuple[Disagreement, ...]:
                 detail = f"exact eigenvalues say {st.exact} (largest real part {st.growth_rate:.3g} 1/s{extra})"
             msg = f"{m.label} at omega/p = {ratio:.4g}: {_METHOD_NAMES[method]} says {pred}; {detail}"
             out.append(Disagreement(m.label, method, pred, st.exact, msg))
+        if st.averaged != "undefined" and (st.hamilton == "stable") != (st.averaged == "stable"):
+            why = "" if st.hamilton_minimal else " (H~* is not the least among the steady motions)"
+            msg = (f"{m.label} at omega/p = {ratio:.4g}: {_METHOD_NAMES['hamilton']} says {st.hamilton}{why}; "
+                   f"{_METHOD_NAMES['averaged']} says {st.averaged}")  # fmt: skip
+            out.append(Disagreement(m.label, "hamilton", st.hamilton, st.exact, msg, against="averaged"))
     return tuple(out)
 
 

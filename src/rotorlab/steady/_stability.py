@@ -25,8 +25,11 @@ equations, and the exact eigenvalues of the co-rotating-frame Jacobian.
    motions the n - 2 zero eigenvalues of the neutral directions are left out.
 
 Methods 1 and 2 are both first-order (slow-ball) approximations; their local criteria coincide
-(the averaged Jacobian is similar to ``a`` up to the sign of c - M Omega^2). Both can disagree
-with the exact eigenvalues: see :mod:`rotorlab.steady._corrections`.
+(the averaged Jacobian is similar to ``a`` up to the sign of c - M Omega^2), and so do the
+verdicts: f = |U|^2 / 2 on the torus of ball angles has no local minimum or maximum other than
+the global ones (the distance function of a planar robot arm), so seed 003's "least H~*" clause
+adds nothing to the Hessian test (a property test checks this). Both can disagree with the exact
+eigenvalues: see :mod:`rotorlab.steady._corrections`.
 
 References
 ----------
