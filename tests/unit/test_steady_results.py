@@ -4,6 +4,7 @@ from __future__ import annotations
 
 import ast
 import math
+from dataclasses import replace
 from pathlib import Path
 
 import numpy as np
@@ -19,6 +20,7 @@ from rotorlab.steady import (
     motion_labels,
     run_up,
     stability_chart,
+    stable_intervals,
     steady_case,
     steady_case_names,
     verify,
@@ -197,3 +199,33 @@ def test_results_round_trip_through_netcdf(tmp_path):
         back = load_netcdf(save_netcdf(ds, tmp_path / f"{name}.nc"))
         for var in ds.data_vars:
             np.testing.assert_array_equal(back[var].values, ds[var].values, err_msg=f"{name}.{var}")
+
+
+def test_analysis_to_dict_is_json():
+    import json
+
+    short = JeffcottBalls(replace(ROTOR, eccentricity=2e-2), (BALL, BALL), speed=ConstantSpeed(1.0))
+    res = analyze_steady(short, 150.0)
+    d = json.loads(json.dumps(res.to_dict(), allow_nan=False))
+    assert [m["label"] for m in d["motions"]] == list(motion_labels(2))
+    assert d["motions"][0]["exists"] is False and d["motions"][0]["ball_angles"] is None
+    side = d["motions"][-1]
+    assert side["verdicts"] == {"hamilton": "stable", "averaged": "stable", "exact": "stable"}
+    assert side["amplitude"] == pytest.approx(res.motion("side 11").amplitude)
+    assert d["speed_ratio"] == pytest.approx(150.0 / res.critical_speed)
+
+
+def test_stable_intervals():
+    p = MODEL.critical_speed
+    ratios = np.array([0.5, 0.8, 1.2, 2.0, 3.0])
+    ds = stability_chart(MODEL, ratios * p, param="support_damping", values=[0.0, 8.0])
+    rows = stable_intervals(ds)
+    damped = [(r["motion"], r["start_ratio"], r["stop_ratio"]) for r in rows if r["support_damping"] == 8.0]
+    assert damped == [("main+", pytest.approx(2.0), pytest.approx(3.0)), ("main-", pytest.approx(2.0), pytest.approx(3.0)),
+                      ("side 00", pytest.approx(0.5), pytest.approx(0.8))]  # fmt: skip
+    undamped = {r["motion"] for r in rows if r["support_damping"] == 0.0}
+    assert undamped == {"side 00"}  # no support damping: nothing stable above p
+    seed = {r["motion"] for r in stable_intervals(ds, "hamilton") if r["support_damping"] == 0.0}
+    assert seed == {"main+", "main-", "side 00"}
+    with pytest.raises(ValueError, match="method must be"):
+        stable_intervals(ds, "energy")

@@ -13,7 +13,7 @@ conclusions are in :mod:`rotorlab.steady._corrections` (:data:`SEED_NOTES`); the
 
 from rotorlab.steady._analysis import Disagreement, SteadyAnalysis, analyze_steady
 from rotorlab.steady._cases import Regime, SteadyCase, steady_case, steady_case_names
-from rotorlab.steady._chart import PARAMETERS, stability_chart, with_parameter
+from rotorlab.steady._chart import PARAMETERS, stability_chart, stable_intervals, with_parameter
 from rotorlab.steady._corrections import SEED_NOTES, SeedNote
 from rotorlab.steady._motions import (
     SteadyMotion,
@@ -51,6 +51,7 @@ __all__ = [
     "run_up",
     "side_deflection",
     "stability_chart",
+    "stable_intervals",
     "steady_case",
     "steady_case_names",
     "verify",

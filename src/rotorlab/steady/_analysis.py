@@ -116,6 +116,53 @@ class SteadyAnalysis:
         """
         return tuple(m.label for m in self.motions if m.stability.is_stable(method))
 
+    def to_dict(self) -> dict:
+        """Return the analysis as plain Python values (JSON-ready), in SI units.
+
+        Returns
+        -------
+        dict
+            ``spin_speed`` (rad/s), ``critical_speed`` (rad/s), ``speed_ratio``, ``imbalance``
+            and ``capacity`` (kg m), ``motions`` (one dict per motion: ``label``, ``kind``,
+            ``exists``, ``dimension``, ``ball_angles`` (rad; None when absent), ``amplitude``
+            (m), ``phase`` (rad), ``h_tilde`` (J), ``verdicts`` {hamilton, averaged, exact},
+            ``hessian``, ``hamilton_minimal``, ``averaged_A`` (1/s), ``averaged_B`` (1/s^2),
+            ``growth_rate`` (1/s), ``stable_fraction``) and ``disagreements`` (``label``,
+            ``method``, ``against``, ``predicted``, ``exact``, ``message``). NaN becomes None.
+        """
+
+        def num(x):
+            x = float(x)
+            return x if math.isfinite(x) else None
+
+        motions = []
+        for m in self.motions:
+            st = m.stability
+            motions.append({
+                "label": m.label, "kind": m.kind, "exists": bool(m.exists), "dimension": int(m.dimension),
+                "ball_angles": [float(a) for a in m.ball_angles] if m.exists else None,
+                "amplitude": num(m.amplitude) if m.exists else None,
+                "phase": num(m.phase) if m.exists else None,
+                "h_tilde": num(m.h_tilde) if m.exists else None,
+                "verdicts": {"hamilton": st.hamilton, "averaged": st.averaged, "exact": st.exact},
+                "hessian": st.hessian, "hamilton_minimal": bool(st.hamilton_minimal),
+                "averaged_A": num(st.averaged_a), "averaged_B": num(st.averaged_b),
+                "growth_rate": num(st.growth_rate), "stable_fraction": float(st.stable_fraction),
+            })  # fmt: skip
+        return {
+            "spin_speed": self.spin_speed,
+            "critical_speed": self.critical_speed,
+            "speed_ratio": self.spin_speed / self.critical_speed,
+            "imbalance": self.imbalance,
+            "capacity": self.capacity,
+            "motions": motions,
+            "disagreements": [
+                {"label": d.label, "method": d.method, "against": d.against, "predicted": d.predicted,
+                 "exact": d.exact, "message": d.message}
+                for d in self.disagreements
+            ],  # fmt: skip
+        }
+
     def to_dataset(self) -> xarray.Dataset:
         """Return the motions as an ``xarray.Dataset`` with dims ``motion`` and ``ball``."""
         import xarray as xr

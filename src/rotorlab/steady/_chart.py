@@ -20,7 +20,7 @@ if TYPE_CHECKING:
 
     from rotorlab.models import JeffcottBalls
 
-__all__ = ["PARAMETERS", "stability_chart", "with_parameter"]
+__all__ = ["PARAMETERS", "stability_chart", "stable_intervals", "with_parameter"]
 
 #: Second parameters of a chart and their units.
 PARAMETERS = {
@@ -195,3 +195,52 @@ def stability_chart(model: JeffcottBalls, speeds: Any, *, param: str | None = No
         return ds.isel(param=0, drop=True).assign_attrs(critical_speed=float(crit[0]))
     ds = ds.rename({"param": param}).assign_coords({param: (param, vals, {"units": PARAMETERS[param]})})
     return ds.assign_attrs(parameter=param)
+
+
+def stable_intervals(ds: xarray.Dataset, method: str = "exact") -> list[dict]:
+    """Return the speed intervals of a stability chart in which each motion is stable.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`stability_chart`.
+    method : {"exact", "hamilton", "averaged"}
+        Whose verdict.
+
+    Returns
+    -------
+    list of dict
+        One per run of consecutive stable grid speeds: ``motion``, ``start`` and ``stop`` (first
+        and last stable grid speed, rad/s), ``start_ratio`` and ``stop_ratio`` (omega / p), and,
+        for a chart over a parameter, its name with the value (SI).
+
+    Examples
+    --------
+    >>> from rotorlab.models import JeffcottBalls, RotorParams, BallParams, ConstantSpeed
+    >>> ball = BallParams(mass=0.03, radius=0.06, damping=2e-3)
+    >>> rotor = RotorParams(disc_mass=2.0, eccentricity=1.08e-3, stiffness=2e4, damping=8.0)
+    >>> model = JeffcottBalls(rotor, (ball, ball), speed=ConstantSpeed(1.0))
+    >>> ds = stability_chart(model, [50.0, 80.0, 120.0, 200.0, 300.0])
+    >>> [(r["motion"], r["start"], r["stop"]) for r in stable_intervals(ds)]
+    [('main+', 200.0, 300.0), ('main-', 200.0, 300.0), ('side 00', 50.0, 80.0)]
+    """
+    if method not in ("exact", "hamilton", "averaged"):
+        raise ValueError(f"method must be 'exact', 'hamilton' or 'averaged', got {method!r}")
+    var = ds[f"stable_{method}"]
+    param = ds.attrs.get("parameter")
+    values = ds[param].values if param else [None]
+    speeds = ds.speed.values
+    out = []
+    for a, value in enumerate(values):
+        sub = var.isel({param: a}) if param else var
+        ratio = (ds.speed_ratio.isel({param: a}) if param else ds.speed_ratio).values
+        for label in ds.motion.values:
+            flags = np.asarray(sub.sel(motion=label).values, dtype=bool)
+            edges = np.flatnonzero(np.diff(np.concatenate([[0], flags.astype(int), [0]])))
+            for lo, hi in zip(edges[::2], edges[1::2] - 1):
+                row = {"motion": str(label), "start": float(speeds[lo]), "stop": float(speeds[hi]),
+                       "start_ratio": float(ratio[lo]), "stop_ratio": float(ratio[hi])}  # fmt: skip
+                if param:
+                    row[param] = float(value)
+                out.append(row)
+    return out
