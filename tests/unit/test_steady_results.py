@@ -112,6 +112,16 @@ def test_stability_chart_figures():
     assert len(fig.axes) == 3 and len(fig.legends) == 1
 
 
+def test_verify_and_run_up_figures():
+    from rotorlab.plot._stability import run_up_figure, verify_figure
+
+    p = MODEL.critical_speed
+    ds = verify(MODEL, [0.5 * p, 2.0 * p], initial_ball_angles=[[0.5, 2.5], [1.0, -2.0]], t_end=5.0)
+    assert len(verify_figure(ds).axes) == 1
+    ds = run_up(MODEL, LinearRamp(0.3 * p, 2.0 * p, 1.0), t_end=2.0, n_save=100)
+    assert len(run_up_figure(ds).axes) == 2  # deflection and the speed on a twin axis
+
+
 def test_ball_grid_avoids_invariant_sets():
     g = ball_grid(2, 6)
     assert g.shape == (36, 2)

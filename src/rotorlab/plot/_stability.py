@@ -1,4 +1,7 @@
-"""Figures of stability charts (:func:`rotorlab.steady.stability_chart` Datasets).
+"""Figures of steady-motion results: stability charts, verification fractions, run-ups.
+
+Datasets from :func:`rotorlab.steady.stability_chart`, :func:`rotorlab.steady.verify` and
+:func:`rotorlab.steady.run_up`.
 
 Built without pyplot (Agg canvas), like the other figures of :mod:`rotorlab.plot`. Speeds are
 shown as omega / p, deflections in mm.
@@ -14,7 +17,7 @@ if TYPE_CHECKING:
     import xarray
     from matplotlib.figure import Figure
 
-__all__ = ["stability_chart_figure"]
+__all__ = ["stability_chart_figure", "verify_figure", "run_up_figure"]
 
 _METHODS = (
     ("stable_hamilton", "seed 003: least H~*, Hessian of f"),
@@ -147,3 +150,95 @@ def stability_chart_figure(ds: xarray.Dataset) -> Figure:
     """
     dim = _param_dim(ds)
     return _band_figure(ds) if dim is None else _map_figure(ds, dim)
+
+
+def verify_figure(ds: xarray.Dataset) -> Figure:
+    """Draw the basin fractions of a verification: one stacked bar per speed.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.steady.verify`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Bars split by the motion reached (grey: not settled, other or failed); a cross over a bar
+        marks a speed where some start did not end as the exact eigenvalues predict.
+
+    Examples
+    --------
+    >>> import numpy as np, xarray as xr
+    >>> ds = xr.Dataset({"fraction": (("speed", "outcome"), [[1.0, 0.0], [0.25, 0.75]]),
+    ...                  "agrees_exact": (("speed",), [True, False])},
+    ...                 coords={"speed_ratio": ("speed", [0.6, 1.2]), "outcome": ["side 00", "not settled"]})
+    >>> len(verify_figure(ds).axes)
+    1
+    """
+    from matplotlib.figure import Figure
+
+    outcomes = [str(o) for o in ds.outcome.values]
+    ratio = np.asarray(ds.speed_ratio.values, dtype=float)
+    frac = np.asarray(ds.fraction.values, dtype=float)
+    fig = Figure(figsize=(7.5, 3.6), layout="constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    x = np.arange(ratio.size)
+    bottom = np.zeros(ratio.size)
+    greys = iter(("0.55", "0.75", "0.35"))
+    for j, name in enumerate(outcomes):
+        if not np.any(frac[:, j] > 0):
+            continue
+        color = next(greys) if name in ("not settled", "other", "failed") else f"C{j % 10}"
+        ax.bar(x, frac[:, j], bottom=bottom, color=color, label=name, width=0.7)
+        bottom += frac[:, j]
+    for k in np.flatnonzero(~np.asarray(ds.agrees_exact.values, dtype=bool)):
+        ax.plot(x[k], 1.04, "x", color="k", ms=8)
+    ax.set_xticks(x)
+    ax.set_xticklabels([f"{r:.2f}" for r in ratio])
+    ax.set_xlabel("omega / p")
+    ax.set_ylabel("fraction of starts")
+    ax.set_ylim(0, 1.1)
+    ax.set_title("where the starts end (x: not as the exact eigenvalues predict)", fontsize=10)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    return fig
+
+
+def run_up_figure(ds: xarray.Dataset) -> Figure:
+    """Draw a run-up: shaft deflection against time with and without the balancer.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.steady.run_up`.
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Deflection (mm, log scale) against time; one line per start with the balancer (dashed
+        where the balls did not synchronise), black without it; the speed omega / p on the right
+        axis (grey).
+    """
+    from matplotlib.figure import Figure
+
+    p = float(ds.attrs["critical_speed"])
+    t = np.asarray(ds.time.values, dtype=float)
+    fig = Figure(figsize=(7.5, 3.8), layout="constrained")
+    ax = fig.add_subplot(1, 1, 1)
+    for i in range(ds.sizes["ic"]):
+        synced = bool(ds.synchronised.values[i])
+        label = f"start {i}: " + (str(ds.final_motion.values[i]) if synced else "not synchronised")
+        ax.plot(t, ds.amplitude.values[i] * 1e3, lw=0.8, ls="-" if synced else "--", label=label)
+    ax.plot(t, ds.amplitude_without.values * 1e3, color="k", lw=1.2, label="without balancer")
+    top = max(float(ds.max_amplitude.max()), float(ds.max_amplitude_without)) * 1e3
+    ax.set_yscale("log")
+    ax.set_ylim(top * 1e-5, top * 2.0)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("shaft deflection (mm)")
+    ax.set_title(f"run-up ({ds.attrs.get('speed_profile', '')})", fontsize=10)
+    ax.grid(alpha=0.3)
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.12, 1.0))
+    speed = ax.twinx()
+    speed.plot(t, np.asarray(ds.speed.values, dtype=float) / p, color="0.5", lw=0.8, ls=":")
+    speed.axhline(1.0, color="0.5", lw=0.5)
+    speed.set_ylabel("omega / p (dotted)", color="0.4")
+    return fig
