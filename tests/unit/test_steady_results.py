@@ -92,7 +92,8 @@ def test_stability_chart_dims_and_coordinates():
     assert chart.stable_exact.dims == ("ball_mass", "speed", "motion")
     assert chart.ball_mass.attrs["units"] == "kg" and chart.attrs["parameter"] == "ball_mass"
     assert chart.speed_ratio.dims == ("ball_mass", "speed")
-    np.testing.assert_allclose(chart.critical_speed.values, [math.sqrt(2e4 / (2.0 + 2 * m)) for m in (0.02, 0.03, 0.05)])
+    expect = [math.sqrt(2e4 / (2.0 + 2 * m)) for m in (0.02, 0.03, 0.05)]
+    np.testing.assert_allclose(chart.critical_speed.values, expect)
     with pytest.raises(ValueError, match="give both param and values"):
         stability_chart(MODEL, [p], param="ball_mass")
     with pytest.raises(ValueError, match="speeds must be"):
@@ -231,8 +232,8 @@ def test_stable_intervals():
     ds = stability_chart(MODEL, ratios * p, param="support_damping", values=[0.0, 8.0])
     rows = stable_intervals(ds)
     damped = [(r["motion"], r["start_ratio"], r["stop_ratio"]) for r in rows if r["support_damping"] == 8.0]
-    assert damped == [("main+", pytest.approx(2.0), pytest.approx(3.0)), ("main-", pytest.approx(2.0), pytest.approx(3.0)),
-                      ("side 00", pytest.approx(0.5), pytest.approx(0.8))]  # fmt: skip
+    above = (pytest.approx(2.0), pytest.approx(3.0))
+    assert damped == [("main+", *above), ("main-", *above), ("side 00", pytest.approx(0.5), pytest.approx(0.8))]
     undamped = {r["motion"] for r in rows if r["support_damping"] == 0.0}
     assert undamped == {"side 00"}  # no support damping: nothing stable above p
     seed = {r["motion"] for r in stable_intervals(ds, "hamilton") if r["support_damping"] == 0.0}

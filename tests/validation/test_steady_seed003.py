@@ -81,7 +81,8 @@ def test_hessian_eq_19_two_pendulums():
         dets = {"side 00": me * S1 * S2 * (S1 + S2 + me), "side 01": -me * S1 * S2 * (me + S1 - S2),
                 "side 11": me * S1 * S2 * (me - S1 - S2)}  # fmt: skip
         for label, det in dets.items():
-            assert np.linalg.det(hessian_f(me, [S1, S2], np.pi * np.array(res.motion(label).bits))) == pytest.approx(det, rel=1e-10)
+            hess = hessian_f(me, [S1, S2], np.pi * np.array(res.motion(label).bits))
+            assert np.linalg.det(hess) == pytest.approx(det, rel=1e-10)
         kinds = {m.label: m.stability.hessian for m in res.motions if m.kind == "side"}
         assert kinds["side 00"] == "maximum"
         assert kinds["side 01"] == ("minimum" if S2 > me + S1 else "saddle")
@@ -148,7 +149,8 @@ def test_supercritical_main_motions_need_support_damping():
     edge = brentq(lambda r: analyze_steady(enough, r * P).motion("main+").stability.growth_rate, 1.2, 1.6, xtol=1e-5)
     assert edge == pytest.approx(1.395, abs=2e-3)
     dominant = CASE.model("dominant")
-    edge = brentq(lambda r: analyze_steady(dominant, r * P).motion("side 01").stability.growth_rate, 1.2, 1.8, xtol=1e-5)
+    growth = lambda r: analyze_steady(dominant, r * P).motion("side 01").stability.growth_rate  # noqa: E731
+    edge = brentq(growth, 1.2, 1.8, xtol=1e-5)
     assert edge == pytest.approx(1.459, abs=2e-3)
     ds = verify(undamped, [2.0 * P], points=2, t_end=60.0)
     assert set(ds.reached.values.ravel()) == {"not settled"}

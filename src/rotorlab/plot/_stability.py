@@ -38,9 +38,9 @@ def _band_figure(ds: xarray.Dataset) -> Figure:
 
     labels = [str(m) for m in ds.motion.values]
     ratio = np.asarray(ds.speed_ratio.values, dtype=float)
-    edges = np.concatenate([[ratio[0] - 0.5 * (ratio[1] - ratio[0]) if ratio.size > 1 else ratio[0] - 0.05],
-                            0.5 * (ratio[1:] + ratio[:-1]),
-                            [ratio[-1] + 0.5 * (ratio[-1] - ratio[-2]) if ratio.size > 1 else ratio[-1] + 0.05]])  # fmt: skip
+    half = 0.5 * (ratio[1] - ratio[0]) if ratio.size > 1 else 0.05
+    last = 0.5 * (ratio[-1] - ratio[-2]) if ratio.size > 1 else 0.05
+    edges = np.concatenate([[ratio[0] - half], 0.5 * (ratio[1:] + ratio[:-1]), [ratio[-1] + last]])
     fig = Figure(figsize=(8.0, 2.2 + 0.55 * len(labels) + 3.0), layout="constrained")
     ax, ax2 = fig.subplots(2, 1, sharex=True, height_ratios=[0.55 * len(labels) + 0.6, 3.0])
     exists = ds.exists.values
@@ -59,7 +59,8 @@ def _band_figure(ds: xarray.Dataset) -> Figure:
     ax.set_ylim(-0.6, len(labels) - 0.4)
     ax.axvline(1.0, color="k", lw=0.8, ls="--")
     ax.set_title("steady motions: grey = exists; bars = stable by each method", fontsize=10)
-    handles = [Patch(color="0.82", label="exists")] + [Patch(color=c, label=t) for c, (_, t) in zip(_METHOD_COLORS, _METHODS)]
+    handles = [Patch(color="0.82", label="exists")]
+    handles += [Patch(color=c, label=t) for c, (_, t) in zip(_METHOD_COLORS, _METHODS)]
     ax.legend(handles=handles, fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     amp = ds.amplitude.values * 1e3
     stable = ds.stable_exact.values

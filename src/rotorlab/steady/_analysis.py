@@ -291,5 +291,6 @@ def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
     p = model.critical_speed
     return SteadyAnalysis(
         spin_speed=om, critical_speed=p, imbalance=model.imbalance, capacity=model.capacity,
-        moments=np.array([b.static_moment for b in model.balls]), motions=motions, disagreements=_disagreements(motions, om / p),
+        moments=np.array([b.static_moment for b in model.balls]), motions=motions,
+        disagreements=_disagreements(motions, om / p),
     )  # fmt: skip

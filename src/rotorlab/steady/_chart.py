@@ -178,9 +178,10 @@ def stability_chart(model: JeffcottBalls, speeds: Any, *, param: str | None = No
     data = {k: (dims, arr, {"units": attrs[k][0], "long_name": attrs[k][1]}) for k, arr in {**out_b, **out_f}.items()}
     data["verdict_exact"] = (dims, verdict.astype(str), {"units": "1", "long_name": "exact verdict"})
     data["ball_angle"] = (dims + ("ball",), angle, {"units": "rad", "long_name": "ball angle from the unbalance"})
-    data["n_stable_exact"] = (dims[:2], out_b["stable_exact"].sum(axis=2), {"units": "1", "long_name": "exactly stable motions"})
-    data["balanced"] = (dims[:2], out_b["stable_exact"][:, :, main].any(axis=2) if main.any() else np.zeros(shape[:2], bool),
-                        {"units": "1", "long_name": "a main (balanced) motion is exactly stable"})  # fmt: skip
+    n_stable = out_b["stable_exact"].sum(axis=2)
+    balanced = out_b["stable_exact"][:, :, main].any(axis=2) if main.any() else np.zeros(shape[:2], bool)
+    data["n_stable_exact"] = (dims[:2], n_stable, {"units": "1", "long_name": "exactly stable motions"})
+    data["balanced"] = (dims[:2], balanced, {"units": "1", "long_name": "a main (balanced) motion is exactly stable"})
     data["critical_speed"] = (("param",), crit, {"units": "rad/s", "long_name": "critical speed p"})
     coords = {
         "speed": ("speed", om, {"units": "rad/s", "long_name": "spin speed"}),

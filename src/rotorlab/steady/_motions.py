@@ -394,8 +394,9 @@ def find_steady_motions(model: JeffcottBalls, spin_speed: float | None = None, *
             for label, row in (("main+", 0), ("main-", 1)):
                 ok = exists and samples.shape[0] == 2
                 ang = samples[row] if ok else nan_angles
-                out.append(SteadyMotion(label, "main", (), ok, ang, 0j if ok else complex(np.nan, np.nan),
-                                        h0 if ok else np.nan, 0, ang[None, :] if ok else np.empty((0, 2)), om))  # fmt: skip
+                members = ang[None, :] if ok else np.empty((0, 2))
+                z = 0j if ok else complex(np.nan, np.nan)
+                out.append(SteadyMotion(label, "main", (), ok, ang, z, h0 if ok else np.nan, 0, members, om))
         else:
             ok = exists and samples.shape[0] > 0
             out.append(SteadyMotion("main", "main", (), ok, samples[0] if ok else nan_angles,

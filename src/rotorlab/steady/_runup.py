@@ -138,23 +138,27 @@ def run_up(model: JeffcottBalls, profile: Any, *, t_end: float, initial_ball_ang
     k0 = int(np.argmax(amp0))
     p = model.critical_speed
     p0 = math.sqrt(model.rotor.stiffness / model.rotor.disc_mass)
-    ic, tm = ("ic",), ("ic", "time")
+    ic, tm, ib = ("ic",), ("ic", "time"), ("ic", "ball")
+
+    def v(dims, values, units, long_name):
+        return dims, values, {"units": units, "long_name": long_name}
+
     data = {
-        "amplitude": (tm, amp, {"units": "m", "long_name": "shaft deflection with the balancer"}),
-        "amplitude_without": (("time",), amp0, {"units": "m", "long_name": "shaft deflection without the balancer"}),
-        "ball_angle": (("ic", "time", "ball"), wrap(sol.ys[:, :, 4 : 4 + n]), {"units": "rad", "long_name": "ball angle from the unbalance"}),
-        "max_amplitude": (ic, amp.max(axis=1), {"units": "m", "long_name": "largest deflection with the balancer"}),
-        "max_amplitude_without": ((), float(amp0.max()), {"units": "m", "long_name": "largest deflection without the balancer"}),
-        "speed_at_max": (ic, speed[k_max], {"units": "rad/s", "long_name": "speed at the largest deflection"}),
-        "speed_at_max_without": ((), float(speed[k0]), {"units": "rad/s", "long_name": "speed at the largest deflection, no balancer"}),
-        "final_amplitude": (ic, amp[:, window].mean(axis=1), {"units": "m", "long_name": "mean deflection, final window"}),
-        "final_amplitude_without": ((), float(amp0[window].mean()), {"units": "m", "long_name": "mean deflection, final window, no balancer"}),
-        "synchronised": (ic, synced, {"units": "1", "long_name": "balls at rest relative to the rotor at the end"}),
-        "final_motion": (ic, final_motion.astype(str), {"units": "1", "long_name": "steady motion reached"}),
-        "final_ball_angle": (("ic", "ball"), wrap(sol.y_final[:, 4 : 4 + n]), {"units": "rad", "long_name": "final ball angle"}),
-        "initial_ball_angle": (("ic", "ball"), angles, {"units": "rad", "long_name": "start angle"}),
-        "status": (ic, sol.status.astype(np.int32), {"units": "1", "long_name": "integrator status"}),
-        "status_without": ((), int(ref.status[0]), {"units": "1", "long_name": "integrator status, no balancer"}),
+        "amplitude": v(tm, amp, "m", "shaft deflection with the balancer"),
+        "amplitude_without": v(("time",), amp0, "m", "shaft deflection without the balancer"),
+        "ball_angle": v(("ic", "time", "ball"), wrap(sol.ys[:, :, 4 : 4 + n]), "rad", "ball angle from the unbalance"),
+        "max_amplitude": v(ic, amp.max(axis=1), "m", "largest deflection with the balancer"),
+        "max_amplitude_without": v((), float(amp0.max()), "m", "largest deflection without the balancer"),
+        "speed_at_max": v(ic, speed[k_max], "rad/s", "speed at the largest deflection"),
+        "speed_at_max_without": v((), float(speed[k0]), "rad/s", "speed at the largest deflection, no balancer"),
+        "final_amplitude": v(ic, amp[:, window].mean(axis=1), "m", "mean deflection, final window"),
+        "final_amplitude_without": v((), float(amp0[window].mean()), "m", "mean deflection, final window, no balancer"),
+        "synchronised": v(ic, synced, "1", "balls at rest relative to the rotor at the end"),
+        "final_motion": v(ic, final_motion.astype(str), "1", "steady motion reached"),
+        "final_ball_angle": v(ib, wrap(sol.y_final[:, 4 : 4 + n]), "rad", "final ball angle"),
+        "initial_ball_angle": v(ib, angles, "rad", "start angle"),
+        "status": v(ic, sol.status.astype(np.int32), "1", "integrator status"),
+        "status_without": v((), int(ref.status[0]), "1", "integrator status, no balancer"),
     }  # fmt: skip
     return xr.Dataset(
         data,
