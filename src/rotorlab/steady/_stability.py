@@ -149,7 +149,7 @@ def hessian_f(imbalance: float, moments, angles) -> np.ndarray:
     psi = np.asarray(angles, dtype=float).reshape(-1)
     unb = float(imbalance) + np.sum(s * np.exp(1j * psi))
     a = np.outer(s, s) * np.cos(psi[None, :] - psi[:, None])
-    a[np.diag_indices_from(a)] = s * s - s * np.real(unb * np.exp(-1j * psi))
+    np.fill_diagonal(a, s * s - s * np.real(unb * np.exp(-1j * psi)))
     return a
 
 
@@ -170,11 +170,14 @@ def averaged_jacobian(model: JeffcottBalls, spin_speed: float, angles) -> np.nda
         ``(Omega^4 / (c - M Omega^2)) diag(1 / b_s) a`` (1/s); None when a ball has no viscous
         damping or at Omega = sqrt(c / M).
     """
+    return _averaged_from_hessian(model, spin_speed, hessian_f(model.imbalance, _moments(model), angles))
+
+
+def _averaged_from_hessian(model: JeffcottBalls, spin_speed: float, a: np.ndarray) -> np.ndarray | None:
     b = np.array([x.damping for x in model.balls], dtype=float)
     den = model.rotor.stiffness - model.total_mass * spin_speed**2
     if np.any(b <= 0.0) or den == 0.0:
         return None
-    a = hessian_f(model.imbalance, _moments(model), angles)
     return (spin_speed**4 / den) * a / b[:, None]
 
 
@@ -276,7 +279,7 @@ def assess_stability(model: JeffcottBalls, motion: SteadyMotion, spin_speed: flo
         kind = _hessian_type(h_eig, neutral)
         wanted = "minimum" if om > crit else "maximum"
         hamilton = "stable" if (minimal and kind == wanted and om != crit) else "unstable"
-        jac = averaged_jacobian(model, om, seed_angles[0])
+        jac = _averaged_from_hessian(model, om, hess)
     else:
         minimal, h_eig, kind, hamilton, jac = False, nan_n, "degenerate", "unstable", None
     if jac is None:
