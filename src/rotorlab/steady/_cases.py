@@ -20,9 +20,8 @@ the starts (see :mod:`rotorlab.steady._corrections`); a verification there shows
 ``filimonikhin-n2`` (Filimonikhin & Filimonikhina, seed 003)
     Two unequal pendulums on the shaft (fig. 1a): M1 = 3.0 kg, c = 5.0e4 N/m (p = 127 rad/s,
     1213 rpm); m1 = 0.040 kg, m2 = 0.060 kg, l1 = l2 = 0.050 m (m1 l1 = 2.0e-3, m2 l2 = 3.0e-3
-    kg m), J_Oi = 1.3 m_i l_i^2 (arm and bob), pivot damping b_i = 20 m_i l_i^2 1/s
-    (5.0e-5, 7.5e-5... i.e. 2.0e-3 and 3.0e-3 N m s), support damping d = 23.6 N s/m (3 % of
-    critical). Regimes: ``enough`` e = 1.0 mm (Me = 3.0e-3 kg m, main motions exist);
+    kg m), J_Oi = 1.3 m_i l_i^2 (arm and bob), pivot damping b_i = (20 1/s) m_i l_i^2
+    (2.0e-3 and 3.0e-3 N m s), support damping d = 23.6 N s/m (3 % of critical). Regimes: ``enough`` e = 1.0 mm (Me = 3.0e-3 kg m, main motions exist);
     ``short`` e = 2.0 mm (Me = 6.0e-3 > 5.0e-3); ``dominant`` e = 0.2 mm (Me = 0.6e-3 <
     m2 l2 - m1 l1 = 1.0e-3: no main motion although Me < sum m_i l_i); ``undamped`` e = 1.0 mm
     with d = 0 as the seed assumes (its main motions are then exactly unstable at every

@@ -27,8 +27,8 @@ Seed 002 (Zhakash et al. 2024)
   ``W = m omega^2 / (c - M omega^2)`` is large and the assumption fails.
 - Above omega* the balanced motions are stable but, up to about 1.7 p, not the only attractor:
   the non-synchronous whirl near p coexists with them (``zhakash-k2`` enough at 1.6 p: 14 % of
-  the starts from rest of a 6 x 6 grid end there, deflection 18 mm). No local (eigenvalue) criterion can see
-  this; only simulation (:func:`rotorlab.steady.verify`) does.
+  the starts from rest of a 6 x 6 grid end there, deflection 18 mm). No local (eigenvalue)
+  criterion can see this; only simulation (:func:`rotorlab.steady.verify`) does.
 - (23) "the second solution is stable for omega < p": with beta > 0 the side motions (13) come in
   pairs k, k' (all bits flipped) that merge and vanish near p when ``|s(k)| > M1 r`` (see the
   seed 003 note below): solutions 2 and 3 do not exist for 0.97 p < omega < 1.03 p
