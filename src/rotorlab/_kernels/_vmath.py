@@ -46,21 +46,53 @@ The polynomial coefficients are those of fdlibm (``k_sin.c``, ``k_cos.c``), whic
 """
 
 import math
+from fractions import Fraction
 
 import numpy as np
-from numba import njit
+from llvmlite import ir
+from numba import njit, types
+from numba.extending import lower_builtin, type_callable
 
-__all__ = ["SINCOS_LIMIT", "sincos"]
+__all__ = ["SINCOS_LIMIT", "fma", "sincos"]
 
 _INV_PIO2 = 6.36619772367581382433e-01  # 2/pi
-# pi/2 = _PIO2_1 + _PIO2_2 + _PIO2_3 (26, 26, 25 significant bits) + _PIO2_3T (rounded tail)
-_PIO2_1 = float.fromhex("0x1.921fb50000000p+0")
-_PIO2_2 = float.fromhex("0x1.110b460000000p-26")
-_PIO2_3 = float.fromhex("0x1.1a62630000000p-54")
-_PIO2_3T = float.fromhex("0x1.8a2e03707344ap-81")
+# pi/2 = _PIO2_1 + _PIO2_2 + _PIO2_3 to about 160 bits (each the rounded remainder)
+_PIO2_1 = float.fromhex("0x1.921fb54442d18p+0")
+_PIO2_2 = float.fromhex("0x1.1a62633145c07p-54")
+_PIO2_3 = float.fromhex("-0x1.f1976b7ed8fbcp-110")
 
 SINCOS_LIMIT = 2.0**25 * math.pi
 """Largest ``|x|`` (rad) for which :func:`sincos` is accurate; beyond it returns NaN."""
+
+
+def fma(a, b, c):
+    """Return ``a * b + c`` rounded once (fused multiply-add).
+
+    Compiled code uses ``llvm.fma.f64``, which LLVM vectorises (one ``vfmadd`` instruction on
+    x86-64 with FMA3 and on ARM64; other CPUs call the C library's exact ``fma``). From plain
+    Python it is computed exactly with fractions.
+    """
+    if not (math.isfinite(a) and math.isfinite(b) and math.isfinite(c)):
+        return a * b + c
+    return float(Fraction(a) * Fraction(b) + Fraction(c))
+
+
+@type_callable(fma)
+def _type_fma(context):
+    def typer(a, b, c):
+        if all(isinstance(v, (types.Float, types.Integer)) for v in (a, b, c)):
+            return types.float64
+
+    return typer
+
+
+@lower_builtin(fma, types.Number, types.Number, types.Number)
+def _lower_fma(context, builder, sig, args):
+    vals = [context.cast(builder, v, t, types.float64) for v, t in zip(args, sig.args)]
+    d = ir.DoubleType()
+    fn = builder.module.declare_intrinsic("llvm.fma", [d], ir.FunctionType(d, [d, d, d]))
+    return builder.call(fn, vals)
+
 
 _S1 = -1.66666666666666324348e-01
 _S2 = 8.33333333332248946124e-03
@@ -103,36 +135,27 @@ def sincos(x):
     >>> float(s) == 0.8414709848078965, float(c) == 0.5403023058681398
     (True, True)
     """
-    ok = abs(x) <= SINCOS_LIMIT  # False for NaN
-    xr = x if ok else 0.0
-    k = np.floor(xr * _INV_PIO2 + 0.5)
-    # r + rr = xr - k pi/2: the products are exact, the first difference is exact (Sterbenz),
-    # the other three are TwoSum (Knuth) with their rounding errors collected in rr
-    a0 = xr - k * _PIO2_1
-    b = -(k * _PIO2_2)
-    a1 = a0 + b
-    bv = a1 - a0
-    e1 = (a0 - (a1 - bv)) + (b - bv)
-    b = -(k * _PIO2_3)
-    a2 = a1 + b
-    bv = a2 - a1
-    e2 = (a1 - (a2 - bv)) + (b - bv)
-    b = -(k * _PIO2_3T)
-    r = a2 + b
-    bv = r - a2
-    e3 = (a2 - (r - bv)) + (b - bv)
-    rr = e1 + (e2 + e3)
+    ok = abs(x) <= SINCOS_LIMIT  # False for NaN and inf
+    k = np.floor(x * _INV_PIO2 + 0.5)
+    # r + rr = x - k pi/2 to about 1e-30 absolute. r1 = x - k _PIO2_1 is exact (a multiple of
+    # 2^-53 below 1 in magnitude, or x itself for k = 0); k _PIO2_2 = p + pe exactly (fma);
+    # r1 - p is a TwoSum (Knuth), its rounding error goes to rr with -pe and -k _PIO2_3.
+    r1 = fma(-k, _PIO2_1, x)
+    p = k * _PIO2_2
+    pe = fma(k, _PIO2_2, -p)
+    r = r1 - p
+    bv = r - r1
+    rr = ((r1 - (r - bv)) - (p + bv)) - (pe + k * _PIO2_3)
     z = r * r
     w = z * z
-    # fdlibm __kernel_sin(r, rr, 1)
-    ps = _S2 + z * (_S3 + z * _S4) + z * w * (_S5 + z * _S6)
     v = z * r
-    sr = r - ((z * (0.5 * rr - v * ps) - rr) - v * _S1)
-    # fdlibm __kernel_cos(r, rr)
-    pc = z * (_C1 + z * (_C2 + z * _C3)) + w * w * (_C4 + z * (_C5 + z * _C6))
+    # fdlibm __kernel_sin(r, rr, 1) and __kernel_cos(r, rr), Horner steps fused
+    ps = fma(z, fma(z, _S4, _S3), _S2) + (z * w) * fma(z, _S6, _S5)
+    sr = r - fma(-v, _S1, fma(z, fma(-v, ps, 0.5 * rr), -rr))
+    pc = z * fma(z, fma(z, _C3, _C2), _C1) + (w * w) * fma(z, fma(z, _C6, _C5), _C4)
     hz = 0.5 * z
     u = 1.0 - hz
-    cr = u + (((1.0 - u) - hz) + (z * pc - r * rr))
+    cr = u + (((1.0 - u) - hz) + fma(z, pc, -(r * rr)))
     # quadrant q = k mod 4 (exact in float arithmetic)
     q = k - 4.0 * np.floor(k * 0.25)
     odd = q == 1.0 or q == 3.0
