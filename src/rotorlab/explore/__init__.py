@@ -1,0 +1,32 @@
+"""Regimes and basins: map start points to labels, basin maps, fractions and basin stability.
+
+Layers (after Attractors.jl): a *mapper* (:class:`TorusRegimes`, :class:`BalancerRegimes`, or
+any :class:`AbstractMapper`) integrates start points, computes features chunk by chunk and
+groups them into labels; :func:`map_starts`, :func:`basin_map` and :func:`basin_stability` only
+choose the start points; :func:`basin_fractions` counts labels. Every result is an
+``xarray.Dataset`` with a ``horizon`` dim, so that a fraction that still changes with the
+simulated time (a long transient) is visible. Mappers are frozen values: no state is kept
+between calls.
+"""
+
+from rotorlab.explore._balancer import BalancerRegimes, balancer_labels
+from rotorlab.explore._basin import GridAxis, basin_fractions, basin_map, basin_stability, wilson_interval
+from rotorlab.explore._mapper import DEFAULT_CHUNK, AbstractMapper, Feature, label_since, map_starts
+from rotorlab.explore._torus import TORUS_LABELS, TorusRegimes
+
+__all__ = [
+    "AbstractMapper",
+    "BalancerRegimes",
+    "DEFAULT_CHUNK",
+    "Feature",
+    "GridAxis",
+    "TORUS_LABELS",
+    "TorusRegimes",
+    "balancer_labels",
+    "basin_fractions",
+    "basin_map",
+    "basin_stability",
+    "label_since",
+    "map_starts",
+    "wilson_interval",
+]

@@ -1,0 +1,236 @@
+"""Regimes of a ball balancer on a Jeffcott rotor (``jeffcott_balls``): balanced, side motions,
+non-synchronous.
+
+Features at each horizon T, over a window of ``window_revolutions`` turns before T sampled at
+``samples_per_window`` points: the mean deflection of the disc centre, the largest relative rate
+of any ball, and the ball angles at T. The labels are those of
+:func:`rotorlab.analyses.classify` (seed 002 eqs. (15)-(16)): *balanced*; each *side* motion
+(balls on the line through the unbalance, e.g. ``side (0°, 180°)``); *non-synchronous* (balls
+still moving relative to the rotor, the classifier's "not settled"); *other* (held elsewhere by
+friction, or a failed integration).
+"""
+
+from __future__ import annotations
+
+import itertools
+import math
+from collections.abc import Mapping
+from dataclasses import dataclass, field, replace
+
+import numpy as np
+
+from rotorlab._kernels import jeffcott_balls as _jk
+from rotorlab.explore._mapper import Feature
+from rotorlab.integrate import Status, StepControl
+from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls
+
+__all__ = ["BalancerRegimes", "balancer_labels"]
+
+_ROTOR_UNITS = {"disc_mass": "kg", "eccentricity": "m", "stiffness": "N/m", "damping": "N s/m"}
+_BALL_UNITS = {"ball_mass": "kg", "ball_radius": "m", "ball_damping": "N m s/rad", "ball_friction": "1"}
+
+
+def _vary_ball(ball: BallParams, kw: Mapping[str, float]) -> BallParams:
+    """Copy of ``ball`` with fields from ``kw``; a new mass or radius keeps J / (m l^2)."""
+    mass, radius = kw.get("mass", ball.mass), kw.get("radius", ball.radius)
+    ratio = ball.inertia / (ball.mass * ball.radius**2)
+    return BallParams(mass, radius, inertia=ratio * mass * radius**2,
+                      damping=kw.get("damping", ball.damping), friction=kw.get("friction", ball.friction))
+
+
+def balancer_labels(n_balls: int) -> tuple[str, ...]:
+    """Labels of :class:`BalancerRegimes` for ``n_balls`` balls, in code order.
+
+    Examples
+    --------
+    >>> balancer_labels(2)
+    ('balanced', 'side (0°, 0°)', 'side (0°, 180°)', 'side (180°, 180°)', 'non-synchronous', 'other')
+    """
+    sides = []
+    for combo in itertools.combinations_with_replacement((0, 180), n_balls):
+        sides.append("side (" + ", ".join(f"{d}°" for d in combo) + ")")
+    return ("balanced", *sides, "non-synchronous", "other")
+
+
+@dataclass(frozen=True, slots=True)
+class BalancerRegimes:
+    """Mapper of start points of a :class:`~rotorlab.models.JeffcottBalls` model to regimes.
+
+    Trajectories start with the disc centre at rest on the axis and the balls at given angles
+    and rates relative to the rotor; they are integrated in the co-rotating frame.
+
+    Parameters
+    ----------
+    model : JeffcottBalls
+        Base model (any frame) at a constant speed; coordinates replace its speed
+        (``spin_speed``), rotor fields or the fields of all balls (``ball_*``; a new ball mass
+        or radius keeps the ratio J / (m l^2)).
+    t_end : float
+        Simulated time (s), > 0.
+    n_horizons : int
+        Number of equally spaced horizons, >= 1.
+    window_revolutions : float
+        Classification window before each horizon in turns of the base model's rotor at t = 0
+        (> 0).
+    samples_per_window : int
+        States saved per window, >= 2.
+    base_angles : tuple of float or None
+        Ball angles from the unbalance for angle coordinates not given (rad); default equally
+        spaced, 2 pi i / n.
+    control : StepControl
+        Integrator tolerances.
+
+    Examples
+    --------
+    >>> from rotorlab.models import RotorParams
+    >>> rotor = RotorParams(disc_mass=1.0, eccentricity=1.5e-3, stiffness=16740.0, damping=13.32)
+    >>> model = JeffcottBalls(rotor, (BallParams(0.03, 0.05, damping=2e-3),) * 2,
+    ...                       speed=ConstantSpeed(251.3))
+    >>> sorted(BalancerRegimes(model).coordinate_units)[:3]
+    ['ball_damping', 'ball_friction', 'ball_mass']
+    """
+
+    model: JeffcottBalls
+    t_end: float = 20.0
+    n_horizons: int = 10
+    window_revolutions: float = 10.0
+    samples_per_window: int = 16
+    base_angles: tuple[float, ...] | None = None
+    control: StepControl = field(default_factory=lambda: StepControl(rtol=1e-8, atol=1e-10))
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.model, JeffcottBalls):
+            raise ValueError(f"BalancerRegimes.model must be a JeffcottBalls, got {type(self.model).__name__}")
+        if not (math.isfinite(self.t_end) and self.t_end > 0):
+            raise ValueError(f"BalancerRegimes.t_end must be a finite number > 0 (s), got {self.t_end!r}")
+        for name, low in (("n_horizons", 1), ("samples_per_window", 2)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or int(v) != v or v < low:
+                raise ValueError(f"BalancerRegimes.{name} must be an integer >= {low}, got {v!r}")
+        if not (math.isfinite(self.window_revolutions) and self.window_revolutions > 0):
+            raise ValueError(
+                f"BalancerRegimes.window_revolutions must be a finite number > 0, got {self.window_revolutions!r}"
+            )
+        if not isinstance(self.model.speed, ConstantSpeed) or self.model.speed.speed == 0.0:
+            raise ValueError("BalancerRegimes.model must spin at a constant nonzero speed (ConstantSpeed)")
+        n = self.model.n_balls
+        base = (tuple(2.0 * math.pi * i / n for i in range(n)) if self.base_angles is None
+                else tuple(float(a) for a in self.base_angles))  # fmt: skip
+        if len(base) != n or not all(math.isfinite(a) for a in base):
+            raise ValueError(f"BalancerRegimes.base_angles must be {n} finite angles (rad), got {self.base_angles!r}")
+        object.__setattr__(self, "base_angles", base)
+        if not isinstance(self.control, StepControl):
+            raise ValueError(f"BalancerRegimes.control must be a StepControl, got {type(self.control).__name__}")
+
+    # ---- AbstractMapper -----------------------------------------------------------------------
+    @property
+    def labels(self) -> tuple[str, ...]:
+        return balancer_labels(self.model.n_balls)
+
+    @property
+    def coordinate_units(self) -> Mapping[str, str]:
+        n = self.model.n_balls
+        units = {f"psi_{i}": "rad" for i in range(1, n + 1)}
+        units.update({f"dpsi_{i}": "rad/s" for i in range(1, n + 1)})
+        return {**units, "spin_speed": "rad/s", **_ROTOR_UNITS, **_BALL_UNITS}
+
+    @property
+    def window(self) -> float:
+        """Length of the classification window (s)."""
+        return self.window_revolutions * 2.0 * math.pi / abs(self.model.speed.spin_speed(0.0))
+
+    def horizons(self) -> np.ndarray:
+        return self.t_end * np.arange(1, self.n_horizons + 1) / self.n_horizons
+
+    def save_times(self) -> np.ndarray:
+        h = self.horizons()
+        k = np.linspace(-1.0, 0.0, self.samples_per_window)
+        return np.unique(np.maximum(h[:, None] + self.window * k[None, :], 0.0))
+
+    def _variant(self, values: Mapping[str, float]) -> JeffcottBalls:
+        rotor = replace(self.model.rotor, **{k: v for k, v in values.items() if k in _ROTOR_UNITS})
+        ball_kw = {k[5:]: v for k, v in values.items() if k in _BALL_UNITS}
+        balls = tuple(_vary_ball(b, ball_kw) for b in self.model.balls) if ball_kw else self.model.balls
+        speed = ConstantSpeed(values["spin_speed"]) if "spin_speed" in values else self.model.speed
+        return JeffcottBalls(rotor, balls, speed=speed, frame="rotating")
+
+    def starts(self, coords: Mapping[str, np.ndarray]):
+        n_pts = max((v.size for v in coords.values()), default=1)
+        nb = self.model.n_balls
+        angles = np.stack([np.broadcast_to(coords.get(f"psi_{i + 1}", self.base_angles[i]), (n_pts,))
+                           for i in range(nb)], axis=1) if nb else np.empty((n_pts, 0))  # fmt: skip
+        rates = np.stack([np.broadcast_to(coords.get(f"dpsi_{i + 1}", 0.0), (n_pts,))
+                          for i in range(nb)], axis=1) if nb else np.empty((n_pts, 0))  # fmt: skip
+        params = [k for k in (*("spin_speed",), *_ROTOR_UNITS, *_BALL_UNITS) if k in coords]
+        if params:
+            keys = np.stack([coords[k] for k in params], axis=1)
+            uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
+            inverse = inverse.reshape(-1)
+        else:
+            uniq, inverse = np.empty((1, 0)), np.zeros(n_pts, dtype=np.int64)
+        first = None
+        Y0 = P = None
+        for j, row in enumerate(uniq):
+            model = self._variant(dict(zip(params, (float(v) for v in row))))
+            if first is None:
+                first = model
+                Y0 = np.empty((n_pts, model.n_state))
+                P = np.empty((n_pts, model.to_array().size))
+            elif model.has_friction != first.has_friction:
+                raise ValueError("ball_friction must be either zero everywhere or positive everywhere")
+            sel = np.flatnonzero(inverse == j)
+            Y0[sel] = [model.initial_state(angles[i], ball_rates=rates[i]) for i in sel]
+            P[sel] = model.to_array()
+        return first, Y0, P
+
+    def features(self, sol, P: np.ndarray) -> dict[str, Feature]:
+        from rotorlab.analyses._outcome import reference_amplitude, wrap_angle
+
+        nb = int(P[0, _jk.P_N])
+        h = self.horizons()
+        ts = self.save_times()
+        ys = sol.ys
+        amp = np.hypot(ys[:, :, 0], ys[:, :, 1])
+        rate = np.abs(ys[:, :, 4 + nb : 4 + 2 * nb]).max(axis=2, initial=0.0)
+        n, nh = ys.shape[0], h.size
+        amplitude = np.empty((n, nh))
+        max_rate = np.empty((n, nh))
+        for j, t in enumerate(h):
+            win = (ts >= t - self.window * (1 + 1e-12)) & (ts <= t)
+            amplitude[:, j] = amp[:, win].mean(axis=1)
+            max_rate[:, j] = rate[:, win].max(axis=1)
+        i_end = np.searchsorted(ts, h)
+        masses = P[:, _jk.P_BALLS + _jk.B_M :: _jk.BALL_STRIDE][:, :nb]
+        omega = P[:, _jk.P_SPEED + 1]
+        ref = reference_amplitude(P[:, _jk.P_M1] * P[:, _jk.P_E], P[:, _jk.P_C],
+                                  P[:, _jk.P_M1] + masses.sum(axis=1), P[:, _jk.P_D], omega)  # fmt: skip
+        out = {
+            "amplitude": Feature(amplitude, "m", "mean deflection of the disc centre over the window"),
+            "max_rate": Feature(max_rate, "rad/s", "largest |ball rate relative to the rotor| over the window"),
+            "reference_amplitude": Feature(ref, "m", "deflection the unbalance alone causes"),
+            "spin_speed": Feature(omega, "rad/s", "constant spin speed"),
+            "status_code": Feature(sol.status.astype(np.int32), "1", "integrator status"),
+        }  # fmt: skip
+        for i in range(nb):
+            out[f"ball_angle_{i + 1}"] = Feature(wrap_angle(ys[:, i_end, 4 + i]), "rad",
+                                                 f"angle of ball {i + 1} from the unbalance at the horizon")
+        return out
+
+    def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray:
+        from rotorlab.analyses._outcome import classify
+
+        names = self.labels
+        index = {name: k for k, name in enumerate(names)}
+        nb = self.model.n_balls
+        amp = features["amplitude"]
+        out = np.empty(amp.shape, dtype=np.int16)
+        for i, j in np.ndindex(*amp.shape):
+            code = int(features["status_code"][i])
+            text = classify(code, Status(code).message, float(amp[i, j]),
+                            float(features["reference_amplitude"][i]),
+                            [features[f"ball_angle_{b + 1}"][i, j] for b in range(nb)],
+                            float(features["max_rate"][i, j]), float(features["spin_speed"][i]))  # fmt: skip
+            if text == "not settled":
+                text = "non-synchronous"
+            out[i, j] = index.get(text, index["other"])
+        return out

@@ -1,0 +1,215 @@
+"""Map start points to regime labels: the interface of a mapper and the chunked ensemble engine.
+
+The layers follow Attractors.jl: a *mapper* turns start points into trajectories, trajectories
+into features and features into labels; grids (:mod:`rotorlab.explore._basin`) and random
+sampling (:mod:`rotorlab.explore._fractions`) only choose the start points. A mapper is a frozen
+value: it holds no state between calls, so the same start point always gets the same label.
+
+Features are computed chunk by chunk while the ensemble runs ("on the fly"): only the few saved
+states each feature needs are kept, never whole trajectories, so a 256 x 256 basin needs
+memory for one chunk only. Every trajectory is integrated independently, so results are
+bit-identical whatever the chunk size and the number of threads.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable, Mapping
+from typing import Any, Protocol, runtime_checkable
+
+import numpy as np
+
+__all__ = ["AbstractMapper", "Feature", "map_starts", "label_since", "DEFAULT_CHUNK"]
+
+#: Trajectories per chunk when none is given.
+DEFAULT_CHUNK = 1024
+
+
+class Feature(tuple):
+    """A computed feature: ``(values, units, description)``; values of shape (N, n_horizon)."""
+
+    __slots__ = ()
+
+    def __new__(cls, values: np.ndarray, units: str, description: str) -> Feature:
+        return super().__new__(cls, (np.asarray(values), units, description))
+
+
+@runtime_checkable
+class AbstractMapper(Protocol):
+    """What :func:`map_starts` needs to label start points of one model family.
+
+    For implementers
+    ----------------
+    1. ``labels``: tuple of label names; a trajectory's label is an index into it.
+    2. ``coordinate_units``: mapping from every name :meth:`starts` accepts (state entries and
+       parameters) to its unit.
+    3. ``starts(coords)``: from a mapping name -> array of shape (N,) return ``(model, Y0, P)``:
+       the model whose kernels integrate all of them, initial states (N, n_state) and packed
+       parameters (N, n_param). Names not given take the mapper's base values.
+    4. ``horizons()``: increasing times (s) at which trajectories are classified; the last is
+       the simulated time. ``save_times()``: the times whose states the features need.
+    5. ``features(sol, P)``: from an :class:`~rotorlab.integrate.EnsembleSolution` of one chunk
+       (saved at ``save_times()``) return a dict name -> :class:`Feature` with values of shape
+       (N, n_horizon), plus optionally per-trajectory arrays of shape (N,).
+    6. ``group(features)``: integer labels of shape (N, n_horizon) from the feature values.
+    7. ``control``: the :class:`~rotorlab.integrate.StepControl` of the integration.
+    """
+
+    @property
+    def labels(self) -> tuple[str, ...]: ...
+
+    @property
+    def coordinate_units(self) -> Mapping[str, str]: ...
+
+    def starts(self, coords: Mapping[str, np.ndarray]) -> tuple[Any, np.ndarray, np.ndarray]: ...
+
+    def horizons(self) -> np.ndarray: ...
+
+    def save_times(self) -> np.ndarray: ...
+
+    def features(self, sol: Any, P: np.ndarray) -> dict[str, Feature]: ...
+
+    def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray: ...
+
+
+def _check_coords(mapper: AbstractMapper, coords: Mapping[str, Any]) -> tuple[dict[str, np.ndarray], int]:
+    if not isinstance(mapper, AbstractMapper):
+        raise TypeError(f"mapper must implement AbstractMapper, got {type(mapper).__name__}")
+    known = mapper.coordinate_units
+    out: dict[str, np.ndarray] = {}
+    sizes = set()
+    for name, values in coords.items():
+        if name not in known:
+            raise ValueError(f"unknown coordinate {name!r}; this mapper accepts: {', '.join(known)}")
+        arr = np.atleast_1d(np.asarray(values, dtype=float))
+        if arr.ndim != 1 or not np.all(np.isfinite(arr)):
+            raise ValueError(f"coordinate {name!r} must be a finite 1-D array, got shape {arr.shape}")
+        out[name] = arr
+        sizes.add(arr.size)
+    sizes.discard(1)
+    if len(sizes) > 1:
+        raise ValueError(f"coordinates disagree on the number of start points: {sorted(sizes)}")
+    n = sizes.pop() if sizes else 1
+    return {k: np.broadcast_to(v, (n,)).copy() for k, v in out.items()}, n
+
+
+def label_since(labels: np.ndarray, horizons: np.ndarray) -> np.ndarray:
+    """Return the earliest horizon from which each trajectory's label no longer changes.
+
+    Parameters
+    ----------
+    labels : ndarray of int, shape (N, n_horizon)
+    horizons : ndarray, shape (n_horizon,)
+        Times (s), increasing.
+
+    Returns
+    -------
+    ndarray, shape (N,)
+        ``horizons[j]`` for the smallest j with ``labels[:, j:]`` all equal to the last label (s).
+
+    Examples
+    --------
+    >>> label_since(np.array([[2, 0, 0], [1, 1, 1], [0, 0, 2]]), np.array([1.0, 2.0, 3.0]))
+    array([2., 1., 3.])
+    """
+    labels = np.asarray(labels)
+    same = labels == labels[:, -1:]
+    # index of the last horizon that differs from the final label, plus one
+    differs = ~same
+    last_diff = np.where(differs.any(axis=1), labels.shape[1] - 1 - np.argmax(differs[:, ::-1], axis=1), -1)
+    return np.asarray(horizons, dtype=float)[last_diff + 1]
+
+
+def map_starts(
+    mapper: AbstractMapper,
+    coords: Mapping[str, Any],
+    *,
+    threads: int | None = None,
+    chunk_size: int | None = None,
+    progress: Callable[[int, int], None] | None = None,
+):
+    """Integrate and label start points given by named coordinates.
+
+    Parameters
+    ----------
+    mapper : AbstractMapper
+        E.g. :class:`~rotorlab.explore.TorusRegimes` or :class:`~rotorlab.explore.BalancerRegimes`.
+    coords : mapping of str to array_like, shape (N,) or scalar
+        Start coordinates (state entries or parameters, see ``mapper.coordinate_units``);
+        scalars are shared by all points.
+    threads : int, optional
+        Threads of the integrator (default: numba's). Results do not depend on it.
+    chunk_size : int, optional
+        Trajectories integrated and featurized together (default :data:`DEFAULT_CHUNK`).
+        Results do not depend on it.
+    progress : callable, optional
+        ``progress(done, total)`` after each chunk.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``ic`` and ``horizon``. Coordinates: ``horizon`` (s) and every given coordinate
+        on ``ic`` (with its unit). Variables: ``label`` (ic, horizon; int codes, attrs
+        ``flag_values``/``flag_meanings`` and ``labels``), ``outcome`` (ic, label at the last
+        horizon), ``label_since`` (ic; horizon from which the label stays, s), every feature,
+        ``status``, ``n_steps``.
+
+    Raises
+    ------
+    ValueError
+        Unknown or malformed coordinates.
+    """
+    import xarray as xr
+
+    from rotorlab.integrate import SaveAt, solve_ensemble
+
+    cols, n = _check_coords(mapper, coords)
+    model, Y0, P = mapper.starts(cols)
+    horizons = np.asarray(mapper.horizons(), dtype=float)
+    ts = np.asarray(mapper.save_times(), dtype=float)
+    t_end = float(horizons[-1])
+    step = DEFAULT_CHUNK if chunk_size is None else int(chunk_size)
+    if step < 1:
+        raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
+    feats: dict[str, list] = {}
+    meta: dict[str, tuple[str, str]] = {}
+    labels, status, n_steps = [], [], []
+    for lo in range(0, n, step):
+        hi = min(n, lo + step)
+        Pc = P[lo:hi] if P.shape[0] > 1 else P
+        sol = solve_ensemble(model, Y0[lo:hi] if Y0.shape[0] > 1 else Y0, (0.0, t_end),
+                             params=Pc, save_at=SaveAt(ts=ts), control=mapper.control,
+                             threads=threads)  # fmt: skip
+        f = mapper.features(sol, np.broadcast_to(Pc, (hi - lo, P.shape[1])))
+        for name, (values, units, desc) in f.items():
+            feats.setdefault(name, []).append(np.broadcast_to(values, (hi - lo, *values.shape[1:])))
+            meta[name] = (units, desc)
+        labels.append(mapper.group({k: v[0] for k, v in f.items()}))
+        status.append(sol.status.astype(np.int32))
+        n_steps.append(sol.stats[:, 1] + sol.stats[:, 2])
+        if progress is not None:
+            progress(hi, n)
+    label = np.concatenate(labels).astype(np.int16)
+    names = tuple(mapper.labels)
+    flag = {"flag_values": np.arange(len(names), dtype=np.int16), "flag_meanings": " ".join(
+        n.replace(" ", "_") for n in names), "labels": list(names), "units": "1"}  # fmt: skip
+    data: dict[str, Any] = {
+        "label": (("ic", "horizon"), label, dict(flag)),
+        "outcome": (("ic",), label[:, -1], dict(flag)),
+        "label_since": (("ic",), label_since(label, horizons), {"units": "s",
+                        "description": "earliest horizon from which the label stays as at the end"}),
+        "status": (("ic",), np.concatenate(status), {"units": "1"}),
+        "n_steps": (("ic",), np.concatenate(n_steps), {"units": "1"}),
+    }  # fmt: skip
+    for name, parts in feats.items():
+        values = np.concatenate(parts)
+        dims = ("ic", "horizon")[: values.ndim]
+        units, desc = meta[name]
+        data[name] = (dims, values, {"units": units, "description": desc})
+    units = mapper.coordinate_units
+    ic_coords = {k: ("ic", v, {"units": units[k]}) for k, v in cols.items()}
+    return xr.Dataset(
+        data,
+        coords={"horizon": ("horizon", horizons, {"units": "s"}), "ic": np.arange(n), **ic_coords},
+        attrs={"mapper": type(mapper).__name__, "t_end": t_end, "labels": list(names)},
+    )
+
