@@ -158,7 +158,8 @@ def basin_fractions(ds):
     Returns
     -------
     xarray.Dataset
-        Dims ``horizon`` and ``label``: ``fraction`` (1) and ``count`` (1); ``attrs["n"]``.
+        Dims ``horizon`` and ``regime`` (the label names): ``fraction`` (1) and ``count`` (1);
+        ``attrs["n"]``.
         Fractions at each horizon sum to 1; ``.isel(horizon=-1)`` are the final fractions and
         their change along ``horizon`` shows whether the simulated time was long enough.
 
@@ -181,10 +182,10 @@ def basin_fractions(ds):
     counts = np.stack([(lab == k).sum(axis=0) for k in range(len(names))], axis=1)
     return xr.Dataset(
         {
-            "fraction": (("horizon", "label"), counts / max(n, 1), {"units": "1"}),
-            "count": (("horizon", "label"), counts, {"units": "1"}),
+            "fraction": (("horizon", "regime"), counts / max(n, 1), {"units": "1"}),
+            "count": (("horizon", "regime"), counts, {"units": "1"}),
         },
-        coords={"horizon": ds["horizon"], "label": names},
+        coords={"horizon": ds["horizon"], "regime": names},
         attrs={"n": n},
     )
 
@@ -221,7 +222,10 @@ def wilson_interval(count, n: int, confidence: float = 0.95):
     denom = 1.0 + z * z / n
     centre = (p + z * z / (2.0 * n)) / denom
     half = z * np.sqrt(p * (1.0 - p) / n + z * z / (4.0 * n * n)) / denom
-    return np.clip(centre - half, 0.0, 1.0), np.clip(centre + half, 0.0, 1.0)
+    # exact ends for 0 and n successes (the formula gives them only up to round-off)
+    low = np.where(p <= 0.0, 0.0, np.clip(centre - half, 0.0, 1.0))
+    high = np.where(p >= 1.0, 1.0, np.clip(centre + half, 0.0, 1.0))
+    return low, high
 
 
 def basin_stability(
@@ -260,7 +264,7 @@ def basin_stability(
     Returns
     -------
     xarray.Dataset
-        Dims ``horizon``, ``label`` and ``ic``: ``probability`` (horizon, label), ``ci_low``,
+        Dims ``horizon``, ``regime`` and ``ic``: ``probability`` (horizon, regime), ``ci_low``,
         ``ci_high`` (Wilson interval), ``count``, and the per-start variables of
         :func:`map_starts`; attrs ``seed``, ``confidence``, ``n``.
 
@@ -289,8 +293,8 @@ def basin_stability(
     out = ds.assign(
         probability=fr["fraction"].assign_attrs(units="1"),
         count=fr["count"],
-        ci_low=(("horizon", "label"), low, {"units": "1", "confidence": confidence}),
-        ci_high=(("horizon", "label"), high, {"units": "1", "confidence": confidence}),
+        ci_low=(("horizon", "regime"), low, {"units": "1", "confidence": confidence}),
+        ci_high=(("horizon", "regime"), high, {"units": "1", "confidence": confidence}),
     )
     out.attrs.update(seed=int(seed), confidence=float(confidence), n=int(n))
     return out

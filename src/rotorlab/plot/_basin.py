@@ -1,0 +1,154 @@
+"""Figures of basins and regimes: basin maps (seed 004 Fig. 6), fractions against the simulated
+time, and the restoring force on the toroidal ball (seed 004 Fig. 3).
+
+Datasets from :func:`rotorlab.explore.basin_map`, :func:`rotorlab.explore.basin_fractions` and
+:meth:`rotorlab.models._toroidal_ball.ToroidalBall.restoring_force`. Built without pyplot (Agg
+canvas), like the other figures of :mod:`rotorlab.plot`.
+"""
+
+from __future__ import annotations
+
+from typing import TYPE_CHECKING
+
+import numpy as np
+
+if TYPE_CHECKING:
+    import xarray
+    from matplotlib.figure import Figure
+
+__all__ = ["basin_figure", "fractions_figure", "restoring_force_figure", "label_colors"]
+
+# The paper draws the working basin dark: the first label (working / balanced) is dark.
+_PALETTE = ("#1f2a44", "#e8b04a", "#9bb7d4", "#c8553d", "#6a994e", "#8e7dbe", "#bcbcbc")
+_NAMES = {"psi": "ψ₀", "dpsi": "ψ̇₀", "alpha": "α₀", "dalpha": "α̇₀"}
+
+
+def label_colors(labels) -> dict[str, str]:
+    """Colour of each label: the first dark, ``other`` light grey.
+
+    Examples
+    --------
+    >>> label_colors(["working", "spare", "other"])["other"]
+    '#bcbcbc'
+    """
+    out = {}
+    for k, name in enumerate(labels):
+        out[str(name)] = _PALETTE[-1] if name == "other" else _PALETTE[k % (len(_PALETTE) - 1)]
+    return out
+
+
+def _axis_label(ds, name: str) -> str:
+    units = ds[name].attrs.get("units", "")
+    return f"{_NAMES.get(name, name)} ({units})" if units else _NAMES.get(name, name)
+
+
+def basin_figure(ds: xarray.Dataset, *, horizon: float | None = None, title: str | None = None) -> Figure:
+    """Draw a basin map: the label of every start point of a 2-D grid.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.explore.basin_map` (``label`` with two grid dims and ``horizon``).
+    horizon : float, optional
+        Simulated time whose labels are drawn (s); default the last one.
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        One panel; the legend gives each label's fraction of the grid.
+    """
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Patch
+
+    label = ds["label"]
+    ydim, xdim = [d for d in label.dims if d != "horizon"]
+    sel = label.isel(horizon=-1) if horizon is None else label.sel(horizon=horizon, method="nearest")
+    t = float(sel["horizon"])
+    names = [str(v) for v in label.attrs["labels"]]
+    colors = label_colors(names)
+    cmap = ListedColormap([colors[n] for n in names])
+    norm = BoundaryNorm(np.arange(len(names) + 1) - 0.5, len(names))
+    x, y = ds[xdim].values, ds[ydim].values
+    fig = Figure(figsize=(6.4, 5.0), layout="constrained")
+    ax = fig.subplots()
+    ax.pcolormesh(x, y, sel.transpose(ydim, xdim).values, cmap=cmap, norm=norm, shading="nearest")
+    ax.set_xlabel(_axis_label(ds, xdim))
+    ax.set_ylabel(_axis_label(ds, ydim))
+    values = sel.values.ravel()
+    handles = [Patch(color=colors[n], label=f"{n} ({np.mean(values == k):.1%})") for k, n in enumerate(names)]
+    ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
+    fixed = ", ".join(f"{_NAMES.get(k[6:], k[6:])} = {v:g}" for k, v in ds.attrs.items() if k.startswith("fixed_"))
+    ax.set_title(title or f"regimes after {t:g} s" + (f" ({fixed})" if fixed else ""))
+    return fig
+
+
+def fractions_figure(fr: xarray.Dataset, *, title: str | None = None) -> Figure:
+    """Draw basin fractions against the simulated time (horizon).
+
+    A fraction that still changes at the last horizon means the simulated time was too short
+    for that regime to settle (a long transient).
+
+    Parameters
+    ----------
+    fr : xarray.Dataset or mapping of str to xarray.Dataset
+        From :func:`rotorlab.explore.basin_fractions`; several are drawn with different line
+        styles, keyed by their legend text.
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+    """
+    from matplotlib.figure import Figure
+
+    sets = fr if isinstance(fr, dict) else {"": fr}
+    fig = Figure(figsize=(6.4, 4.0), layout="constrained")
+    ax = fig.subplots()
+    styles = ("-", "--", ":", "-.")
+    for j, (key, f) in enumerate(sets.items()):
+        names = [str(v) for v in f.regime.values]
+        colors = label_colors(names)
+        for name in names:
+            ax.plot(f.horizon.values, f.fraction.sel(regime=name).values, styles[j % 4], marker="o", ms=3,
+                    color=colors[name], label=f"{name} {key}".strip())  # fmt: skip
+    ax.set_xlabel("simulated time (s)")
+    ax.set_ylabel("fraction of starts")
+    ax.set_ylim(-0.02, 1.02)
+    ax.grid(alpha=0.3)
+    ax.legend(frameon=False, fontsize="small")
+    ax.set_title(title or "basin fractions against the simulated time")
+    return fig
+
+
+def restoring_force_figure(ds: xarray.Dataset, *, title: str | None = None) -> Figure:
+    """Draw the tangential force on a ball at rest against its ring angle (seed 004 Fig. 3).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From ``ToroidalBall.restoring_force`` (``tangential`` and ``friction_limit`` on ``psi``).
+    title : str, optional
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        The tangential force per unit mass and the band ``±k N / r`` inside which rolling
+        resistance holds the ball.
+    """
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(6.4, 4.0), layout="constrained")
+    ax = fig.subplots()
+    psi = ds.psi.values
+    limit = ds.friction_limit.values
+    ax.fill_between(psi, -limit, limit, color="0.85", label="held by rolling resistance (±k N / r)")
+    ax.plot(psi, ds.tangential.values, color=_PALETTE[0], label="tangential force P_τ / m")
+    ax.axhline(0.0, color="k", lw=0.6)
+    ax.axvline(np.pi, color="k", lw=0.6, ls="--")
+    ax.set_xlabel("ring angle ψ (rad)")
+    ax.set_ylabel(f"force per unit mass ({ds.tangential.attrs.get('units', '')})")
+    ax.legend(frameon=False, fontsize="small")
+    ax.set_title(title or "restoring force on the ball at rest (seed 004 Fig. 3)")
+    return fig
