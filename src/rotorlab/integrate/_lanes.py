@@ -71,7 +71,10 @@ LANES = 8  # @lanes
 
 # The model's kernel inlined at numba-IR level: LLVM does not inline a separately compiled
 # dispatcher of this size, and a call is opaque to the loop vectoriser. error_model="numpy"
-# removes the division-by-zero branches (an exit from the loop) of the inlined code.
+# removes the division-by-zero branches (an exit from the loop) of the inlined code. The scalar
+# evaluations (start of a trajectory) use it too, so that everything this module computes is
+# compiled here: numba's cache of the kernel's own dispatcher does not notice a change in a
+# function the kernel inlines (e.g. sincos), this module's file name does (_kernel_dependencies).
 _rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func)
 
 
@@ -169,7 +172,7 @@ def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     h0 = min(h0, interval)
     for i in range(n):
         ytmp[i] = y0[i] + h0 * f0[i]
-    rhs(t0 + h0, ytmp, p, f1)
+    _rhs_inline(t0 + h0, ytmp, p, f1)
     d2 = 0.0
     for i in range(n_cont):
         sc = atol[i] + abs(y0[i]) * rtol
@@ -222,8 +225,7 @@ def _worker(
     hl = np.zeros(L)
     habs = np.zeros(L)
     min_step = np.zeros(L)
-    acc = np.zeros(L)
-    take = np.zeros(L)
+    take = np.zeros(nL)  # accepted lanes (first L entries), then broadcast over the state
     Q = np.zeros(nL)
     AB = np.zeros(nL)  # atol broadcast over the lanes
     for k in range(nL):
@@ -279,7 +281,7 @@ def _worker(
                     i_save[lane] = s
                     naccept[lane] = 0
                     nreject[lane] = 0
-                    rhs(t0, ybuf, P[ip], fbuf)
+                    _rhs_inline(t0, ybuf, P[ip], fbuf)
                     nfev[lane] = 1
                     for i in range(n):
                         K1[i * L + lane] = fbuf[i]
@@ -330,9 +332,12 @@ def _worker(
             break
 
         # ---- one Dormand-Prince attempt in every lane (vectorised over lanes) --------------
-        for i in range(n):
-            for lane in range(L):
-                HB[i * L + lane] = hl[lane]
+        # broadcast the step sizes over the state: HB[i L + l] = h[l] (a recurrence at distance L
+        # is a plain vector copy for LLVM; a loop over (i, l) would not vectorise)
+        for lane in range(L):
+            HB[lane] = hl[lane]
+        for k in range(L, nL):
+            HB[k] = HB[k - L]
         for k in range(nL):
             T[k] = Y[k] + HB[k] * (A21 * K1[k])
         for lane in range(L):
@@ -373,11 +378,10 @@ def _worker(
             Q[k] = q * q + K7[k] * 0.0
         for k in range(n_cont * L, nL):
             Q[k] = K7[k] * 0.0
-        for lane in range(nl):
-            acc[lane] = 0.0
-        for i in range(n):
-            for lane in range(nl):
-                acc[lane] += Q[i * L + lane]
+        # running sums over the states, lane by lane (a recurrence at distance L: vectorises);
+        # the last row is the sum in the order of _core._rms_scaled
+        for k in range(L, nL):
+            Q[k] += Q[k - L]
 
         # ---- scalar epilogue: accept or reject in every lane --------------------------------
         for lane in range(L):
@@ -386,7 +390,7 @@ def _worker(
             if j < 0:
                 continue
             nfev[lane] += 6
-            err_norm = math.sqrt(acc[lane] / n_cont)
+            err_norm = math.sqrt(Q[nL - L + lane] / n_cont)
             if not math.isfinite(err_norm):
                 last_nonfinite[lane] = True
                 habs[lane] *= MIN_FACTOR
@@ -430,12 +434,12 @@ def _worker(
             tl[lane] = tn
             take[lane] = 1.0
             new_step[lane] = True
-        for i in range(n):
-            for lane in range(nl):
-                k = i * L + lane
-                a = take[lane] != 0.0
-                Y[k] = YN[k] if a else Y[k]
-                K1[k] = K7[k] if a else K1[k]
+        for k in range(L, nL):
+            take[k] = take[k - L]
+        for k in range(nL):
+            a = take[k] != 0.0
+            Y[k] = YN[k] if a else Y[k]
+            K1[k] = K7[k] if a else K1[k]
 
 
 @njit(cache=True, nogil=True)
