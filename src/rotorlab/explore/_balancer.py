@@ -196,9 +196,12 @@ class BalancerRegimes:
         amplitude = np.empty((n, nh))
         max_rate = np.empty((n, nh))
         for j, t in enumerate(h):
-            win = (ts >= t - self.window * (1 + 1e-12)) & (ts <= t)
-            amplitude[:, j] = amp[:, win].mean(axis=1)
-            max_rate[:, j] = rate[:, win].max(axis=1)
+            cols = np.flatnonzero((ts >= t - self.window * (1 + 1e-12)) & (ts <= t))
+            total = np.zeros(n)
+            for c in cols:  # fixed summation order: the same bits whatever the chunk
+                total += amp[:, c]
+            amplitude[:, j] = total / cols.size
+            max_rate[:, j] = rate[:, cols].max(axis=1)
         i_end = np.searchsorted(ts, h)
         masses = P[:, _jk.P_BALLS + _jk.B_M :: _jk.BALL_STRIDE][:, :nb]
         omega = P[:, _jk.P_SPEED + 1]
@@ -208,7 +211,7 @@ class BalancerRegimes:
             "amplitude": Feature(amplitude, "m", "mean deflection of the disc centre over the window"),
             "max_rate": Feature(max_rate, "rad/s", "largest |ball rate relative to the rotor| over the window"),
             "reference_amplitude": Feature(ref, "m", "deflection the unbalance alone causes"),
-            "spin_speed": Feature(omega, "rad/s", "constant spin speed"),
+            "rotor_speed": Feature(omega, "rad/s", "constant spin speed of the trajectory"),
             "status_code": Feature(sol.status.astype(np.int32), "1", "integrator status"),
         }  # fmt: skip
         for i in range(nb):
@@ -229,7 +232,7 @@ class BalancerRegimes:
             text = classify(code, Status(code).message, float(amp[i, j]),
                             float(features["reference_amplitude"][i]),
                             [features[f"ball_angle_{b + 1}"][i, j] for b in range(nb)],
-                            float(features["max_rate"][i, j]), float(features["spin_speed"][i]))  # fmt: skip
+                            float(features["max_rate"][i, j]), float(features["rotor_speed"][i]))  # fmt: skip
             if text == "not settled":
                 text = "non-synchronous"
             out[i, j] = index.get(text, index["other"])

@@ -211,13 +211,13 @@ def wilson_interval(count, n: int, confidence: float = 0.95):
     >>> [round(float(v), 4) for v in wilson_interval(50, 100)]
     [0.4038, 0.5962]
     """
-    from scipy.stats import norm
+    from scipy.special import ndtri
 
     if not 0.0 < confidence < 1.0:
         raise ValueError(f"confidence must be in (0, 1), got {confidence!r}")
     if int(n) < 1:
         raise ValueError(f"n must be >= 1, got {n!r}")
-    z = float(norm.ppf(0.5 + confidence / 2.0))
+    z = float(ndtri(0.5 + confidence / 2.0))
     p = np.asarray(count, dtype=float) / n
     denom = 1.0 + z * z / n
     centre = (p + z * z / (2.0 * n)) / denom

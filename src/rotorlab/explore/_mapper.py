@@ -181,6 +181,8 @@ def map_starts(
                              threads=threads)  # fmt: skip
         f = mapper.features(sol, np.broadcast_to(Pc, (hi - lo, P.shape[1])))
         for name, (values, units, desc) in f.items():
+            if name in cols or name in ("label", "outcome", "label_since", "status", "n_steps"):
+                raise ValueError(f"feature {name!r} of {type(mapper).__name__} clashes with a coordinate or result name")
             feats.setdefault(name, []).append(np.broadcast_to(values, (hi - lo, *values.shape[1:])))
             meta[name] = (units, desc)
         labels.append(mapper.group({k: v[0] for k, v in f.items()}))

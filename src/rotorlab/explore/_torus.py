@@ -49,6 +49,12 @@ _PARAM_UNITS = {
 }
 
 
+def _wrap(angle: np.ndarray) -> np.ndarray:
+    """Wrap to [-pi, pi), leaving angles already there untouched (bit for bit)."""
+    inside = (angle >= -math.pi) & (angle < math.pi)
+    return np.where(inside, angle, np.mod(angle + math.pi, 2.0 * math.pi) - math.pi)
+
+
 @dataclass(frozen=True, slots=True)
 class TorusRegimes:
     """Mapper of start points of a :class:`~rotorlab.models.ToroidalBall` to regimes.
@@ -162,7 +168,7 @@ class TorusRegimes:
             "stuck": Feature(stuck, "1", "both directions stuck over the whole window"),
             "ring_rate": Feature(rate, "rad/s", "mean ring rate relative to the body over the window"),
             "ring_angle": Feature(np.mod(psi_end, 2.0 * math.pi), "rad", "ring angle at the horizon"),
-            "section_angle": Feature(np.mod(ys[:, i_end, 1] + math.pi, 2.0 * math.pi) - math.pi, "rad",
+            "section_angle": Feature(_wrap(ys[:, i_end, 1]), "rad",
                                      "cross-section angle at the horizon, wrapped to [-pi, pi)"),
             "settle_time": Feature(np.where(stuck_final, sol.y_final[:, 6], np.nan), "s",
                                    "time of the last stick/slip switch of a ball stuck at the end"),
