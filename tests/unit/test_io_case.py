@@ -260,8 +260,11 @@ def test_python_construction_uses_attribute_names():
 
 
 def test_registries():
-    assert sorted(MODEL_SPECS) == ["jeffcott_balls"]
-    assert sorted(ANALYSIS_SPECS) == ["simulate"]
+    assert {"jeffcott_balls", "multibody", "fe_rotor"} <= set(MODEL_SPECS)
+    assert {"simulate", "campbell", "modes", "critical_speeds", "unbalance_response", "identify",
+            "data_audit"} <= set(ANALYSIS_SPECS)
+    for kind, cls in (*MODEL_SPECS.items(), *ANALYSIS_SPECS.items()):
+        assert cls.model_fields["type"].default == kind
     with pytest.raises(TypeError):
         MODEL_SPECS["x"] = JeffcottBallsSpec  # type: ignore[index]
 

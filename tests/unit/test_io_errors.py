@@ -4,7 +4,10 @@ from __future__ import annotations
 
 import pytest
 
-from rotorlab.io import CaseError, load_case, parse_case
+from rotorlab.io import ANALYSIS_SPECS, MODEL_SPECS, CaseError, load_case, parse_case
+
+MODELS = ", ".join(sorted(MODEL_SPECS))
+ANALYSES = ", ".join(sorted(ANALYSIS_SPECS))
 
 GOOD = """\
 name = "t"
@@ -124,19 +127,21 @@ def test_extra_keys_are_forbidden_everywhere(old, new, path, hint):
 def test_unknown_model_type():
     err = errors_of(edit('type = "jeffcott_balls"', 'type = "jefcott"'))
     (problem,) = err.problems
-    assert problem.startswith('model.type = "jefcott": unknown model (known: jeffcott_balls)')
+    assert problem.startswith(f'model.type = "jefcott": unknown model (known: {MODELS})')
+    assert "jeffcott_balls" in MODELS and problem.endswith("did you mean 'jeffcott_balls'?")
 
 
 def test_missing_model_type():
     err = errors_of(edit('type = "jeffcott_balls"\n', ""))
-    assert err.problems == ("model.type: required key is missing (known: jeffcott_balls)",)
+    assert err.problems == (f"model.type: required key is missing (known: {MODELS})",)
 
 
 def test_unknown_analysis_type():
     err = errors_of(edit('type = "simulate"', 'type = "campbel"'))
     (problem,) = err.problems
     assert problem.startswith('analysis[0].type = "campbel": unknown analysis type')
-    assert "(known: simulate)" in problem
+    assert f"(known: {ANALYSES})" in problem and "simulate" in ANALYSES
+    assert problem.endswith("did you mean 'campbell'?")
 
 
 def test_unknown_speed_profile():

@@ -11,6 +11,15 @@ from rotorlab.analyses._case import (
     run_case,
     summarize,
 )
+from rotorlab.analyses._linear import (
+    DATA_AUDITS,
+    LINEAR_ANALYSES,
+    campbell_summary,
+    modes_summary,
+    run_linear_analysis,
+    summarize_linear,
+)
+from rotorlab.analyses._linear_build import build_linear_system
 from rotorlab.analyses._outcome import (
     BALANCED_FRACTION,
     SETTLE_RATE,
@@ -23,16 +32,23 @@ from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
 
 __all__ = [
     "BALANCED_FRACTION",
+    "DATA_AUDITS",
+    "LINEAR_ANALYSES",
     "RUNNABLE_ANALYSES",
     "SETTLE_RATE",
     "SETTLE_REVOLUTIONS",
     "SIDE_TOLERANCE",
+    "build_linear_system",
     "build_model",
+    "campbell_summary",
     "classify",
+    "modes_summary",
     "reference_amplitude",
     "run_analysis",
     "run_case",
+    "run_linear_analysis",
     "simulate",
     "summarize",
+    "summarize_linear",
     "wrap_angle",
 ]

@@ -1,4 +1,9 @@
-"""From a validated case to results: build the model, run every analysis, summarize outcomes."""
+"""From a validated case to results: build the model, run every analysis, summarize outcomes.
+
+Simulations run on the ``jeffcott_balls`` model (:mod:`rotorlab.analyses._simulate`); the linear
+analyses (Campbell diagram, modes, critical speeds, unbalance response, identification, data
+audit) on the ``multibody`` and ``fe_rotor`` models (:mod:`rotorlab.analyses._linear`).
+"""
 
 from __future__ import annotations
 
@@ -8,16 +13,19 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rotorlab.analyses._linear import LINEAR_ANALYSES
+
 if TYPE_CHECKING:
     import xarray
 
     from rotorlab.io import Case
+    from rotorlab.linear import LinearSystem
     from rotorlab.models import JeffcottBalls
 
 __all__ = ["RUNNABLE_ANALYSES", "build_model", "run_analysis", "run_case", "summarize"]
 
 #: Analysis types (the ``type`` of a case's ``[[analysis]]``) that :func:`run_case` can run.
-RUNNABLE_ANALYSES = ("simulate",)
+RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES)
 
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -36,19 +44,21 @@ def _speed_profile(spec: Any) -> Any:
     raise ValueError(f"unknown speed profile {spec.profile!r}")
 
 
-def build_model(case_model: Any) -> JeffcottBalls:
+def build_model(case_model: Any) -> JeffcottBalls | LinearSystem:
     """Build the model object of a validated case's ``[model]`` table.
 
     Parameters
     ----------
-    case_model : rotorlab.io.JeffcottBallsSpec
+    case_model : rotorlab.io.JeffcottBallsSpec, rotorlab.io.MultibodySpec or FeRotorSpec
         ``Case.model`` (SI values, balls expanded).
 
     Returns
     -------
-    JeffcottBalls
-        In the case's frame; its speed profile is the case's ``[model.speed]``, or a rotor at
-        rest (``ConstantSpeed(0)``) when the case gives none (analyses set their own speed).
+    JeffcottBalls or rotorlab.linear.LinearSystem
+        A ball balancer in the case's frame; its speed profile is the case's
+        ``[model.speed]``, or a rotor at rest (``ConstantSpeed(0)``) when the case gives none
+        (analyses set their own speed). For a linear rotor model, its
+        :class:`~rotorlab.linear.LinearSystem`.
 
     Raises
     ------
@@ -64,6 +74,10 @@ def build_model(case_model: Any) -> JeffcottBalls:
     """
     from rotorlab.models import BallParams, JeffcottBalls, RotorParams
 
+    if getattr(case_model, "type", None) in ("multibody", "fe_rotor"):
+        from rotorlab.analyses._linear_build import build_linear_system
+
+        return build_linear_system(case_model)
     if getattr(case_model, "type", None) != "jeffcott_balls":
         raise ValueError(f"cannot build a model of type {getattr(case_model, 'type', None)!r}")
     rotor = RotorParams(
@@ -87,17 +101,19 @@ def run_analysis(case_model: Any, analysis: Any,
 
     Parameters
     ----------
-    case_model : rotorlab.io.JeffcottBallsSpec
+    case_model : rotorlab.io.JeffcottBallsSpec, rotorlab.io.MultibodySpec or FeRotorSpec
         ``Case.model``.
-    analysis : rotorlab.io.SimulateSpec
+    analysis : rotorlab.io.SimulateSpec or a linear analysis spec
         One entry of ``Case.analyses``.
     progress : callable, optional
-        ``progress(done, total)``, trajectories finished.
+        ``progress(done, total)``: trajectories finished (a linear analysis reports 0 of 1,
+        then 1 of 1).
 
     Returns
     -------
     xarray.Dataset
-        See :func:`rotorlab.analyses.simulate`; ``attrs["name"]`` is the analysis name.
+        See :func:`rotorlab.analyses.simulate` and
+        :func:`rotorlab.analyses.run_linear_analysis`; ``attrs["name"]`` is the analysis name.
     """
     from rotorlab.analyses._simulate import simulate
 
@@ -106,6 +122,16 @@ def run_analysis(case_model: Any, analysis: Any,
             f"analysis {analysis.name}: type {analysis.type!r} cannot be run here "
             f"(runnable: {', '.join(RUNNABLE_ANALYSES)})"
         )
+    if analysis.type in LINEAR_ANALYSES:
+        from rotorlab.analyses._linear import run_linear_analysis
+
+        if progress is not None:
+            progress(0, 1)
+        ds = run_linear_analysis(case_model, analysis)
+        ds.attrs["name"] = analysis.name
+        if progress is not None:
+            progress(1, 1)
+        return ds
     model = build_model(case_model)
     omega = analysis.spin_speed(case_model)
     sets = analysis.ball_angle_sets(model.n_balls)
@@ -174,22 +200,27 @@ def _number(value: float) -> float | None:
 
 
 def summarize(ds: xarray.Dataset) -> list[dict[str, Any]]:
-    """Tabulate a simulation result: one row per (speed, initial configuration).
+    """Tabulate a result: for a simulation, one row per (speed, initial configuration).
 
     Parameters
     ----------
     ds : xarray.Dataset
-        From :func:`rotorlab.analyses.simulate`.
+        From :func:`rotorlab.analyses.simulate`, or from a linear analysis (see
+        :func:`rotorlab.analyses.summarize_linear` for its rows).
 
     Returns
     -------
     list of dict
-        Keys: ``speed`` (rad/s), ``speed_rpm``, ``speed_hz``, ``speed_ratio`` (omega / p),
-        ``ic``, ``initial_ball_angles_deg``, ``final_amplitude`` (m),
+        Simulation keys: ``speed`` (rad/s), ``speed_rpm``, ``speed_hz``, ``speed_ratio``
+        (omega / p), ``ic``, ``initial_ball_angles_deg``, ``final_amplitude`` (m),
         ``reference_amplitude`` (m), ``amplitude_ratio`` (final / reference),
         ``final_ball_angles_deg``, ``outcome``, ``status``. Plain Python values (JSON-ready;
         NaN becomes None).
     """
+    if ds.attrs.get("analysis") in LINEAR_ANALYSES:
+        from rotorlab.analyses._linear import summarize_linear
+
+        return summarize_linear(ds)
     rows = []
     for k in range(ds.sizes["speed"]):
         om = float(ds.speed.values[k])

@@ -1,9 +1,11 @@
-"""The ``rotorlab`` command line (typer): ``run``, ``simulate``, ``validate``, ``cases``.
+"""The ``rotorlab`` command line (typer): ``run``, ``simulate``, ``campbell``, ``modes``,
+``validate``, ``cases``.
 
 Importing this package stays light (no numpy, numba, xarray or matplotlib), so that
 ``rotorlab --version`` answers in well under a second.
 """
 
+from rotorlab.cli import _linear  # noqa: F401 - registers the campbell and modes commands
 from rotorlab.cli._app import app, main
 
 __all__ = ["app", "main"]

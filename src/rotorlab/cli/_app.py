@@ -1,6 +1,9 @@
 """The ``rotorlab`` command line: a thin typer layer over :mod:`rotorlab.io`,
 :mod:`rotorlab.analyses`, :mod:`rotorlab.plot` and :mod:`rotorlab.report`.
 
+The linear-rotordynamics commands (``campbell``, ``modes``) live in :mod:`rotorlab.cli._linear`
+and are registered on the same :data:`app`.
+
 Exit codes: 0 success, 1 internal error, 2 bad input (case file, case name, option value).
 Nothing heavy (numpy, numba, xarray, matplotlib, pydantic) is imported at module import, so that
 ``rotorlab --version`` answers at once.
@@ -90,6 +93,11 @@ def _trajectory_count(case_model: Any, analysis: Any) -> int:
     return len(analysis.ball_angle_sets(case_model.n_balls))
 
 
+def _task_size(case_model: Any, analysis: Any) -> int:
+    """Steps of an analysis for the progress bar: trajectories of a simulation, else 1."""
+    return _trajectory_count(case_model, analysis) if analysis.type == "simulate" else 1
+
+
 def _json_case(case: Any) -> dict[str, Any]:
     return {"case": case.name, "source": case.source}
 
@@ -130,6 +138,9 @@ def _speed_text(omega: float | None, p: float | None) -> str:
 def _analysis_summary(case: Any) -> list[dict[str, Any]]:
     out = []
     for a in case.analyses:
+        if a.type != "simulate":
+            out.append({"name": a.name, "type": a.type, "description": a.describe(case.model)})
+            continue
         omega = a.spin_speed(case.model)
         out.append({
             "name": a.name,
@@ -158,8 +169,9 @@ def validate_command(ctx: typer.Context, case: CaseArg, json_out: JsonOpt = Fals
         p = loaded.model.critical_speed()
         analyses = _analysis_summary(loaded)
         if json_out:
+            extra = {"n_dof": loaded.model.n_dof} if hasattr(loaded.model, "n_dof") else {}
             emit_json({"ok": True, **_json_case(loaded), "description": loaded.description,
-                       "critical_speed": p, "n_balls": loaded.model.n_balls,
+                       "critical_speed": p, "n_balls": loaded.model.n_balls, **extra,
                        "model": loaded.model_dump_si()["model"], "analyses": analyses})  # fmt: skip
             return
         if settings.quiet:
@@ -168,9 +180,15 @@ def validate_command(ctx: typer.Context, case: CaseArg, json_out: JsonOpt = Fals
         con.print(f"OK: {loaded.name} ({loaded.source})", markup=False)
         if loaded.description:
             con.print(f"  {loaded.description}", markup=False)
-        con.print(f"  model: {loaded.model.type}, {loaded.model.n_balls} ball(s), "
-                  f"critical speed p = {_speed_text(p, None)}", markup=False)  # fmt: skip
+        if loaded.model.type == "jeffcott_balls":
+            con.print(f"  model: {loaded.model.type}, {loaded.model.n_balls} ball(s), "
+                      f"critical speed p = {_speed_text(p, None)}", markup=False)  # fmt: skip
+        else:
+            con.print(f"  model: {loaded.model.describe()}", markup=False)
         for a, row in zip(loaded.analyses, analyses):
+            if a.type != "simulate":
+                con.print(f"  analysis {a.name} ({a.type}): {row['description']}", markup=False)
+                continue
             con.print(f"  analysis {a.name} ({a.type}): {row['configurations']} start "
                       f"configuration(s), {row['t_end']:.6g} s at "
                       f"{_speed_text(row['speed'], p)}", markup=False)  # fmt: skip
@@ -211,18 +229,22 @@ def run_command(
         start = time.perf_counter()
         from rotorlab.analyses import run_case, summarize
 
-        tasks = {a.name: _trajectory_count(loaded.model, a) for a in loaded.analyses}
-        with progress_bar(settings, tasks) as update:
+        tasks = {a.name: _task_size(loaded.model, a) for a in loaded.analyses}
+        units = {a.name: "trajectories" if a.type == "simulate" else "done"
+                 for a in loaded.analyses}
+        with progress_bar(settings, tasks, units) as update:
             results = run_case(loaded, progress=update)
         computed = time.perf_counter() - start
-        from rotorlab.plot import simulation_figures
+        from rotorlab.plot import linear_figures, simulation_figures
         from rotorlab.report import write_report
 
         tables = {name: summarize(ds) for name, ds in results.items()}
         with status(settings, "Drawing figures and writing the report ..."):
             figures = {}
             for name, ds in results.items():
-                figures.update(simulation_figures(ds, name))
+                draw = simulation_figures if ds.attrs.get("analysis") == "simulate" else (
+                    linear_figures)
+                figures.update(draw(ds, name))
             report = write_report(out, loaded, results, figures, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results), *(f"{k}.png" for k in figures)])
         total = time.perf_counter() - start
@@ -235,9 +257,17 @@ def run_command(
         if settings.quiet:
             return
         con = stdout()
-        con.print(summary_table(tables))
+        simulated = {n: rows for n, rows in tables.items()
+                     if results[n].attrs.get("analysis") == "simulate"}
+        if simulated:
+            con.print(summary_table(simulated))
+        from rotorlab.cli._linear import linear_tables
+
+        linear = {n: ds for n, ds in results.items() if n not in simulated}
+        for table in linear_tables(linear, tables):
+            con.print(table)
         if settings.verbose:
-            for name, rows in tables.items():
+            for name, rows in simulated.items():
                 con.print(outcome_table(name, rows))
             con.print(f"computed in {computed:.1f} s, total {total:.1f} s", markup=False)
         con.print(f"Report: {report}", markup=False)
@@ -309,6 +339,10 @@ def simulate_command(
             if not out.absolute().parent.is_dir():
                 raise BadInput(f"--out = {out}: folder {out.absolute().parent} does not exist")
         loaded = _load(case)
+        if loaded.model.type != "jeffcott_balls":
+            raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; simulate "
+                           "needs a rotor with balls ([model] type jeffcott_balls); for a "
+                           "linear rotor use 'rotorlab campbell' or 'rotorlab modes'")
         spec = _pick_analysis(loaded, analysis)
         model_spec = loaded.model
         p = model_spec.critical_speed()

@@ -118,7 +118,8 @@ def handled(settings: Settings) -> Iterator[None]:
 
 
 @contextlib.contextmanager
-def progress_bar(settings: Settings, tasks: Mapping[str, int]) -> Iterator[Any]:
+def progress_bar(settings: Settings, tasks: Mapping[str, int],
+                 units: Mapping[str, str] | None = None) -> Iterator[Any]:
     """Show a progress bar on stderr with one line per task; yield ``update(name, done, total)``.
 
     The bar is drawn only when stderr is a terminal (nothing is written otherwise).
@@ -129,6 +130,8 @@ def progress_bar(settings: Settings, tasks: Mapping[str, int]) -> Iterator[Any]:
         No bar when quiet.
     tasks : mapping of str to int
         Task name to its number of steps (trajectories).
+    units : mapping of str to str, optional
+        Task name to the word shown after its count (default ``"trajectories"``).
     """
     from rich.progress import (
         BarColumn,
@@ -145,17 +148,19 @@ def progress_bar(settings: Settings, tasks: Mapping[str, int]) -> Iterator[Any]:
         TextColumn("{task.description}"),
         BarColumn(),
         MofNCompleteColumn(),
-        TextColumn("trajectories"),
+        TextColumn("{task.fields[unit]}"),
         TimeElapsedColumn(),
         console=console,
         transient=True,
         disable=settings.quiet or not console.is_terminal,
     )
-    ids = {name: bar.add_task(name, total=total) for name, total in tasks.items()}
+    words = dict(units or {})
+    ids = {name: bar.add_task(name, total=total, unit=words.get(name, "trajectories"))
+           for name, total in tasks.items()}
 
     def update(name: str, done: int, total: int) -> None:
         if name not in ids:
-            ids[name] = bar.add_task(name, total=total)
+            ids[name] = bar.add_task(name, total=total, unit=words.get(name, "trajectories"))
         bar.update(ids[name], completed=done, total=total)
 
     with bar:

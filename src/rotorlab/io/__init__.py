@@ -1,7 +1,7 @@
 """Case files (TOML, validated, converted to SI) and result files (NetCDF).
 
 A case file describes one model and the analyses to run on it. Plain numbers are SI; strings
-carry units (``"14800 rpm"``, ``"882 kg*mm^2"``, ``"30 deg"``, ``"3 MN/m"``) and are converted
+carry units (``"14800 rpm"``, ``"882 kg*mm^2"``, ``"30 deg"``, ``"3 MN/m"``, ``"211 GPa"``) and are converted
 with pint, which is imported only when a unit has to be read. Every problem in a case is
 reported in one :class:`CaseError` naming the key path, the value and what is allowed.
 
@@ -16,6 +16,7 @@ Examples
 from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, validate_case
 from rotorlab.io._errors import CaseError, Issue
 from rotorlab.io._results import load_netcdf, missing_units, save_netcdf
+from rotorlab.io._linear_common import AbstractLinearModelSpec
 from rotorlab.io._schema import (
     ANALYSIS_SPECS,
     MODEL_SPECS,
@@ -25,12 +26,20 @@ from rotorlab.io._schema import (
     AbstractModelSpec,
     AbstractSpeedProfile,
     Ball,
+    CampbellSpec,
     Case,
     ConstantSpeed,
+    CriticalSpeedsSpec,
+    DataAuditSpec,
+    FeRotorSpec,
     HillSpeed,
+    IdentifySpec,
     JeffcottBallsSpec,
+    ModesSpec,
+    MultibodySpec,
     RampSpeed,
     SimulateSpec,
+    UnbalanceResponseSpec,
     integer,
     quantity,
 )
@@ -44,18 +53,27 @@ __all__ = [
     "SCHEMA_VERSION",
     "SPEED_PROFILES",
     "AbstractAnalysisSpec",
+    "AbstractLinearModelSpec",
     "AbstractModelSpec",
     "AbstractSpeedProfile",
     "Ball",
+    "CampbellSpec",
     "Case",
     "CaseError",
     "ConstantSpeed",
+    "CriticalSpeedsSpec",
+    "DataAuditSpec",
     "Dimension",
+    "FeRotorSpec",
     "HillSpeed",
+    "IdentifySpec",
     "Issue",
     "JeffcottBallsSpec",
+    "ModesSpec",
+    "MultibodySpec",
     "RampSpeed",
     "SimulateSpec",
+    "UnbalanceResponseSpec",
     "builtin_cases",
     "dump_case",
     "integer",

@@ -342,6 +342,10 @@ def _problems(exc: ValidationError, doc: Mapping[str, Any]) -> list[str]:
             lines.append(_line(doc, path, "must be a table", value))
         elif kind in ("tuple_type", "list_type"):
             lines.append(_line(doc, path, "must be a list", value))
+        elif kind == "too_short":
+            least = ctx.get("min_length", 1)
+            lines.append(_line(doc, path, f"must have at least {least} entr"
+                               + ("y" if least == 1 else "ies"), value))
         elif kind == "rotorlab":
             lines.append(_line(doc, path, str(ctx.get("detail", err["msg"])), value))
         elif kind == "value_error":

@@ -93,6 +93,12 @@ _DIMENSION_LIST = (
     Dimension("pressure", "pressure", "Pa", "Pa"),
     Dimension("energy", "energy", "J", "J"),
     Dimension("power", "power", "W", "W"),
+    Dimension("flexural_rigidity", "flexural rigidity", "N*m^2", "N*m^2"),
+    Dimension("density", "density", "kg/m^3", "kg/m^3"),
+    Dimension("unbalance", "unbalance", "kg*m", "kg*m"),
+    Dimension("stiffness_coupling", "translation-tilt stiffness", "N/rad", "N", (0, -1)),
+    Dimension("compliance_coupling", "translation-tilt compliance", "1/N", "1/N", (0, 1)),
+    Dimension("rotational_compliance", "rotational compliance", "rad/(N*m)", "1/(N*m)", (0, 1)),
 )
 
 #: The dimensions known to :func:`to_si`, by name.
@@ -291,7 +297,9 @@ def to_si(value: Any, dimension: str, where: str) -> float:
         ``"angular_speed"``, ``"frequency"``, ``"angular_acceleration"``, ``"stiffness"``,
         ``"damping"``, ``"compliance"``, ``"inertia"``, ``"torque_damping"``,
         ``"rotational_stiffness"``, ``"force"``, ``"torque"``, ``"velocity"``,
-        ``"acceleration"``, ``"pressure"``, ``"energy"``, ``"power"``, ``"dimensionless"``.
+        ``"acceleration"``, ``"pressure"``, ``"energy"``, ``"power"``, ``"flexural_rigidity"``,
+        ``"density"``, ``"unbalance"``, ``"stiffness_coupling"``, ``"compliance_coupling"``,
+        ``"rotational_compliance"``, ``"dimensionless"``.
     where : str
         Key path named in the error message, e.g. ``"model.stiffness"``.
 
@@ -299,7 +307,7 @@ def to_si(value: Any, dimension: str, where: str) -> float:
     -------
     float
         The value in the SI unit of ``dimension`` (kg, m, s, rad, rad/s, Hz, N/m, N*s/m, kg*m^2,
-        N*m*s/rad, ...).
+        N*m*s/rad, N*m^2, kg/m^3, kg*m, ...).
 
     Raises
     ------
@@ -324,6 +332,10 @@ def to_si(value: Any, dimension: str, where: str) -> float:
     0.000882
     >>> to_si(0.5, "length", "radius")
     0.5
+    >>> to_si("211 GPa", "pressure", "youngs_modulus"), to_si("7810 kg/m^3", "density", "rho")
+    (211000000000.0, 7810.0)
+    >>> to_si("1.07 rad/(kN*m)", "rotational_compliance", "delta")
+    0.00107
     >>> to_si("3 m", "mass", "disc_mass")
     Traceback (most recent call last):
     ...

@@ -5,6 +5,7 @@ or using it changes no global matplotlib state.
 """
 
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
+from rotorlab.plot._linear import linear_figures, mode_shapes_figure, unbalance_response_figure
 from rotorlab.plot._stability import stability_chart_figure
 from rotorlab.plot._simulate import (
     amplitude_figure,
@@ -23,8 +24,11 @@ __all__ = [
     "campbell_figure",
     "configuration_label",
     "final_positions_figure",
+    "linear_figures",
+    "mode_shapes_figure",
     "orbit_figure",
     "simulation_figures",
     "speed_label",
     "stability_chart_figure",
+    "unbalance_response_figure",
 ]

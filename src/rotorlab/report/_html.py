@@ -11,6 +11,8 @@ import re
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
+from rotorlab.report._linear import linear_model_rows, linear_section
+
 __all__ = ["render_report", "parameter_rows", "versions"]
 
 _UNIT = re.compile(r"\(([^()]*)\)\s*$")
@@ -172,6 +174,8 @@ def _summary_table(rows: Sequence[Mapping[str, Any]]) -> str:
 def _derived_rows(case: Any) -> list[tuple[str, str, str, str]]:
     model = case.model
     rows = []
+    if hasattr(model, "node_labels"):
+        return linear_model_rows(model)
     p = model.critical_speed()
     if p is not None:
         rows.append(("critical speed p = sqrt(c / M)", f"{p:.6g}", "rad/s", _other_units(p, "rad/s")))
@@ -213,7 +217,8 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
         Rendered figures by file stem; a figure whose stem starts with ``<analysis name>_`` is
         shown in that analysis' section, others under "Other figures".
     summary_tables : mapping of str to list of dict
-        Rows of :func:`rotorlab.analyses.summarize` by analysis name.
+        Rows of :func:`rotorlab.analyses.summarize` by analysis name (outcomes of a simulation;
+        critical speeds, modes, fitted parameters or findings of a linear analysis).
     files : sequence of str
         Names of the files written next to the report (linked relatively).
     case_text : str
@@ -250,14 +255,16 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
         parts.append(f"<h2>Analysis: {_e(name)} ({_e(analysis.type)})</h2>")
         rows = parameter_rows(analysis, f"analysis.{name}")
         ds = results.get(name)
-        if ds is not None and "speed" in ds.coords:
+        if ds is not None and "speed_ratio" in ds.coords:
             for k, om in enumerate(ds.speed.values):
                 rows.append(("spin speed used", f"{float(om):.6g}", "rad/s",
                              f"{_other_units(float(om), 'rad/s')}; "
                              f"omega/p = {float(ds.speed_ratio.values[k]):.4g}"))  # fmt: skip
         parts.append(_table(("key", "value", "unit", "also"), rows, numeric={1}))
-        if name in summary_tables:
+        if name in summary_tables and analysis.type == "simulate":
             parts += ["<h3>Outcomes</h3>", _summary_table(summary_tables[name])]
+        elif name in summary_tables and ds is not None:
+            parts.append(linear_section(analysis.type, ds, summary_tables[name], _table))
         for key, png in pngs.items():
             if key.startswith(f"{name}_"):
                 parts.append(_figure(key, png))

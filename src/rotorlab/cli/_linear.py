@@ -1,0 +1,247 @@
+"""The linear-rotordynamics commands: ``rotorlab campbell`` and ``rotorlab modes``.
+
+Both run on a case whose model is a linear rotor (``multibody`` or ``fe_rotor``), take their
+defaults from the case's first analysis of the same type, and print tables, or with ``--json``
+only a JSON document on stdout. Imported by :mod:`rotorlab.cli`, which registers them on the
+shared :data:`~rotorlab.cli._app.app`.
+"""
+
+from __future__ import annotations
+
+import math
+import os
+import tempfile
+from collections.abc import Mapping, Sequence
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+import typer
+
+from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
+from rotorlab.cli._options import check_plot_path, check_speed, parse_speed_range
+from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
+
+__all__ = ["campbell_command", "modes_command", "linear_tables", "write_figure"]
+
+_RPM_TO_RAD = math.pi / 30.0
+_WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
+_LINEAR_MODELS = ("multibody", "fe_rotor")
+
+
+def _linear_case(source: str, command: str) -> Any:
+    loaded = _load(source)
+    if loaded.model.type not in _LINEAR_MODELS:
+        raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; {command} "
+                       f"needs a linear rotor model ([model] type {' or '.join(_LINEAR_MODELS)})")
+    return loaded
+
+
+def _first(loaded: Any, kind: str) -> Any:
+    return next((a for a in loaded.analyses if a.type == kind), None)
+
+
+def _check_modes(modes: int | None, n_dof: int) -> None:
+    if modes is not None and not 1 <= modes <= n_dof:
+        raise BadInput(f"--modes = {modes}: must be an integer from 1 to {n_dof} (the model's "
+                       "number of modes)")
+
+
+def write_figure(fig: Any, path: Path) -> Path:
+    """Save a figure atomically (a temporary file in the same folder, then a rename)."""
+    fd, tmp = tempfile.mkstemp(prefix=f".{path.name}.", suffix=path.suffix,
+                               dir=path.absolute().parent)
+    os.close(fd)
+    try:
+        fig.savefig(tmp, dpi=120)
+        umask = os.umask(0)
+        os.umask(umask)
+        os.chmod(tmp, 0o666 & ~umask)
+        os.replace(tmp, path)
+    except BaseException:
+        Path(tmp).unlink(missing_ok=True)
+        raise
+    return path
+
+
+def _table(title: str, header: Sequence[str], rows: Sequence[Sequence[str]],
+           right: set[int] = frozenset()) -> Any:
+    from rich.table import Table
+
+    table = Table(title=title, title_justify="left")
+    for j, name in enumerate(header):
+        table.add_column(name, justify="right" if j in right else "left")
+    for row in rows:
+        table.add_row(*row)
+    return table
+
+
+def _g(value: float | None, digits: int = 6) -> str:
+    return "-" if value is None else f"{value:.{digits}g}"
+
+
+def _crossing_table(title: str, rows: Sequence[Mapping[str, Any]]) -> Any:
+    body = [(_g(r["speed_rpm"]), _g(r["frequency_hz"]), f"{r['harmonic']}x",
+             str(r.get("mode", "-")), _WHIRL[r["whirl"]]) for r in rows]
+    return _table(title, ("speed (rpm)", "frequency (Hz)", "line", "branch", "whirl"), body,
+                  {0, 1})
+
+
+def _modes_table(title: str, rows: Sequence[Mapping[str, Any]]) -> Any:
+    body = [(str(r["mode"]), _g(r["frequency_hz"]), _WHIRL[r["whirl"]],
+             _g(r["damping_ratio"], 4), _g(r["log_decrement"], 4)) for r in rows]
+    return _table(title, ("mode", "frequency (Hz)", "whirl", "damping ratio", "log decrement"),
+                  body, {1, 3, 4})
+
+
+def linear_tables(results: Mapping[str, Any], tables: Mapping[str, Sequence[Mapping[str, Any]]]
+                  ) -> list[Any]:
+    """Return rich tables summing up the linear results of a run (one per analysis)."""
+    out = []
+    for name, ds in results.items():
+        kind, rows = ds.attrs.get("analysis"), tables[name]
+        if kind in ("campbell", "critical_speeds"):
+            out.append(_crossing_table(f"{name}: critical speeds", rows))
+        elif kind == "modes":
+            speed = float(ds.speed_rpm.values)
+            out.append(_modes_table(f"{name}: modes at {speed:.6g} rpm", rows))
+        elif kind == "unbalance_response":
+            body = [(r["label"], "-" if r["peak_amplitude"] is None
+                     else f"{r['peak_amplitude'] * 1e3:.4g}", _g(r["peak_speed_rpm"]))
+                    for r in rows]
+            out.append(_table(f"{name}: largest orbit", ("node", "semi-major axis (mm)",
+                                                         "at speed (rpm)"), body, {1, 2}))
+        elif kind == "identify":
+            body = [(r["parameter"], _g(r["initial"]), _g(r["value"]), r["unit"],
+                     "-" if r["relative_std"] is None else f"{100 * r['relative_std']:.3g} %")
+                    for r in rows]
+            out.append(_table(f"{name}: identified (rms residual {ds.attrs['rms']:.2e})",
+                              ("parameter", "start", "identified", "unit", "std"), body,
+                              {1, 2, 4}))
+        elif kind == "data_audit":
+            body = [(r["finding"], r["printed"], r["resolved"]) for r in rows]
+            out.append(_table(f"{name}: findings", ("finding", "as printed", "resolved as"),
+                              body))
+    return out
+
+
+@app.command("campbell")
+def campbell_command(
+    ctx: typer.Context,
+    case: CaseArg,
+    speeds_rpm: Annotated[Optional[str], typer.Option(  # noqa: UP007
+        "--speeds-rpm", metavar="START:STOP:N",
+        help="N equally spaced speeds from START to STOP (rpm); default: the case's campbell "
+             "analysis.")] = None,
+    modes: Annotated[Optional[int], typer.Option(  # noqa: UP007
+        "--modes", metavar="K",
+        help="Number of mode branches (default: the case's, or 6).")] = None,
+    harmonic: Annotated[Optional[list[int]], typer.Option(  # noqa: UP007
+        "--harmonic", metavar="H", help="Excitation line H x for critical speeds; repeatable "
+                                        "(default: the case's, or 1).")] = None,
+    plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
+        "--plot", metavar="FILE", help="Write the Campbell diagram (.png, .pdf or .svg).")] = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Campbell diagram of a linear rotor: natural frequencies, whirl and critical speeds.
+
+    JSON: {"speed_rpm": [...], "frequency_hz": [[per mode] per speed], "whirl": [["F"|"B"|"M",
+    ...] per speed], "critical_speeds_rpm": [...]}.
+    """
+    settings = _settings(ctx)
+    with handled(settings):
+        rng = None if speeds_rpm is None else parse_speed_range(speeds_rpm)
+        if modes is not None and modes < 1:
+            raise BadInput(f"--modes = {modes}: must be an integer >= 1")
+        for h in harmonic or ():
+            if h < 1:
+                raise BadInput(f"--harmonic = {h}: must be an integer >= 1")
+        if plot is not None:
+            check_plot_path(plot)
+        loaded = _linear_case(case, "campbell")
+        spec = _first(loaded, "campbell")
+        if rng is None and spec is None:
+            raise BadInput(f"case {loaded.name} has no campbell analysis: give --speeds-rpm "
+                           "START:STOP:N")
+        n_dof = loaded.model.n_dof
+        _check_modes(modes, n_dof)
+        from rotorlab.io import CampbellSpec
+
+        start, stop, n = (rng[0] * _RPM_TO_RAD, rng[1] * _RPM_TO_RAD, rng[2]) if rng else (
+            spec.start, spec.stop, spec.n_speeds)
+        n_modes = modes or (spec.n_modes if spec is not None else 6)
+        analysis = CampbellSpec(
+            name=spec.name if spec is not None else "campbell", start=start, stop=stop,
+            n_speeds=n, n_modes=min(n_modes, n_dof),
+            harmonics=tuple(dict.fromkeys(harmonic)) if harmonic else (
+                spec.harmonics if spec is not None else (1,)))
+        info(settings, f"{loaded.name}: {analysis.describe(loaded.model)} ...",
+             json_mode=json_out)
+        from rotorlab.analyses import campbell_summary, run_linear_analysis, summarize_linear
+
+        with status(settings, "Computing the Campbell diagram ..."):
+            ds = run_linear_analysis(loaded.model, analysis)
+        if plot is not None:
+            from rotorlab.plot import campbell_figure
+
+            write_figure(campbell_figure(ds, title=f"Campbell diagram: {loaded.name}"), plot)
+        if json_out:
+            emit_json(campbell_summary(ds))
+            return
+        if settings.quiet:
+            return
+        con = stdout()
+        con.print(_crossing_table(f"{loaded.name}: critical speeds", summarize_linear(ds)))
+        doc = campbell_summary(ds)
+        first, last = doc["speed_rpm"][0], doc["speed_rpm"][-1]
+        body = [(str(k), _WHIRL[doc["whirl"][0][k]], _g(doc["frequency_hz"][0][k]),
+                 _WHIRL[doc["whirl"][-1][k]], _g(doc["frequency_hz"][-1][k]))
+                for k in range(len(doc["frequency_hz"][0]))]
+        con.print(_table(f"{loaded.name}: natural frequencies (Hz)",
+                         ("branch", f"whirl at {first:.6g} rpm", f"at {first:.6g} rpm",
+                          f"whirl at {last:.6g} rpm", f"at {last:.6g} rpm"), body, {2, 4}))
+        if plot is not None:
+            con.print(f"Wrote {plot}", markup=False)
+
+
+@app.command("modes")
+def modes_command(
+    ctx: typer.Context,
+    case: CaseArg,
+    speed_rpm: Annotated[Optional[float], typer.Option(  # noqa: UP007
+        "--speed-rpm", metavar="RPM", help="Spin speed (rpm); default: the case's modes "
+                                           "analysis, or 0.")] = None,
+    modes: Annotated[Optional[int], typer.Option(  # noqa: UP007
+        "--modes", metavar="K", help="Number of modes, the lowest (default: all).")] = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Complex modes of a linear rotor at one speed: frequency, whirl, damping.
+
+    JSON: {"speed_rpm": X, "frequency_hz": [...], "whirl": ["F"|"B"|"M", ...],
+    "damping_ratio": [...], "log_decrement": [...]}.
+    """
+    settings = _settings(ctx)
+    with handled(settings):
+        if speed_rpm is not None:
+            check_speed(speed_rpm)
+        if modes is not None and modes < 1:
+            raise BadInput(f"--modes = {modes}: must be an integer >= 1")
+        loaded = _linear_case(case, "modes")
+        _check_modes(modes, loaded.model.n_dof)
+        spec = _first(loaded, "modes")
+        from rotorlab.io import ModesSpec
+
+        speed = speed_rpm * _RPM_TO_RAD if speed_rpm is not None else (
+            spec.speed if spec is not None else 0.0)
+        analysis = ModesSpec(name="modes", speed=speed,
+                             n_modes=modes if modes is not None else (
+                                 spec.n_modes if spec is not None else None))
+        from rotorlab.analyses import modes_summary, run_linear_analysis, summarize_linear
+
+        ds = run_linear_analysis(loaded.model, analysis)
+        if json_out:
+            emit_json(modes_summary(ds))
+            return
+        if settings.quiet:
+            return
+        stdout().print(_modes_table(f"{loaded.name}: modes at {speed / _RPM_TO_RAD:.6g} rpm",
+                                    summarize_linear(ds)))

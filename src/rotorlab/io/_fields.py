@@ -1,0 +1,329 @@
+"""Building blocks of the case-file schema: field types with units, and the abstract specs.
+
+:func:`quantity`, :func:`integer` and :func:`flag` declare fields whose values are checked and
+converted to SI when a case is read; :class:`AbstractModelSpec` and
+:class:`AbstractAnalysisSpec` are the bases of every ``[model]`` type and ``[[analysis]]``
+type (see the "For implementers" list in :mod:`rotorlab.io._schema`). Model and analysis
+modules import from here, and :mod:`rotorlab.io._schema` assembles them into the registries.
+"""
+
+from __future__ import annotations
+
+import math
+import re
+from typing import TYPE_CHECKING, Annotated, Any, ClassVar
+
+from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchema, model_validator
+from pydantic_core import PydanticCustomError
+
+from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
+from rotorlab.io._units import DIMENSIONS, UnitError, convert
+
+if TYPE_CHECKING:
+    from rotorlab.io._jeffcott_specs import AbstractSpeedProfile
+
+__all__ = [
+    "quantity",
+    "integer",
+    "flag",
+    "AbstractModelSpec",
+    "AbstractAnalysisSpec",
+    "exclusive_issues",
+    "duplicate_name_issues",
+    "plain_data",
+]
+
+_NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
+
+
+def _error(detail: str) -> PydanticCustomError:
+    return PydanticCustomError("rotorlab", "{detail}", {"detail": detail})
+
+
+def _bounds_text(gt: float | None, ge: float | None, lt: float | None, le: float | None) -> str:
+    parts = []
+    if gt is not None:
+        parts.append(f"> {gt:g}")
+    if ge is not None:
+        parts.append(f">= {ge:g}")
+    if lt is not None:
+        parts.append(f"< {lt:g}")
+    if le is not None:
+        parts.append(f"<= {le:g}")
+    return " and ".join(parts)
+
+
+class _QuantityValidator:
+    """Convert a case-file value to SI (see :func:`convert`) and check its bounds."""
+
+    def __init__(self, dimension: str, gt=None, ge=None, lt=None, le=None) -> None:
+        self.dimension = DIMENSIONS[dimension]
+        self.bounds = (gt, ge, lt, le)
+
+    def __call__(self, value: Any) -> float:
+        try:
+            x = convert(value, self.dimension)
+        except UnitError as exc:
+            raise _error(str(exc)) from None
+        gt, ge, lt, le = self.bounds
+        if (
+            (gt is not None and not x > gt)
+            or (ge is not None and not x >= ge)
+            or (lt is not None and not x < lt)
+            or (le is not None and not x <= le)
+        ):
+            si = self.dimension.si
+            detail = f"must be {_bounds_text(gt, ge, lt, le)}" + (f" ({si})" if si else "")
+            if isinstance(value, str):
+                detail += f", got {x:.6g}" + (f" {si}" if si else "")
+            raise _error(detail)
+        return x
+
+
+def quantity(
+    dimension: str,
+    *,
+    gt: float | None = None,
+    ge: float | None = None,
+    lt: float | None = None,
+    le: float | None = None,
+) -> Any:
+    """Return the annotated type of a quantity field (a float in SI after validation).
+
+    Parameters
+    ----------
+    dimension : str
+        A key of :data:`rotorlab.io.DIMENSIONS`.
+    gt, ge, lt, le : float, optional
+        Bounds on the SI value.
+
+    Returns
+    -------
+    typing.Annotated
+        ``Annotated[float, ...]`` accepting a number (SI) or a string with a unit.
+    """
+    dim = DIMENSIONS[dimension]
+    schema = {
+        "anyOf": [{"type": "number"}, {"type": "string"}],
+        "description": f"{dim.noun}: a number in {dim.si or 'SI'} or a string with a unit",
+    }
+    return Annotated[
+        float, PlainValidator(_QuantityValidator(dimension, gt, ge, lt, le)), WithJsonSchema(schema)
+    ]
+
+
+class _IntegerValidator:
+    def __init__(self, ge: int | None) -> None:
+        self.ge = ge
+
+    def __call__(self, value: Any) -> int:
+        allowed = "an integer" + (f" >= {self.ge}" if self.ge is not None else "")
+        if isinstance(value, bool) or not isinstance(value, (int, float)):
+            raise _error(f"must be {allowed}")
+        if isinstance(value, float):
+            if not (math.isfinite(value) and value.is_integer()):
+                raise _error(f"must be {allowed}")
+            value = int(value)
+        if self.ge is not None and value < self.ge:
+            raise _error(f"must be {allowed}")
+        return int(value)
+
+
+def integer(*, ge: int | None = None) -> Any:
+    """Return the annotated type of an integer field (an integral float such as 2e3 is accepted).
+
+    Parameters
+    ----------
+    ge : int, optional
+        Lower bound.
+    """
+    return Annotated[
+        int, PlainValidator(_IntegerValidator(ge)), WithJsonSchema({"type": "integer"})
+    ]
+
+
+class _FlagValidator:
+    def __call__(self, value: Any) -> bool:
+        if not isinstance(value, bool):
+            raise _error("must be true or false")
+        return value
+
+
+def flag() -> Any:
+    """Return the annotated type of a boolean field (only TOML ``true``/``false`` accepted)."""
+    return Annotated[bool, PlainValidator(_FlagValidator()), WithJsonSchema({"type": "boolean"})]
+
+
+class _TextValidator:
+    def __init__(self, pattern: re.Pattern[str] | None, what: str) -> None:
+        self.pattern = pattern
+        self.what = what
+
+    def __call__(self, value: Any) -> str:
+        if not isinstance(value, str):
+            raise _error(f"must be a string ({self.what})")
+        if self.pattern is not None and not self.pattern.match(value):
+            raise _error(f"must be {self.what}")
+        return value
+
+
+_Name = Annotated[
+    str,
+    PlainValidator(
+        _TextValidator(
+            _NAME,
+            "1 to 64 letters, digits, '_', '-' or '.', starting with a letter or digit",
+        )
+    ),
+    WithJsonSchema({"type": "string", "pattern": _NAME.pattern}),
+]
+_Text = Annotated[
+    str, PlainValidator(_TextValidator(None, "free text")), WithJsonSchema({"type": "string"})
+]
+
+
+class _ChoiceValidator:
+    def __init__(self, options: tuple[str, ...]) -> None:
+        self.options = options
+
+    def __call__(self, value: Any) -> str:
+        if value in self.options:
+            return value
+        quoted = ", ".join(f'"{o}"' for o in self.options)
+        hint = did_you_mean(value, self.options) if isinstance(value, str) else ""
+        raise _error(f"must be one of {quoted}" + (f"; {hint}" if hint else ""))
+
+
+def _choice(*options: str) -> Any:
+    return Annotated[
+        str, PlainValidator(_ChoiceValidator(options)), WithJsonSchema({"enum": list(options)})
+    ]
+
+
+class _Spec(BaseModel):
+    """Base of all schema models: frozen, and unknown keys are errors."""
+
+    model_config = ConfigDict(extra="forbid", frozen=True)
+
+
+class AbstractModelSpec(_Spec):
+    """Base of the model specifications (the ``[model]`` table).
+
+    Subclasses add ``type: Literal["<name>"]`` and their parameters; see the module docstring.
+    """
+
+    @property
+    def n_balls(self) -> int:
+        """Number of balancing bodies (balls, pendulums) after expanding ``count``."""
+        return 0
+
+    def critical_speed(self) -> float | None:
+        """Return the reference (critical) speed p used by ``speed_ratio`` (rad/s), if any."""
+        return None
+
+    def speed_profile(self) -> AbstractSpeedProfile | None:
+        """Return the model's own spin-speed profile, if it has one."""
+        return None
+
+    def describe(self) -> str:
+        """Return a one-line description of the model (shown by ``rotorlab validate``)."""
+        return str(getattr(self, "type", type(self).__name__))
+
+
+def exclusive_issues(
+    pairs: tuple[tuple[str, str, bool], ...], present: set[str]
+) -> list[Issue]:
+    """Check pairs of mutually exclusive keys.
+
+    Parameters
+    ----------
+    pairs : tuple of (str, str, bool)
+        ``(a, b, required)``: ``a`` and ``b`` exclude each other; if ``required``, one of them
+        must be given.
+    present : set of str
+        The keys given.
+
+    Returns
+    -------
+    list of Issue
+        With an empty ``loc`` (the analysis itself).
+    """
+    issues = []
+    for a, b, required in pairs:
+        if a in present and b in present:
+            issues.append(
+                Issue((), f"{a} and {b} exclude each other: give only one", show_value=False)
+            )
+        elif required and a not in present and b not in present:
+            issues.append(Issue((), f"give one of {a} or {b}", show_value=False))
+    return issues
+
+
+def duplicate_name_issues(entries: list[tuple[str | None, str]]) -> list[Issue]:
+    """Find analyses whose names (given, or defaulted to ``<type>-<index>``) collide.
+
+    Parameters
+    ----------
+    entries : list of (str or None, str)
+        For each analysis, its given name (None if omitted) and its type.
+
+    Returns
+    -------
+    list of Issue
+        ``loc`` is ``(index, "name")`` for a given name, ``(index,)`` for a default one.
+    """
+    first: dict[str, int] = {}
+    issues = []
+    for index, (given, kind) in enumerate(entries):
+        name = given if given is not None else f"{kind}-{index}"
+        if name in first:
+            message = f"duplicate analysis name '{name}' (also used by analysis[{first[name]}])"
+            if given is not None:
+                issues.append(Issue((index, "name"), message, given))
+            else:
+                issues.append(Issue((index,), message + "; give a name", show_value=False))
+        else:
+            first[name] = index
+    return issues
+
+
+class AbstractAnalysisSpec(_Spec):
+    """Base of the analysis specifications (the ``[[analysis]]`` entries).
+
+    Parameters
+    ----------
+    name : str, optional
+        Unique name of the analysis; defaults to ``"<type>-<index>"`` (0-based index in the
+        file). Names become file names of results.
+    """
+
+    #: Pairs ``(a, b, required)`` of mutually exclusive keys.
+    exclusive: ClassVar[tuple[tuple[str, str, bool], ...]] = ()
+
+    type: str
+    name: _Name | None = Field(None, description="unique name of the analysis")
+
+    @model_validator(mode="after")
+    def _check_exclusive(self) -> AbstractAnalysisSpec:
+        present = {key for key in type(self).model_fields if getattr(self, key) is not None}
+        issues = exclusive_issues(self.exclusive, present)
+        if issues:
+            raise IssueGroup(issues)
+        return self
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        """Return the problems of this analysis that depend on the model (``loc`` relative)."""
+        return []
+
+    def describe(self, model: AbstractModelSpec) -> str:
+        """Return a one-line description of what the analysis computes on ``model``."""
+        return f"{self.type} analysis"
+
+
+def plain_data(obj: Any) -> Any:
+    """Turn dumped pydantic data into plain data: tuples become lists, recursively."""
+    if isinstance(obj, dict):
+        return {k: plain_data(v) for k, v in obj.items()}
+    if isinstance(obj, (list, tuple)):
+        return [plain_data(v) for v in obj]
+    return obj

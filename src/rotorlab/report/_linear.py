@@ -1,0 +1,149 @@
+"""HTML tables of the linear analyses in the report (critical speeds, modes, fits, audits)."""
+
+from __future__ import annotations
+
+import html
+from collections.abc import Callable, Sequence
+from typing import Any
+
+import numpy as np
+
+__all__ = ["linear_section", "linear_model_rows"]
+
+_WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
+_WHIRL_CODE = {1: "forward", -1: "backward", 0: "mixed"}
+
+
+def _e(value: Any) -> str:
+    return html.escape(str(value), quote=True)
+
+
+def _g(value: float | None, digits: int = 6) -> str:
+    return "–" if value is None or not np.isfinite(value) else f"{value:.{digits}g}"
+
+
+def _crossings(rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    if not rows:
+        return '<p class="muted">No branch crosses an excitation line in this range.</p>'
+    header = ["speed (rpm)", "speed (rad/s)", "frequency (Hz)", "line", "whirl"]
+    has_mode = "mode" in rows[0]
+    if has_mode:
+        header.insert(4, "branch")
+    body = []
+    for r in rows:
+        row = [_g(r["speed_rpm"]), _g(r["speed"]), _g(r["frequency_hz"]), f"{r['harmonic']}x"]
+        if has_mode:
+            row.append(str(r["mode"]))
+        body.append(row + [_WHIRL[r["whirl"]]])
+    return table(header, body, numeric={0, 1, 2})
+
+
+def _campbell(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    freq, whirl = ds.frequency.values, ds.whirl.values
+    rpm = ds.speed_rpm.values
+    ends = [(str(k), _WHIRL_CODE[int(whirl[0, k])], _g(freq[0, k]),
+             _WHIRL_CODE[int(whirl[-1, k])], _g(freq[-1, k])) for k in range(freq.shape[1])]
+    unstable = rpm[~ds.stable.values.astype(bool)]
+    stability = ("Every mode decays or is neutral over the whole range (no instability)."
+                 if unstable.size == 0 else
+                 f"Unstable at {unstable.size} of {rpm.size} speeds, from {unstable[0]:.6g} rpm.")
+    return "\n".join([
+        "<h3>Critical speeds (crossings with the excitation lines)</h3>",
+        _crossings(rows, table),
+        "<h3>Natural frequencies at the ends of the range</h3>",
+        table(("branch", f"whirl at {rpm[0]:.6g} rpm", "frequency (Hz)",
+               f"whirl at {rpm[-1]:.6g} rpm", "frequency (Hz)"), ends, numeric={2, 4}),
+        f'<p class="muted">{_e(stability)}</p>',
+    ])
+
+
+def _modes(rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    body = [(str(r["mode"]), _g(r["frequency_hz"]), _WHIRL[r["whirl"]], _g(r["damping_ratio"], 4),
+             _g(r["log_decrement"], 4)) for r in rows]
+    return "<h3>Modes</h3>\n" + table(("mode", "frequency (Hz)", "whirl", "damping ratio",
+                                        "log decrement"), body, numeric={1, 3, 4})
+
+
+def _unbalance(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    parts = ", ".join(f"{m:.6g} kg*m at node {n} ({ph:.4g} rad)" for n, m, ph in zip(
+        ds.attrs.get("unbalance_nodes", []), ds.attrs.get("unbalance_magnitudes", []),
+        ds.attrs.get("unbalance_phases", [])))
+    body = [(r["label"], str(r["node"]),
+             "–" if r["peak_amplitude"] is None else f"{r['peak_amplitude'] * 1e3:.4g}",
+             _g(r["peak_speed_rpm"])) for r in rows]
+    return "\n".join([
+        f'<p class="muted">Unbalance: {_e(parts)}.</p>',
+        "<h3>Largest orbit on the speed grid</h3>",
+        table(("node", "index", "orbit semi-major axis (mm)", "at speed (rpm)"), body,
+              numeric={2, 3}),
+    ])
+
+
+def _identify(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    params = [(r["parameter"], r["unit"], _g(r["initial"]), _g(r["value"]),
+               "–" if r["relative_std"] is None else f"{100 * r['relative_std']:.3g} %")
+              for r in rows]
+    meas = [(_g(float(ds.measurement_speed_rpm.values[j])), str(int(ds.measurement_mode.values[j])),
+             _g(float(ds.measured.values[j])), _g(float(ds.predicted.values[j])),
+             f"{float(ds.residual.values[j]):.3e}") for j in range(ds.sizes["measurement"])]
+    ok = "converged" if int(ds.attrs.get("success", 0)) else "did NOT converge"
+    return "\n".join([
+        "<h3>Identified parameters</h3>",
+        table(("parameter", "unit", "start", "identified", "standard deviation"), params,
+              numeric={2, 3, 4}),
+        "<h3>Measured and fitted natural frequencies</h3>",
+        table(("speed (rpm)", "mode (rank)", "measured (Hz)", "model (Hz)",
+               "weighted relative residual"), meas, numeric={0, 2, 3, 4}),
+        f'<p class="muted">Least squares {ok} after {int(ds.attrs.get("n_evaluations", 0))} '
+        f'model evaluations; rms of the residuals {float(ds.attrs.get("rms", np.nan)):.3e}.</p>',
+    ])
+
+
+def _audit(rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    body = [(r["finding"], r["printed"], r["resolved"], r["evidence"]) for r in rows]
+    return "<h3>Data-audit findings</h3>\n" + table(("finding", "as printed", "resolved as",
+                                                      "evidence"), body)
+
+
+def linear_section(kind: str, ds: Any, rows: Sequence[dict[str, Any]],
+                   table: Callable[..., str]) -> str:
+    """Return the HTML tables of one linear analysis.
+
+    Parameters
+    ----------
+    kind : str
+        The analysis type.
+    ds : xarray.Dataset
+        Its result.
+    rows : sequence of dict
+        :func:`rotorlab.analyses.summarize_linear` of ``ds``.
+    table : callable
+        ``table(header, rows, numeric=...)`` renders an HTML table.
+
+    Returns
+    -------
+    str
+        "" for an analysis type without tables.
+    """
+    if kind == "campbell":
+        return _campbell(ds, rows, table)
+    if kind == "critical_speeds":
+        return "<h3>Critical speeds of the undamped rotor</h3>\n" + _crossings(rows, table)
+    if kind == "modes":
+        return _modes(rows, table)
+    if kind == "unbalance_response":
+        return _unbalance(ds, rows, table)
+    if kind == "identify":
+        return _identify(ds, rows, table)
+    if kind == "data_audit":
+        return _audit(rows, table)
+    return ""
+
+
+def linear_model_rows(model: Any) -> list[tuple[str, str, str, str]]:
+    """Return derived rows of a linear model: degrees of freedom and nodes (name at position)."""
+    z = model.node_positions()
+    nodes = ", ".join(f"{lab}" + ("" if not np.isfinite(p) else f" ({p * 1e3:.6g} mm)")
+                      for lab, p in zip(model.node_labels(), z))
+    return [("degrees of freedom (x, y, phi_x, phi_y per node)", str(model.n_dof), "1", ""),
+            ("nodes", nodes, "", "")]
