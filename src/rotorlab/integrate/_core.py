@@ -82,6 +82,26 @@ def _dense(y, h, k1, k3, k4, k5, k6, k7, s, out):
 
 
 @njit(cache=True, nogil=True)
+def _save_until(t_end, y_end, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, buf):
+    """Write the states at the save times in (t, t_end] of the last step; return the next index.
+
+    ``y_end`` is the state at ``t_end`` (saved exactly there); other save times use the dense
+    output, with ``buf`` as scratch.
+    """
+    n = y.shape[0]
+    while i_save < ts.shape[0] and ts[i_save] <= t_end:
+        if ts[i_save] == t_end:
+            for j in range(n):
+                ys_out[i_save, j] = y_end[j]
+        else:
+            _dense(y, h, k1, k3, k4, k5, k6, k7, (ts[i_save] - t) / h, buf)
+            for j in range(n):
+                ys_out[i_save, j] = buf[j]
+        i_save += 1
+    return i_save
+
+
+@njit(cache=True, nogil=True)
 def _rms_scaled(v, a, b, atol, rtol, n_cont):
     """RMS over the continuous components of ``v / (atol + rtol max(|a|, |b|))``."""
     acc = 0.0
@@ -410,15 +430,7 @@ def integrate_one(
 
         if k_cut < 0:
             # ---- plain accepted step: save, advance ---------------------------------------
-            while i_save < n_save and ts[i_save] <= tn:
-                if ts[i_save] == tn:
-                    for j in range(n):
-                        ys_out[i_save, j] = ynew[j]
-                else:
-                    _dense(y, h, k1, k3, k4, k5, k6, k7, (ts[i_save] - t) / h, ybuf)
-                    for j in range(n):
-                        ys_out[i_save, j] = ybuf[j]
-                i_save += 1
+            i_save = _save_until(tn, ynew, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, ybuf)
             t = tn
             for i in range(n):
                 y[i] = ynew[i]
@@ -435,15 +447,7 @@ def integrate_one(
         else:
             for i in range(n):
                 ybuf[i] = ynew[i]
-        while i_save < n_save and ts[i_save] <= te:
-            if ts[i_save] == te:
-                for j in range(n):
-                    ys_out[i_save, j] = ybuf[j]
-            else:
-                _dense(y, h, k1, k3, k4, k5, k6, k7, (ts[i_save] - t) / h, ytmp)
-                for j in range(n):
-                    ys_out[i_save, j] = ytmp[j]
-            i_save += 1
+        i_save = _save_until(te, ybuf, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, ytmp)
         t = te
         if ev_act[k_cut] == ACT_STOP:
             for i in range(n):
