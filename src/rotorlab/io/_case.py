@@ -306,9 +306,14 @@ def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, defa
 
 def _problems(exc: ValidationError, doc: Mapping[str, Any]) -> list[str]:
     lines = []
-    for err in exc.errors(include_url=False):
-        path, owner = _walk(err["loc"])
+    errors = exc.errors(include_url=False)
+    walked = [_walk(err["loc"]) for err in errors]
+    paths = [path for path, _ in walked]
+    for err, (path, owner) in zip(errors, walked):
         kind = err["type"]
+        if kind == "too_short" and any(len(q) > len(path) and q[:len(path)] == path
+                                       for q in paths):
+            continue  # a list whose entries are invalid: their own errors say why
         ctx = err.get("ctx") or {}
         value = err.get("input", _MISSING)
         if kind == "value_error" and isinstance(ctx.get("error"), IssueGroup):
