@@ -29,6 +29,14 @@ from rotorlab.analyses._outcome import (
     wrap_angle,
 )
 from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
+from rotorlab.analyses._steady import (
+    STEADY_ANALYSES,
+    chart_intervals,
+    run_steady_analysis,
+    steady_document,
+    steady_model,
+    steady_rows,
+)
 
 __all__ = [
     "BALANCED_FRACTION",
@@ -38,8 +46,10 @@ __all__ = [
     "SETTLE_RATE",
     "SETTLE_REVOLUTIONS",
     "SIDE_TOLERANCE",
+    "STEADY_ANALYSES",
     "build_linear_system",
     "build_model",
+    "chart_intervals",
     "campbell_summary",
     "classify",
     "modes_summary",
@@ -47,7 +57,11 @@ __all__ = [
     "run_analysis",
     "run_case",
     "run_linear_analysis",
+    "run_steady_analysis",
     "simulate",
+    "steady_document",
+    "steady_model",
+    "steady_rows",
     "summarize",
     "summarize_linear",
     "wrap_angle",

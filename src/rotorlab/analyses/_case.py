@@ -14,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rotorlab.analyses._linear import LINEAR_ANALYSES
+from rotorlab.analyses._steady import STEADY_ANALYSES
 
 if TYPE_CHECKING:
     import xarray
@@ -25,7 +26,7 @@ if TYPE_CHECKING:
 __all__ = ["RUNNABLE_ANALYSES", "build_model", "run_analysis", "run_case", "summarize"]
 
 #: Analysis types (the ``type`` of a case's ``[[analysis]]``) that :func:`run_case` can run.
-RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES)
+RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES, *STEADY_ANALYSES)
 
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -122,6 +123,10 @@ def run_analysis(case_model: Any, analysis: Any,
             f"analysis {analysis.name}: type {analysis.type!r} cannot be run here "
             f"(runnable: {', '.join(RUNNABLE_ANALYSES)})"
         )
+    if analysis.type in STEADY_ANALYSES:
+        from rotorlab.analyses._steady import run_steady_analysis
+
+        return run_steady_analysis(case_model, analysis, progress=progress)
     if analysis.type in LINEAR_ANALYSES:
         from rotorlab.analyses._linear import run_linear_analysis
 
@@ -217,6 +222,10 @@ def summarize(ds: xarray.Dataset) -> list[dict[str, Any]]:
         ``final_ball_angles_deg``, ``outcome``, ``status``. Plain Python values (JSON-ready;
         NaN becomes None).
     """
+    if ds.attrs.get("analysis") in STEADY_ANALYSES:
+        from rotorlab.analyses._steady import steady_rows
+
+        return steady_rows(ds)
     if ds.attrs.get("analysis") in LINEAR_ANALYSES:
         from rotorlab.analyses._linear import summarize_linear
 

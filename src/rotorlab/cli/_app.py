@@ -227,7 +227,7 @@ def run_command(
         info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
              json_mode=json_out)  # fmt: skip
         start = time.perf_counter()
-        from rotorlab.analyses import run_case, summarize
+        from rotorlab.analyses import STEADY_ANALYSES, run_case, summarize
 
         tasks = {a.name: _task_size(loaded.model, a) for a in loaded.analyses}
         units = {a.name: "trajectories" if a.type == "simulate" else "done"
@@ -236,7 +236,7 @@ def run_command(
             results = run_case(loaded, progress=update)
         computed = time.perf_counter() - start
         from rotorlab.plot import linear_figures, simulation_figures
-        from rotorlab.report import write_report
+        from rotorlab.report import steady_figures, write_report
 
         tables = {name: summarize(ds) for name, ds in results.items()}
         with status(settings, "Drawing figures and writing the report ..."):
@@ -244,6 +244,8 @@ def run_command(
             for name, ds in results.items():
                 draw = simulation_figures if ds.attrs.get("analysis") == "simulate" else (
                     linear_figures)
+                if ds.attrs.get("analysis") in STEADY_ANALYSES:
+                    draw = steady_figures
                 figures.update(draw(ds, name))
             report = write_report(out, loaded, results, figures, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results), *(f"{k}.png" for k in figures)])
@@ -264,6 +266,12 @@ def run_command(
         from rotorlab.cli._linear import linear_tables
 
         linear = {n: ds for n, ds in results.items() if n not in simulated}
+        from rotorlab.cli._steady import steady_tables
+
+        steady = {n: linear.pop(n) for n in list(linear)
+                  if linear[n].attrs.get("analysis") in STEADY_ANALYSES}
+        for table in steady_tables(steady, tables):
+            con.print(table)
         for table in linear_tables(linear, tables):
             con.print(table)
         if settings.verbose:

@@ -84,6 +84,7 @@ from rotorlab.io._linear_analyses import (
     UnbalanceResponseSpec,
 )
 from rotorlab.io._multibody_spec import MultibodySpec
+from rotorlab.io._steady_specs import RunUpSpec, StabilityChartSpec, SteadySpec, VerifySpec
 
 __all__ = [
     "SCHEMA_VERSION",
@@ -142,6 +143,10 @@ ANALYSIS_SPECS: Mapping[str, type[AbstractAnalysisSpec]] = MappingProxyType(
         "unbalance_response": UnbalanceResponseSpec,
         "identify": IdentifySpec,
         "data_audit": DataAuditSpec,
+        "steady": SteadySpec,
+        "stability-chart": StabilityChartSpec,
+        "verify": VerifySpec,
+        "run-up": RunUpSpec,
     }
 )
 

@@ -6,7 +6,7 @@ or using it changes no global matplotlib state.
 
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
 from rotorlab.plot._linear import linear_figures, mode_shapes_figure, unbalance_response_figure
-from rotorlab.plot._stability import stability_chart_figure
+from rotorlab.plot._stability import run_up_figure, stability_chart_figure, verify_figure
 from rotorlab.plot._simulate import (
     amplitude_figure,
     ball_angle_figure,
@@ -27,8 +27,10 @@ __all__ = [
     "linear_figures",
     "mode_shapes_figure",
     "orbit_figure",
+    "run_up_figure",
     "simulation_figures",
     "speed_label",
     "stability_chart_figure",
     "unbalance_response_figure",
+    "verify_figure",
 ]

@@ -5,6 +5,7 @@ The report has no network dependencies: CSS is inline and figures are embedded a
 """
 
 from rotorlab.report._html import parameter_rows, render_report, versions
+from rotorlab.report._steady import seed_notes_section, steady_figures, steady_section
 from rotorlab.report._write import MANIFEST_NAME, REPORT_NAME, check_output_dir, write_report
 
 __all__ = [
@@ -13,6 +14,9 @@ __all__ = [
     "check_output_dir",
     "parameter_rows",
     "render_report",
+    "seed_notes_section",
+    "steady_figures",
+    "steady_section",
     "versions",
     "write_report",
 ]

@@ -12,6 +12,7 @@ from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
 from rotorlab.report._linear import linear_model_rows, linear_section
+from rotorlab.report._steady import STEADY_ANALYSES, seed_notes_section, steady_section
 
 __all__ = ["render_report", "parameter_rows", "versions"]
 
@@ -255,6 +256,12 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
         parts.append(f"<h2>Analysis: {_e(name)} ({_e(analysis.type)})</h2>")
         rows = parameter_rows(analysis, f"analysis.{name}")
         ds = results.get(name)
+        if analysis.type in STEADY_ANALYSES and ds is not None:  # tables in rotorlab.report._steady
+            parts += [_table(("key", "value", "unit", "also"), rows, numeric={1}),
+                      steady_section(ds, summary_tables.get(name))]
+            parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
+            shown.update(key for key in pngs if key.startswith(f"{name}_"))
+            continue
         if ds is not None and "speed_ratio" in ds.coords:
             for k, om in enumerate(ds.speed.values):
                 rows.append(("spin speed used", f"{float(om):.6g}", "rad/s",
@@ -269,6 +276,8 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
             if key.startswith(f"{name}_"):
                 parts.append(_figure(key, png))
                 shown.add(key)
+    if any(a.type in STEADY_ANALYSES for a in case.analyses):
+        parts.append(seed_notes_section())
     rest = [k for k in pngs if k not in shown]
     if rest:
         parts.append("<h2>Other figures</h2>")
