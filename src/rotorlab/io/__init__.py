@@ -43,6 +43,14 @@ from rotorlab.io._schema import (
     integer,
     quantity,
 )
+from rotorlab.io._steady_specs import (
+    STEADY_PARAMETERS,
+    RunUpSpec,
+    StabilityChartSpec,
+    SteadyAnalysisSpec,
+    SteadySpec,
+    VerifySpec,
+)
 from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
 
 __all__ = [
@@ -52,6 +60,7 @@ __all__ = [
     "MODEL_SPECS",
     "SCHEMA_VERSION",
     "SPEED_PROFILES",
+    "STEADY_PARAMETERS",
     "AbstractAnalysisSpec",
     "AbstractLinearModelSpec",
     "AbstractModelSpec",
@@ -72,8 +81,13 @@ __all__ = [
     "ModesSpec",
     "MultibodySpec",
     "RampSpeed",
+    "RunUpSpec",
     "SimulateSpec",
+    "StabilityChartSpec",
+    "SteadyAnalysisSpec",
+    "SteadySpec",
     "UnbalanceResponseSpec",
+    "VerifySpec",
     "builtin_cases",
     "dump_case",
     "integer",
