@@ -412,5 +412,6 @@ class MultibodySpec(AbstractLinearModelSpec):
             f"coupled by a {self.elastic.source} matrix" if self.elastic.geometry is None
             else "coupled by a shaft-in-housing geometry")
         extra = f", {len(self.bearings)} ground bearing(s)" if self.bearings else ""
-        return (f"multibody: {len(self.bodies)} rigid bodies ({', '.join(self.node_labels())}), "
-                f"{self.n_dof} DOFs, {how}{extra}")
+        bodies = f"{len(self.bodies)} rigid bod" + ("y" if len(self.bodies) == 1 else "ies")
+        return (f"multibody: {bodies} ({', '.join(self.node_labels())}), {self.n_dof} DOFs, "
+                f"{how}{extra}")

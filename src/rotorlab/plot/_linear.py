@@ -141,7 +141,8 @@ def linear_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
     """
     kind = ds.attrs.get("analysis")
     if kind == "campbell":
-        return {f"{name}_campbell": campbell_figure(ds, title=f"Campbell diagram ({name})")}
+        title = f"Campbell diagram: {ds.attrs.get('case', name)}"
+        return {f"{name}_campbell": campbell_figure(ds, title=title)}
     if kind == "modes":
         return {f"{name}_shapes": mode_shapes_figure(ds)}
     if kind == "unbalance_response":
