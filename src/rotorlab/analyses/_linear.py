@@ -201,6 +201,12 @@ def _num(value: Any, digits: int | None = None) -> float | None:
     return v if digits is None else round(v, digits)
 
 
+def _grid(value: Any) -> float | None:
+    """A grid speed in rpm, to 12 significant digits (3000, not 2999.9999999999995)."""
+    v = _num(value)
+    return None if v is None else float(f"{v:.12g}")
+
+
 def _crossing_rows(ds: xarray.Dataset, mode: bool) -> list[dict[str, Any]]:
     rows = []
     harmonic = ds["critical_harmonic" if mode else "harmonic"].values
@@ -254,7 +260,7 @@ def summarize_linear(ds: xarray.Dataset) -> list[dict[str, Any]]:
             k = int(np.nanargmax(amp)) if np.isfinite(amp).any() else 0
             rows.append({"node": int(node), "label": str(ds.node_label.values[node]),
                          "peak_amplitude": _num(amp[k]),
-                         "peak_speed_rpm": float(ds.speed_rpm.values[k])})
+                         "peak_speed_rpm": _grid(ds.speed_rpm.values[k])})
         return rows
     if kind == "identify":
         return [{"parameter": str(ds.parameter.values[i]), "unit": str(ds.unit.values[i]),
@@ -280,7 +286,7 @@ def campbell_summary(ds: xarray.Dataset) -> dict[str, Any]:
     Returns
     -------
     dict
-        Exactly ``speed_rpm`` (list), ``frequency_hz`` (per speed, a list per mode),
+        Exactly ``speed_rpm`` (list, 12 significant digits), ``frequency_hz`` (per speed, a list per mode),
         ``whirl`` (per speed, ``"F"``, ``"B"`` or ``"M"`` per mode) and
         ``critical_speeds_rpm`` (list); non-finite numbers are None.
 
@@ -296,7 +302,7 @@ def campbell_summary(ds: xarray.Dataset) -> dict[str, Any]:
     """
     freq = ds.frequency.values
     return {
-        "speed_rpm": [_num(v) for v in ds.speed_rpm.values],
+        "speed_rpm": [_grid(v) for v in ds.speed_rpm.values],
         "frequency_hz": [[_num(v) for v in row] for row in freq],
         "whirl": [[_WHIRL[int(c)] for c in row] for row in ds.whirl.values],
         "critical_speeds_rpm": [_num(v) for v in ds.critical_speed_rpm.values],
@@ -319,7 +325,7 @@ def modes_summary(ds: xarray.Dataset) -> dict[str, Any]:
     """
     rows = summarize_linear(ds)
     return {
-        "speed_rpm": _num(ds.speed_rpm.values),
+        "speed_rpm": _grid(ds.speed_rpm.values),
         "frequency_hz": [r["frequency_hz"] for r in rows],
         "whirl": [r["whirl"] for r in rows],
         "damping_ratio": [r["damping_ratio"] for r in rows],
