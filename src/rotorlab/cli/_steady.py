@@ -53,6 +53,8 @@ def parse_range(option: str, text: str, dimension: str | None = None) -> tuple[f
     --------
     >>> parse_range("--speeds-rpm", "300:3000:10")
     (300.0, 3000.0, 10)
+    >>> parse_range("--param", "0:2.5mm:3", "length")
+    (0.0, 0.0025, 3)
     """
     parts = text.split(":")
     if len(parts) != 3:
@@ -63,15 +65,14 @@ def parse_range(option: str, text: str, dimension: str | None = None) -> tuple[f
         raise BadInput(f"{option} = {text}: N must be an integer >= 1") from None
     ends = []
     for part in parts[:2]:
-        if dimension is not None:
-            from rotorlab.io import to_si
-
-            ends.append(to_si(part.strip(), dimension, option))
-            continue
         try:
             ends.append(float(part))
         except ValueError:
-            raise BadInput(f"{option} = {text}: START and STOP must be numbers") from None
+            if dimension is None:
+                raise BadInput(f"{option} = {text}: START and STOP must be numbers") from None
+            from rotorlab.io import to_si
+
+            ends.append(to_si(part.strip(), dimension, option))
     start, stop = ends
     if not (math.isfinite(start) and math.isfinite(stop)) or count < 1:
         raise BadInput(f"{option} = {text}: START and STOP must be finite and N >= 1")
