@@ -84,6 +84,18 @@ def parse_range(option: str, text: str, dimension: str | None = None) -> tuple[f
 def regime_overrides(loaded: Any, regime: str | None) -> dict[str, float]:
     """Collect the overrides of the analyses labelled ``regime`` (empty for None).
 
+    Parameters
+    ----------
+    loaded : rotorlab.io.Case
+        The case.
+    regime : str or None
+        A ``regime`` label of its analyses.
+
+    Returns
+    -------
+    dict of str to float
+        ``eccentricity`` (m) and / or ``support_damping`` (N*s/m), as given by those analyses.
+
     Raises
     ------
     BadInput
