@@ -67,7 +67,55 @@ from rotorlab.integrate._tableau import (
 )  # fmt: skip
 
 LANES = 8  # @lanes
-"""Trajectories per worker stepped together (set per generated copy; see ``lane_driver``)."""
+"""Trajectories per worker stepped together (set per generated copy, see :func:`lane_driver`)."""
+N_STATE = 1  # @n_state
+"""Length of the model's state vector (set per generated copy)."""
+NL = N_STATE * LANES
+
+# The workspace of a worker is one float64 array, so that every vector loop below addresses a
+# single base pointer at compile-time-constant offsets: LLVM then proves the loops free of
+# aliasing without run-time checks (with separate arrays it needs one check per pair, gives up
+# beyond eight, or refuses them for short loops). Rows of NL doubles, lane-interleaved
+# (element i of lane l at row + i * LANES + l):
+_Y = 0 * NL  # state at t
+_YN = 1 * NL  # 5th-order solution at t + h
+_T = 2 * NL  # stage argument
+_H = 3 * NL  # step size of each lane, broadcast over the state
+_K1 = 4 * NL
+_K2 = 5 * NL
+_K3 = 6 * NL
+_K4 = 7 * NL
+_K5 = 8 * NL
+_K6 = 9 * NL
+_K7 = 10 * NL
+_AT = 11 * NL  # atol, broadcast over the lanes
+_Q = 12 * NL  # squared scaled errors, then running sums over the state
+_M = 13 * NL  # accept mask, broadcast over the state
+# ... then rows of LANES doubles, one number per lane (counters are exact as floats)
+_R = 14 * NL
+_t = _R + 0 * LANES  # time
+_t1 = _R + 1 * LANES  # end time
+_tn = _R + 2 * LANES  # end of the step being attempted
+_h = _R + 3 * LANES  # its signed length
+_habs = _R + 4 * LANES  # |step| proposed by the controller
+_mins = _R + 5 * LANES  # smallest step at t
+_ms = _R + 6 * LANES  # 10 ulp(t), scratch
+_tt = _R + 7 * LANES  # stage time
+_en = _R + 8 * LANES  # error norm
+_pw = _R + 9 * LANES  # error norm ** ERROR_EXPONENT
+_rej = _R + 10 * LANES  # 1: an attempt of this step was rejected
+_lnf = _R + 11 * LANES  # 1: the last rejection was for a non-finite error
+_new = _R + 12 * LANES  # 1: the lane starts a new step
+_live = _R + 13 * LANES  # 1: the lane holds a trajectory
+_nfev = _R + 14 * LANES
+_nacc = _R + 15 * LANES
+_nrej = _R + 16 * LANES
+_code = _R + 17 * LANES  # prologue verdict: 0 step, 1 ended, 2 step too small, 3 max steps
+_W_SIZE = _R + 18 * LANES
+
+# lane slots: ids[l] >= 0 is the trajectory in lane l; these mark empty and exhausted lanes
+_EMPTY = -1
+_DONE = -2
 
 # The model's kernel inlined at numba-IR level: LLVM does not inline a separately compiled
 # dispatcher of this size, and a call is opaque to the loop vectoriser. error_model="numpy"
@@ -79,11 +127,11 @@ _rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func
 
 
 @intrinsic
-def _lane(typingctx, buf, lane, n):
-    """1-D view of lane ``lane`` of the lane-interleaved buffer ``buf`` (``n`` elements).
+def _lane(typingctx, buf, start, n):
+    """1-D view of ``n`` elements ``buf[start + i * LANES]`` (a lane of a lane-interleaved row).
 
     The stride is the compile-time constant ``LANES * 8`` bytes, so that LLVM's dependence
-    analysis sees all accesses of one buffer as one range (runtime-stride views defeat it). The
+    analysis sees all accesses of one row as one range (runtime-stride views defeat it). The
     view carries no meminfo: it lives only for one kernel call inside the owning function.
     """
     if not (isinstance(buf, types.Array) and buf.ndim == 1 and buf.layout == "C"):
@@ -92,13 +140,13 @@ def _lane(typingctx, buf, lane, n):
 
     def codegen(context, builder, sig, args):
         ary = context.make_array(sig.args[0])(context, builder, args[0])
-        lane_v = context.cast(builder, args[1], sig.args[1], types.intp)
+        start_v = context.cast(builder, args[1], sig.args[1], types.intp)
         n_v = context.cast(builder, args[2], sig.args[2], types.intp)
         out = context.make_array(view)(context, builder)
         itemsize = context.get_abi_sizeof(context.get_data_type(view.dtype))
         context.populate_array(
             out,
-            data=builder.gep(ary.data, [lane_v]),
+            data=builder.gep(ary.data, [start_v]),
             shape=[n_v],
             strides=[context.get_constant(types.intp, LANES * itemsize)],
             itemsize=context.get_constant(types.intp, itemsize),
@@ -107,7 +155,7 @@ def _lane(typingctx, buf, lane, n):
         )
         return out._getvalue()
 
-    return view(buf, lane, n), codegen
+    return view(buf, start, n), codegen
 
 
 @intrinsic
@@ -125,30 +173,25 @@ def _fetch_add(typingctx, counter, delta):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _rhs_lanes_shared(tt, Y, p, K, n, nl):
-    """``K[:, l] = rhs(tt[l], Y[:, l], p)`` for every lane, one parameter vector for all.
+def _rhs_lanes(W, row_t, row_y, row_k, p, PL, shared, nl):
+    """``K[:, l] = rhs(t[l], Y[:, l], p)`` for every lane, rows of the workspace ``W``.
 
     ``nl`` (= LANES) is a run-time value on purpose: with a constant trip count this small, LLVM
     treats the loop as "optimise for size" and will not emit the alias checks it needs to
-    vectorise.
+    vectorise. ``shared``: one parameter vector ``p`` for all lanes, else lane-interleaved ``PL``.
     """
-    for lane in range(nl):
-        _rhs_inline(tt[lane], _lane(Y, lane, n), p, _lane(K, lane, n))
-
-
-@njit(cache=True, nogil=True, error_model="numpy")
-def _rhs_lanes(tt, Y, PL, K, n, n_par, nl):
-    """As :func:`_rhs_lanes_shared` with one parameter vector per lane (lane-interleaved)."""
-    for lane in range(nl):
-        _rhs_inline(tt[lane], _lane(Y, lane, n), _lane(PL, lane, n_par), _lane(K, lane, n))
-
-
-@njit(cache=True, nogil=True)
-def _eval(shared, tt, Y, p, PL, K, n, n_par, nl):
     if shared:
-        _rhs_lanes_shared(tt, Y, p, K, n, nl)
+        for lane in range(nl):
+            _rhs_inline(
+                W[row_t + lane], _lane(W, row_y + lane, N_STATE), p, _lane(W, row_k + lane, N_STATE)
+            )
     else:
-        _rhs_lanes(tt, Y, PL, K, n, n_par, nl)
+        n_par = PL.shape[0] // LANES
+        for lane in range(nl):
+            _rhs_inline(
+                W[row_t + lane], _lane(W, row_y + lane, N_STATE), _lane(PL, lane, n_par),
+                _lane(W, row_k + lane, N_STATE),
+            )  # fmt: skip
 
 
 @njit(cache=True, nogil=True)
@@ -185,58 +228,82 @@ def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     return min(100.0 * h0, h1, interval)
 
 
-# lane slots: ids[l] >= 0 is the trajectory in lane l; these mark empty and exhausted lanes
-_EMPTY = -1
-_DONE = -2
+@njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def _prologue(W, lane, max_step, max_steps):
+    """Start of a step attempt in one lane (as integrate_one's loops); sets the verdict ``_code``.
+
+    Branch-free, so that the loop over lanes that calls it vectorises; the scalar pass of the
+    worker calls it too for a lane it has just (re)filled.
+    """
+    # every load comes first: a load inside one arm of an ``if`` keeps LLVM from turning the
+    # ``if`` into a select, and then from vectorising the loop
+    live = W[_live + lane] != 0.0
+    new_flag = W[_new + lane]
+    t = W[_t + lane]
+    t1 = W[_t1 + lane]
+    habs = W[_habs + lane]
+    ms = W[_ms + lane]
+    mins = W[_mins + lane]
+    rej = W[_rej + lane]
+    lnf = W[_lnf + lane]
+    attempts = W[_nacc + lane] + W[_nrej + lane]
+    new = live and new_flag != 0.0
+    ended = new and not t < t1
+    clamped = max_step if habs > max_step else (ms if habs < ms else habs)
+    habs = clamped if new else habs
+    mins = ms if new else mins
+    W[_mins + lane] = mins
+    W[_rej + lane] = 0.0 if new else rej
+    W[_lnf + lane] = 0.0 if new else lnf
+    W[_new + lane] = 0.0 if live else new_flag
+    small = habs < mins
+    maxed = attempts >= max_steps
+    W[_code + lane] = 1.0 if ended else (2.0 if small else (3.0 if maxed else 0.0))
+    tn = t + habs
+    tn = t1 if tn > t1 else tn
+    h = tn - t
+    W[_tn + lane] = tn
+    W[_h + lane] = h if live else 0.0
+    W[_habs + lane] = abs(h) if live else habs
 
 
 @njit(cache=True, nogil=True)
+def _min_steps(W, Wi, nl):
+    """``W[_ms + l] = 10 * abs(np.nextafter(t, inf) - t)`` for every lane, vectorised.
+
+    ``nextafter(t, +inf)`` of a finite ``t`` has the bits of ``t`` plus one (``t > 0``), minus
+    one (``t < 0``), or 1 (``t = +-0``: the smallest subnormal); ``Wi`` is ``W`` seen as int64.
+    """
+    for lane in range(nl):
+        t = W[_t + lane]
+        bits = Wi[_t + lane]
+        Wi[_ms + lane] = bits + 1 if t > 0.0 else (bits - 1 if t < 0.0 else 1)
+    for lane in range(nl):
+        W[_ms + lane] = 10.0 * abs(W[_ms + lane] - W[_t + lane])
+
+
+@njit(cache=True, nogil=True, error_model="numpy")  # no ZeroDivisionError branch in the loops
 def _worker(
     counter, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, nl,
     YS, YF, STATUS, TEND, STATS,
 ):  # fmt: skip
     """Integrate trajectories taken from ``counter`` until none is left (one thread)."""
     N = STATUS.shape[0]
-    n = YF.shape[1]
+    n = N_STATE
+    L = LANES
     n_par = P.shape[1]
     n_save = TS.shape[1]
     shared = P.shape[0] == 1
-    L = LANES
-    nL = n * L
-    Y = np.zeros(nL)
-    YN = np.zeros(nL)
-    T = np.zeros(nL)
-    HB = np.zeros(nL)  # step size of each lane, broadcast over the state
-    K1 = np.zeros(nL)
-    K2 = np.zeros(nL)
-    K3 = np.zeros(nL)
-    K4 = np.zeros(nL)
-    K5 = np.zeros(nL)
-    K6 = np.zeros(nL)
-    K7 = np.zeros(nL)
+    fmax_steps = float(max_steps)
+    W = np.zeros(_W_SIZE)
+    Wi = W.view(np.int64)  # the same memory, for the bits of t in _min_steps
+    for k in range(NL):
+        W[_AT + k] = atol[k // L]
     PL = np.zeros(n_par * L) if not shared else np.zeros(0)
     for k in range(PL.shape[0]):
         PL[k] = P[0, k // L]  # idle lanes keep evaluating the kernel on sane parameters
     p0 = P[0]
-    tt = np.zeros(L)
-    tl = np.zeros(L)
-    t1l = np.zeros(L)
-    tnl = np.zeros(L)
-    hl = np.zeros(L)
-    habs = np.zeros(L)
-    min_step = np.zeros(L)
-    take = np.zeros(nL)  # accepted lanes (first L entries), then broadcast over the state
-    Q = np.zeros(nL)
-    AB = np.zeros(nL)  # atol broadcast over the lanes
-    for k in range(nL):
-        AB[k] = atol[k // L]
     ids = np.full(L, _EMPTY, dtype=np.int64)
-    rejected = np.zeros(L, dtype=np.bool_)
-    last_nonfinite = np.zeros(L, dtype=np.bool_)
-    new_step = np.zeros(L, dtype=np.bool_)
-    nfev = np.zeros(L, dtype=np.int64)
-    naccept = np.zeros(L, dtype=np.int64)
-    nreject = np.zeros(L, dtype=np.int64)
     i_save = np.zeros(L, dtype=np.int64)
     ybuf = np.empty(n)
     fbuf = np.empty(n)
@@ -244,218 +311,231 @@ def _worker(
     ytmp = np.empty(n)
 
     while True:
-        # ---- scalar prologue: finish, refill and start the step of every lane ----------------
+        # ---- start of the step attempt in every lane: vectorised, then the rare cases --------
+        _min_steps(W, Wi, nl)
+        for lane in range(nl):
+            _prologue(W, lane, max_step, fmax_steps)
         n_live = 0
         for lane in range(L):
-            while True:
+            while ids[lane] != _DONE and (ids[lane] == _EMPTY or W[_code + lane] != 0.0):
                 j = ids[lane]
-                if j == _DONE:
-                    break
-                if j == _EMPTY:
-                    j = _fetch_add(counter, 1)
-                    if j >= N:
-                        ids[lane] = _DONE
-                        hl[lane] = 0.0
-                        tnl[lane] = tl[lane]
-                        break
-                    # start trajectory j in this lane (as integrate_one does before its loop)
-                    iy = j if Y0.shape[0] > 1 else 0
-                    ip = j if P.shape[0] > 1 else 0
-                    it1 = j if T1.shape[0] > 1 else 0
-                    its = j if TS.shape[0] > 1 else 0
-                    for i in range(n):
-                        ybuf[i] = Y0[iy, i]
-                        Y[i * L + lane] = ybuf[i]
-                    if not shared:
-                        for k in range(n_par):
-                            PL[k * L + lane] = P[ip, k]
-                    t1 = T1[it1]
-                    tl[lane] = t0
-                    t1l[lane] = t1
-                    ids[lane] = j
-                    s = 0
-                    while s < n_save and TS[its, s] <= t0:
-                        for i in range(n):
-                            YS[j, s, i] = ybuf[i]
-                        s += 1
-                    i_save[lane] = s
-                    naccept[lane] = 0
-                    nreject[lane] = 0
-                    _rhs_inline(t0, ybuf, P[ip], fbuf)
-                    nfev[lane] = 1
-                    for i in range(n):
-                        K1[i * L + lane] = fbuf[i]
-                    ok = _all_finite(ybuf) and _all_finite(fbuf)
-                    if first_step > 0.0:
-                        h = min(first_step, t1 - t0)
-                    elif ok:
-                        h = _initial_step(P[ip], t0, ybuf, fbuf, t1, rtol, atol, n_cont, ytmp, f1)
-                        nfev[lane] += 1
+                if j >= 0:  # the trajectory in this lane ends here
+                    code = W[_code + lane]
+                    if code == 1.0:
+                        st = SUCCESS
+                    elif code == 2.0:
+                        st = NONFINITE if W[_lnf + lane] != 0.0 else STEP_UNDERFLOW
                     else:
-                        h = 0.0
-                    habs[lane] = min(h, max_step)
-                    if not ok:
-                        _finish(lane, NONFINITE, ids, Y, tl, nfev, naccept, nreject, YF, STATUS, TEND, STATS)
-                        continue
-                    new_step[lane] = True
-                if new_step[lane]:
-                    t = tl[lane]
-                    if not t < t1l[lane]:
-                        _finish(lane, SUCCESS, ids, Y, tl, nfev, naccept, nreject, YF, STATUS, TEND, STATS)
-                        continue
-                    ms = 10.0 * abs(np.nextafter(t, math.inf) - t)
-                    if habs[lane] > max_step:
-                        habs[lane] = max_step
-                    elif habs[lane] < ms:
-                        habs[lane] = ms
-                    min_step[lane] = ms
-                    rejected[lane] = False
-                    last_nonfinite[lane] = False
-                    new_step[lane] = False
-                if habs[lane] < min_step[lane]:
-                    st = NONFINITE if last_nonfinite[lane] else STEP_UNDERFLOW
-                    _finish(lane, st, ids, Y, tl, nfev, naccept, nreject, YF, STATUS, TEND, STATS)
+                        st = MAX_STEPS
+                    _finish(W, lane, j, st, YF, STATUS, TEND, STATS)
+                    ids[lane] = _EMPTY
+                    W[_live + lane] = 0.0
+                j = _fetch_add(counter, 1)
+                if j >= N:
+                    ids[lane] = _DONE
+                    W[_h + lane] = 0.0
+                    W[_code + lane] = 0.0
+                    break
+                # start trajectory j in this lane (as integrate_one does before its loop)
+                iy = j if Y0.shape[0] > 1 else 0
+                ip = j if P.shape[0] > 1 else 0
+                it1 = j if T1.shape[0] > 1 else 0
+                its = j if TS.shape[0] > 1 else 0
+                for i in range(n):
+                    ybuf[i] = Y0[iy, i]
+                    W[_Y + i * L + lane] = ybuf[i]
+                if not shared:
+                    for k in range(n_par):
+                        PL[k * L + lane] = P[ip, k]
+                t1 = T1[it1]
+                s = 0
+                while s < n_save and TS[its, s] <= t0:
+                    for i in range(n):
+                        YS[j, s, i] = ybuf[i]
+                    s += 1
+                i_save[lane] = s
+                _rhs_inline(t0, ybuf, P[ip], fbuf)
+                nfev = 1.0
+                for i in range(n):
+                    W[_K1 + i * L + lane] = fbuf[i]
+                ok = _all_finite(ybuf) and _all_finite(fbuf)
+                if first_step > 0.0:
+                    h = min(first_step, t1 - t0)
+                elif ok:
+                    h = _initial_step(P[ip], t0, ybuf, fbuf, t1, rtol, atol, n_cont, ytmp, f1)
+                    nfev += 1.0
+                else:
+                    h = 0.0
+                W[_t + lane] = t0
+                W[_t1 + lane] = t1
+                W[_habs + lane] = min(h, max_step)
+                W[_nfev + lane] = nfev
+                W[_nacc + lane] = 0.0
+                W[_nrej + lane] = 0.0
+                ids[lane] = j
+                if not ok:
+                    _finish(W, lane, j, NONFINITE, YF, STATUS, TEND, STATS)
+                    ids[lane] = _EMPTY
                     continue
-                if naccept[lane] + nreject[lane] >= max_steps:
-                    _finish(lane, MAX_STEPS, ids, Y, tl, nfev, naccept, nreject, YF, STATUS, TEND, STATS)
-                    continue
-                tn = tl[lane] + habs[lane]
-                if tn > t1l[lane]:
-                    tn = t1l[lane]
-                h = tn - tl[lane]
-                habs[lane] = abs(h)
-                tnl[lane] = tn
-                hl[lane] = h
+                W[_live + lane] = 1.0
+                W[_new + lane] = 1.0
+                _min_steps(W, Wi, nl)
+                _prologue(W, lane, max_step, fmax_steps)
+            if ids[lane] >= 0:
                 n_live += 1
-                break
         if n_live == 0:
             break
 
         # ---- one Dormand-Prince attempt in every lane (vectorised over lanes) --------------
-        # broadcast the step sizes over the state: HB[i L + l] = h[l] (a recurrence at distance L
-        # is a plain vector copy for LLVM; a loop over (i, l) would not vectorise)
-        for lane in range(L):
-            HB[lane] = hl[lane]
-        for k in range(L, nL):
-            HB[k] = HB[k - L]
-        for k in range(nL):
-            T[k] = Y[k] + HB[k] * (A21 * K1[k])
-        for lane in range(L):
-            tt[lane] = tl[lane] + C2 * hl[lane]
-        _eval(shared, tt, T, p0, PL, K2, n, n_par, nl)
-        for k in range(nL):
-            T[k] = Y[k] + HB[k] * (A31 * K1[k] + A32 * K2[k])
-        for lane in range(L):
-            tt[lane] = tl[lane] + C3 * hl[lane]
-        _eval(shared, tt, T, p0, PL, K3, n, n_par, nl)
-        for k in range(nL):
-            T[k] = Y[k] + HB[k] * (A41 * K1[k] + A42 * K2[k] + A43 * K3[k])
-        for lane in range(L):
-            tt[lane] = tl[lane] + C4 * hl[lane]
-        _eval(shared, tt, T, p0, PL, K4, n, n_par, nl)
-        for k in range(nL):
-            T[k] = Y[k] + HB[k] * (A51 * K1[k] + A52 * K2[k] + A53 * K3[k] + A54 * K4[k])
-        for lane in range(L):
-            tt[lane] = tl[lane] + C5 * hl[lane]
-        _eval(shared, tt, T, p0, PL, K5, n, n_par, nl)
-        for k in range(nL):
-            T[k] = Y[k] + HB[k] * (
-                A61 * K1[k] + A62 * K2[k] + A63 * K3[k] + A64 * K4[k] + A65 * K5[k]
+        # broadcast the step sizes over the state (a recurrence at distance L is a vector copy)
+        for lane in range(nl):
+            W[_H + lane] = W[_h + lane]
+        for k in range(L, n * nl):
+            W[_H + k] = W[_H + k - L]
+        for k in range(n * nl):
+            W[_T + k] = W[_Y + k] + W[_H + k] * (A21 * W[_K1 + k])
+        for lane in range(nl):
+            W[_tt + lane] = W[_t + lane] + C2 * W[_h + lane]
+        _rhs_lanes(W, _tt, _T, _K2, p0, PL, shared, nl)
+        for k in range(n * nl):
+            W[_T + k] = W[_Y + k] + W[_H + k] * (A31 * W[_K1 + k] + A32 * W[_K2 + k])
+        for lane in range(nl):
+            W[_tt + lane] = W[_t + lane] + C3 * W[_h + lane]
+        _rhs_lanes(W, _tt, _T, _K3, p0, PL, shared, nl)
+        for k in range(n * nl):
+            W[_T + k] = W[_Y + k] + W[_H + k] * (
+                A41 * W[_K1 + k] + A42 * W[_K2 + k] + A43 * W[_K3 + k]
             )
-        _eval(shared, tnl, T, p0, PL, K6, n, n_par, nl)
-        for k in range(nL):
-            YN[k] = Y[k] + HB[k] * (B1 * K1[k] + B3 * K3[k] + B4 * K4[k] + B5 * K5[k] + B6 * K6[k])
-        _eval(shared, tnl, YN, p0, PL, K7, n, n_par, nl)
-        # error norm (RMS over the continuous states, as _core._rms_scaled), summed over the
-        # states in the same order; K7 * 0.0 (NaN unless K7 is finite) folds in _core's
-        # "not _all_finite(k7)" test: adding +-0.0 leaves a finite sum unchanged.
-        for k in range(n_cont * L):
-            e = HB[k] * (
-                E1 * K1[k] + E3 * K3[k] + E4 * K4[k] + E5 * K5[k] + E6 * K6[k] + E7 * K7[k]
+        for lane in range(nl):
+            W[_tt + lane] = W[_t + lane] + C4 * W[_h + lane]
+        _rhs_lanes(W, _tt, _T, _K4, p0, PL, shared, nl)
+        for k in range(n * nl):
+            W[_T + k] = W[_Y + k] + W[_H + k] * (
+                A51 * W[_K1 + k] + A52 * W[_K2 + k] + A53 * W[_K3 + k] + A54 * W[_K4 + k]
             )
-            sc = AB[k] + rtol * max(abs(Y[k]), abs(YN[k]))
-            q = e / sc
-            Q[k] = q * q + K7[k] * 0.0
-        for k in range(n_cont * L, nL):
-            Q[k] = K7[k] * 0.0
-        # running sums over the states, lane by lane (a recurrence at distance L: vectorises);
-        # the last row is the sum in the order of _core._rms_scaled
-        for k in range(L, nL):
-            Q[k] += Q[k - L]
+        for lane in range(nl):
+            W[_tt + lane] = W[_t + lane] + C5 * W[_h + lane]
+        _rhs_lanes(W, _tt, _T, _K5, p0, PL, shared, nl)
+        for k in range(n * nl):
+            W[_T + k] = W[_Y + k] + W[_H + k] * (
+                A61 * W[_K1 + k] + A62 * W[_K2 + k] + A63 * W[_K3 + k] + A64 * W[_K4 + k]
+                + A65 * W[_K5 + k]
+            )  # fmt: skip
+        _rhs_lanes(W, _tn, _T, _K6, p0, PL, shared, nl)
+        for k in range(n * nl):
+            W[_YN + k] = W[_Y + k] + W[_H + k] * (
+                B1 * W[_K1 + k] + B3 * W[_K3 + k] + B4 * W[_K4 + k] + B5 * W[_K5 + k]
+                + B6 * W[_K6 + k]
+            )  # fmt: skip
+        _rhs_lanes(W, _tn, _YN, _K7, p0, PL, shared, nl)
 
-        # ---- scalar epilogue: accept or reject in every lane --------------------------------
+        # ---- error norm (RMS over the continuous states, as _core._rms_scaled) --------------
+        # Summed over the states in the same order, by a recurrence at distance L (the last
+        # row holds the sums). K7 * 0.0 (NaN unless K7 is finite) folds in _core's
+        # "not _all_finite(k7)": adding +-0.0 leaves a finite sum unchanged.
+        for k in range(n_cont * nl):
+            e = W[_H + k] * (
+                E1 * W[_K1 + k] + E3 * W[_K3 + k] + E4 * W[_K4 + k] + E5 * W[_K5 + k]
+                + E6 * W[_K6 + k] + E7 * W[_K7 + k]
+            )  # fmt: skip
+            ya = abs(W[_Y + k])
+            yb = abs(W[_YN + k])
+            sc = W[_AT + k] + rtol * (yb if yb > ya else ya)  # max(ya, yb) as numba's max
+            q = e / sc
+            W[_Q + k] = q * q + W[_K7 + k] * 0.0
+        for k in range(n_cont * nl, n * nl):
+            W[_Q + k] = W[_K7 + k] * 0.0
+        for k in range(L, n * nl):
+            W[_Q + k] += W[_Q + k - L]
+
+        # ---- accept or reject in every lane (as integrate_one; vectorised but for pow) -------
+        for lane in range(nl):
+            W[_en + lane] = math.sqrt(W[_Q + (n - 1) * L + lane] / n_cont)
         for lane in range(L):
-            take[lane] = 0.0
-            j = ids[lane]
-            if j < 0:
-                continue
-            nfev[lane] += 6
-            err_norm = math.sqrt(Q[nL - L + lane] / n_cont)
-            if not math.isfinite(err_norm):
-                last_nonfinite[lane] = True
-                habs[lane] *= MIN_FACTOR
-                rejected[lane] = True
-                nreject[lane] += 1
-                continue
-            if err_norm >= 1.0:
-                habs[lane] *= max(MIN_FACTOR, SAFETY * err_norm**ERROR_EXPONENT)
-                rejected[lane] = True
-                nreject[lane] += 1
-                continue
-            if err_norm == 0.0:
-                factor = MAX_FACTOR
-            else:
-                factor = min(MAX_FACTOR, SAFETY * err_norm**ERROR_EXPONENT)
-            if rejected[lane]:
-                factor = min(1.0, factor)
-            habs[lane] *= factor
-            naccept[lane] += 1
-            # accepted: save points in (t, tn] from the dense output, then advance
-            t = tl[lane]
-            tn = tnl[lane]
-            h = hl[lane]
-            if n_save > 0:
-                its = j if TS.shape[0] > 1 else 0
-                s = i_save[lane]
-                while s < n_save and TS[its, s] <= tn:
-                    if TS[its, s] == tn:
-                        for i in range(n):
-                            YS[j, s, i] = YN[i * L + lane]
-                    else:
-                        _dense(
-                            _lane(Y, lane, n), h, _lane(K1, lane, n), _lane(K3, lane, n),
-                            _lane(K4, lane, n), _lane(K5, lane, n), _lane(K6, lane, n),
-                            _lane(K7, lane, n), (TS[its, s] - t) / h, ybuf,
-                        )  # fmt: skip
-                        for i in range(n):
-                            YS[j, s, i] = ybuf[i]
-                    s += 1
-                i_save[lane] = s
-            tl[lane] = tn
-            take[lane] = 1.0
-            new_step[lane] = True
-        for k in range(L, nL):
-            take[k] = take[k - L]
-        for k in range(nL):
-            a = take[k] != 0.0
-            Y[k] = YN[k] if a else Y[k]
-            K1[k] = K7[k] if a else K1[k]
+            en = W[_en + lane]
+            W[_pw + lane] = en**ERROR_EXPONENT if en > 0.0 else 1.0
+        for lane in range(nl):
+            live = W[_live + lane] != 0.0
+            en = W[_en + lane]
+            pw = W[_pw + lane]
+            habs = W[_habs + lane]
+            rej = W[_rej + lane]
+            lnf = W[_lnf + lane]
+            new_flag = W[_new + lane]
+            bad = not math.isfinite(en)
+            good = en < 1.0 and not bad
+            # min(a, b), max(a, b) spelled out with numba's semantics (its builtins are calls)
+            sp = SAFETY * pw
+            f_acc = MAX_FACTOR if en == 0.0 else (sp if sp < MAX_FACTOR else MAX_FACTOR)
+            f_acc = (f_acc if f_acc < 1.0 else 1.0) if rej != 0.0 else f_acc
+            f_rej = sp if sp > MIN_FACTOR else MIN_FACTOR
+            factor = MIN_FACTOR if bad else (f_acc if good else f_rej)
+            take = live and good
+            W[_habs + lane] = habs * factor if live else habs
+            W[_lnf + lane] = 1.0 if live and bad else lnf
+            W[_rej + lane] = 1.0 if live and not good else rej
+            W[_nfev + lane] += 6.0 if live else 0.0
+            W[_nacc + lane] += 1.0 if take else 0.0
+            W[_nrej + lane] += 1.0 if live and not good else 0.0
+            W[_new + lane] = 1.0 if take else new_flag
+            W[_M + lane] = 1.0 if take else 0.0
+        if n_save > 0:  # save points in (t, tn] from the dense output of accepted steps
+            for lane in range(L):
+                if W[_M + lane] != 0.0:
+                    _save(W, lane, ids[lane], TS, YS, i_save, ybuf)
+        for lane in range(nl):
+            tn = W[_tn + lane]
+            t = W[_t + lane]
+            W[_t + lane] = tn if W[_M + lane] != 0.0 else t
+        for k in range(L, n * nl):
+            W[_M + k] = W[_M + k - L]
+        for k in range(n * nl):
+            a = W[_M + k] != 0.0
+            yn = W[_YN + k]
+            y = W[_Y + k]
+            k7 = W[_K7 + k]
+            k1 = W[_K1 + k]
+            W[_Y + k] = yn if a else y
+            W[_K1 + k] = k7 if a else k1
 
 
 @njit(cache=True, nogil=True)
-def _finish(lane, status, ids, Y, tl, nfev, naccept, nreject, YF, STATUS, TEND, STATS):
-    """Write the outputs of the trajectory in ``lane`` and mark the lane empty."""
-    j = ids[lane]
-    n = YF.shape[1]
-    for i in range(n):
-        YF[j, i] = Y[i * LANES + lane]
+def _save(W, lane, j, TS, YS, i_save, ybuf):
+    """Write the save points of trajectory ``j`` in (t, tn] of the accepted step of ``lane``."""
+    n = N_STATE
+    L = LANES
+    its = j if TS.shape[0] > 1 else 0
+    t = W[_t + lane]
+    tn = W[_tn + lane]
+    h = W[_h + lane]
+    s = i_save[lane]
+    while s < TS.shape[1] and TS[its, s] <= tn:
+        if TS[its, s] == tn:
+            for i in range(n):
+                YS[j, s, i] = W[_YN + i * L + lane]
+        else:
+            _dense(
+                _lane(W, _Y + lane, n), h, _lane(W, _K1 + lane, n), _lane(W, _K3 + lane, n),
+                _lane(W, _K4 + lane, n), _lane(W, _K5 + lane, n), _lane(W, _K6 + lane, n),
+                _lane(W, _K7 + lane, n), (TS[its, s] - t) / h, ybuf,
+            )  # fmt: skip
+            for i in range(n):
+                YS[j, s, i] = ybuf[i]
+        s += 1
+    i_save[lane] = s
+
+
+@njit(cache=True, nogil=True)
+def _finish(W, lane, j, status, YF, STATUS, TEND, STATS):
+    """Write the outputs of trajectory ``j``, which ends in ``lane``."""
+    for i in range(N_STATE):
+        YF[j, i] = W[_Y + i * LANES + lane]
     STATUS[j] = status
-    TEND[j] = tl[lane]
-    STATS[j, ST_NFEV] = nfev[lane]
-    STATS[j, ST_NACCEPT] = naccept[lane]
-    STATS[j, ST_NREJECT] = nreject[lane]
+    TEND[j] = W[_t + lane]
+    STATS[j, ST_NFEV] = int(W[_nfev + lane])
+    STATS[j, ST_NACCEPT] = int(W[_nacc + lane])
+    STATS[j, ST_NREJECT] = int(W[_nrej + lane])
     STATS[j, ST_NEVENTS] = 0
-    ids[lane] = _EMPTY
 
 
 @njit(cache=True, nogil=True, parallel=True)
@@ -467,10 +547,11 @@ def integrate_lanes(
 
     Inputs whose first dimension is 1 are shared by all trajectories: ``Y0`` (1 or N, n),
     ``P`` (1 or N, n_param), ``T1`` (1 or N,), ``TS`` (1 or N, n_save). ``nl`` must equal
-    ``LANES``; ``n_threads`` is the number of worker threads (numba's current number of threads
-    at most: pass ``numba.get_num_threads()``, which cannot be called here without making the
-    function uncacheable). Each trajectory writes only its own rows of ``YS``, ``YF``, ``STATUS``, ``TEND``
-    and ``STATS``, with the same numbers whatever the thread that integrated it.
+    ``LANES`` and ``n`` must equal ``N_STATE``; ``n_threads`` is the number of worker threads
+    (numba's current number of threads at most: pass ``numba.get_num_threads()``, which cannot
+    be called here without making the function uncacheable). Each trajectory writes only its own
+    rows of ``YS``, ``YF``, ``STATUS``, ``TEND`` and ``STATS``, with the same numbers whatever
+    the thread that integrated it.
     """
     N = STATUS.shape[0]
     n_workers = max(1, min(n_threads, (N + LANES - 1) // LANES))
@@ -547,21 +628,22 @@ def lane_driver(kernels, lanes, n_ev, ev_act, serial):
     return run
 
 
-def _source(width):
-    """This module's source with ``LANES`` set to ``width``."""
+def _source(width, n_state):
+    """This module's source with ``LANES = width`` and ``N_STATE = n_state``."""
     import inspect
     import sys
     from pathlib import Path
 
     lines = Path(inspect.getsourcefile(sys.modules[__name__])).read_text().splitlines()
-    marked = [i for i, line in enumerate(lines) if line.rstrip().endswith("# @lanes")]
-    if len(marked) != 1:
-        raise RuntimeError("rotorlab.integrate._lanes must have exactly one '# @lanes' line")
-    lines[marked[0]] = f"LANES = {int(width)}  # @lanes"
+    for mark, value in (("# @lanes", f"LANES = {int(width)}"), ("# @n_state", f"N_STATE = {int(n_state)}")):
+        marked = [i for i, line in enumerate(lines) if line.rstrip().endswith(mark)]
+        if len(marked) != 1:
+            raise RuntimeError(f"rotorlab.integrate._lanes must have exactly one '{mark}' line")
+        lines[marked[0]] = f"{value}  {mark}"
     return lines
 
 
-def lane_drivers_for(kernels, width=LANES):
+def lane_drivers_for(kernels, width=8):
     """Return ``(parallel, serial)`` lane drivers of ``width`` lanes for the model's ``rhs``.
 
     Both take the arguments of :func:`integrate_lanes`. The copy of this module with the
@@ -579,7 +661,7 @@ def lane_drivers_for(kernels, width=LANES):
     name = spec._importable_name(kernels.rhs)
     if name is None:
         return _uncached(kernels, width)
-    key = (f"{name[0]}.{name[1]}", width)
+    key = (f"{name[0]}.{name[1]}", width, kernels.n_state)
     if key in _LOADED:
         return _LOADED[key]
     directory = spec._cache_dir()
@@ -589,11 +671,11 @@ def lane_drivers_for(kernels, width=LANES):
     deps = [mod, __name__, "rotorlab.integrate._core", "rotorlab.integrate._tableau"]
     deps += _kernel_dependencies(mod)
     digest = spec._source_hash(deps)
-    stem = f"lanes{width}_{mod.rsplit('.', 1)[-1]}_{fn}_{digest}"
+    stem = f"lanes{width}n{kernels.n_state}_{mod.rsplit('.', 1)[-1]}_{fn}_{digest}"
     path = directory / f"{stem}.py"
     if not path.exists():
         spec._prune(directory, stem.rsplit("_", 1)[0])
-        lines = _source(width)
+        lines = _source(width, kernels.n_state)
         marked = [i for i, line in enumerate(lines) if line.rstrip().endswith("# @kernel")]
         if len(marked) != 1:
             raise RuntimeError("rotorlab.integrate._lanes must have exactly one '# @kernel' line")
@@ -626,10 +708,11 @@ def _kernel_dependencies(mod):
 
 def _uncached(kernels, width):
     """Compile the lane driver with the kernel bound directly, without on-disk caching."""
-    key = (id(kernels.rhs), width)
+    key = (id(kernels.rhs), width, kernels.n_state)
     if key in _LOADED:
         return _LOADED[key][1:]
-    source = "\n".join(ln for ln in _source(width) if not ln.rstrip().endswith("# @kernel"))
+    lines = _source(width, kernels.n_state)
+    source = "\n".join(ln for ln in lines if not ln.rstrip().endswith("# @kernel"))
     namespace = {"rhs": kernels.rhs, "__name__": "_rotorlab_lanes_uncached"}
     exec(compile(source.replace("cache=True", "cache=False"), "<rotorlab lane driver>", "exec"), namespace)  # noqa: S102
     _LOADED[key] = (kernels.rhs, namespace["integrate_lanes"], namespace["integrate_lanes_serial"])
