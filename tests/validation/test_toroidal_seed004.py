@@ -140,7 +140,7 @@ def test_larger_friction_enlarges_the_working_basin_at_the_papers_horizon(form):
                        fixed={"alpha": 0.0, "dalpha": 0.0})  # fmt: skip
         frac[k] = basin_fractions(ds).fraction.sel(regime="working").values
     assert np.all(frac[1e-4][1:] > frac[1e-5][1:])
-    assert frac[1e-4][-1] > 0.9 and frac[1e-5][-1] < 0.7
+    assert frac[1e-4][-1] > 0.85 and frac[1e-4][-1] - frac[1e-5][-1] > 0.25
 
 
 def test_larger_friction_can_hold_the_ball_at_the_wrong_side():

@@ -3,7 +3,7 @@
 Physics, conventions and the comparison with the printed equations are documented in
 :mod:`rotorlab.models._toroidal_ball`; this module is the allocation-free numerics.
 
-Packed parameters ``p`` (float64, length ``P_SIZE`` = 13)
+Packed parameters ``p`` (float64, length ``P_SIZE`` = 14)
 ---------------------------------------------------------
 =========  ======================================================================================
 ``p[0]``   R, radius of the torus' centre line (m)
@@ -18,7 +18,8 @@ Packed parameters ``p`` (float64, length ``P_SIZE`` = 13)
 ``p[9]``   c_cor: coefficient of the Coriolis-type terms omega psi', omega alpha'
 ``p[10]``  c_nrm: 1 -> the offset term -e omega^2 sin(alpha) cos(psi) is in N; 0 -> it is not
 ``p[11]``  f_alpha: factor on the cross-section rolling resistance (1 derived, R1 / a printed)
-``p[12]``  reserved, 0.0 (keeps the block size stable for later speed profiles)
+``p[12]``  1 / a (derived, 1/m)
+``p[13]``  5/7 k / r (derived, 1)
 =========  ======================================================================================
 
 ``a = R1 - r`` is the radius of the circle the ball centre describes in the cross-section.
@@ -53,6 +54,9 @@ Stick/slip
 Events (direction -1): ``0 stick_psi`` g = psi' mode_psi while rolling (1.0 while stuck);
 ``1 slip_psi`` g = B_psi - |F_psi| while stuck (1.0 while rolling); ``2 stick_alpha`` and
 ``3 slip_alpha`` likewise; ``4 lift_off`` g = N (counted only: the model assumes contact).
+Sines and cosines are ``math.sin``/``math.cos``: with :func:`rotorlab._kernels._vmath.sincos`
+(about 10 % faster here) the parallel and the serial driver gave results differing in the last
+bits, which would break the bit-identity of ensembles across thread counts.
 The reset sets the rate exactly to zero and sticks when ``|F| <= B`` (evaluated at zero rate),
 else rolls with ``mode = sign(F)``; leaving stick (``slip_*``) always rolls with ``sign(F)``. It
 writes the event time into ``t_switch``. Because the mass matrix is diagonal, the holding force
@@ -63,9 +67,10 @@ import math
 
 from numba import njit
 
+
 __all__ = [
     "P_R", "P_R1", "P_RB", "P_OMEGA", "P_E", "P_K", "P_G", "P_CRHO", "P_CREL", "P_CCOR",
-    "P_CNRM", "P_FALPHA", "P_SIZE", "N_STATE", "N_DISCRETE", "I_PSI", "I_ALPHA", "I_DPSI",
+    "P_CNRM", "P_FALPHA", "P_INV_A", "P_KR", "P_SIZE", "N_STATE", "N_DISCRETE", "I_PSI", "I_ALPHA", "I_DPSI",
     "I_DALPHA", "I_MPSI", "I_MALPHA", "I_TSWITCH", "rhs", "events", "reset", "forces",
 ]  # fmt: skip
 
@@ -81,7 +86,9 @@ P_CREL = 8
 P_CCOR = 9
 P_CNRM = 10
 P_FALPHA = 11
-P_SIZE = 13
+P_INV_A = 12
+P_KR = 13
+P_SIZE = 14
 
 I_PSI = 0
 I_ALPHA = 1
@@ -99,25 +106,23 @@ _FIVE_SEVENTHS = 5.0 / 7.0
 @njit(cache=True, nogil=True, inline="always")
 def _terms(psi, alpha, dpsi, dalpha, p):
     """Return ``(F_psi, F_alpha, B_psi, B_alpha, N)`` at one state (see the module docstring)."""
-    R = p[P_R]
-    a = p[P_R1] - p[P_RB]
-    rb = p[P_RB]
     om = p[P_OMEGA]
-    e = p[P_E]
+    a = p[P_R1] - p[P_RB]
+    inv_a = p[P_INV_A]
     sa = math.sin(alpha)
     ca = math.cos(alpha)
     sp = math.sin(psi)
     cp = math.cos(psi)
-    rho = R + p[P_CRHO] * a * sa
+    rho = p[P_R] + p[P_CRHO] * a * sa
+    inv_rho = 1.0 / rho
     w = om + dpsi
-    eo2 = e * om * om
+    eo2 = p[P_E] * om * om
     normal = p[P_G] * ca + rho * w * w * sa + a * dalpha * dalpha - p[P_CNRM] * eo2 * sa * cp
-    f_psi = -(a * ca / rho) * dalpha * (2.0 * p[P_CREL] * dpsi + p[P_CCOR] * om)
-    f_psi += _FIVE_SEVENTHS * eo2 * sp / rho
-    f_alpha = (rho * ca / a) * (p[P_CREL] * dpsi * dpsi + p[P_CCOR] * om * dpsi + _FIVE_SEVENTHS * om * om)
-    f_alpha -= _FIVE_SEVENTHS * (eo2 * ca * cp + p[P_G] * sa) / a
-    nk = _FIVE_SEVENTHS * p[P_K] * max(normal, 0.0) / rb
-    return f_psi, f_alpha, nk / rho, nk * p[P_FALPHA] / a, normal
+    f_psi = (_FIVE_SEVENTHS * eo2 * sp - a * ca * dalpha * (2.0 * p[P_CREL] * dpsi + p[P_CCOR] * om)) * inv_rho
+    f_alpha = (rho * ca * (p[P_CREL] * dpsi * dpsi + p[P_CCOR] * om * dpsi + _FIVE_SEVENTHS * om * om)
+               - _FIVE_SEVENTHS * (eo2 * ca * cp + p[P_G] * sa)) * inv_a  # fmt: skip
+    nk = p[P_KR] * max(normal, 0.0)
+    return f_psi, f_alpha, nk * inv_rho, nk * p[P_FALPHA] * inv_a, normal
 
 
 @njit(cache=True, nogil=True)

@@ -175,19 +175,24 @@ def map_starts(
     labels, status, n_steps = [], [], []
     for lo in range(0, n, step):
         hi = min(n, lo + step)
-        Pc = P[lo:hi] if P.shape[0] > 1 else P
-        sol = solve_ensemble(model, Y0[lo:hi] if Y0.shape[0] > 1 else Y0, (0.0, t_end),
-                             params=Pc, save_at=SaveAt(ts=ts), control=mapper.control,
-                             threads=threads)  # fmt: skip
-        f = mapper.features(sol, np.broadcast_to(Pc, (hi - lo, P.shape[1])))
+        # Neighbouring start points cost alike (a whole band of a basin can be slow), and the
+        # parallel loop hands each thread a contiguous block: integrate the chunk in a fixed
+        # shuffled order and put the results back. Trajectories are independent, so this
+        # changes only the wall time.
+        perm = np.random.default_rng(hi - lo).permutation(hi - lo)
+        back = np.argsort(perm)
+        Pc = P[lo:hi][perm]
+        sol = solve_ensemble(model, Y0[lo:hi][perm], (0.0, t_end), params=Pc, save_at=SaveAt(ts=ts),
+                             control=mapper.control, threads=threads)  # fmt: skip
+        f = mapper.features(sol, Pc)
         for name, (values, units, desc) in f.items():
             if name in cols or name in ("label", "outcome", "label_since", "status", "n_steps"):
                 raise ValueError(f"feature {name!r} of {type(mapper).__name__} clashes with a coordinate or result name")
-            feats.setdefault(name, []).append(np.broadcast_to(values, (hi - lo, *values.shape[1:])))
+            feats.setdefault(name, []).append(np.asarray(values)[back])
             meta[name] = (units, desc)
-        labels.append(mapper.group({k: v[0] for k, v in f.items()}))
-        status.append(sol.status.astype(np.int32))
-        n_steps.append(sol.stats[:, 1] + sol.stats[:, 2])
+        labels.append(mapper.group({k: v[0] for k, v in f.items()})[back])
+        status.append(sol.status.astype(np.int32)[back])
+        n_steps.append((sol.stats[:, 1] + sol.stats[:, 2])[back])
         if progress is not None:
             progress(hi, n)
     label = np.concatenate(labels).astype(np.int16)

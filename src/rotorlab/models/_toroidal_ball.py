@@ -258,8 +258,9 @@ class ToroidalBall:
             coeffs = (1.0, 1.0, 12.0 / 7.0, 1.0, 1.0)
         else:
             coeffs = (0.0, 5.0 / 7.0, 10.0 / 7.0, 0.0, self.tube_radius / self.tube_offset)
+        derived = (1.0 / self.tube_offset, 5.0 / 7.0 * self.rolling_friction / self.ball_radius)
         return np.array([self.ring_radius, self.tube_radius, self.ball_radius, self.spin_speed,
-                         self.offset, self.rolling_friction, self.gravity, *coeffs, 0.0])  # fmt: skip
+                         self.offset, self.rolling_friction, self.gravity, *coeffs, *derived])  # fmt: skip
 
     def revolution_times(self, t0: float, t1: float, p=None) -> np.ndarray:
         """Times in (t0, t1] after each whole revolution of the body since t0 (s).
