@@ -173,25 +173,21 @@ def _fetch_add(typingctx, counter, delta):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _rhs_lanes(W, row_t, row_y, row_k, p, PL, shared, nl):
-    """``K[:, l] = rhs(t[l], Y[:, l], p)`` for every lane, rows of the workspace ``W``.
+def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
+    """``K[:, l] = rhs(t[l], Y[:, l], p[:, l])`` for every lane, rows of the workspace ``W``.
 
-    ``nl`` (= LANES) is a run-time value on purpose: with a constant trip count this small, LLVM
-    treats the loop as "optimise for size" and will not emit the alias checks it needs to
-    vectorise. ``shared``: one parameter vector ``p`` for all lanes, else lane-interleaved ``PL``.
+    Parameters are lane-interleaved in ``PL`` even when all trajectories share them: loads
+    from memory measured faster than LLVM's hoisting of the parameter arithmetic out of the
+    loop (which keeps too many values in registers). ``nl`` (= LANES) is a run-time value on
+    purpose: with a constant trip count this small, LLVM treats the loop as "optimise for size"
+    and will not emit the alias checks it needs to vectorise.
     """
-    if shared:
-        for lane in range(nl):
-            _rhs_inline(
-                W[row_t + lane], _lane(W, row_y + lane, N_STATE), p, _lane(W, row_k + lane, N_STATE)
-            )
-    else:
-        n_par = PL.shape[0] // LANES
-        for lane in range(nl):
-            _rhs_inline(
-                W[row_t + lane], _lane(W, row_y + lane, N_STATE), _lane(PL, lane, n_par),
-                _lane(W, row_k + lane, N_STATE),
-            )  # fmt: skip
+    n_par = PL.shape[0] // LANES
+    for lane in range(nl):
+        _rhs_inline(
+            W[row_t + lane], _lane(W, row_y + lane, N_STATE), _lane(PL, lane, n_par),
+            _lane(W, row_k + lane, N_STATE),
+        )  # fmt: skip
 
 
 @njit(cache=True, nogil=True)
@@ -299,10 +295,9 @@ def _worker(
     Wi = W.view(np.int64)  # the same memory, for the bits of t in _min_steps
     for k in range(NL):
         W[_AT + k] = atol[k // L]
-    PL = np.zeros(n_par * L) if not shared else np.zeros(0)
-    for k in range(PL.shape[0]):
-        PL[k] = P[0, k // L]  # idle lanes keep evaluating the kernel on sane parameters
-    p0 = P[0]
+    PL = np.zeros(n_par * L)  # lane-interleaved parameters (idle lanes keep P[0])
+    for k in range(n_par * L):
+        PL[k] = P[0, k // L]
     ids = np.full(L, _EMPTY, dtype=np.int64)
     i_save = np.zeros(L, dtype=np.int64)
     ybuf = np.empty(n)
@@ -396,38 +391,38 @@ def _worker(
             W[_T + k] = W[_Y + k] + W[_H + k] * (A21 * W[_K1 + k])
         for lane in range(nl):
             W[_tt + lane] = W[_t + lane] + C2 * W[_h + lane]
-        _rhs_lanes(W, _tt, _T, _K2, p0, PL, shared, nl)
+        _rhs_lanes(W, _tt, _T, _K2, PL, nl)
         for k in range(n * nl):
             W[_T + k] = W[_Y + k] + W[_H + k] * (A31 * W[_K1 + k] + A32 * W[_K2 + k])
         for lane in range(nl):
             W[_tt + lane] = W[_t + lane] + C3 * W[_h + lane]
-        _rhs_lanes(W, _tt, _T, _K3, p0, PL, shared, nl)
+        _rhs_lanes(W, _tt, _T, _K3, PL, nl)
         for k in range(n * nl):
             W[_T + k] = W[_Y + k] + W[_H + k] * (
                 A41 * W[_K1 + k] + A42 * W[_K2 + k] + A43 * W[_K3 + k]
             )
         for lane in range(nl):
             W[_tt + lane] = W[_t + lane] + C4 * W[_h + lane]
-        _rhs_lanes(W, _tt, _T, _K4, p0, PL, shared, nl)
+        _rhs_lanes(W, _tt, _T, _K4, PL, nl)
         for k in range(n * nl):
             W[_T + k] = W[_Y + k] + W[_H + k] * (
                 A51 * W[_K1 + k] + A52 * W[_K2 + k] + A53 * W[_K3 + k] + A54 * W[_K4 + k]
             )
         for lane in range(nl):
             W[_tt + lane] = W[_t + lane] + C5 * W[_h + lane]
-        _rhs_lanes(W, _tt, _T, _K5, p0, PL, shared, nl)
+        _rhs_lanes(W, _tt, _T, _K5, PL, nl)
         for k in range(n * nl):
             W[_T + k] = W[_Y + k] + W[_H + k] * (
                 A61 * W[_K1 + k] + A62 * W[_K2 + k] + A63 * W[_K3 + k] + A64 * W[_K4 + k]
                 + A65 * W[_K5 + k]
             )  # fmt: skip
-        _rhs_lanes(W, _tn, _T, _K6, p0, PL, shared, nl)
+        _rhs_lanes(W, _tn, _T, _K6, PL, nl)
         for k in range(n * nl):
             W[_YN + k] = W[_Y + k] + W[_H + k] * (
                 B1 * W[_K1 + k] + B3 * W[_K3 + k] + B4 * W[_K4 + k] + B5 * W[_K5 + k]
                 + B6 * W[_K6 + k]
             )  # fmt: skip
-        _rhs_lanes(W, _tn, _YN, _K7, p0, PL, shared, nl)
+        _rhs_lanes(W, _tn, _YN, _K7, PL, nl)
 
         # ---- error norm (RMS over the continuous states, as _core._rms_scaled) --------------
         # Summed over the states in the same order, by a recurrence at distance L (the last
