@@ -190,6 +190,12 @@ def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
         )  # fmt: skip
 
 
+@njit(cache=True, nogil=True, error_model="numpy")
+def _probe(W, PL, nl):
+    """One stage's kernel call as the worker makes it (constant rows): see :func:`is_vectorised`."""
+    _rhs_lanes(W, _tt, _T, _K2, PL, nl)
+
+
 @njit(cache=True, nogil=True)
 def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     """Hairer's initial step; arithmetic identical to ``_core._initial_step`` (kept in sync by
@@ -623,6 +629,57 @@ def lane_driver(kernels, lanes, n_ev, ev_act, serial):
     return run
 
 
+def is_vectorised(kernels, lanes=8):
+    """Report whether LLVM vectorises the model's ``rhs`` across ``lanes`` lanes on this CPU.
+
+    Compiles (without caching, a few seconds) the loop over lanes that the lane driver runs for
+    each stage and inspects its optimised LLVM IR.
+
+    Parameters
+    ----------
+    kernels : Kernels
+    lanes : int
+
+    Returns
+    -------
+    bool
+        True if the loop body is SIMD code (several lanes per instruction) without scalar calls
+        of mathematical library functions (``math.sin`` and the like, which LLVM can only call
+        one lane at a time).
+    """
+    import re
+
+    from numba import typeof
+
+    ns = _namespace(kernels, lanes, {})
+    probe = ns["_probe"]
+    W = np.zeros(ns["_W_SIZE"])
+    PL = np.zeros(lanes)
+    probe.compile((typeof(W), typeof(PL), typeof(lanes)))
+    ir = probe.inspect_llvm(probe.signatures[0])
+    # the compiled loop (in _rhs_lanes, or inlined into _probe), not the CPython wrappers
+    body = "\n".join(
+        f for f in re.split(r"^define ", ir, flags=re.M)
+        if re.match(r"[^(]*@_ZN[^(]*(_probe|_rhs_lanes)", f)
+    )
+    packed = re.findall(r"= f(?:mul|add|sub|div) (?:[a-z]+ )*<\d+ x double>", body)
+    libm = re.findall(
+        r"call [^@\n]*@(?:llvm\.)?(?:sin|cos|sincos|tan|pow|exp|exp2|log|log2|log10|atan2?|asin|acos"
+        r"|sinh|cosh|tanh|expm1|log1p|cbrt|hypot)\b",
+        body,
+    )
+    return len(packed) >= 20 and not libm
+
+
+def _namespace(kernels, width, namespace):
+    """Execute this module's source with ``rhs`` bound to the kernel, without on-disk caching."""
+    lines = _source(width, kernels.n_state)
+    source = "\n".join(ln for ln in lines if not ln.rstrip().endswith("# @kernel"))
+    namespace.update({"rhs": kernels.rhs, "__name__": "_rotorlab_lanes_uncached"})
+    exec(compile(source.replace("cache=True", "cache=False"), "<rotorlab lane driver>", "exec"), namespace)  # noqa: S102
+    return namespace
+
+
 def _source(width, n_state):
     """This module's source with ``LANES = width`` and ``N_STATE = n_state``."""
     import inspect
@@ -704,11 +761,7 @@ def _kernel_dependencies(mod):
 def _uncached(kernels, width):
     """Compile the lane driver with the kernel bound directly, without on-disk caching."""
     key = (id(kernels.rhs), width, kernels.n_state)
-    if key in _LOADED:
-        return _LOADED[key][1:]
-    lines = _source(width, kernels.n_state)
-    source = "\n".join(ln for ln in lines if not ln.rstrip().endswith("# @kernel"))
-    namespace = {"rhs": kernels.rhs, "__name__": "_rotorlab_lanes_uncached"}
-    exec(compile(source.replace("cache=True", "cache=False"), "<rotorlab lane driver>", "exec"), namespace)  # noqa: S102
-    _LOADED[key] = (kernels.rhs, namespace["integrate_lanes"], namespace["integrate_lanes_serial"])
+    if key not in _LOADED:
+        ns = _namespace(kernels, width, {})
+        _LOADED[key] = (kernels.rhs, ns["integrate_lanes"], ns["integrate_lanes_serial"])
     return _LOADED[key][1:]
