@@ -113,6 +113,8 @@ _nrej = _R + 16 * LANES
 _code = _R + 17 * LANES  # prologue verdict: 0 step, 1 ended, 2 step too small, 3 max steps
 _W_SIZE = _R + 18 * LANES
 
+_NEG_ZERO_BITS = -(2**63)  # -0.0 seen as int64
+
 # lane slots: ids[l] >= 0 is the trajectory in lane l; these mark empty and exhausted lanes
 _EMPTY = -1
 _DONE = -2
@@ -274,12 +276,12 @@ def _min_steps(W, Wi, nl):
     """``W[_ms + l] = 10 * abs(np.nextafter(t, inf) - t)`` for every lane, vectorised.
 
     ``nextafter(t, +inf)`` of a finite ``t`` has the bits of ``t`` plus one (``t > 0``), minus
-    one (``t < 0``), or 1 (``t = +-0``: the smallest subnormal); ``Wi`` is ``W`` seen as int64.
+    one (``t < 0``), or 1 (``t = +-0``: the smallest subnormal). ``Wi`` is ``W`` seen as int64;
+    each loop touches only one of the two views (LLVM's alias check between them would fail).
     """
     for lane in range(nl):
-        t = W[_t + lane]
-        bits = Wi[_t + lane]
-        Wi[_ms + lane] = bits + 1 if t > 0.0 else (bits - 1 if t < 0.0 else 1)
+        bits = Wi[_t + lane]  # > 0 for t > 0; < 0 for t < 0 and for -0.0 (the minimum)
+        Wi[_ms + lane] = bits + 1 if bits > 0 else (bits - 1 if bits > _NEG_ZERO_BITS else 1)
     for lane in range(nl):
         W[_ms + lane] = 10.0 * abs(W[_ms + lane] - W[_t + lane])
 
