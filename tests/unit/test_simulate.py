@@ -230,6 +230,6 @@ def test_unrunnable_analysis_type_rejected_before_running():
     from types import SimpleNamespace
 
     case = parse_case(_SMALL)
-    other = SimpleNamespace(type="basin", name="eq")
-    with pytest.raises(ValueError, match="analysis eq: type 'basin' cannot be run here"):
+    other = SimpleNamespace(type="no-such-analysis", name="eq")
+    with pytest.raises(ValueError, match="analysis eq: type 'no-such-analysis' cannot be run here"):
         run_analysis(case.model, other)

@@ -4,6 +4,15 @@ Nothing here plots or writes files; see :mod:`rotorlab.plot`, :mod:`rotorlab.rep
 command line (:mod:`rotorlab.cli`) for that.
 """
 
+from rotorlab.analyses._basin import (
+    BASIN_ANALYSES,
+    basin_document,
+    basin_mapper,
+    basin_rows,
+    compare_basins,
+    run_basin,
+    run_basin_analysis,
+)
 from rotorlab.analyses._case import (
     RUNNABLE_ANALYSES,
     build_model,
@@ -40,6 +49,7 @@ from rotorlab.analyses._steady import (
 
 __all__ = [
     "BALANCED_FRACTION",
+    "BASIN_ANALYSES",
     "DATA_AUDITS",
     "LINEAR_ANALYSES",
     "RUNNABLE_ANALYSES",
@@ -47,14 +57,20 @@ __all__ = [
     "SETTLE_REVOLUTIONS",
     "SIDE_TOLERANCE",
     "STEADY_ANALYSES",
+    "basin_document",
+    "basin_mapper",
+    "basin_rows",
     "build_linear_system",
     "build_model",
     "chart_intervals",
     "campbell_summary",
     "classify",
+    "compare_basins",
     "modes_summary",
     "reference_amplitude",
     "run_analysis",
+    "run_basin",
+    "run_basin_analysis",
     "run_case",
     "run_linear_analysis",
     "run_steady_analysis",

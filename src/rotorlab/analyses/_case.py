@@ -1,6 +1,7 @@
 """From a validated case to results: build the model, run every analysis, summarize outcomes.
 
-Simulations run on the ``jeffcott_balls`` model (:mod:`rotorlab.analyses._simulate`); the linear
+Simulations run on the ``jeffcott_balls`` model (:mod:`rotorlab.analyses._simulate`); basins on
+it and on the ``toroidal_ball`` model (:mod:`rotorlab.analyses._basin`); the linear
 analyses (Campbell diagram, modes, critical speeds, unbalance response, identification, data
 audit) on the ``multibody`` and ``fe_rotor`` models (:mod:`rotorlab.analyses._linear`).
 """
@@ -13,6 +14,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
+from rotorlab.analyses._basin import BASIN_ANALYSES
 from rotorlab.analyses._linear import LINEAR_ANALYSES
 from rotorlab.analyses._steady import STEADY_ANALYSES
 
@@ -21,12 +23,12 @@ if TYPE_CHECKING:
 
     from rotorlab.io import Case
     from rotorlab.linear import LinearSystem
-    from rotorlab.models import JeffcottBalls
+    from rotorlab.models import JeffcottBalls, ToroidalBall
 
 __all__ = ["RUNNABLE_ANALYSES", "build_model", "run_analysis", "run_case", "summarize"]
 
 #: Analysis types (the ``type`` of a case's ``[[analysis]]``) that :func:`run_case` can run.
-RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES, *STEADY_ANALYSES)
+RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES, *STEADY_ANALYSES, *BASIN_ANALYSES)
 
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -45,21 +47,22 @@ def _speed_profile(spec: Any) -> Any:
     raise ValueError(f"unknown speed profile {spec.profile!r}")
 
 
-def build_model(case_model: Any) -> JeffcottBalls | LinearSystem:
+def build_model(case_model: Any) -> JeffcottBalls | LinearSystem | ToroidalBall:
     """Build the model object of a validated case's ``[model]`` table.
 
     Parameters
     ----------
-    case_model : rotorlab.io.JeffcottBallsSpec, rotorlab.io.MultibodySpec or FeRotorSpec
+    case_model : rotorlab.io.JeffcottBallsSpec, MultibodySpec, FeRotorSpec or ToroidalBallSpec
         ``Case.model`` (SI values, balls expanded).
 
     Returns
     -------
-    JeffcottBalls or rotorlab.linear.LinearSystem
+    JeffcottBalls or rotorlab.linear.LinearSystem or rotorlab.models.ToroidalBall
         A ball balancer in the case's frame; its speed profile is the case's
         ``[model.speed]``, or a rotor at rest (``ConstantSpeed(0)``) when the case gives none
         (analyses set their own speed). For a linear rotor model, its
-        :class:`~rotorlab.linear.LinearSystem`.
+        :class:`~rotorlab.linear.LinearSystem`; for a toroidal ball, the
+        :class:`~rotorlab.models.ToroidalBall`.
 
     Raises
     ------
@@ -79,6 +82,12 @@ def build_model(case_model: Any) -> JeffcottBalls | LinearSystem:
         from rotorlab.analyses._linear_build import build_linear_system
 
         return build_linear_system(case_model)
+    if getattr(case_model, "type", None) == "toroidal_ball":
+        from rotorlab.models import ToroidalBall
+
+        return ToroidalBall(case_model.ring_radius, case_model.tube_radius, case_model.ball_radius,
+                            case_model.spin_speed, case_model.offset, case_model.rolling_friction,
+                            case_model.gravity, case_model.form)  # fmt: skip
     if getattr(case_model, "type", None) != "jeffcott_balls":
         raise ValueError(f"cannot build a model of type {getattr(case_model, 'type', None)!r}")
     rotor = RotorParams(
@@ -127,6 +136,10 @@ def run_analysis(case_model: Any, analysis: Any,
         from rotorlab.analyses._steady import run_steady_analysis
 
         return run_steady_analysis(case_model, analysis, progress=progress)
+    if analysis.type in BASIN_ANALYSES:
+        from rotorlab.analyses._basin import run_basin_analysis
+
+        return run_basin_analysis(case_model, analysis, progress=progress)
     if analysis.type in LINEAR_ANALYSES:
         from rotorlab.analyses._linear import run_linear_analysis
 
@@ -226,6 +239,10 @@ def summarize(ds: xarray.Dataset) -> list[dict[str, Any]]:
         from rotorlab.analyses._steady import steady_rows
 
         return steady_rows(ds)
+    if ds.attrs.get("analysis") in BASIN_ANALYSES:
+        from rotorlab.analyses._basin import basin_rows
+
+        return basin_rows(ds)
     if ds.attrs.get("analysis") in LINEAR_ANALYSES:
         from rotorlab.analyses._linear import summarize_linear
 

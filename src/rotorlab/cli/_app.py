@@ -94,7 +94,9 @@ def _trajectory_count(case_model: Any, analysis: Any) -> int:
 
 
 def _task_size(case_model: Any, analysis: Any) -> int:
-    """Steps of an analysis for the progress bar: trajectories of a simulation, else 1."""
+    """Steps of an analysis for the progress bar: trajectories of a simulation or basin, else 1."""
+    if analysis.type == "basin":
+        return analysis.samples if analysis.samples is not None else analysis.x[3] * analysis.y[3]
     return _trajectory_count(case_model, analysis) if analysis.type == "simulate" else 1
 
 
@@ -230,12 +232,13 @@ def run_command(
         from rotorlab.analyses import STEADY_ANALYSES, run_case, summarize
 
         tasks = {a.name: _task_size(loaded.model, a) for a in loaded.analyses}
-        units = {a.name: "trajectories" if a.type == "simulate" else "done"
+        units = {a.name: "trajectories" if a.type in ("simulate", "basin") else "done"
                  for a in loaded.analyses}
         with progress_bar(settings, tasks, units) as update:
             results = run_case(loaded, progress=update)
         computed = time.perf_counter() - start
-        from rotorlab.plot import linear_figures, simulation_figures
+        from rotorlab.analyses import BASIN_ANALYSES
+        from rotorlab.plot import basin_figures, linear_figures, simulation_figures
         from rotorlab.report import steady_figures, write_report
 
         tables = {name: summarize(ds) for name, ds in results.items()}
@@ -246,6 +249,8 @@ def run_command(
                     linear_figures)
                 if ds.attrs.get("analysis") in STEADY_ANALYSES:
                     draw = steady_figures
+                if ds.attrs.get("analysis") in BASIN_ANALYSES:
+                    draw = basin_figures
                 figures.update(draw(ds, name))
             report = write_report(out, loaded, results, figures, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results), *(f"{k}.png" for k in figures)])
@@ -272,6 +277,11 @@ def run_command(
                   if linear[n].attrs.get("analysis") in STEADY_ANALYSES}
         for table in steady_tables(steady, tables):
             con.print(table)
+        from rotorlab.cli._basin import basin_tables
+
+        basins = {n: linear.pop(n) for n in list(linear) if linear[n].attrs.get("analysis") in BASIN_ANALYSES}
+        for table in basin_tables(basins, tables):
+            con.print(table)
         for table in linear_tables(linear, tables):
             con.print(table)
         if settings.verbose:
@@ -293,18 +303,24 @@ def _positive(option: str, values: list[float] | None, unit: str) -> list[float]
     return out
 
 
+def find_analysis(loaded: Any, kind: str, name: str | None) -> Any:
+    """The analysis of type ``kind`` called ``name`` (BadInput if none), or the first one (or None)."""
+    found = [a for a in loaded.analyses if a.type == kind]
+    if name is not None:
+        for a in found:
+            if a.name == name:
+                return a
+        names = ", ".join(a.name for a in found) or "none"
+        raise BadInput(f"--analysis = {name}: no {kind} analysis of that name ({kind} analyses: {names})")
+    return found[0] if found else None
+
+
 def _pick_analysis(loaded: Any, name: str | None) -> Any:
     from rotorlab.io import SimulateSpec
 
-    sims = [a for a in loaded.analyses if a.type == "simulate"]
-    if name is not None:
-        for a in sims:
-            if a.name == name:
-                return a
-        names = ", ".join(a.name for a in sims) or "none"
-        raise BadInput(f"--analysis = {name}: no simulate analysis of that name (simulate analyses: {names})")
-    if sims:
-        return sims[0]
+    found = find_analysis(loaded, "simulate", name)
+    if found is not None:
+        return found
     return SimulateSpec(name="simulate", ball_angle_grid=4 if loaded.model.n_balls <= 2 else 2,
                         revolutions=200.0)  # fmt: skip
 

@@ -13,6 +13,14 @@ Examples
 20.0
 """
 
+from rotorlab.io._basin_specs import (
+    BALANCER_COORDINATES,
+    TORUS_COORDINATES,
+    BasinSpec,
+    ToroidalBallSpec,
+    WorkingPointSpec,
+    coordinate_dimensions,
+)
 from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, validate_case
 from rotorlab.io._errors import CaseError, Issue
 from rotorlab.io._results import load_netcdf, missing_units, save_netcdf
@@ -56,16 +64,19 @@ from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
 __all__ = [
     "ACCEPTED_UNITS",
     "ANALYSIS_SPECS",
+    "BALANCER_COORDINATES",
     "DIMENSIONS",
     "MODEL_SPECS",
     "SCHEMA_VERSION",
     "SPEED_PROFILES",
     "STEADY_PARAMETERS",
+    "TORUS_COORDINATES",
     "AbstractAnalysisSpec",
     "AbstractLinearModelSpec",
     "AbstractModelSpec",
     "AbstractSpeedProfile",
     "Ball",
+    "BasinSpec",
     "CampbellSpec",
     "Case",
     "CaseError",
@@ -86,9 +97,12 @@ __all__ = [
     "StabilityChartSpec",
     "SteadyAnalysisSpec",
     "SteadySpec",
+    "ToroidalBallSpec",
     "UnbalanceResponseSpec",
     "VerifySpec",
+    "WorkingPointSpec",
     "builtin_cases",
+    "coordinate_dimensions",
     "dump_case",
     "integer",
     "load_case",

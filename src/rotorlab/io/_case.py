@@ -113,7 +113,7 @@ def load_case(source: str | os.PathLike[str]) -> Case:
     --------
     >>> case = load_case("autobalancer")
     >>> case.source, [a.name for a in case.analyses]
-    ('builtin:autobalancer', ['subcritical', 'supercritical'])
+    ('builtin:autobalancer', ['subcritical', 'supercritical', 'basin'])
     """
     text_source = os.fspath(source)
     path = Path(text_source)

@@ -287,6 +287,20 @@ class JeffcottBallsSpec(AbstractModelSpec):
 
 #: Model specifications by the value of their ``type`` key.
 
+def constant_spin_speed(speed: float | None, speed_ratio: float | None, model: AbstractModelSpec) -> float | None:
+    """Return an analysis' constant spin speed (rad/s): ``speed``, else ``speed_ratio * p``, else the
+    model's profile speed if that profile is constant, else None."""
+    if speed is not None:
+        return speed
+    if speed_ratio is not None:
+        p = model.critical_speed()
+        return None if p is None else speed_ratio * p
+    profile = model.speed_profile()
+    if profile is not None and profile.is_constant:
+        return profile.final_speed
+    return None
+
+
 class SimulateSpec(AbstractAnalysisSpec):
     """Time simulation of an ensemble of start-ups (one per initial ball configuration).
 
@@ -348,15 +362,7 @@ class SimulateSpec(AbstractAnalysisSpec):
         ``speed`` if given, else ``speed_ratio * p``, else the model's profile speed if that
         profile is constant, else None.
         """
-        if self.speed is not None:
-            return self.speed
-        if self.speed_ratio is not None:
-            p = model.critical_speed()
-            return None if p is None else self.speed_ratio * p
-        profile = model.speed_profile()
-        if profile is not None and profile.is_constant:
-            return profile.final_speed
-        return None
+        return constant_spin_speed(self.speed, self.speed_ratio, model)
 
     def duration(self, model: AbstractModelSpec) -> float:
         """Return the simulated time (s): ``t_end``, or ``revolutions`` at the spin speed."""

@@ -51,6 +51,7 @@ from pydantic import (
     model_validator,
 )
 
+from rotorlab.io._basin_specs import BasinSpec, ToroidalBallSpec, WorkingPointSpec
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
 from rotorlab.io._fields import (
@@ -100,6 +101,7 @@ __all__ = [
     "JeffcottBallsSpec",
     "MultibodySpec",
     "FeRotorSpec",
+    "ToroidalBallSpec",
     "MODEL_SPECS",
     "AbstractAnalysisSpec",
     "SimulateSpec",
@@ -109,6 +111,8 @@ __all__ = [
     "UnbalanceResponseSpec",
     "IdentifySpec",
     "DataAuditSpec",
+    "BasinSpec",
+    "WorkingPointSpec",
     "ANALYSIS_SPECS",
     "Case",
     "exclusive_issues",
@@ -124,6 +128,7 @@ MODEL_SPECS: Mapping[str, type[AbstractModelSpec]] = MappingProxyType(
         "jeffcott_balls": JeffcottBallsSpec,
         "multibody": MultibodySpec,
         "fe_rotor": FeRotorSpec,
+        "toroidal_ball": ToroidalBallSpec,
     }
 )
 
@@ -147,6 +152,8 @@ ANALYSIS_SPECS: Mapping[str, type[AbstractAnalysisSpec]] = MappingProxyType(
         "stability-chart": StabilityChartSpec,
         "verify": VerifySpec,
         "run-up": RunUpSpec,
+        "basin": BasinSpec,
+        "working-point": WorkingPointSpec,
     }
 )
 
@@ -182,7 +189,7 @@ class Case(BaseModel):
         Case name (letters, digits, '_', '-', '.').
     description : str
         One line shown by ``rotorlab cases``.
-    model : JeffcottBallsSpec or MultibodySpec or FeRotorSpec
+    model : JeffcottBallsSpec or MultibodySpec or FeRotorSpec or ToroidalBallSpec
         The model (any of :data:`MODEL_SPECS`).
     analyses : tuple of SimulateSpec, CampbellSpec, ...
         The analyses in file order (key ``analysis`` in the file), with default names filled

@@ -5,7 +5,9 @@ from rotorlab.models._jeffcott_balls import JeffcottBalls, fixed_to_rotating, ro
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
 from rotorlab.models._jeffcott_physics import Linearization
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp, speed_from_array
+from rotorlab.models._toroidal_ball import ToroidalBall, WorkingPoint, strautmanis_torus
 
 __all__ = ["AbstractModel", "EventSpec", "Kernels", "no_events", "no_reset"]
 __all__ += ["JeffcottBalls", "RotorParams", "BallParams", "Linearization", "fixed_to_rotating",
             "rotating_to_fixed", "ConstantSpeed", "LinearRamp", "HillRunUp", "speed_from_array"]
+__all__ += ["ToroidalBall", "WorkingPoint", "strautmanis_torus"]

@@ -4,6 +4,7 @@ Numerics never import this package. Figures are made without pyplot (Agg canvas)
 or using it changes no global matplotlib state.
 """
 
+from rotorlab.plot._basin import basin_figure, basin_figures, fractions_figure, restoring_force_figure
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
 from rotorlab.plot._linear import linear_figures, mode_shapes_figure, unbalance_response_figure
 from rotorlab.plot._stability import run_up_figure, stability_chart_figure, verify_figure
@@ -21,12 +22,16 @@ __all__ = [
     "WHIRL_STYLES",
     "amplitude_figure",
     "ball_angle_figure",
+    "basin_figure",
+    "basin_figures",
     "campbell_figure",
     "configuration_label",
     "final_positions_figure",
+    "fractions_figure",
     "linear_figures",
     "mode_shapes_figure",
     "orbit_figure",
+    "restoring_force_figure",
     "run_up_figure",
     "simulation_figures",
     "speed_label",

@@ -16,7 +16,8 @@ if TYPE_CHECKING:
     import xarray
     from matplotlib.figure import Figure
 
-__all__ = ["basin_figure", "fractions_figure", "restoring_force_figure", "label_colors"]
+__all__ = ["basin_figure", "basin_figures", "fractions_figure", "restoring_force_figure", "working_phase_figure",
+           "label_colors"]
 
 # The paper draws the working basin dark: the first label (working / balanced) is dark.
 _PALETTE = ("#1f2a44", "#e8b04a", "#9bb7d4", "#c8553d", "#6a994e", "#8e7dbe", "#bcbcbc")
@@ -48,7 +49,9 @@ def basin_figure(ds: xarray.Dataset, *, horizon: float | None = None, title: str
     Parameters
     ----------
     ds : xarray.Dataset
-        From :func:`rotorlab.explore.basin_map` (``label`` with two grid dims and ``horizon``).
+        From :func:`rotorlab.explore.basin_map` (``label`` with two grid dims and ``horizon``),
+        or random starts from :func:`rotorlab.analyses.run_basin` (``label`` on ``ic``; the
+        coordinate names in ``attrs["x"]`` and ``attrs["y"]``), drawn as dots.
     horizon : float, optional
         Simulated time whose labels are drawn (s); default the last one.
     title : str, optional
@@ -63,17 +66,21 @@ def basin_figure(ds: xarray.Dataset, *, horizon: float | None = None, title: str
     from matplotlib.patches import Patch
 
     label = ds["label"]
-    ydim, xdim = [d for d in label.dims if d != "horizon"]
     sel = label.isel(horizon=-1) if horizon is None else label.sel(horizon=horizon, method="nearest")
     t = float(sel["horizon"])
     names = [str(v) for v in label.attrs["labels"]]
     colors = label_colors(names)
     cmap = ListedColormap([colors[n] for n in names])
     norm = BoundaryNorm(np.arange(len(names) + 1) - 0.5, len(names))
-    x, y = ds[xdim].values, ds[ydim].values
     fig = Figure(figsize=(6.4, 5.0), layout="constrained")
     ax = fig.subplots()
-    ax.pcolormesh(x, y, sel.transpose(ydim, xdim).values, cmap=cmap, norm=norm, shading="nearest")
+    if label.dims[0] == "ic":  # random starts: one dot per start, at its drawn coordinates
+        xdim, ydim = ds.attrs["x"], ds.attrs["y"]
+        ax.scatter(ds[xdim].values, ds[ydim].values, c=sel.values, cmap=cmap, norm=norm, s=9, linewidths=0)
+    else:
+        ydim, xdim = [d for d in label.dims if d != "horizon"]
+        x, y = ds[xdim].values, ds[ydim].values
+        ax.pcolormesh(x, y, sel.transpose(ydim, xdim).values, cmap=cmap, norm=norm, shading="nearest")
     ax.set_xlabel(_axis_label(ds, xdim))
     ax.set_ylabel(_axis_label(ds, ydim))
     values = sel.values.ravel()
@@ -152,3 +159,73 @@ def restoring_force_figure(ds: xarray.Dataset, *, title: str | None = None) -> F
     ax.legend(frameon=False, fontsize="small")
     ax.set_title(title or "restoring force on the ball at rest (seed 004 Fig. 3)")
     return fig
+
+
+def working_phase_figure(ds: xarray.Dataset, *, title: str | None = None) -> Figure:
+    """Draw the phase portrait of a ball released towards the working point (seed 004 Fig. 5).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From a ``working-point`` analysis (``release_*`` on ``time``, ``psi``/``alpha`` of the
+        equilibrium, ``psi_band``/``alpha_band``).
+
+    Returns
+    -------
+    matplotlib.figure.Figure
+        Two panels, (psi, psi') and (alpha, alpha'), with the friction band shaded and the
+        paper's printed working point marked.
+    """
+    from matplotlib.figure import Figure
+
+    fig = Figure(figsize=(9.0, 4.0), layout="constrained")
+    axes = fig.subplots(1, 2)
+    paper = {"psi": 3.14156, "alpha": 1.56825}
+    for ax, q, sym in zip(axes, ("psi", "alpha"), ("ψ", "α")):
+        ax.axvspan(*(float(v) for v in ds[f"{q}_band"].values), color="0.85", label="friction band")
+        ax.plot(ds[f"release_{q}"].values, ds[f"release_d{q}"].values, color=_PALETTE[0], lw=0.8,
+                label="released ball")  # fmt: skip
+        ax.plot([paper[q]], [0.0], "x", color=_PALETTE[3], ms=8, label=f"seed 004: {sym} = {paper[q]}")
+        ax.set_xlabel(f"{sym} (rad)")
+        ax.set_ylabel(f"d{sym}/dt (rad/s)")
+        ax.grid(alpha=0.3)
+    axes[0].legend(frameon=False, fontsize="small")
+    start = ", ".join(f"{v:g}" for v in ds.attrs.get("release_start", []))
+    fig.suptitle(title or f"phase portrait of a ball released at ({start}) (seed 004 Fig. 5)")
+    return fig
+
+
+def basin_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
+    """Return the figures of a ``basin`` or ``working-point`` result by file stem.
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.analyses.run_basin_analysis`.
+    name : str
+        Analysis name; the stems are ``<name>_map``, ``<name>_map_mid`` (the map halfway through
+        the simulated time, when it differs from the final one) and ``<name>_fractions`` (basin)
+        or ``<name>_force`` and ``<name>_phase`` (working point).
+
+    Returns
+    -------
+    dict of str to matplotlib.figure.Figure
+    """
+    if ds.attrs.get("analysis") == "working-point":
+        curve = ds[["tangential", "friction_limit"]].rename(ring_angle="psi")
+        k = float(ds.attrs.get("rolling_friction", np.nan))
+        return {f"{name}_force": restoring_force_figure(
+            curve, title=f"restoring force on the ball at rest, k = {k:g} m (seed 004 Fig. 3)"),
+            f"{name}_phase": working_phase_figure(ds)}
+    if ds.attrs.get("analysis") != "basin":
+        return {}
+    fr = ds[["fraction"]]
+    out = {f"{name}_map": basin_figure(ds, title=f"{name}: regimes after {float(ds.horizon[-1]):g} s")}
+    h = ds.horizon.values
+    mid = int(np.argmin(np.abs(h - h[-1] / 2.0)))
+    if mid < h.size - 1 and not np.array_equal(ds.fraction.values[mid], ds.fraction.values[-1]):
+        # the map still changes: show it halfway too (a long transient is visible there)
+        out[f"{name}_map_mid"] = basin_figure(ds, horizon=float(h[mid]),
+                                              title=f"{name}: regimes after {float(h[mid]):g} s")
+    out[f"{name}_fractions"] = fractions_figure(fr, title=f"{name}: fractions against the simulated time")
+    return out

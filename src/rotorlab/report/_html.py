@@ -11,6 +11,7 @@ import re
 from collections.abc import Iterable, Mapping, Sequence
 from typing import Any
 
+from rotorlab.report._basin import basin_comparison_section, basin_section
 from rotorlab.report._linear import linear_model_rows, linear_section
 from rotorlab.report._steady import STEADY_ANALYSES, seed_notes_section, steady_section
 
@@ -262,6 +263,12 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
             parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
             shown.update(key for key in pngs if key.startswith(f"{name}_"))
             continue
+        if analysis.type in ("basin", "working-point") and ds is not None:
+            parts += [_table(("key", "value", "unit", "also"), rows, numeric={1}),
+                      basin_section(ds, summary_tables.get(name), _table)]
+            parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
+            shown.update(key for key in pngs if key.startswith(f"{name}_"))
+            continue
         if ds is not None and "speed_ratio" in ds.coords:
             for k, om in enumerate(ds.speed.values):
                 rows.append(("spin speed used", f"{float(om):.6g}", "rad/s",
@@ -276,6 +283,7 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
             if key.startswith(f"{name}_"):
                 parts.append(_figure(key, png))
                 shown.add(key)
+    parts.append(basin_comparison_section(results, _table))
     if any(a.type in STEADY_ANALYSES for a in case.analyses):
         parts.append(seed_notes_section())
     rest = [k for k in pngs if k not in shown]

@@ -1,0 +1,111 @@
+"""Report sections of the basin analyses: fractions with their convergence, the working point of
+the toroidal ball, and the comparison of basins that differ in one parameter (seed 004's
+friction conclusion tested with our numbers)."""
+
+from __future__ import annotations
+
+import html
+import math
+from collections.abc import Callable, Mapping, Sequence
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    import xarray
+
+__all__ = ["basin_section", "basin_comparison_section"]
+
+_TableFn = Callable[..., str]
+
+
+def _e(text: Any) -> str:
+    return html.escape(str(text))
+
+
+def _working_point_html(ds: xarray.Dataset, table: _TableFn) -> str:
+    psi_band = [float(v) for v in ds.psi_band.values]
+    alpha_band = [float(v) for v in ds.alpha_band.values]
+    k = float(ds.attrs.get("rolling_friction", math.nan))
+    rows = [
+        ("ψ (ring angle)", f"{float(ds.psi):.6f}", f"{psi_band[0]:.6f} … {psi_band[1]:.6f}", "3.14156"),
+        ("α (cross-section angle)", f"{float(ds.alpha):.6f}", f"{alpha_band[0]:.6f} … {alpha_band[1]:.6f}", "1.56825"),
+    ]  # fmt: skip
+    inside = (psi_band[0] <= 3.14156 <= psi_band[1]) and (alpha_band[0] <= 1.56825 <= alpha_band[1])
+    verdict = ("inside the friction band: a ball at rest there stays at rest, so the paper's point is a "
+               "working position of this model" if inside else
+               "outside the friction band of this model")  # fmt: skip
+    return "".join([
+        f"<p>Working equilibrium (frictionless) and the band in which rolling friction k = {k:g} m holds a "
+        f"stopped ball ({_e(ds.attrs.get('form', ''))} form). The paper's printed point is {verdict}.</p>",
+        table(("coordinate", "equilibrium (rad)", "friction band (rad)", "seed 004 (rad)"), rows, numeric={1, 3}),
+        f"<p>Specific normal force N = {float(ds.normal):.5g} m/s²; small-oscillation frequencies "
+        f"{float(ds.frequency[0]):.4g} rad/s (ring) and {float(ds.frequency[1]):.4g} rad/s (cross-section).</p>",
+    ])  # fmt: skip
+
+
+def basin_section(ds: xarray.Dataset, rows: Sequence[Mapping[str, Any]] | None, table: _TableFn) -> str:
+    """Return the HTML of one basin or working-point result (tables only; figures are added by
+    the report).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.analyses.run_basin_analysis`.
+    rows : list of dict, optional
+        :func:`rotorlab.analyses.basin_rows` of ``ds`` (computed if None).
+    table : callable
+        ``table(header, rows, numeric=...)`` of the report.
+    """
+    from rotorlab.analyses._basin import basin_rows, basin_table_rows
+
+    if ds.attrs.get("analysis") == "working-point":
+        return _working_point_html(ds, table)
+    rows = list(rows) if rows is not None else basin_rows(ds)
+    n = rows[0]["n"] if rows else 0
+    horizons = ds["horizon"].values
+    t_end = float(horizons[-1])
+    where = (f"{n} random starts (seed {ds.attrs.get('seed')}, Wilson intervals at "
+             f"{float(ds.attrs.get('confidence', 0.95)):.0%})" if ds.attrs.get("mode") == "random"
+             else f"a grid of {n} starts")  # fmt: skip
+    fixed = ", ".join(f"{k[6:]} = {float(v):g}" for k, v in ds.attrs.items() if k.startswith("fixed_"))
+    frac = ds["fraction"].values
+    half = rows[0]["horizon_half_s"] if rows else t_end
+    later = horizons >= half
+    last_change = float(abs(frac[later] - frac[-1]).max())
+    settled = (f"The fractions no longer change after {half:g} s of simulated time."
+               if last_change == 0.0 else
+               f"The fractions still change by up to {last_change:.1%} after {half:g} s of simulated "
+               "time: a regime there is a long transient, and longer runs may change the fractions.")  # fmt: skip
+    header = ("regime", f"% at {t_end:g} s", "starts", "CI (%)", f"% at {half:g} s",
+              "label kept since, median / max (s)")  # fmt: skip
+    return "".join([
+        f"<p>Regimes of {where} over {_e(ds.attrs.get('x'))} × {_e(ds.attrs.get('y'))}"
+        + (f" ({_e(fixed)})" if fixed else "") + f", classified every {float(horizons[0]):g} s up to "
+        f"{t_end:g} s.</p>",
+        table(header, basin_table_rows(rows), numeric={1, 2, 4}),
+        f"<p>{_e(settled)}</p>",
+    ])  # fmt: skip
+
+
+def basin_comparison_section(results: Mapping[str, xarray.Dataset], table: _TableFn) -> str:
+    """Return the HTML comparing basins that differ in one fixed parameter ("" if there are none).
+
+    For ``strautmanis-torus`` this tests seed 004's conclusion (larger rolling friction makes the
+    working regime more likely) at every horizon; the sentence is computed, not written in.
+    """
+    from rotorlab.analyses._basin import compare_basins
+
+    cmp = compare_basins(results)
+    if cmp is None:
+        return ""
+    header = ["simulated time (s)", *(f"{cmp['parameter']} = {e['value']:g}" for e in cmp["entries"]),
+              f"larger {cmp['parameter']} gives more {cmp['label']}"]  # fmt: skip
+    rows = []
+    for j, t in enumerate(cmp["horizons_s"]):
+        win = cmp["larger_wins"][j]
+        rows.append([f"{t:g}", *(f"{100.0 * e['fractions'][j]:.1f} %" for e in cmp["entries"]),
+                     "yes" if win is True else "no" if win is False else "mixed"])  # fmt: skip
+    return "".join([
+        f"<h2>Comparison: {_e(cmp['label'])} fraction against {_e(cmp['parameter'])}</h2>",
+        f"<p>{_e(cmp['verdict'])}</p>",
+        table(header, rows, numeric=set(range(len(header) - 1))),
+    ])
