@@ -401,7 +401,7 @@ class BasinSpec(AbstractAnalysisSpec):
         else:
             where = f"{self.x[3]} x {self.y[3]} grid of {self.x[0]} x {self.y[0]}"
         t = f", {self.t_end:g} s" if self.t_end is not None else ""
-        return f"basin: {where}{t}"
+        return f"{where}{t}"
 
 
 class WorkingPointSpec(AbstractAnalysisSpec):
