@@ -215,7 +215,7 @@ class ZarrSink:
         variables = [k for k in self.group.array_keys() if k != "_done"]
         for name in variables:
             arr = self.group[name]
-            if arr.shape[:1] != (self.n,) or arr.dimension_names[:1] != ("point",):
+            if arr.shape[:1] != (self.n,) or arr.metadata.dimension_names[:1] != ("point",):
                 continue
             for k in np.flatnonzero(self.done):
                 lo = int(k) * self.chunk_size
@@ -265,7 +265,11 @@ def _open_group(path: Path, mode: str) -> Any:
     if attrs.get("rotorlab_sweep") != LAYOUT_VERSION or "fingerprint" not in attrs:
         raise SweepStoreError(f"{path} is not a rotorlab sweep store (or its creation was interrupted): "
                               "no sweep description in its attributes")  # fmt: skip
-    if "_done" not in set(group.array_keys()):
+    try:
+        has_marks = "_done" in set(group.array_keys())
+    except Exception as exc:  # noqa: BLE001
+        raise SweepStoreError(f"{path} is damaged: {exc}") from None
+    if not has_marks:
         raise SweepStoreError(f"{path} is damaged: it has no completion marks (_done)")
     return group
 
@@ -338,13 +342,13 @@ def open_sweep(path: Any, *, partial: bool = False) -> Any:
             arr = group[name]
             attrs = dict(arr.attrs)
             values = np.asarray(arr[:])
-            if tuple(arr.dimension_names) == ("point",) and "_dims" not in attrs:
+            if tuple(arr.metadata.dimension_names) == ("point",) and "_dims" not in attrs:
                 coords[name] = values
-            elif arr.dimension_names[0] == "point":
+            elif arr.metadata.dimension_names[0] == "point":
                 tdims = tuple(attrs.pop("_dims"))
                 flat[name] = (tdims, values, attrs)
             else:
-                trailing[arr.dimension_names[0]] = (values, attrs)
+                trailing[arr.metadata.dimension_names[0]] = (values, attrs)
     except SweepStoreError:
         raise
     except Exception as exc:  # noqa: BLE001
