@@ -51,6 +51,7 @@ from rotorlab.io._steady_specs import (
     SteadySpec,
     VerifySpec,
 )
+from rotorlab.io._sweep_specs import SweepSpec
 from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
 
 __all__ = [
@@ -86,6 +87,7 @@ __all__ = [
     "StabilityChartSpec",
     "SteadyAnalysisSpec",
     "SteadySpec",
+    "SweepSpec",
     "UnbalanceResponseSpec",
     "VerifySpec",
     "builtin_cases",
