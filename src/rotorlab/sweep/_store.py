@@ -2,6 +2,8 @@
 
 Zarr store layout (format 3, readable by ``xarray.open_zarr`` as a flat table over ``point``):
 
+- the store is built under a temporary name and renamed into place once its description is
+  written, so a run killed at any moment leaves either no store or a usable one;
 - group attributes ``rotorlab_sweep`` (layout version), ``sweep`` (the sweep description,
   :meth:`Sweep.describe`), ``fingerprint`` (its SHA-256), ``versions`` (rotorlab, numpy, numba,
   xarray, zarr, python), ``dims`` and ``shape`` of the points, ``n_points``, ``chunk_size``,
@@ -18,6 +20,8 @@ Zarr store layout (format 3, readable by ``xarray.open_zarr`` as a flat table ov
 from __future__ import annotations
 
 import json
+import os
+import shutil
 import sys
 from pathlib import Path
 from typing import Any
@@ -177,7 +181,12 @@ class ZarrSink:
             return
         self.chunk_size = DEFAULT_CHUNK if chunk_size is None else int(chunk_size)
         sweep.chunks(self.chunk_size)  # validates
-        self.path.parent.mkdir(parents=True, exist_ok=True) if not self.path.parent.exists() else None
+        # Build the store under a temporary name and rename it into place when it is complete:
+        # a run killed while creating it leaves no half-made store at the path.
+        final = self.path
+        self.path = final.with_name(f".{final.name}.creating-{os.getpid()}")
+        if self.path.exists():
+            shutil.rmtree(self.path)
         self.group = zarr.open_group(str(self.path), mode="w-", zarr_format=3)
         n_chunks = len(sweep.chunks(self.chunk_size))
         coords = sweep.coordinates()
@@ -202,6 +211,9 @@ class ZarrSink:
             "grid": bool(sweep.axes), "fixed": dict(sweep.fixed),
         }))  # fmt: skip
         self.group.attrs["rotorlab_sweep"] = LAYOUT_VERSION
+        os.replace(self.path, final)
+        self.path = final
+        self.group = zarr.open_group(str(final), mode="r+", zarr_format=3)
 
     def _array(self, name, dims, shape, dtype, attrs, chunks=None):
         arr = self.group.create_array(name, shape=shape, chunks=chunks or (self.chunk_size, *shape[1:]),
