@@ -257,7 +257,7 @@ def sweep_command(
             spec = SweepSpec(name="sweep", revolutions=200.0, t_end=None)
         spec = spec.model_copy(update=update)
         from rotorlab.analyses._sweep import build_sweep
-        from rotorlab.sweep import DaskExecutor, InProcess, SweepStoreError, run_sweep, store_info
+        from rotorlab.sweep import DaskExecutor, ExecutorError, InProcess, SweepStoreError, run_sweep, store_info
 
         try:
             sweep = build_sweep(loaded.model, spec, axes=axes or None, sample=sample, seed=seed, t_end=t_end)
@@ -272,6 +272,7 @@ def sweep_command(
              f"{sweep.analysis.mapper.t_end:.6g} s each, {where}, into {out} ...", json_mode=json_out)  # fmt: skip
         started = time.perf_counter()
         last: list[Any] = []
+        existed = out.exists()
         try:
             with _Bar(settings, loaded.name) as bar:
 
@@ -283,6 +284,12 @@ def sweep_command(
                                progress=progress)  # fmt: skip
         except SweepStoreError as exc:
             raise BadInput(f"--out = {out}: {exc}") from None
+        except ExecutorError as exc:
+            if not existed and out.exists() and store_info(out)["chunks_done"] == 0:
+                import shutil
+
+                shutil.rmtree(out)  # nothing computed: leave nothing behind
+            raise BadInput(str(exc)) from None
         except KeyboardInterrupt:
             kept = store_info(out)["chunks_done"] if out.exists() else 0
             total = last[0].n_chunks if last else "?"

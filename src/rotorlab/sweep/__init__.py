@@ -12,7 +12,7 @@ and resumed.
 """
 
 from rotorlab.sweep._axes import GridAxis, ListAxis, Points, Sample
-from rotorlab.sweep._executors import DaskExecutor, InProcess, LocalProcesses
+from rotorlab.sweep._executors import DaskExecutor, ExecutorError, InProcess, LocalProcesses
 from rotorlab.sweep._run import SweepProgress, run_sweep
 from rotorlab.sweep._spec import DEFAULT_CHUNK, AbstractPointAnalysis, ChunkVar, Sweep, compute_chunk, describe_value
 from rotorlab.sweep._store import SweepStoreError, open_sweep, store_info
@@ -22,6 +22,7 @@ __all__ = [
     "ChunkVar",
     "DEFAULT_CHUNK",
     "DaskExecutor",
+    "ExecutorError",
     "GridAxis",
     "InProcess",
     "ListAxis",

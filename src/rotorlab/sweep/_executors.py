@@ -14,9 +14,13 @@ from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
 from typing import Any
 
-__all__ = ["InProcess", "LocalProcesses", "DaskExecutor"]
+__all__ = ["InProcess", "LocalProcesses", "DaskExecutor", "ExecutorError"]
 
 Task = tuple[int, dict]
+
+
+class ExecutorError(ValueError):
+    """An executor cannot start (e.g. no scheduler at the given address)."""
 
 
 def _cores() -> int:
@@ -156,8 +160,8 @@ class DaskExecutor:
         elif self.scheduler is not None:
             try:
                 client = Client(self.scheduler, timeout="10s")
-            except OSError as exc:
-                raise ValueError(f"--scheduler = {self.scheduler}: cannot connect ({exc})") from None
+            except (OSError, TimeoutError) as exc:
+                raise ExecutorError(f"--scheduler = {self.scheduler}: cannot connect ({exc})") from None
             owned.append(client)
         else:
             n = self.workers or 2
