@@ -127,6 +127,10 @@ def run_analysis(case_model: Any, analysis: Any,
     """
     from rotorlab.analyses._simulate import simulate
 
+    if analysis.type == "sweep":
+        from rotorlab.analyses._sweep import run_sweep_analysis
+
+        return run_sweep_analysis(case_model, analysis, progress=progress)
     if analysis.type not in RUNNABLE_ANALYSES:
         raise ValueError(
             f"analysis {analysis.name}: type {analysis.type!r} cannot be run here "

@@ -6,12 +6,14 @@ groups them into labels; :func:`map_starts`, :func:`basin_map` and :func:`basin_
 choose the start points; :func:`basin_fractions` counts labels. Every result is an
 ``xarray.Dataset`` with a ``horizon`` dim, so that a fraction that still changes with the
 simulated time (a long transient) is visible. Mappers are frozen values: no state is kept
-between calls.
+between calls. All three run on the sweep engine (:mod:`rotorlab.sweep`) with
+:class:`MapperAnalysis` as the per-point analysis, so the same basin can also run on local
+processes or a Dask cluster, checkpointed to a Zarr store.
 """
 
 from rotorlab.explore._balancer import BalancerRegimes, balancer_labels
 from rotorlab.explore._basin import GridAxis, basin_fractions, basin_map, basin_stability, wilson_interval
-from rotorlab.explore._mapper import DEFAULT_CHUNK, AbstractMapper, Feature, label_since, map_starts
+from rotorlab.explore._mapper import DEFAULT_CHUNK, AbstractMapper, Feature, MapperAnalysis, label_since, map_starts
 from rotorlab.explore._torus import TORUS_LABELS, TorusRegimes
 
 __all__ = [
@@ -20,6 +22,7 @@ __all__ = [
     "DEFAULT_CHUNK",
     "Feature",
     "GridAxis",
+    "MapperAnalysis",
     "TORUS_LABELS",
     "TorusRegimes",
     "balancer_labels",

@@ -7,73 +7,15 @@ mapper's job (:func:`rotorlab.explore.map_starts`).
 from __future__ import annotations
 
 import math
-import re
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass
 from typing import Any
 
 import numpy as np
 
-from rotorlab.explore._mapper import AbstractMapper, map_starts
+from rotorlab.explore._mapper import AbstractMapper, MapperAnalysis, _flags_as_arrays, _sweep_progress
+from rotorlab.sweep._axes import GridAxis, Sample
 
 __all__ = ["GridAxis", "basin_map", "basin_fractions", "basin_stability", "wilson_interval"]
-
-_AXIS = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*=\s*([^:]+):([^:]+):([^:]+)\s*$")
-
-
-@dataclass(frozen=True, slots=True)
-class GridAxis:
-    """One axis of a basin grid: ``num`` equally spaced values of a named coordinate.
-
-    Parameters
-    ----------
-    name : str
-        A start coordinate of the mapper (state entry or parameter).
-    start, stop : float
-        First and last value (both included), in the coordinate's unit.
-    num : int
-        Number of values, >= 1.
-
-    Examples
-    --------
-    >>> GridAxis.parse("dpsi=-280:140:4").values.tolist()
-    [-280.0, -140.0, 0.0, 140.0]
-    """
-
-    name: str
-    start: float
-    stop: float
-    num: int
-
-    def __post_init__(self) -> None:
-        if not isinstance(self.name, str) or not self.name:
-            raise ValueError(f"GridAxis.name must be a non-empty string, got {self.name!r}")
-        for attr in ("start", "stop"):
-            v = float(getattr(self, attr))
-            if not math.isfinite(v):
-                raise ValueError(f"GridAxis.{attr} must be finite, got {getattr(self, attr)!r}")
-            object.__setattr__(self, attr, v)
-        if isinstance(self.num, bool) or int(self.num) != self.num or self.num < 1:
-            raise ValueError(f"GridAxis.num must be an integer >= 1, got {self.num!r}")
-        object.__setattr__(self, "num", int(self.num))
-
-    @classmethod
-    def parse(cls, text: str) -> GridAxis:
-        """Parse ``"NAME=A:B:N"`` (the command-line form)."""
-        m = _AXIS.match(text)
-        if m is None:
-            raise ValueError(f"grid axis must look like NAME=A:B:N, got {text!r}")
-        name, a, b, n = m.groups()
-        try:
-            return cls(name, float(a), float(b), int(n))
-        except ValueError as exc:
-            raise ValueError(f"grid axis {text!r}: {exc}") from None
-
-    @property
-    def values(self) -> np.ndarray:
-        """The grid values, shape (num,)."""
-        return np.linspace(self.start, self.stop, self.num)
-
 
 def basin_map(
     mapper: AbstractMapper,
@@ -120,30 +62,23 @@ def basin_map(
     clash = {x.name, y.name} & set(fixed)
     if clash:
         raise ValueError(f"coordinates {sorted(clash)} are both varied and fixed")
-    X, Y = np.meshgrid(x.values, y.values)
-    coords: dict[str, Any] = {x.name: X.ravel(), y.name: Y.ravel(), **fixed}
-    flat = map_starts(mapper, coords, threads=threads, chunk_size=chunk_size, progress=progress)
-    shape = (y.num, x.num)
-    data = {}
-    for name, var in flat.data_vars.items():
-        dims = (y.name, x.name, *var.dims[1:]) if var.dims[:1] == ("ic",) else var.dims
-        values = var.values.reshape(shape + var.shape[1:]) if var.dims[:1] == ("ic",) else var.values
-        data[name] = (dims, values, dict(var.attrs))
-    units = mapper.coordinate_units
-    import xarray as xr
+    from rotorlab.sweep import InProcess, Sweep, run_sweep
 
-    ds = xr.Dataset(
-        data,
-        coords={
-            x.name: (x.name, x.values, {"units": units[x.name]}),
-            y.name: (y.name, y.values, {"units": units[y.name]}),
-            "horizon": flat.horizon,
-        },
-        attrs=dict(flat.attrs),
-    )
-    for name, value in fixed.items():
-        ds.attrs[f"fixed_{name}"] = float(value)
-    return ds
+    analysis = MapperAnalysis(mapper)
+    sweep = Sweep(analysis, axes=(y, x), fixed=fixed)
+    ds = run_sweep(sweep, chunk_size=_chunk(chunk_size), executor=InProcess(threads),
+                   progress=_sweep_progress(progress))  # fmt: skip
+    return _flags_as_arrays(ds)
+
+
+def _chunk(chunk_size: int | None) -> int:
+    from rotorlab.explore._mapper import DEFAULT_CHUNK
+
+    if chunk_size is None:
+        return DEFAULT_CHUNK
+    if isinstance(chunk_size, bool) or int(chunk_size) != chunk_size or chunk_size < 1:
+        raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
+    return int(chunk_size)
 
 
 def basin_fractions(ds):
@@ -277,17 +212,15 @@ def basin_stability(
         raise ValueError(f"n must be an integer >= 1, got {n!r}")
     if not ranges:
         raise ValueError("ranges must name at least one coordinate to draw")
-    rng = np.random.default_rng(seed)
-    coords: dict[str, Any] = {}
-    for name, (lo, hi) in ranges.items():
-        if not (math.isfinite(lo) and math.isfinite(hi) and hi >= lo):
-            raise ValueError(f"range of {name!r} must be finite with high >= low, got {(lo, hi)!r}")
-        coords[name] = rng.uniform(lo, hi, int(n))
+    sample = Sample(ranges, int(n), seed, dim="ic")
     clash = set(ranges) & set(fixed or {})
     if clash:
         raise ValueError(f"coordinates {sorted(clash)} are both drawn and fixed")
-    coords.update(fixed or {})
-    ds = map_starts(mapper, coords, threads=threads, chunk_size=chunk_size, progress=progress)
+    from rotorlab.sweep import InProcess, Sweep, run_sweep
+
+    sweep = Sweep(MapperAnalysis(mapper), sample=sample, fixed=dict(fixed or {}))
+    ds = _flags_as_arrays(run_sweep(sweep, chunk_size=_chunk(chunk_size), executor=InProcess(threads),
+                                    progress=_sweep_progress(progress)))  # fmt: skip
     fr = basin_fractions(ds)
     low, high = wilson_interval(fr["count"].values, int(n), confidence)
     out = ds.assign(

@@ -14,11 +14,12 @@ bit-identical whatever the chunk size and the number of threads.
 from __future__ import annotations
 
 from collections.abc import Callable, Mapping
+from dataclasses import dataclass
 from typing import Any, Protocol, runtime_checkable
 
 import numpy as np
 
-__all__ = ["AbstractMapper", "Feature", "map_starts", "label_since", "DEFAULT_CHUNK"]
+__all__ = ["AbstractMapper", "Feature", "MapperAnalysis", "map_starts", "label_since", "DEFAULT_CHUNK"]
 
 #: Trajectories per chunk when none is given.
 DEFAULT_CHUNK = 1024
@@ -119,6 +120,107 @@ def label_since(labels: np.ndarray, horizons: np.ndarray) -> np.ndarray:
     return np.asarray(horizons, dtype=float)[last_diff + 1]
 
 
+@dataclass(frozen=True, slots=True)
+class MapperAnalysis:
+    """The per-point analysis "integrate, compute features, label" of a mapper, for sweeps.
+
+    This is the chunk body of :func:`map_starts`, :func:`~rotorlab.explore.basin_map` and
+    :func:`~rotorlab.explore.basin_stability`, made a value that :func:`rotorlab.sweep.run_sweep`
+    runs in-process, on local processes or on Dask workers.
+
+    Parameters
+    ----------
+    mapper : AbstractMapper
+        E.g. :class:`~rotorlab.explore.TorusRegimes` or :class:`~rotorlab.explore.BalancerRegimes`.
+
+    Examples
+    --------
+    >>> from rotorlab.explore import TorusRegimes
+    >>> from rotorlab.models._toroidal_ball import strautmanis_torus
+    >>> a = MapperAnalysis(TorusRegimes(strautmanis_torus(1e-4), t_end=2.0, n_horizons=2))
+    >>> out = a.run_chunk({"psi": np.array([3.1, 0.5])})
+    >>> out["label"].dims, out["label"].values.shape, out["n_steps"].attrs["units"]
+    (('horizon',), (2, 2), '1')
+    """
+
+    mapper: Any
+
+    def __post_init__(self) -> None:
+        if not isinstance(self.mapper, AbstractMapper):
+            raise TypeError(f"mapper must implement AbstractMapper, got {type(self.mapper).__name__}")
+
+    @property
+    def coordinate_units(self) -> Mapping[str, str]:
+        return self.mapper.coordinate_units
+
+    def trailing_coords(self) -> dict[str, tuple[np.ndarray, dict[str, Any]]]:
+        return {"horizon": (np.asarray(self.mapper.horizons(), dtype=float), {"units": "s"})}
+
+    def result_attrs(self) -> dict[str, Any]:
+        horizons = np.asarray(self.mapper.horizons(), dtype=float)
+        return {"mapper": type(self.mapper).__name__, "t_end": float(horizons[-1]),
+                "labels": list(self.mapper.labels)}  # fmt: skip
+
+    def run_chunk(self, coords: Mapping[str, np.ndarray], threads: int | None = None) -> dict[str, Any]:
+        """Integrate, featurize and label one chunk of start points (see :func:`map_starts`)."""
+        from rotorlab.integrate import SaveAt, solve_ensemble
+        from rotorlab.sweep import ChunkVar
+
+        mapper = self.mapper
+        cols = {k: np.asarray(v, dtype=float) for k, v in coords.items()}
+        n = next(iter(cols.values())).size if cols else 1
+        model, Y0, P = mapper.starts(cols)
+        horizons = np.asarray(mapper.horizons(), dtype=float)
+        ts = np.asarray(mapper.save_times(), dtype=float)
+        # Neighbouring start points cost alike (a whole band of a basin can be slow), and the
+        # parallel loop hands each thread a contiguous block: integrate the chunk in a fixed
+        # shuffled order and put the results back. Trajectories are independent, so this
+        # changes only the wall time.
+        perm = np.random.default_rng(n).permutation(n)
+        back = np.argsort(perm)
+        Pc = P[perm]
+        sol = solve_ensemble(model, Y0[perm], (0.0, float(horizons[-1])), params=Pc, save_at=SaveAt(ts=ts),
+                             control=mapper.control, threads=threads)  # fmt: skip
+        f = mapper.features(sol, Pc)
+        label = mapper.group({k: v[0] for k, v in f.items()})[back].astype(np.int16)
+        names = tuple(mapper.labels)
+        flag = {"flag_values": list(range(len(names))), "flag_meanings": " ".join(
+            n.replace(" ", "_") for n in names), "labels": list(names), "units": "1"}  # fmt: skip
+        out = {
+            "label": ChunkVar(("horizon",), label, dict(flag)),
+            "outcome": ChunkVar((), label[:, -1], dict(flag)),
+            "label_since": ChunkVar((), label_since(label, horizons), {"units": "s",
+                                    "description": "earliest horizon from which the label stays as at the end"}),
+            "status": ChunkVar((), sol.status.astype(np.int32)[back], {"units": "1"}),
+            "n_steps": ChunkVar((), (sol.stats[:, 1] + sol.stats[:, 2])[back], {"units": "1"}),
+        }  # fmt: skip
+        for name, (values, units, desc) in f.items():
+            if name in cols or name in out:
+                raise ValueError(f"feature {name!r} of {type(mapper).__name__} clashes with a coordinate or result name")
+            values = np.asarray(values)[back]
+            out[name] = ChunkVar(("horizon",)[: values.ndim - 1], values, {"units": units, "description": desc})
+        return out
+
+
+def _flags_as_arrays(ds):
+    """``flag_values`` as int16 arrays (as written before the sweep engine; JSON stores lists)."""
+    for name in ("label", "outcome"):
+        if name in ds and "flag_values" in ds[name].attrs:
+            ds[name].attrs["flag_values"] = np.asarray(ds[name].attrs["flag_values"], dtype=np.int16)
+    return ds
+
+
+def _sweep_progress(progress: Callable[[int, int], None] | None):
+    if progress is None:
+        return None
+
+    def report(p: Any) -> None:
+        if p.computed:
+            progress(p.done, p.total)
+
+    return report
+
+
 def map_starts(
     mapper: AbstractMapper,
     coords: Mapping[str, Any],
@@ -128,6 +230,9 @@ def map_starts(
     progress: Callable[[int, int], None] | None = None,
 ):
     """Integrate and label start points given by named coordinates.
+
+    A use of the sweep engine (:func:`rotorlab.sweep.run_sweep` with :class:`MapperAnalysis` on
+    a :class:`~rotorlab.sweep.Points` list), run in this process.
 
     Parameters
     ----------
@@ -158,65 +263,12 @@ def map_starts(
     ValueError
         Unknown or malformed coordinates.
     """
-    import xarray as xr
+    from rotorlab.sweep import InProcess, Points, Sweep, run_sweep
 
-    from rotorlab.integrate import SaveAt, solve_ensemble
-
-    cols, n = _check_coords(mapper, coords)
-    model, Y0, P = mapper.starts(cols)
-    horizons = np.asarray(mapper.horizons(), dtype=float)
-    ts = np.asarray(mapper.save_times(), dtype=float)
-    t_end = float(horizons[-1])
-    step = DEFAULT_CHUNK if chunk_size is None else int(chunk_size)
-    if step < 1:
+    cols, _ = _check_coords(mapper, coords)
+    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size or chunk_size < 1):
         raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
-    feats: dict[str, list] = {}
-    meta: dict[str, tuple[str, str]] = {}
-    labels, status, n_steps = [], [], []
-    for lo in range(0, n, step):
-        hi = min(n, lo + step)
-        # Neighbouring start points cost alike (a whole band of a basin can be slow), and the
-        # parallel loop hands each thread a contiguous block: integrate the chunk in a fixed
-        # shuffled order and put the results back. Trajectories are independent, so this
-        # changes only the wall time.
-        perm = np.random.default_rng(hi - lo).permutation(hi - lo)
-        back = np.argsort(perm)
-        Pc = P[lo:hi][perm]
-        sol = solve_ensemble(model, Y0[lo:hi][perm], (0.0, t_end), params=Pc, save_at=SaveAt(ts=ts),
-                             control=mapper.control, threads=threads)  # fmt: skip
-        f = mapper.features(sol, Pc)
-        for name, (values, units, desc) in f.items():
-            if name in cols or name in ("label", "outcome", "label_since", "status", "n_steps"):
-                raise ValueError(f"feature {name!r} of {type(mapper).__name__} clashes with a coordinate or result name")
-            feats.setdefault(name, []).append(np.asarray(values)[back])
-            meta[name] = (units, desc)
-        labels.append(mapper.group({k: v[0] for k, v in f.items()})[back])
-        status.append(sol.status.astype(np.int32)[back])
-        n_steps.append((sol.stats[:, 1] + sol.stats[:, 2])[back])
-        if progress is not None:
-            progress(hi, n)
-    label = np.concatenate(labels).astype(np.int16)
-    names = tuple(mapper.labels)
-    flag = {"flag_values": np.arange(len(names), dtype=np.int16), "flag_meanings": " ".join(
-        n.replace(" ", "_") for n in names), "labels": list(names), "units": "1"}  # fmt: skip
-    data: dict[str, Any] = {
-        "label": (("ic", "horizon"), label, dict(flag)),
-        "outcome": (("ic",), label[:, -1], dict(flag)),
-        "label_since": (("ic",), label_since(label, horizons), {"units": "s",
-                        "description": "earliest horizon from which the label stays as at the end"}),
-        "status": (("ic",), np.concatenate(status), {"units": "1"}),
-        "n_steps": (("ic",), np.concatenate(n_steps), {"units": "1"}),
-    }  # fmt: skip
-    for name, parts in feats.items():
-        values = np.concatenate(parts)
-        dims = ("ic", "horizon")[: values.ndim]
-        units, desc = meta[name]
-        data[name] = (dims, values, {"units": units, "description": desc})
-    units = mapper.coordinate_units
-    ic_coords = {k: ("ic", v, {"units": units[k]}) for k, v in cols.items()}
-    return xr.Dataset(
-        data,
-        coords={"horizon": ("horizon", horizons, {"units": "s"}), "ic": np.arange(n), **ic_coords},
-        attrs={"mapper": type(mapper).__name__, "t_end": t_end, "labels": list(names)},
-    )
-
+    sweep = Sweep(MapperAnalysis(mapper), points=Points(cols, dim="ic"))
+    ds = run_sweep(sweep, chunk_size=DEFAULT_CHUNK if chunk_size is None else int(chunk_size),
+                   executor=InProcess(threads), progress=_sweep_progress(progress))  # fmt: skip
+    return _flags_as_arrays(ds)

@@ -59,6 +59,7 @@ from rotorlab.io._steady_specs import (
     SteadySpec,
     VerifySpec,
 )
+from rotorlab.io._sweep_specs import SweepSpec
 from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
 
 __all__ = [
@@ -98,6 +99,7 @@ __all__ = [
     "SteadyAnalysisSpec",
     "SteadySpec",
     "ToroidalBallSpec",
+    "SweepSpec",
     "UnbalanceResponseSpec",
     "VerifySpec",
     "WorkingPointSpec",

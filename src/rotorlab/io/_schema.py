@@ -86,6 +86,7 @@ from rotorlab.io._linear_analyses import (
 )
 from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._steady_specs import RunUpSpec, StabilityChartSpec, SteadySpec, VerifySpec
+from rotorlab.io._sweep_specs import SweepSpec
 
 __all__ = [
     "SCHEMA_VERSION",
@@ -154,6 +155,7 @@ ANALYSIS_SPECS: Mapping[str, type[AbstractAnalysisSpec]] = MappingProxyType(
         "run-up": RunUpSpec,
         "basin": BasinSpec,
         "working-point": WorkingPointSpec,
+        "sweep": SweepSpec,
     }
 )
 

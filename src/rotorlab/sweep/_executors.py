@@ -1,0 +1,196 @@
+"""Where the chunk function runs: in this process, in local worker processes, or on Dask.
+
+An executor is a frozen value; :meth:`imap` yields the results of the chunk tasks as they
+finish (in any order) and cancels what is left when it is closed early (Ctrl-C, an error). The
+chunk function (:func:`rotorlab.sweep.compute_chunk`) gives the same bits wherever it runs, so
+the executor changes only the wall time.
+"""
+
+from __future__ import annotations
+
+import os
+import uuid
+from collections.abc import Callable, Iterable, Iterator
+from dataclasses import dataclass, field
+from typing import Any
+
+__all__ = ["InProcess", "LocalProcesses", "DaskExecutor", "ExecutorError"]
+
+Task = tuple[int, dict]
+
+
+class ExecutorError(ValueError):
+    """An executor cannot start (e.g. no scheduler at the given address)."""
+
+
+def _cores() -> int:
+    try:
+        return len(os.sched_getaffinity(0))
+    except AttributeError:  # pragma: no cover - not Linux
+        return os.cpu_count() or 1
+
+
+def _check_count(owner: str, name: str, value: Any) -> None:
+    if value is not None and (isinstance(value, bool) or int(value) != value or value < 1):
+        raise ValueError(f"{owner}.{name} must be an integer >= 1 or None, got {value!r}")
+
+
+@dataclass(frozen=True, slots=True)
+class InProcess:
+    """Run the chunks one after the other in this process (the integrator uses its threads).
+
+    Parameters
+    ----------
+    threads : int, optional
+        Integrator threads (default: numba's). Results do not depend on it.
+    """
+
+    threads: int | None = None
+
+    def __post_init__(self) -> None:
+        _check_count("InProcess", "threads", self.threads)
+
+    def imap(self, fn: Callable, analysis: Any, tasks: Iterable[Task]) -> Iterator[Any]:
+        """Yield ``fn(analysis, k, coords, threads)`` for every task ``(k, coords)``."""
+        for k, coords in tasks:
+            yield fn(analysis, k, coords, self.threads)
+
+    def describe(self) -> str:
+        return "in-process"
+
+
+@dataclass(frozen=True, slots=True)
+class LocalProcesses:
+    """Run the chunks in ``workers`` local processes (``concurrent.futures``, spawned).
+
+    Parameters
+    ----------
+    workers : int
+        Number of worker processes, >= 1.
+    threads : int, optional
+        Integrator threads per worker (default: cores // workers, at least 1).
+    """
+
+    workers: int = 2
+    threads: int | None = None
+
+    def __post_init__(self) -> None:
+        _check_count("LocalProcesses", "workers", self.workers)
+        _check_count("LocalProcesses", "threads", self.threads)
+
+    def imap(self, fn: Callable, analysis: Any, tasks: Iterable[Task]) -> Iterator[Any]:
+        """Yield the chunk results in the order they finish."""
+        import multiprocessing
+        from concurrent.futures import FIRST_COMPLETED, ProcessPoolExecutor, wait
+
+        threads = self.threads or max(1, _cores() // self.workers)
+        pool = ProcessPoolExecutor(max_workers=self.workers, mp_context=multiprocessing.get_context("spawn"))
+        pending: set = set()
+        try:
+            queue = iter(tasks)
+            # keep a few tasks per worker in flight, not the whole sweep in memory
+            for k, coords in queue:
+                pending.add(pool.submit(fn, analysis, k, coords, threads))
+                if len(pending) >= 2 * self.workers:
+                    break
+            while pending:
+                finished, pending = wait(pending, return_when=FIRST_COMPLETED)
+                for fut in finished:
+                    yield fut.result()
+                    nxt = next(queue, None)
+                    if nxt is not None:
+                        pending.add(pool.submit(fn, analysis, nxt[0], nxt[1], threads))
+        finally:
+            for fut in pending:
+                fut.cancel()
+            pool.shutdown(wait=True, cancel_futures=True)
+
+    def describe(self) -> str:
+        return f"{self.workers} local processes"
+
+
+@dataclass(frozen=True)
+class DaskExecutor:
+    """Run the chunks as tasks on a Dask cluster (``dask.distributed``).
+
+    Parameters
+    ----------
+    scheduler : str, optional
+        Address of a running scheduler (``tcp://HOST:PORT``).
+    workers : int, optional
+        Without ``scheduler``: start a ``LocalCluster`` of this many single-threaded worker
+        processes for the sweep (default 2) and close it afterwards.
+    threads : int, optional
+        Integrator threads per task (default: cores // workers on a local cluster, numba's
+        default on a remote one). Results do not depend on it.
+    client : distributed.Client, optional
+        Use this client instead (it is not closed afterwards).
+
+    Notes
+    -----
+    Dask reschedules the tasks of a worker that dies on the remaining workers (up to its
+    ``distributed.scheduler.allowed-failures`` retries), so the sweep completes with the same
+    results; the driver writes every result to the store itself, so workers need no shared file
+    system.
+    """
+
+    scheduler: str | None = None
+    workers: int | None = None
+    threads: int | None = None
+    client: Any = field(default=None, compare=False, repr=False)
+
+    def __post_init__(self) -> None:
+        _check_count("DaskExecutor", "workers", self.workers)
+        _check_count("DaskExecutor", "threads", self.threads)
+        if self.scheduler is not None and self.workers is not None:
+            raise ValueError("DaskExecutor: give scheduler (a running cluster) or workers (a local one), not both")
+        if self.scheduler is not None and (not isinstance(self.scheduler, str) or "://" not in self.scheduler):
+            raise ValueError(f"DaskExecutor.scheduler must be an address like tcp://HOST:PORT, got {self.scheduler!r}")
+
+    def imap(self, fn: Callable, analysis: Any, tasks: Iterable[Task]) -> Iterator[Any]:
+        """Submit every task, then yield results as they finish."""
+        import logging
+
+        from distributed import Client, LocalCluster, as_completed
+
+        owned: list[Any] = []
+        threads = self.threads
+        if self.client is not None:
+            client = self.client
+        elif self.scheduler is not None:
+            try:
+                client = Client(self.scheduler, timeout="10s")
+            except (OSError, TimeoutError) as exc:
+                raise ExecutorError(f"--scheduler = {self.scheduler}: cannot connect ({exc})") from None
+            owned.append(client)
+        else:
+            n = self.workers or 2
+            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
+                                   silence_logs=logging.ERROR)  # fmt: skip
+            owned.append(cluster)
+            client = Client(cluster)
+            owned.insert(0, client)
+            threads = threads or max(1, _cores() // n)
+        run = uuid.uuid4().hex[:12]
+        futures = []
+        try:
+            for k, coords in tasks:
+                futures.append(client.submit(fn, analysis, k, coords, threads, key=f"rotorlab-chunk-{run}-{k}"))
+            for fut in as_completed(futures):
+                result = fut.result()
+                fut.release()
+                yield result
+        finally:
+            pending = [f for f in futures if not f.done()]
+            if pending:
+                client.cancel(pending)
+            for obj in owned:
+                try:
+                    obj.close()
+                except Exception:  # noqa: BLE001, S110 - closing is best effort
+                    pass
+
+    def describe(self) -> str:
+        if self.client is not None:
+            return "Dask (given client)"
+        return f"Dask at {self.scheduler}" if self.scheduler else f"Dask LocalCluster of {self.workers or 2} workers"
