@@ -3,7 +3,7 @@
 import math
 
 import numpy as np
-from hypothesis import given, settings
+from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from rotorlab.integrate import SaveAt, Status, StepControl, solve, solve_ensemble
@@ -53,6 +53,10 @@ def test_bounces_accumulate_at_t_inf_for_any_restitution(e, h0, a):
     v0 = math.sqrt(2 * a * h0)
     t_first = math.sqrt(2 * h0 / a)
     t_inf = ball.accumulation_time(v0)
+    # The count is ill-defined when a rebound speed e^k v0 ties with rest_speed (within the
+    # integration error of the impact speeds): e = 0.1, v0 = 1 gives 1e-7 exactly.
+    ratios = [e**k * v0 / ball.rest_speed for k in range(1, 200) if e**k * v0 > 0.5 * ball.rest_speed]
+    assume(all(abs(r - 1.0) > 1e-6 for r in ratios))
     sol = solve(ball, [h0, 0.0, 0.0], (0.0, t_first + 1.5 * t_inf + 1.0), control=StepControl(rtol=1e-10, atol=1e-12))
     assert sol.status == Status.SUCCESS
     assert sol.event_counts["impact"] == ball.impacts_until_rest(v0)
