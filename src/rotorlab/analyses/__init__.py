@@ -11,6 +11,17 @@ from rotorlab.analyses._case import (
     run_case,
     summarize,
 )
+from rotorlab.analyses._impacts import (
+    REGIMES,
+    SLIDING_FRACTION,
+    SWEEP_PARAMS,
+    classify_impacts,
+    impact_run,
+    impact_summary,
+    impact_sweep,
+    stacked_params,
+    sweep_summary,
+)
 from rotorlab.analyses._linear import (
     DATA_AUDITS,
     LINEAR_ANALYSES,
@@ -39,6 +50,15 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
+    "REGIMES",
+    "SLIDING_FRACTION",
+    "SWEEP_PARAMS",
+    "classify_impacts",
+    "impact_run",
+    "impact_summary",
+    "impact_sweep",
+    "stacked_params",
+    "sweep_summary",
     "BALANCED_FRACTION",
     "DATA_AUDITS",
     "LINEAR_ANALYSES",
