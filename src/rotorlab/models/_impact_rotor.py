@@ -71,7 +71,7 @@ The OCR of the paper garbles four formulas; each is rebuilt from mechanics and c
    ``e_t = (cos(phi + a), sin(phi + a))`` along the guide and ``e_n = k x e_t``:
    ``J_x = F_n sin(phi + a) + F_t cos(phi + a)``, ``J_y = -F_n cos(phi + a) + F_t sin(phi + a)``
    (friction drags the guide *outwards*, the way the stone slides). Checked by the same energy
-   balance (the other sign of F_t misses it by twice the friction heat), see
+   balance (the printed sign of F_t adds ``2 int r F_t sin(a) dtau``, 81 % too much), see
    :func:`stone_push` and ``test_impact_stones.py``.
 
 Parameters the paper does not give are explicit, with defaults documented on
