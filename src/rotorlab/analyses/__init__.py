@@ -12,13 +12,16 @@ from rotorlab.analyses._case import (
     summarize,
 )
 from rotorlab.analyses._impacts import (
+    IMPACT_ANALYSES,
     REGIMES,
     SLIDING_FRACTION,
     SWEEP_PARAMS,
     classify_impacts,
+    impact_model,
     impact_run,
     impact_summary,
     impact_sweep,
+    run_impact_analysis,
     stacked_params,
     sweep_summary,
 )
@@ -50,13 +53,16 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
+    "IMPACT_ANALYSES",
     "REGIMES",
     "SLIDING_FRACTION",
     "SWEEP_PARAMS",
     "classify_impacts",
+    "impact_model",
     "impact_run",
     "impact_summary",
     "impact_sweep",
+    "run_impact_analysis",
     "stacked_params",
     "sweep_summary",
     "BALANCED_FRACTION",

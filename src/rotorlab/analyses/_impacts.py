@@ -35,12 +35,15 @@ if TYPE_CHECKING:
     from rotorlab.models import ImpactRotor
 
 __all__ = [
+    "IMPACT_ANALYSES",
     "REGIMES",
     "SLIDING_FRACTION",
     "SWEEP_PARAMS",
     "classify_impacts",
+    "impact_model",
     "impact_run",
     "impact_sweep",
+    "run_impact_analysis",
     "impact_summary",
     "sweep_summary",
     "stacked_params",
@@ -426,3 +429,71 @@ def sweep_summary(ds: xarray.Dataset) -> dict[str, Any]:
         })  # fmt: skip
     return {"param": ds.attrs["param"], "units": ds.attrs["param_units"], "t_end_s": ds.attrs["t_end"],
             "n_sequences": int(ds.sizes["sequence"]), "seed": int(ds.attrs["seed"]), "rows": rows}  # fmt: skip
+
+
+#: Analysis types of case files run by :func:`run_impact_analysis`.
+IMPACT_ANALYSES = ("impacts", "impacts-sweep")
+
+
+def impact_model(case_model: Any, **overrides: float) -> ImpactRotor:
+    """Build the :class:`~rotorlab.models.ImpactRotor` of a validated ``impact_rotor`` case model.
+
+    Parameters
+    ----------
+    case_model : rotorlab.io.ImpactRotorSpec
+        ``Case.model`` (SI).
+    **overrides : float
+        Values of :data:`SWEEP_PARAMS` names (``stone_mass=3.0``) replacing the case's.
+
+    Returns
+    -------
+    ImpactRotor
+        Without stones (runs draw their own sequences).
+
+    Examples
+    --------
+    >>> from rotorlab.io import load_case
+    >>> m = impact_model(load_case("krasnov-crusher").model, stone_mass=3.0)
+    >>> m.stones.mass, m.rotor.spin_speed, m.translational
+    (3.0, 160.0, False)
+    """
+    from rotorlab.models import CentrifugeRotor, Housing, ImpactRotor, StoneFeed
+
+    if getattr(case_model, "type", None) != "impact_rotor":
+        raise ValueError(f"needs an impact_rotor model, got {getattr(case_model, 'type', None)!r}")
+    cm, h, s = case_model, case_model.housing, case_model.stones
+    rotor = CentrifugeRotor(cm.mass, cm.inertia_transverse, cm.inertia_polar, cm.spin_speed, cm.stiffness_1,
+                            cm.stiffness_2, cm.height_1, cm.height_2, cm.internal_friction, cm.translational)  # fmt: skip
+    housing = Housing(h.radius, h.height, h.gap, h.cone_angle, h.restitution, h.friction, h.rest_speed,
+                      h.count_speed, h.whirl_limit)  # fmt: skip
+    feed = StoneFeed(s.mass, s.interval, s.radius, s.height, s.spiral_angle, s.guide_friction, s.start_radius,
+                     s.start_speed, s.n_guides, s.guides, s.first_time, s.mass_spread, s.time_jitter)  # fmt: skip
+    model = ImpactRotor(rotor, housing, feed)
+    for name, value in overrides.items():
+        if name not in SWEEP_PARAMS:
+            raise ValueError(f"unknown override {name!r} (known: {', '.join(SWEEP_PARAMS)})")
+        part, fld, _ = SWEEP_PARAMS[name]
+        model = replace(model, **{part: replace(getattr(model, part), **{fld: float(value)})})
+    return model
+
+
+def run_impact_analysis(case_model: Any, analysis: Any,
+                        progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+    """Run an ``impacts`` or ``impacts-sweep`` analysis of a case (see :func:`impact_run`,
+    :func:`impact_sweep`); ``attrs["name"]`` is the analysis name."""
+    model = impact_model(case_model, **analysis.overrides())
+    if analysis.type == "impacts":
+        if progress is not None:
+            progress(0, 1)
+        ds = impact_run(model, analysis.t_end, seed=analysis.seed, n_save=analysis.n_save, rtol=analysis.rtol,
+                        atol=analysis.atol, sliding_fraction=analysis.sliding_fraction)  # fmt: skip
+        if progress is not None:
+            progress(1, 1)
+    elif analysis.type == "impacts-sweep":
+        ds = impact_sweep(model, analysis.values, param=analysis.param, n_sequences=analysis.n_sequences,
+                          t_end=analysis.t_end, seed=analysis.seed, rtol=analysis.rtol, atol=analysis.atol,
+                          sliding_fraction=analysis.sliding_fraction, progress=progress)  # fmt: skip
+    else:
+        raise ValueError(f"not an impact analysis: {analysis.type!r}")
+    ds.attrs["name"] = analysis.name
+    return ds

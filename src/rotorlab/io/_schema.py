@@ -65,6 +65,7 @@ from rotorlab.io._fields import (
     plain_data,
     quantity,
 )
+from rotorlab.io._impact_specs import ImpactRotorSpec, ImpactsSpec, ImpactsSweepSpec
 from rotorlab.io._jeffcott_specs import (
     SPEED_PROFILES,
     AbstractSpeedProfile,
@@ -100,6 +101,9 @@ __all__ = [
     "JeffcottBallsSpec",
     "MultibodySpec",
     "FeRotorSpec",
+    "ImpactRotorSpec",
+    "ImpactsSpec",
+    "ImpactsSweepSpec",
     "MODEL_SPECS",
     "AbstractAnalysisSpec",
     "SimulateSpec",
@@ -124,6 +128,7 @@ MODEL_SPECS: Mapping[str, type[AbstractModelSpec]] = MappingProxyType(
         "jeffcott_balls": JeffcottBallsSpec,
         "multibody": MultibodySpec,
         "fe_rotor": FeRotorSpec,
+        "impact_rotor": ImpactRotorSpec,
     }
 )
 
@@ -147,6 +152,8 @@ ANALYSIS_SPECS: Mapping[str, type[AbstractAnalysisSpec]] = MappingProxyType(
         "stability-chart": StabilityChartSpec,
         "verify": VerifySpec,
         "run-up": RunUpSpec,
+        "impacts": ImpactsSpec,
+        "impacts-sweep": ImpactsSweepSpec,
     }
 )
 
@@ -182,7 +189,7 @@ class Case(BaseModel):
         Case name (letters, digits, '_', '-', '.').
     description : str
         One line shown by ``rotorlab cases``.
-    model : JeffcottBallsSpec or MultibodySpec or FeRotorSpec
+    model : JeffcottBallsSpec or MultibodySpec or FeRotorSpec or ImpactRotorSpec
         The model (any of :data:`MODEL_SPECS`).
     analyses : tuple of SimulateSpec, CampbellSpec, ...
         The analyses in file order (key ``analysis`` in the file), with default names filled
