@@ -5,6 +5,7 @@ or using it changes no global matplotlib state.
 """
 
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
+from rotorlab.plot._impacts import impact_figures, impact_sweep_figure, p_trajectory_figure
 from rotorlab.plot._linear import linear_figures, mode_shapes_figure, unbalance_response_figure
 from rotorlab.plot._stability import run_up_figure, stability_chart_figure, verify_figure
 from rotorlab.plot._simulate import (
@@ -24,6 +25,9 @@ __all__ = [
     "campbell_figure",
     "configuration_label",
     "final_positions_figure",
+    "impact_figures",
+    "impact_sweep_figure",
+    "p_trajectory_figure",
     "linear_figures",
     "mode_shapes_figure",
     "orbit_figure",
