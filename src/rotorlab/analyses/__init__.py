@@ -14,6 +14,7 @@ from rotorlab.analyses._case import (
 from rotorlab.analyses._impacts import (
     IMPACT_ANALYSES,
     REGIMES,
+    SEED001_TABLE,
     SLIDING_FRACTION,
     SWEEP_PARAMS,
     classify_impacts,
@@ -21,6 +22,7 @@ from rotorlab.analyses._impacts import (
     impact_run,
     impact_summary,
     impact_sweep,
+    paper_counts,
     run_impact_analysis,
     stacked_params,
     sweep_summary,
@@ -55,6 +57,7 @@ from rotorlab.analyses._steady import (
 __all__ = [
     "IMPACT_ANALYSES",
     "REGIMES",
+    "SEED001_TABLE",
     "SLIDING_FRACTION",
     "SWEEP_PARAMS",
     "classify_impacts",
@@ -62,6 +65,7 @@ __all__ = [
     "impact_run",
     "impact_summary",
     "impact_sweep",
+    "paper_counts",
     "run_impact_analysis",
     "stacked_params",
     "sweep_summary",

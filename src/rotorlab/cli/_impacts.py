@@ -18,10 +18,7 @@ import typer
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
-__all__ = ["impacts_command", "impacts_sweep_command", "impact_tables", "PAPER_TABLE"]
-
-#: Seed 001's table: impacts in 10 s at Delta t = 0.035 s by stone mass (kg), general case.
-PAPER_TABLE = {0.5: 0, 0.6: 2, 0.7: 12, 0.8: 23, 0.9: 43, 1.0: 400, 3.0: 34000}
+__all__ = ["impacts_command", "impacts_sweep_command", "impact_tables"]
 
 AnalysisOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
     "--analysis", metavar="NAME", help="Which analysis of the case supplies the defaults (default: the first).")]
@@ -224,8 +221,9 @@ def impacts_sweep_command(
         from rotorlab.analyses import sweep_summary
 
         doc = {"case": loaded.name, "source": loaded.source, **sweep_summary(ds), "files": written}
-        paper = _paper_counts(ds)
-        for row, p in zip(doc["rows"], paper):
+        from rotorlab.analyses import paper_counts
+
+        for row, p in zip(doc["rows"], paper_counts(ds)):
             row["paper_impacts"] = p
         if json_out:
             emit_json(doc)
@@ -239,23 +237,11 @@ def impacts_sweep_command(
             con.print(f"Wrote {path}", markup=False)
 
 
-def _paper_counts(ds: Any) -> list[int | None]:
-    """The seed's printed count for each swept stone mass, where it applies (else None)."""
-    a = ds.attrs
-    applies = (a.get("param") == "stone_mass" and not a.get("translational") and abs(a.get("interval", 0) - 0.035) < 1e-12
-               and abs(a.get("t_end", 0) - 10.0) < 1e-12)  # fmt: skip
-    out = []
-    for v in ds.value.values:
-        hit = [n for m, n in PAPER_TABLE.items() if abs(m - float(v)) < 1e-9]
-        out.append(hit[0] if applies and hit else None)
-    return out
-
-
 def impact_tables(results: dict[str, Any]) -> list[Any]:
     """Rich tables of impact results (``impacts`` and ``impacts-sweep`` Datasets), by name."""
     from rich.table import Table
 
-    from rotorlab.analyses import impact_summary, sweep_summary
+    from rotorlab.analyses import impact_summary, paper_counts, sweep_summary
 
     tables = []
     for name, ds in results.items():
@@ -274,7 +260,7 @@ def impact_tables(results: dict[str, Any]) -> list[Any]:
             tables.append(t)
         elif kind == "impacts-sweep":
             doc = sweep_summary(ds)
-            paper = _paper_counts(ds)
+            paper = paper_counts(ds)
             unit = f" ({doc['units']})" if doc["units"] not in ("", "1") else ""
             t = Table(title=f"{name}: impacts in {doc['t_end_s']:g} s over {doc['n_sequences']} stone sequences",
                       title_justify="left")  # fmt: skip

@@ -9,7 +9,7 @@ Examples
 --------
 >>> from rotorlab.io import load_case
 >>> case = load_case("krasnov-crusher")
->>> case.model.housing.gap, round(case.model.housing.cone_angle, 4), case.model.stones.n_guides
+>>> round(case.model.housing.gap, 9), round(case.model.housing.cone_angle, 4), case.model.stones.n_guides
 (0.0045, 0.9599, 4)
 >>> [a.type for a in case.analyses]
 ['impacts', 'impacts-sweep']

@@ -106,9 +106,9 @@ def impact_sweep_figure(ds: xarray.Dataset) -> Figure:
 
 
 def impact_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
-    """The figures of one impact result, by file stem (``<name>-p-trajectory`` or ``<name>-sweep``)."""
+    """The figures of one impact result, by file stem (``<name>_p_trajectory`` or ``<name>_sweep``)."""
     if ds.attrs.get("analysis") == "impacts":
-        return {f"{name}-p-trajectory": p_trajectory_figure(ds)}
+        return {f"{name}_p_trajectory": p_trajectory_figure(ds)}
     if ds.attrs.get("analysis") == "impacts-sweep":
-        return {f"{name}-sweep": impact_sweep_figure(ds)}
+        return {f"{name}_sweep": impact_sweep_figure(ds)}
     return {}

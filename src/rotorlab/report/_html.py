@@ -262,6 +262,13 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
             parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
             shown.update(key for key in pngs if key.startswith(f"{name}_"))
             continue
+        if analysis.type in ("impacts", "impacts-sweep") and ds is not None:  # rotorlab.report._impacts
+            from rotorlab.report._impacts import impact_section
+
+            parts += [_table(("key", "value", "unit", "also"), rows, numeric={1}), impact_section(ds)]
+            parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
+            shown.update(key for key in pngs if key.startswith(f"{name}_"))
+            continue
         if ds is not None and "speed_ratio" in ds.coords:
             for k, om in enumerate(ds.speed.values):
                 rows.append(("spin speed used", f"{float(om):.6g}", "rad/s",
@@ -278,6 +285,10 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
                 shown.add(key)
     if any(a.type in STEADY_ANALYSES for a in case.analyses):
         parts.append(seed_notes_section())
+    if any(a.type in ("impacts", "impacts-sweep") for a in case.analyses):
+        from rotorlab.report._impacts import reconstructions_section
+
+        parts.append(reconstructions_section())
     rest = [k for k in pngs if k not in shown]
     if rest:
         parts.append("<h2>Other figures</h2>")
