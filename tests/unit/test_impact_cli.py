@@ -97,3 +97,34 @@ def test_validate_and_cases_list_the_crusher():
     r = invoke("cases", "--json")
     doc = json.loads(r.stdout)
     assert "krasnov-crusher" in doc["cases"] and "krasnov-crusher-translational" in doc["cases"]
+
+
+def test_run_writes_the_report_section_and_figures(tmp_path):
+    from rotorlab.io import load_case
+
+    text = load_case("krasnov-crusher").text
+    head = text[: text.index("[[analysis]]")]
+    case = tmp_path / "small.toml"
+    case.write_text(head.replace('name = "krasnov-crusher"', 'name = "small"') + """
+[[analysis]]
+type = "impacts"
+name = "one"
+t_end = "1 s"
+stone_mass = "1 kg"
+
+[[analysis]]
+type = "impacts-sweep"
+name = "masses"
+values = ["0.6 kg", "1.2 kg"]
+n_sequences = 2
+t_end = "1 s"
+""")
+    out = tmp_path / "out"
+    r = invoke("run", str(case), "--out", str(out), "--json")
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    assert sorted(doc["files"]) == ["masses.nc", "masses_sweep.png", "one.nc", "one_p_trajectory.png", "report.html"]
+    assert doc["analyses"]["one"]["rows"][0]["stone_mass_kg"] == 1.0
+    page = (out / "report.html").read_text()
+    assert "Seed 001: formulas garbled in print" in page and "(4.1)" in page
+    assert "Impacts over stone sequences" in page and "energy against friction at the housing" in page
