@@ -109,3 +109,29 @@ def test_stone_pushes_match_the_fixed_frame():
     scale = np.max(np.abs(ref), axis=0)
     assert np.max(np.abs(got - ref) / scale) < 1e-4
     assert sol.event_counts["stone"] == 8 + 7  # 8 stones arrive, 7 leave before 0.3 s
+
+
+def _fixed_frame_roots(model):
+    """Roots s of the fixed-frame characteristic equation (X, Theta ~ exp(s t))."""
+    r = model.rotor
+    m, a1, a3 = r.mass, r.inertia_transverse, r.inertia_polar
+    c, nm, cs, gw = r.stiffness, r.membrane_offset, r.tilt_stiffness, r.internal_friction / W0
+    P = np.polynomial.Polynomial
+    damp = P([1.0, gw])  # 1 + (gamma / w0) s
+    d11 = P([0.0, 0.0, m]) + c * damp
+    d12 = c * nm * damp
+    d22 = P([0.0, -1j * a3 * W0, a1]) + (c * nm**2 + cs) * damp
+    return (d11 * d22 - d12 * d12).roots()
+
+
+def test_eigenvalues_of_the_rotating_frame_are_the_fixed_frame_ones_shifted_by_the_spin():
+    # u = exp(-i w0 t) X: every fixed-frame root s appears as s - i w0 (and its conjugate)
+    model = krasnov_crusher()
+    ev = np.linalg.eigvals(model.state_matrix())
+    expect = _fixed_frame_roots(model) - 1j * W0
+    expect = np.concatenate([expect, expect.conj()])
+    for z in expect:
+        assert np.min(np.abs(ev - z)) < 1e-8 * abs(z)
+    # the slow backward tilt whirl of a disc-like rotor (A3 > A1): fixed-frame -5.3 rad/s
+    slow = expect[np.argmin(np.abs(expect.real))]
+    assert abs(slow.imag) - W0 == pytest.approx(5.32, abs=0.01)

@@ -96,3 +96,34 @@ def test_fig5_friction_losses_rise_earlier_with_tilt():
     assert np.all(np.diff(et) > 0)
     assert eg[1] > 1.0 > et[1]  # at 2 kg friction costs more than the stones only with tilt
     assert et[-1] > 1.0  # the translational rotor gets there at 5 kg (sliding)
+
+
+def test_tilt_vibrations_decay_much_slower_than_translational_ones():
+    # Section 5: "the tilt vibrations decay much more slowly than the translational ones"
+    # (hyperboloidal precession). Slowest decay rate of the free rotor, with and without tilt:
+    gen = np.linalg.eigvals(krasnov_crusher().state_matrix()).real
+    tra = np.linalg.eigvals(krasnov_crusher(translational=True).state_matrix())
+    tra = tra[np.abs(tra) > 0].real
+    assert -gen.max() == pytest.approx(0.035, abs=0.001)  # 1/s: the slow backward tilt whirl
+    assert -tra.max() == pytest.approx(6.44e6 * 0.2 / 160.0 / (2 * 635.7), rel=1e-9)  # c gamma / (2 m w0)
+    assert -tra.max() / -gen.max() > 100
+
+
+def test_translational_amplitude_is_smaller_than_with_tilt():
+    # Section 5 says "several times smaller" at otherwise equal conditions; with this model and
+    # the documented defaults the largest |w| (no housing, 0.7 kg stones, 5 s, 4 sequences) is
+    # smaller by a factor of 1.1 to 1.5 only -- the claim holds in direction, not in size.
+    from dataclasses import replace
+
+    from rotorlab.analyses import impact_run
+
+    ratios = []
+    for seed in range(4):
+        amp = []
+        for tr in (False, True):
+            m = krasnov_crusher(translational=tr)
+            m = replace(m, housing=replace(m.housing, gap=1.0))
+            ds = impact_run(m, t_end=5.0, seed=seed, n_save=5001)
+            amp.append(float(np.hypot(ds.p_x, ds.p_y).max()))
+        ratios.append(amp[0] / amp[1])
+    assert all(1.05 < r < 1.6 for r in ratios), ratios

@@ -782,6 +782,35 @@ class ImpactRotor:
         frac = np.interp(tau, push.tau, push.work)
         return float(np.sum(seq.masses * (self.stones.radius * w0) ** 2 * frac))
 
+    def state_matrix(self) -> np.ndarray:
+        """A of the free small motions ``x' = A x``, x = (u, t, u', t') in the rotating frame.
+
+        Without stones and contact; exact (the equations are linear), from the compiled kernel.
+
+        Returns
+        -------
+        ndarray, shape (8, 8)
+
+        Examples
+        --------
+        >>> a = krasnov_crusher().state_matrix()
+        >>> bool(np.all(np.linalg.eigvals(a).real < 0))
+        True
+        """
+        base = replace(self, sequence=StoneSequence(n_guides=self.stones.n_guides))
+        p = base.to_array()
+        out = np.empty(_k.N_STATE)
+        a = np.zeros((8, 8))
+        for j in range(8):
+            y = base.initial_state()
+            y[j] = 1.0
+            _k.rhs(0.0, y, p, out)
+            a[:, j] = out[:8]
+        if self.translational:  # the tilt is frozen
+            a[:, [2, 3, 6, 7]] = 0.0
+            a[[2, 3, 6, 7], :] = 0.0
+        return a
+
     def rhs(self, t: float, y) -> np.ndarray:
         """dy/dt at one state (calls the compiled kernel)."""
         out = np.empty(_k.N_STATE)
