@@ -20,6 +20,22 @@ from rotorlab.analyses._case import (
     run_case,
     summarize,
 )
+from rotorlab.analyses._impacts import (
+    IMPACT_ANALYSES,
+    REGIMES,
+    SEED001_TABLE,
+    SLIDING_FRACTION,
+    SWEEP_PARAMS,
+    classify_impacts,
+    impact_model,
+    impact_run,
+    impact_summary,
+    impact_sweep,
+    paper_counts,
+    run_impact_analysis,
+    stacked_params,
+    sweep_summary,
+)
 from rotorlab.analyses._linear import (
     DATA_AUDITS,
     LINEAR_ANALYSES,
@@ -48,6 +64,20 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
+    "IMPACT_ANALYSES",
+    "REGIMES",
+    "SEED001_TABLE",
+    "SLIDING_FRACTION",
+    "SWEEP_PARAMS",
+    "classify_impacts",
+    "impact_model",
+    "impact_run",
+    "impact_summary",
+    "impact_sweep",
+    "paper_counts",
+    "run_impact_analysis",
+    "stacked_params",
+    "sweep_summary",
     "BALANCED_FRACTION",
     "BASIN_ANALYSES",
     "DATA_AUDITS",

@@ -15,6 +15,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rotorlab.analyses._basin import BASIN_ANALYSES
+from rotorlab.analyses._impacts import IMPACT_ANALYSES
 from rotorlab.analyses._linear import LINEAR_ANALYSES
 from rotorlab.analyses._steady import STEADY_ANALYSES
 
@@ -28,7 +29,7 @@ if TYPE_CHECKING:
 __all__ = ["RUNNABLE_ANALYSES", "build_model", "run_analysis", "run_case", "summarize"]
 
 #: Analysis types (the ``type`` of a case's ``[[analysis]]``) that :func:`run_case` can run.
-RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES, *STEADY_ANALYSES, *BASIN_ANALYSES)
+RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES, *STEADY_ANALYSES, *BASIN_ANALYSES, *IMPACT_ANALYSES)
 
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -78,6 +79,10 @@ def build_model(case_model: Any) -> JeffcottBalls | LinearSystem | ToroidalBall:
     """
     from rotorlab.models import BallParams, JeffcottBalls, RotorParams
 
+    if getattr(case_model, "type", None) == "impact_rotor":
+        from rotorlab.analyses._impacts import impact_model
+
+        return impact_model(case_model)
     if getattr(case_model, "type", None) in ("multibody", "fe_rotor"):
         from rotorlab.analyses._linear_build import build_linear_system
 
@@ -136,6 +141,10 @@ def run_analysis(case_model: Any, analysis: Any,
             f"analysis {analysis.name}: type {analysis.type!r} cannot be run here "
             f"(runnable: {', '.join(RUNNABLE_ANALYSES)})"
         )
+    if analysis.type in IMPACT_ANALYSES:
+        from rotorlab.analyses._impacts import run_impact_analysis
+
+        return run_impact_analysis(case_model, analysis, progress=progress)
     if analysis.type in STEADY_ANALYSES:
         from rotorlab.analyses._steady import run_steady_analysis
 
@@ -239,6 +248,14 @@ def summarize(ds: xarray.Dataset) -> list[dict[str, Any]]:
         ``final_ball_angles_deg``, ``outcome``, ``status``. Plain Python values (JSON-ready;
         NaN becomes None).
     """
+    if ds.attrs.get("analysis") == "impacts":
+        from rotorlab.analyses._impacts import impact_summary
+
+        return [impact_summary(ds)]
+    if ds.attrs.get("analysis") == "impacts-sweep":
+        from rotorlab.analyses._impacts import sweep_summary
+
+        return sweep_summary(ds)["rows"]
     if ds.attrs.get("analysis") in STEADY_ANALYSES:
         from rotorlab.analyses._steady import steady_rows
 

@@ -251,6 +251,8 @@ def run_command(
                     draw = steady_figures
                 if ds.attrs.get("analysis") in BASIN_ANALYSES:
                     draw = basin_figures
+                if ds.attrs.get("analysis") in ("impacts", "impacts-sweep"):
+                    from rotorlab.plot import impact_figures as draw
                 figures.update(draw(ds, name))
             report = write_report(out, loaded, results, figures, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results), *(f"{k}.png" for k in figures)])
@@ -281,6 +283,12 @@ def run_command(
 
         basins = {n: linear.pop(n) for n in list(linear) if linear[n].attrs.get("analysis") in BASIN_ANALYSES}
         for table in basin_tables(basins, tables):
+            con.print(table)
+        from rotorlab.cli._impacts import impact_tables
+
+        impacts = {n: linear.pop(n) for n in list(linear)
+                   if linear[n].attrs.get("analysis") in ("impacts", "impacts-sweep")}
+        for table in impact_tables(impacts):
             con.print(table)
         for table in linear_tables(linear, tables):
             con.print(table)

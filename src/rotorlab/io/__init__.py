@@ -51,6 +51,14 @@ from rotorlab.io._schema import (
     integer,
     quantity,
 )
+from rotorlab.io._impact_specs import (
+    IMPACT_SWEEP_PARAMETERS,
+    HousingSpec,
+    ImpactRotorSpec,
+    ImpactsSpec,
+    ImpactsSweepSpec,
+    StonesSpec,
+)
 from rotorlab.io._steady_specs import (
     STEADY_PARAMETERS,
     RunUpSpec,
@@ -63,6 +71,12 @@ from rotorlab.io._sweep_specs import SweepSpec
 from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
 
 __all__ = [
+    "IMPACT_SWEEP_PARAMETERS",
+    "HousingSpec",
+    "ImpactRotorSpec",
+    "ImpactsSpec",
+    "ImpactsSweepSpec",
+    "StonesSpec",
     "ACCEPTED_UNITS",
     "ANALYSIS_SPECS",
     "BALANCER_COORDINATES",

@@ -66,6 +66,7 @@ from rotorlab.io._fields import (
     plain_data,
     quantity,
 )
+from rotorlab.io._impact_specs import ImpactRotorSpec, ImpactsSpec, ImpactsSweepSpec
 from rotorlab.io._jeffcott_specs import (
     SPEED_PROFILES,
     AbstractSpeedProfile,
@@ -103,6 +104,9 @@ __all__ = [
     "MultibodySpec",
     "FeRotorSpec",
     "ToroidalBallSpec",
+    "ImpactRotorSpec",
+    "ImpactsSpec",
+    "ImpactsSweepSpec",
     "MODEL_SPECS",
     "AbstractAnalysisSpec",
     "SimulateSpec",
@@ -130,6 +134,7 @@ MODEL_SPECS: Mapping[str, type[AbstractModelSpec]] = MappingProxyType(
         "multibody": MultibodySpec,
         "fe_rotor": FeRotorSpec,
         "toroidal_ball": ToroidalBallSpec,
+        "impact_rotor": ImpactRotorSpec,
     }
 )
 
@@ -156,6 +161,8 @@ ANALYSIS_SPECS: Mapping[str, type[AbstractAnalysisSpec]] = MappingProxyType(
         "basin": BasinSpec,
         "working-point": WorkingPointSpec,
         "sweep": SweepSpec,
+        "impacts": ImpactsSpec,
+        "impacts-sweep": ImpactsSweepSpec,
     }
 )
 
@@ -191,7 +198,7 @@ class Case(BaseModel):
         Case name (letters, digits, '_', '-', '.').
     description : str
         One line shown by ``rotorlab cases``.
-    model : JeffcottBallsSpec or MultibodySpec or FeRotorSpec or ToroidalBallSpec
+    model : JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSpec or ImpactRotorSpec
         The model (any of :data:`MODEL_SPECS`).
     analyses : tuple of SimulateSpec, CampbellSpec, ...
         The analyses in file order (key ``analysis`` in the file), with default names filled

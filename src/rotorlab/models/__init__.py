@@ -1,6 +1,16 @@
 """Models: frozen parameter objects plus compiled kernels (see :mod:`rotorlab.models._base`)."""
 
 from rotorlab.models._base import AbstractModel, EventSpec, Kernels, no_events, no_reset
+from rotorlab.models._impact_rotor import (
+    CentrifugeRotor,
+    Housing,
+    ImpactRotor,
+    StoneFeed,
+    StonePush,
+    StoneSequence,
+    krasnov_crusher,
+    stone_push,
+)
 from rotorlab.models._jeffcott_balls import JeffcottBalls, fixed_to_rotating, rotating_to_fixed
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
 from rotorlab.models._jeffcott_physics import Linearization
@@ -11,3 +21,5 @@ __all__ = ["AbstractModel", "EventSpec", "Kernels", "no_events", "no_reset"]
 __all__ += ["JeffcottBalls", "RotorParams", "BallParams", "Linearization", "fixed_to_rotating",
             "rotating_to_fixed", "ConstantSpeed", "LinearRamp", "HillRunUp", "speed_from_array"]
 __all__ += ["ToroidalBall", "WorkingPoint", "strautmanis_torus"]
+__all__ += ["ImpactRotor", "CentrifugeRotor", "Housing", "StoneFeed", "StonePush", "StoneSequence",
+            "krasnov_crusher", "stone_push"]

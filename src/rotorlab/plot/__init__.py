@@ -6,6 +6,7 @@ or using it changes no global matplotlib state.
 
 from rotorlab.plot._basin import basin_figure, basin_figures, fractions_figure, restoring_force_figure
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
+from rotorlab.plot._impacts import impact_figures, impact_sweep_figure, p_trajectory_figure
 from rotorlab.plot._linear import linear_figures, mode_shapes_figure, unbalance_response_figure
 from rotorlab.plot._stability import run_up_figure, stability_chart_figure, verify_figure
 from rotorlab.plot._simulate import (
@@ -28,6 +29,9 @@ __all__ = [
     "configuration_label",
     "final_positions_figure",
     "fractions_figure",
+    "impact_figures",
+    "impact_sweep_figure",
+    "p_trajectory_figure",
     "linear_figures",
     "mode_shapes_figure",
     "orbit_figure",

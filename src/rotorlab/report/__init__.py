@@ -4,6 +4,7 @@ The report has no network dependencies: CSS is inline and figures are embedded a
 ``data:`` URIs, so the single ``report.html`` can be mailed or archived on its own.
 """
 
+from rotorlab.report._impacts import impact_section, reconstructions_section
 from rotorlab.report._html import parameter_rows, render_report, versions
 from rotorlab.report._steady import seed_notes_section, steady_figures, steady_section
 from rotorlab.report._write import MANIFEST_NAME, REPORT_NAME, check_output_dir, write_report
@@ -12,6 +13,8 @@ __all__ = [
     "MANIFEST_NAME",
     "REPORT_NAME",
     "check_output_dir",
+    "impact_section",
+    "reconstructions_section",
     "parameter_rows",
     "render_report",
     "seed_notes_section",

@@ -263,9 +263,14 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
             parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
             shown.update(key for key in pngs if key.startswith(f"{name}_"))
             continue
-        if analysis.type in ("basin", "working-point") and ds is not None:
-            parts += [_table(("key", "value", "unit", "also"), rows, numeric={1}),
-                      basin_section(ds, summary_tables.get(name), _table)]
+        if analysis.type in ("basin", "working-point", "impacts", "impacts-sweep") and ds is not None:
+            if analysis.type in ("impacts", "impacts-sweep"):  # rotorlab.report._impacts
+                from rotorlab.report._impacts import impact_section
+
+                body = impact_section(ds)
+            else:  # rotorlab.report._basin
+                body = basin_section(ds, summary_tables.get(name), _table)
+            parts += [_table(("key", "value", "unit", "also"), rows, numeric={1}), body]
             parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
             shown.update(key for key in pngs if key.startswith(f"{name}_"))
             continue
@@ -286,6 +291,10 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
     parts.append(basin_comparison_section(results, _table))
     if any(a.type in STEADY_ANALYSES for a in case.analyses):
         parts.append(seed_notes_section())
+    if any(a.type in ("impacts", "impacts-sweep") for a in case.analyses):
+        from rotorlab.report._impacts import reconstructions_section
+
+        parts.append(reconstructions_section())
     rest = [k for k in pngs if k not in shown]
     if rest:
         parts.append("<h2>Other figures</h2>")

@@ -1,0 +1,380 @@
+"""Compiled kernels of the centrifuge rotor striking its housing (model ``impact_rotor``).
+
+Physics, conventions and every correction to the printed equations are documented in
+:mod:`rotorlab.models._impact_rotor`; this module is the allocation-free numerics.
+
+State ``y`` (length ``N_STATE`` = 22, the last ``N_DISCRETE`` = 13 discrete)
+-----------------------------------------------------------------------------
+==========  ===================================================================================
+``0, 1``    u1, u2: displacement of the centre of mass in the frame rotating at omega0 (m)
+``2, 3``    t1, t2: small tilt angles of the axis in the planes XZ, YZ (rad)
+``4 .. 7``  their rates (m/s, rad/s)
+``8``       integral of the sliding contact force, int N dt (N s)
+``9``       MODE: 0 free, 1 sliding contact with the housing
+``10``      I_BP: number of stone breakpoints (arrivals and departures) passed
+``11``      T_RESET: time of the last reset that left P on the housing (s; -1 if none)
+``12``      N_IMP: impacts with approach speed >= the counting threshold
+``13``      N_ALL: every impact reset (chatter included)
+``14``      N_SLIDE: number of sliding episodes
+``15``      T_START: start of the current sliding episode (s)
+``16``      T_SLIDE: total time in sliding contact, closed episodes (s)
+``17``      S_SUM: sum of the normal impact impulses (N s)
+``18``      E_REST: energy lost by restitution, sum of 1/2 m* (1 - k^2) v^2 (J)
+``19``      V_MAX: largest approach speed (m/s)
+``20``      PEN_MAX: largest excess |w| - Delta seen at an impact or a projection (m)
+``21``      WHIRL: 1 if the run was stopped by a self-feeding backward whirl
+==========  ===================================================================================
+
+Packed parameters ``p`` (header of ``P_HEADER`` entries, then tables)
+--------------------------------------------------------------------
+``p[0..22]``: m, A1, A3, omega0, c, n_m, c_*, gamma, sin(beta), cos(beta), l_P, h_P, r_P,
+Delta, k, f, 1/m*, h_q, translational (0/1), v_rest, v_count, whirl_limit, tau_end.
+``p[23..31]``: n_stones, offset of the stone table (rows ``t_n, m_n omega0^2 R_q, cos a_n,
+sin a_n``), n_bp, offset of the sorted breakpoint times, offset of the active-stone table
+(``n_bp + 1`` rows of ``n_act`` stone indices, -1 where empty), n_act, n_tab, offset of the
+push table (``n_tab`` rows ``J_x, J_y, dJ_x/dtau, dJ_y/dtau`` on the uniform grid
+``tau_j = j dtau``), dtau.
+
+Events (all direction -1)
+-------------------------
+``0 impact``: free, ``g = Delta - |w|`` (exactly 0 at the time of the last reset that left P on
+the housing); ``1 lift_off``: sliding, ``g = N``; ``2 stone``: ``g = t_bp - t`` for the next
+stone arrival or departure (the active stones change only there, so the forcing is smooth inside
+every step); ``3 backward_whirl``: sliding, ``g = whirl_limit + dphi/dt + omega0`` (inertial
+angular speed of the contact point), stops the run.
+"""
+
+import math
+
+from numba import njit
+
+N_STATE = 22
+N_DISCRETE = 13
+N_CONT = N_STATE - N_DISCRETE
+
+U1, U2, T1, T2, DU1, DU2, DT1, DT2, INT_N = 0, 1, 2, 3, 4, 5, 6, 7, 8
+MODE, I_BP, T_RESET, N_IMP, N_ALL, N_SLIDE, T_START, T_SLIDE = 9, 10, 11, 12, 13, 14, 15, 16
+S_SUM, E_REST, V_MAX, PEN_MAX, WHIRL = 17, 18, 19, 20, 21
+
+P_M, P_A1, P_A3, P_W0, P_C, P_NM, P_CS, P_GAM = 0, 1, 2, 3, 4, 5, 6, 7
+P_SB, P_CB, P_LP, P_HP, P_RP, P_GAP, P_K, P_F = 8, 9, 10, 11, 12, 13, 14, 15
+P_IMS, P_HQ, P_TRANS, P_VREST, P_VCOUNT, P_WHIRL, P_TAUEND = 16, 17, 18, 19, 20, 21, 22
+P_NST, P_OST, P_NBP, P_OBP, P_OACT, P_NACT, P_NTAB, P_OTAB, P_DTAU = (
+    23, 24, 25, 26, 27, 28, 29, 30, 31,
+)  # fmt: skip
+P_HEADER = 32
+
+EV_IMPACT, EV_LIFT, EV_STONE, EV_WHIRL = 0, 1, 2, 3
+
+
+@njit(cache=True, nogil=True)
+def push(tau, p):
+    """Dimensionless push ``J(tau)`` of one stone on its guide, (J_x, J_y) in the guide's frame.
+
+    Cubic Hermite interpolation of the tabulated push; continued linearly outside
+    ``[0, tau_end]`` (used only inside a step that is truncated at the breakpoint).
+    """
+    n = int(p[P_NTAB])
+    o = int(p[P_OTAB])
+    dtau = p[P_DTAU]
+    if tau <= 0.0:
+        return p[o] + p[o + 2] * tau, p[o + 1] + p[o + 3] * tau
+    x = tau / dtau
+    if x >= n - 1:
+        r = o + 4 * (n - 1)
+        d = tau - (n - 1) * dtau
+        return p[r] + p[r + 2] * d, p[r + 1] + p[r + 3] * d
+    j = int(x)
+    s = x - j
+    r = o + 4 * j
+    s2 = s * s
+    s3 = s2 * s
+    h00 = 2.0 * s3 - 3.0 * s2 + 1.0
+    h10 = (s3 - 2.0 * s2 + s) * dtau
+    h01 = -2.0 * s3 + 3.0 * s2
+    h11 = (s3 - s2) * dtau
+    jx = h00 * p[r] + h10 * p[r + 2] + h01 * p[r + 4] + h11 * p[r + 6]
+    jy = h00 * p[r + 1] + h10 * p[r + 3] + h01 * p[r + 5] + h11 * p[r + 7]
+    return jx, jy
+
+
+@njit(cache=True, nogil=True)
+def stone_force(t, y, p):
+    """Total force of the stones on the rotor, rotating frame (N): sum of m_n w0^2 R_q P(a_n) J."""
+    n_act = int(p[P_NACT])
+    if n_act == 0:
+        return 0.0, 0.0
+    i_bp = int(y[I_BP])
+    row = int(p[P_OACT]) + i_bp * n_act
+    ost = int(p[P_OST])
+    w0 = p[P_W0]
+    fx = 0.0
+    fy = 0.0
+    for a in range(n_act):
+        idx = int(p[row + a])
+        if idx < 0:
+            break
+        r = ost + 4 * idx
+        jx, jy = push(w0 * (t - p[r]), p)
+        s = p[r + 1]
+        ca = p[r + 2]
+        sa = p[r + 3]
+        fx += s * (ca * jx - sa * jy)
+        fy += s * (sa * jx + ca * jy)
+    return fx, fy
+
+
+@njit(cache=True, nogil=True)
+def free_accel(t, y, p):
+    """Accelerations (u1'', u2'', t1'', t2'') without any contact force, eqs (2.2), (4.1), (4.2)."""
+    m = p[P_M]
+    a1 = p[P_A1]
+    a3 = p[P_A3]
+    w0 = p[P_W0]
+    c = p[P_C]
+    nm = p[P_NM]
+    cs = p[P_CS]
+    gw = p[P_GAM] / w0
+    gam = p[P_GAM]
+    u1 = y[U1]
+    u2 = y[U2]
+    t1 = y[T1]
+    t2 = y[T2]
+    du1 = y[DU1]
+    du2 = y[DU2]
+    dt1 = y[DT1]
+    dt2 = y[DT2]
+    # membranes (4.1): F = -c L(u + n_m t), M~ = n_m F - c_* L(t), L(x) = x + (g/w0)(x' + w0 k x x)
+    um1 = u1 + nm * t1
+    um2 = u2 + nm * t2
+    vm1 = du1 + nm * dt1
+    vm2 = du2 + nm * dt2
+    fm1 = -c * (um1 + gw * vm1 - gam * um2)
+    fm2 = -c * (um2 + gw * vm2 + gam * um1)
+    fq1, fq2 = stone_force(t, y, p)
+    f1 = fm1 + fq1
+    f2 = fm2 + fq2
+    ddu1 = 2.0 * w0 * du2 + w0 * w0 * u1 + f1 / m
+    ddu2 = -2.0 * w0 * du1 + w0 * w0 * u2 + f2 / m
+    if p[P_TRANS] != 0.0:
+        return ddu1, ddu2, 0.0, 0.0
+    hq = p[P_HQ]
+    mm1 = nm * fm1 - cs * (t1 + gw * dt1 - gam * t2) + hq * fq1
+    mm2 = nm * fm2 - cs * (t2 + gw * dt2 + gam * t1) + hq * fq2
+    g = (a3 - 2.0 * a1) * w0
+    kk = (a1 - a3) * w0 * w0
+    ddt1 = (-g * dt2 + kk * t1 + mm1) / a1
+    ddt2 = (g * dt1 + kk * t2 + mm2) / a1
+    return ddu1, ddu2, ddt1, ddt2
+
+
+@njit(cache=True, nogil=True)
+def gap_vector(y, p):
+    """w = u sin(beta) + l_P t: |w| is the largest normal displacement of the circle of P (m)."""
+    sb = p[P_SB]
+    lp = p[P_LP]
+    return sb * y[U1] + lp * y[T1], sb * y[U2] + lp * y[T2]
+
+
+@njit(cache=True, nogil=True)
+def gap_rate(y, p):
+    """dw/dt (m/s)."""
+    sb = p[P_SB]
+    lp = p[P_LP]
+    return sb * y[DU1] + lp * y[DT1], sb * y[DU2] + lp * y[DT2]
+
+
+@njit(cache=True, nogil=True)
+def contact_force(t, y, p):
+    """Normal force N (N) that keeps P on the housing (|w| = Delta), and the unit vector of w.
+
+    ``N = m* (e.w''_free + (|w'|^2 - (e.w')^2) / |w|)``: the normal acceleration the free motion
+    would have plus the centripetal term of w turning, times the equivalent mass m*.
+    """
+    w1, w2 = gap_vector(y, p)
+    r = math.sqrt(w1 * w1 + w2 * w2)
+    e1 = w1 / r
+    e2 = w2 / r
+    dw1, dw2 = gap_rate(y, p)
+    a1, a2, b1, b2 = free_accel(t, y, p)
+    sb = p[P_SB]
+    lp = p[P_LP]
+    an = e1 * (sb * a1 + lp * b1) + e2 * (sb * a2 + lp * b2)
+    vn = e1 * dw1 + e2 * dw2
+    cen = (dw1 * dw1 + dw2 * dw2 - vn * vn) / r
+    return (an + cen) / p[P_IMS], e1, e2
+
+
+@njit(cache=True, nogil=True)
+def rhs(t, y, p, out):
+    a1, a2, b1, b2 = free_accel(t, y, p)
+    out[U1] = y[DU1]
+    out[U2] = y[DU2]
+    out[T1] = y[DT1]
+    out[T2] = y[DT2]
+    out[INT_N] = 0.0
+    if y[MODE] != 0.0:
+        n, e1, e2 = contact_force(t, y, p)
+        f = p[P_F]
+        # contact force -N (sin(beta) e + f e_perp), moment -N (l_P e + f h_P e_perp), e_perp = k x e
+        inv_m = n / p[P_M]
+        a1 -= inv_m * (p[P_SB] * e1 - f * e2)
+        a2 -= inv_m * (p[P_SB] * e2 + f * e1)
+        if p[P_TRANS] == 0.0:
+            inv_a = n / p[P_A1]
+            hp = p[P_HP]
+            b1 -= inv_a * (p[P_LP] * e1 - f * hp * e2)
+            b2 -= inv_a * (p[P_LP] * e2 + f * hp * e1)
+        out[INT_N] = n
+    out[DU1] = a1
+    out[DU2] = a2
+    out[DT1] = b1
+    out[DT2] = b2
+    for i in range(N_CONT, N_STATE):
+        out[i] = 0.0
+
+
+@njit(cache=True, nogil=True)
+def whirl_speed(y, p):
+    """Angular speed of the direction of w (of the contact point) in the fixed frame (rad/s)."""
+    w1, w2 = gap_vector(y, p)
+    dw1, dw2 = gap_rate(y, p)
+    return (w1 * dw2 - w2 * dw1) / (w1 * w1 + w2 * w2) + p[P_W0]
+
+
+@njit(cache=True, nogil=True)
+def events(t, y, p, g):
+    free = y[MODE] == 0.0
+    if free:
+        if t == y[T_RESET]:
+            g[EV_IMPACT] = 0.0
+        else:
+            w1, w2 = gap_vector(y, p)
+            g[EV_IMPACT] = p[P_GAP] - math.sqrt(w1 * w1 + w2 * w2)
+        g[EV_LIFT] = 1.0
+        g[EV_WHIRL] = 1.0
+    else:
+        g[EV_IMPACT] = 1.0
+        n, e1, e2 = contact_force(t, y, p)
+        g[EV_LIFT] = n
+        g[EV_WHIRL] = p[P_WHIRL] + whirl_speed(y, p)
+    i_bp = int(y[I_BP])
+    if i_bp < int(p[P_NBP]):
+        g[EV_STONE] = p[int(p[P_OBP]) + i_bp] - t
+    else:
+        g[EV_STONE] = 1.0
+
+
+@njit(cache=True, nogil=True)
+def _shift(y_new, p, e1, e2, dn, dv):
+    """Move w by ``dn`` and dw/dt by ``dv`` along e, mass-weighted as a normal impulse would."""
+    ims = p[P_IMS]
+    k_u = p[P_SB] / p[P_M] / ims
+    y_new[U1] += dn * k_u * e1
+    y_new[U2] += dn * k_u * e2
+    y_new[DU1] += dv * k_u * e1
+    y_new[DU2] += dv * k_u * e2
+    if p[P_TRANS] == 0.0:
+        k_t = p[P_LP] / p[P_A1] / ims
+        y_new[T1] += dn * k_t * e1
+        y_new[T2] += dn * k_t * e2
+        y_new[DT1] += dv * k_t * e1
+        y_new[DT2] += dv * k_t * e2
+
+
+@njit(cache=True, nogil=True)
+def _project(y_new, p, velocity):
+    """Put P back on the housing (|w| = Delta) and, if ``velocity``, cancel its normal speed."""
+    w1, w2 = gap_vector(y_new, p)
+    r = math.sqrt(w1 * w1 + w2 * w2)
+    e1 = w1 / r
+    e2 = w2 / r
+    if r - p[P_GAP] > y_new[PEN_MAX]:
+        y_new[PEN_MAX] = r - p[P_GAP]
+    dv = 0.0
+    if velocity:
+        dw1, dw2 = gap_rate(y_new, p)
+        dv = -(e1 * dw1 + e2 * dw2)
+    _shift(y_new, p, e1, e2, p[P_GAP] - r, dv)
+    return e1, e2
+
+
+@njit(cache=True, nogil=True)
+def _apply_impulse(y_new, p, e1, e2, sn):
+    """Normal impulse ``sn`` (N s) at P with the friction impulse f sn, eqs (3.6)-(3.9)."""
+    f = p[P_F]
+    m = p[P_M]
+    sb = p[P_SB]
+    y_new[DU1] -= sn / m * (sb * e1 - f * e2)
+    y_new[DU2] -= sn / m * (sb * e2 + f * e1)
+    if p[P_TRANS] == 0.0:
+        a1 = p[P_A1]
+        lp = p[P_LP]
+        hp = p[P_HP]
+        y_new[DT1] -= sn / a1 * (lp * e1 - f * hp * e2)
+        y_new[DT2] -= sn / a1 * (lp * e2 + f * hp * e1)
+    y_new[S_SUM] += sn
+
+
+@njit(cache=True, nogil=True)
+def reset(k, t, y, p, y_new):
+    for i in range(N_STATE):
+        y_new[i] = y[i]
+    if k == EV_STONE:
+        y_new[I_BP] = y[I_BP] + 1.0
+        if y[MODE] != 0.0:
+            _project(y_new, p, True)
+        return 0
+    if k == EV_IMPACT:
+        e1, e2 = _project(y_new, p, False)
+        y_new[T_RESET] = t
+        dw1, dw2 = gap_rate(y_new, p)
+        v = e1 * dw1 + e2 * dw2  # approach speed (> 0 towards the housing)
+        if v <= 0.0:
+            return 0
+        y_new[N_ALL] += 1.0
+        if v >= p[P_VCOUNT]:
+            y_new[N_IMP] += 1.0
+        if v > y_new[V_MAX]:
+            y_new[V_MAX] = v
+        ms = 1.0 / p[P_IMS]
+        kr = p[P_K]
+        if kr * v < p[P_VREST]:
+            # accumulation of impacts: sustained contact if the housing has to push
+            y_new[MODE] = 1.0
+            _apply_impulse(y_new, p, e1, e2, ms * v)
+            _project(y_new, p, True)
+            n, _, _ = contact_force(t, y_new, p)
+            if n > 0.0:
+                y_new[E_REST] += 0.5 * ms * v * v
+                y_new[N_SLIDE] += 1.0
+                y_new[T_START] = t
+                if whirl_speed(y_new, p) < -p[P_WHIRL]:
+                    # it starts sliding already in the self-feeding backward whirl: stop
+                    y_new[WHIRL] = 1.0
+                    y_new[MODE] = 0.0
+                    return 1
+                return 0
+            for i in range(N_STATE):  # it would pull: an ordinary rebound instead
+                y_new[i] = y[i]
+            e1, e2 = _project(y_new, p, False)
+            y_new[T_RESET] = t
+            y_new[N_ALL] += 1.0
+            if v >= p[P_VCOUNT]:
+                y_new[N_IMP] += 1.0
+            if v > y_new[V_MAX]:
+                y_new[V_MAX] = v
+        _apply_impulse(y_new, p, e1, e2, (1.0 + kr) * ms * v)
+        y_new[E_REST] += 0.5 * ms * (1.0 - kr * kr) * v * v
+        return 0
+    if k == EV_LIFT:
+        _project(y_new, p, True)
+        y_new[MODE] = 0.0
+        y_new[T_RESET] = t
+        y_new[T_SLIDE] += t - y[T_START]
+        return 0
+    # EV_WHIRL: self-feeding backward whirl, stop
+    y_new[WHIRL] = 1.0
+    y_new[T_SLIDE] += t - y[T_START]
+    y_new[MODE] = 0.0
+    return 1

@@ -1,0 +1,521 @@
+"""Impacts of the centrifuge rotor on its housing: runs, regimes, energy, sweeps (seed 001).
+
+Every function here integrates :class:`rotorlab.models.ImpactRotor` with the compiled ensemble
+integrator and returns an ``xarray.Dataset`` (SI, ``attrs["units"]`` on every variable).
+
+Regimes (per run)
+-----------------
+``none``: no impact with an approach speed >= ``Housing.count_speed``; ``rebounds``: impacts,
+sliding contact for less than ``sliding_fraction`` (default 2 %) of the run; ``sliding``: sliding
+for at least that fraction; ``backward_whirl``: a sliding contact ran into the self-feeding
+dry-friction backward whirl and the run was stopped there (the counts are those up to the stop);
+``failed``: the integrator gave up (status < 0).
+
+Energy (seed 001, Fig. 5)
+-------------------------
+``energy_stones``: what the motor spends on accelerating the stones (``m_n omega0^2 R_q^2 W``,
+partial for a stone still on its guide); ``energy_friction``: what it spends against the
+friction at the housing, ``f r_P omega0 (sum S_n + int N dt)``; ``eta`` their ratio.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Sequence
+from dataclasses import replace
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rotorlab._kernels import impact_rotor as _k
+
+if TYPE_CHECKING:
+    import xarray
+
+    from rotorlab.models import ImpactRotor
+
+__all__ = [
+    "IMPACT_ANALYSES",
+    "REGIMES",
+    "SEED001_TABLE",
+    "SLIDING_FRACTION",
+    "SWEEP_PARAMS",
+    "classify_impacts",
+    "impact_model",
+    "impact_run",
+    "impact_sweep",
+    "run_impact_analysis",
+    "impact_summary",
+    "paper_counts",
+    "sweep_summary",
+    "stacked_params",
+]
+
+#: Regime labels by code (``failed`` is -1).
+REGIMES = ("none", "rebounds", "sliding", "backward_whirl")
+
+#: Default fraction of the run in sliding contact from which a run is in the sliding regime.
+SLIDING_FRACTION = 0.02
+
+#: Seed 001's table: impacts in 10 s at Delta t = 0.035 s by stone mass (kg), general case (one
+#: random sequence each; at 3 kg "sliding, a series of very frequent impacts").
+SEED001_TABLE = {0.5: 0, 0.6: 2, 0.7: 12, 0.8: 23, 0.9: 43, 1.0: 400, 3.0: 34000}
+
+#: Parameters a sweep can vary: name -> (part of the model, field, unit).
+SWEEP_PARAMS = {
+    "stone_mass": ("stones", "mass", "kg"),
+    "interval": ("stones", "interval", "s"),
+    "internal_friction": ("rotor", "internal_friction", "1"),
+    "restitution": ("housing", "restitution", "1"),
+    "friction": ("housing", "friction", "1"),
+}
+
+
+def stacked_params(models: Sequence[ImpactRotor]) -> np.ndarray:
+    """Packed parameter vectors of several models, zero-padded to one length, shape (N, n_p)."""
+    ps = [m.to_array() for m in models]
+    width = max(p.size for p in ps)
+    out = np.zeros((len(ps), width))
+    for i, p in enumerate(ps):
+        out[i, : p.size] = p
+    return out
+
+
+def classify_impacts(impacts, sliding_time, duration, whirl, status,
+                     sliding_fraction: float = SLIDING_FRACTION) -> np.ndarray:  # fmt: skip
+    """Regime codes (0 none, 1 rebounds, 2 sliding, 3 backward_whirl, -1 failed) of runs.
+
+    Parameters
+    ----------
+    impacts : array_like
+        Counted impacts.
+    sliding_time, duration : array_like
+        Time in sliding contact and length of the run (s).
+    whirl : array_like
+        1 where the run was stopped by the backward whirl.
+    status : array_like of int
+        Integrator status (< 0: failed).
+    sliding_fraction : float
+        Fraction of the run in sliding contact from which it is ``sliding``.
+
+    Returns
+    -------
+    ndarray of int
+
+    Examples
+    --------
+    >>> classify_impacts([0, 5, 50, 9, 3], [0, 0, 1.0, 0.1, 0], 10.0, [0, 0, 0, 1, 0], [0, 0, 0, 1, -2])
+    array([ 0,  1,  2,  3, -1])
+    """
+    impacts, sliding_time, duration, whirl, status = np.broadcast_arrays(
+        *(np.asarray(a, dtype=float) for a in (impacts, sliding_time, duration, whirl, status))
+    )
+    code = np.where(impacts > 0, 1, 0)
+    code = np.where(sliding_time >= sliding_fraction * duration, 2, code)
+    code = np.where((impacts == 0) & (sliding_time == 0), 0, code)
+    code = np.where(whirl > 0, 3, code)
+    return np.where(status < 0, -1, code).astype(np.int64)
+
+
+def _label(code: int) -> str:
+    return "failed" if code < 0 else REGIMES[code]
+
+
+def _scalars(models: Sequence[ImpactRotor], sol: Any) -> dict[str, np.ndarray]:
+    yf = sol.y_final
+    tf = sol.t_final
+    sliding = yf[:, _k.T_SLIDE] + np.where(yf[:, _k.MODE] != 0.0, tf - yf[:, _k.T_START], 0.0)
+    e_st = np.array([m.stone_energy(t) for m, t in zip(models, tf)])
+    e_fr = np.array([m.housing.friction * m.housing.radius * m.rotor.spin_speed for m in models])
+    e_fr = e_fr * (yf[:, _k.S_SUM] + yf[:, _k.INT_N])
+    with np.errstate(divide="ignore", invalid="ignore"):
+        eta = np.where(e_st > 0, e_fr / e_st, np.nan)
+    return {
+        "impacts": yf[:, _k.N_IMP].astype(np.int64),
+        "impacts_all": yf[:, _k.N_ALL].astype(np.int64),
+        "slides": yf[:, _k.N_SLIDE].astype(np.int64),
+        "sliding_time": sliding,
+        "max_penetration": np.maximum(yf[:, _k.PEN_MAX], 0.0),
+        "max_approach_speed": yf[:, _k.V_MAX],
+        "energy_stones": e_st,
+        "energy_friction": e_fr,
+        "energy_restitution": yf[:, _k.E_REST],
+        "eta": eta,
+        "whirl": yf[:, _k.WHIRL].astype(np.int64),
+        "t_final": tf,
+        "status": sol.status.astype(np.int64),
+        "n_steps": sol.stats[:, 1].astype(np.int64),
+    }
+
+
+_UNITS = {
+    "impacts": "1", "impacts_all": "1", "slides": "1", "sliding_time": "s", "max_penetration": "m",
+    "max_approach_speed": "m/s", "energy_stones": "J", "energy_friction": "J",
+    "energy_restitution": "J", "eta": "1", "whirl": "1", "t_final": "s", "status": "1",
+    "n_steps": "1", "regime": "1",
+}  # fmt: skip
+_DESCRIPTIONS = {
+    "impacts": "impacts with approach speed >= count_speed",
+    "impacts_all": "every impact, chatter included",
+    "slides": "number of sliding-contact episodes",
+    "sliding_time": "total time in sliding contact",
+    "max_penetration": "largest excess of |w| over the gap seen at impacts and projections",
+    "max_approach_speed": "largest normal approach speed of P",
+    "energy_stones": "motor energy spent on accelerating stones",
+    "energy_friction": "motor energy spent against friction at the housing",
+    "energy_restitution": "energy lost in the normal direction by restitution",
+    "eta": "energy_friction / energy_stones (seed 001, Fig. 5)",
+    "whirl": "1: stopped by a self-feeding dry-friction backward whirl",
+    "t_final": "time the run ended",
+    "status": "integrator status (>= 0 usable)",
+    "n_steps": "accepted integrator steps",
+    "regime": "0 none, 1 rebounds, 2 sliding, 3 backward_whirl, -1 failed",
+}
+
+
+def _control(rtol: float, atol: float):
+    from rotorlab.integrate import StepControl
+
+    scale = np.ones(_k.N_STATE)
+    scale[_k.INT_N] = 1e30  # the contact-impulse integral does not steer the step size
+    return StepControl(rtol=rtol, atol=tuple(atol * scale))
+
+
+def _model_attrs(model: ImpactRotor, t_end: float, sliding_fraction: float) -> dict[str, Any]:
+    r, h, s = model.rotor, model.housing, model.stones
+    return {
+        "model": "impact_rotor",
+        "translational": int(r.translational),
+        "t_end": float(t_end),
+        "sliding_fraction": float(sliding_fraction),
+        "count_speed": h.count_speed,
+        "rest_speed": h.rest_speed,
+        "spin_speed": r.spin_speed,
+        "stone_mass": s.mass,
+        "interval": s.interval,
+        "internal_friction": r.internal_friction,
+        "restitution": h.restitution,
+        "friction": h.friction,
+        "gap": h.gap,
+        "n_guides": s.n_guides,
+        "guides": s.guides,
+        "start_radius": s.start_radius,
+        "mass_spread": s.mass_spread,
+        "time_jitter": s.time_jitter,
+        "stone_generator": "numpy.random.default_rng(seed)",
+    }
+
+
+def impact_run(model: ImpactRotor, t_end: float = 10.0, *, seed: int | None = 0, n_save: int = 4000,
+               rtol: float = 1e-8, atol: float = 1e-11,
+               sliding_fraction: float = SLIDING_FRACTION) -> xarray.Dataset:  # fmt: skip
+    """Simulate one run from rest with a seeded stone sequence; trajectory of P and bookkeeping.
+
+    Parameters
+    ----------
+    model : ImpactRotor
+        Its stone feed is used; any sequence it carries is replaced by one drawn from ``seed``.
+    t_end : float
+        Duration (s), > 0.
+    seed : int or None
+        Seed of the stone sequence (:meth:`rotorlab.models.StoneFeed.sequence`).
+    n_save : int
+        Number of saved states (trajectory of P), >= 2.
+    rtol, atol : float
+        Integrator tolerances (atol in m, m/s, rad, rad/s).
+    sliding_fraction : float
+        See :func:`classify_impacts`.
+
+    Returns
+    -------
+    xarray.Dataset
+        Scalars (``impacts``, ``impacts_all``, ``slides``, ``sliding_time``, ``max_penetration``,
+        ``max_approach_speed``, ``energy_*``, ``eta``, ``whirl``, ``regime``, ``status``), the
+        trajectory of P in the rotating frame ``p_x, p_y`` (dim ``time``, in units of the gap),
+        ``mode``, and the stone sequence ``stone_time``, ``stone_mass``, ``stone_guide`` (dim
+        ``stone``); ``attrs["regime"]`` is the label and ``attrs["seed"]`` the seed.
+
+    Examples
+    --------
+    >>> from rotorlab.models import krasnov_crusher
+    >>> ds = impact_run(krasnov_crusher(), t_end=1.0, seed=0, n_save=200)
+    >>> ds.attrs["regime"], int(ds.impacts), ds.sizes["stone"]
+    ('none', 0, 28)
+    """
+    import xarray as xr
+
+    from rotorlab.integrate import SaveAt, solve_ensemble
+
+    if not (t_end > 0 and math.isfinite(t_end)):
+        raise ValueError(f"t_end must be a finite number > 0 (s), got {t_end!r}")
+    if int(n_save) < 2:
+        raise ValueError(f"n_save must be >= 2, got {n_save!r}")
+    run = model.with_stones(t_end, seed)
+    ts = np.linspace(0.0, t_end, int(n_save))
+    sol = solve_ensemble(run, run.initial_state(), (0.0, t_end), save_at=SaveAt(ts=ts),
+                         control=_control(rtol, atol), max_events_recorded=0, threads=1)  # fmt: skip
+    sc = {k: v[0] for k, v in _scalars([run], sol).items()}
+    ys = sol.ys[0]
+    w = run.gap_vector(ys) / run.housing.gap
+    # penetration also from the saved states (sliding drift included)
+    sc["max_penetration"] = max(float(sc["max_penetration"]),
+                                float(np.nanmax(np.hypot(w[:, 0], w[:, 1]), initial=0.0) - 1.0) * run.housing.gap, 0.0)  # fmt: skip
+    code = int(classify_impacts(sc["impacts"], sc["sliding_time"], sc["t_final"], sc["whirl"],
+                                sc["status"], sliding_fraction))  # fmt: skip
+    sc["regime"] = code
+    data = {k: ((), v, {"units": _UNITS[k], "description": _DESCRIPTIONS[k]}) for k, v in sc.items()}
+    data["p_x"] = (("time",), w[:, 0], {"units": "1", "description": "w_x / gap, rotating frame"})
+    data["p_y"] = (("time",), w[:, 1], {"units": "1", "description": "w_y / gap, rotating frame"})
+    data["mode"] = (("time",), ys[:, _k.MODE], {"units": "1", "description": "0 free, 1 sliding"})
+    data["displacement"] = (("time", "axis"), ys[:, 0:2], {"units": "m"})
+    data["tilt"] = (("time", "axis"), ys[:, 2:4], {"units": "rad"})
+    seq = run.sequence
+    data["stone_time"] = (("stone",), seq.times, {"units": "s"})
+    data["stone_mass"] = (("stone",), seq.masses, {"units": "kg"})
+    data["stone_guide"] = (("stone",), seq.guides, {"units": "1", "description": "guide j at 2 pi j / N"})
+    ds = xr.Dataset(data, coords={"time": ("time", ts, {"units": "s"}), "axis": ["x", "y"],
+                                  "stone": ("stone", np.arange(len(seq)), {"units": "1"})})  # fmt: skip
+    ds.attrs.update(_model_attrs(run, t_end, sliding_fraction))
+    ds.attrs.update({"analysis": "impacts", "regime": _label(code), "seed": -1 if seed is None else int(seed)})
+    return ds
+
+
+def impact_sweep(model: ImpactRotor, values: Sequence[float], *, param: str = "stone_mass",
+                 n_sequences: int = 16, t_end: float = 10.0, seed: int = 0, rtol: float = 1e-8,
+                 atol: float = 1e-11, sliding_fraction: float = SLIDING_FRACTION,
+                 threads: int | None = None,
+                 progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+    """Run many random stone sequences at each value of one parameter (the seed's table, Fig. 5).
+
+    Sequence j uses the seed ``seed + j`` at every value (common random numbers), so values are
+    compared on the same stones.
+
+    Parameters
+    ----------
+    model : ImpactRotor
+    values : sequence of float
+        Values of ``param`` (SI).
+    param : str
+        One of :data:`SWEEP_PARAMS`: ``stone_mass`` (kg), ``interval`` (s),
+        ``internal_friction``, ``restitution``, ``friction``.
+    n_sequences : int
+        Random stone sequences per value, >= 1.
+    t_end : float
+        Duration of each run (s).
+    seed : int
+        Seed of the first sequence.
+    rtol, atol : float
+        Integrator tolerances.
+    sliding_fraction : float
+        See :func:`classify_impacts`.
+    threads : int, optional
+        Threads of the ensemble (results do not depend on it).
+    progress : callable, optional
+        ``progress(done, total)`` after each chunk of runs.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dims ``value`` (the swept parameter, named in ``attrs["param"]``) and ``sequence``:
+        every scalar of :func:`impact_run` plus ``regime``; per value the median and quartiles of
+        ``impacts`` and ``eta`` and the fraction of runs in each regime (dim ``regime``).
+
+    Examples
+    --------
+    >>> from rotorlab.models import krasnov_crusher
+    >>> ds = impact_sweep(krasnov_crusher(), [0.5, 1.0], n_sequences=2, t_end=2.0)
+    >>> ds.impacts.values[0].tolist(), bool((ds.impacts.values[1] > 10).all()), ds.attrs["param"]
+    ([0, 0], True, 'stone_mass')
+    """
+    import xarray as xr
+
+    from rotorlab.integrate import solve_ensemble
+
+    if param not in SWEEP_PARAMS:
+        raise ValueError(f"param must be one of {', '.join(SWEEP_PARAMS)}, got {param!r}")
+    values = np.atleast_1d(np.asarray(values, dtype=float))
+    if values.ndim != 1 or values.size == 0:
+        raise ValueError("values must be a non-empty 1-D sequence")
+    if int(n_sequences) < 1:
+        raise ValueError(f"n_sequences must be >= 1, got {n_sequences!r}")
+    if not (t_end > 0 and math.isfinite(t_end)):
+        raise ValueError(f"t_end must be a finite number > 0 (s), got {t_end!r}")
+    part, fld, unit = SWEEP_PARAMS[param]
+    n_seq = int(n_sequences)
+    models = []
+    for v in values:
+        base = replace(model, **{part: replace(getattr(model, part), **{fld: float(v)})})
+        models.extend(base.with_stones(t_end, seed + j) for j in range(n_seq))
+    P = stacked_params(models)
+    sol = solve_ensemble(models[0], models[0].initial_state(), (0.0, t_end), params=P,
+                         control=_control(rtol, atol), threads=threads,
+                         chunk_size=None if progress is None else max(1, n_seq),
+                         progress=progress)  # fmt: skip
+    sc = _scalars(models, sol)
+    shape = (values.size, n_seq)
+    sc = {k: v.reshape(shape) for k, v in sc.items()}
+    sc["regime"] = classify_impacts(sc["impacts"], sc["sliding_time"], sc["t_final"], sc["whirl"],
+                                    sc["status"], sliding_fraction)  # fmt: skip
+    data = {k: (("value", "sequence"), v, {"units": _UNITS[k], "description": _DESCRIPTIONS[k]})
+            for k, v in sc.items()}  # fmt: skip
+    for name in ("impacts", "eta", "sliding_time"):
+        arr = sc[name].astype(float)
+        q = np.nanquantile(arr, [0.25, 0.5, 0.75], axis=1) if np.isfinite(arr).any() else np.full((3, values.size), np.nan)
+        for tag, row in zip(("q25", "median", "q75"), q):
+            data[f"{name}_{tag}"] = (("value",), row, {"units": _UNITS[name], "description": f"{tag} over sequences"})
+    frac = np.stack([(sc["regime"] == c).mean(axis=1) for c in range(len(REGIMES))], axis=1)
+    data["regime_fraction"] = (("value", "regime_label"), frac, {"units": "1"})
+    data["failed_fraction"] = (("value",), (sc["regime"] < 0).mean(axis=1), {"units": "1"})
+    data["seed"] = (("sequence",), seed + np.arange(n_seq), {"units": "1", "description": "seed of the stone sequence"})
+    ds = xr.Dataset(data, coords={"value": ("value", values, {"units": unit, "long_name": param}),
+                                  "sequence": ("sequence", np.arange(n_seq), {"units": "1"}),
+                                  "regime_label": list(REGIMES)})  # fmt: skip
+    ds.attrs.update(_model_attrs(model, t_end, sliding_fraction))
+    ds.attrs.update({"analysis": "impacts-sweep", "param": param, "param_units": unit, "seed": int(seed),
+                     "n_sequences": n_seq})  # fmt: skip
+    return ds
+
+
+def _num(x: Any) -> float | int | None:
+    v = float(x)
+    if not math.isfinite(v):
+        return None
+    return int(v) if float(v).is_integer() and abs(v) < 2**53 and isinstance(x, (int, np.integer)) else v
+
+
+def impact_summary(ds: xarray.Dataset) -> dict[str, Any]:
+    """JSON-ready summary of :func:`impact_run` (SI; keys named with their unit).
+
+    Examples
+    --------
+    >>> from rotorlab.models import krasnov_crusher
+    >>> s = impact_summary(impact_run(krasnov_crusher(), t_end=0.5, n_save=50))
+    >>> s["regime"], s["impacts"], s["sliding_time_s"]
+    ('none', 0, 0.0)
+    """
+    return {
+        "regime": ds.attrs["regime"],
+        "impacts": int(ds.impacts),
+        "impacts_all": int(ds.impacts_all),
+        "slides": int(ds.slides),
+        "sliding_time_s": float(ds.sliding_time),
+        "energy_ratio": _num(ds.eta.values),
+        "energy_stones_J": float(ds.energy_stones),
+        "energy_friction_J": float(ds.energy_friction),
+        "max_penetration_m": float(ds.max_penetration),
+        "max_approach_speed_m_s": float(ds.max_approach_speed),
+        "backward_whirl": bool(int(ds.whirl)),
+        "t_final_s": float(ds.t_final),
+        "status": int(ds.status),
+        "seed": int(ds.attrs["seed"]),
+        "stone_mass_kg": float(ds.attrs["stone_mass"]),
+        "n_stones": int(ds.sizes["stone"]),
+        "t_end_s": float(ds.attrs["t_end"]),
+    }
+
+
+def sweep_summary(ds: xarray.Dataset) -> dict[str, Any]:
+    """JSON-ready summary of :func:`impact_sweep`: per value the median, quartiles, regimes."""
+    rows = []
+    for i, v in enumerate(ds.value.values):
+        counts = {lab: int(round(float(ds.regime_fraction.values[i, c]) * ds.sizes["sequence"]))
+                  for c, lab in enumerate(REGIMES)}  # fmt: skip
+        counts["failed"] = int(round(float(ds.failed_fraction.values[i]) * ds.sizes["sequence"]))
+        rows.append({
+            "value": float(v),
+            "impacts_median": _num(ds.impacts_median.values[i]),
+            "impacts_q25": _num(ds.impacts_q25.values[i]),
+            "impacts_q75": _num(ds.impacts_q75.values[i]),
+            "impacts_min": int(ds.impacts.values[i].min()),
+            "impacts_max": int(ds.impacts.values[i].max()),
+            "sliding_time_median_s": _num(ds.sliding_time_median.values[i]),
+            "energy_ratio_median": _num(ds.eta_median.values[i]),
+            "regimes": counts,
+            "regime": REGIMES[int(np.argmax(ds.regime_fraction.values[i]))],
+        })  # fmt: skip
+    return {"param": ds.attrs["param"], "units": ds.attrs["param_units"], "t_end_s": ds.attrs["t_end"],
+            "n_sequences": int(ds.sizes["sequence"]), "seed": int(ds.attrs["seed"]), "rows": rows}  # fmt: skip
+
+
+#: Analysis types of case files run by :func:`run_impact_analysis`.
+IMPACT_ANALYSES = ("impacts", "impacts-sweep")
+
+
+def impact_model(case_model: Any, **overrides: float) -> ImpactRotor:
+    """Build the :class:`~rotorlab.models.ImpactRotor` of a validated ``impact_rotor`` case model.
+
+    Parameters
+    ----------
+    case_model : rotorlab.io.ImpactRotorSpec
+        ``Case.model`` (SI).
+    **overrides : float
+        Values of :data:`SWEEP_PARAMS` names (``stone_mass=3.0``) replacing the case's.
+
+    Returns
+    -------
+    ImpactRotor
+        Without stones (runs draw their own sequences).
+
+    Examples
+    --------
+    >>> from rotorlab.io import load_case
+    >>> m = impact_model(load_case("krasnov-crusher").model, stone_mass=3.0)
+    >>> m.stones.mass, m.rotor.spin_speed, m.translational
+    (3.0, 160.0, False)
+    """
+    from rotorlab.models import CentrifugeRotor, Housing, ImpactRotor, StoneFeed
+
+    if getattr(case_model, "type", None) != "impact_rotor":
+        raise ValueError(f"needs an impact_rotor model, got {getattr(case_model, 'type', None)!r}")
+    cm, h, s = case_model, case_model.housing, case_model.stones
+    rotor = CentrifugeRotor(cm.mass, cm.inertia_transverse, cm.inertia_polar, cm.spin_speed, cm.stiffness_1,
+                            cm.stiffness_2, cm.height_1, cm.height_2, cm.internal_friction, cm.translational)  # fmt: skip
+    housing = Housing(h.radius, h.height, h.gap, h.cone_angle, h.restitution, h.friction, h.rest_speed,
+                      h.count_speed, h.whirl_limit)  # fmt: skip
+    feed = StoneFeed(s.mass, s.interval, s.radius, s.height, s.spiral_angle, s.guide_friction, s.start_radius,
+                     s.start_speed, s.n_guides, s.guides, s.first_time, s.mass_spread, s.time_jitter)  # fmt: skip
+    model = ImpactRotor(rotor, housing, feed)
+    for name, value in overrides.items():
+        if name not in SWEEP_PARAMS:
+            raise ValueError(f"unknown override {name!r} (known: {', '.join(SWEEP_PARAMS)})")
+        part, fld, _ = SWEEP_PARAMS[name]
+        model = replace(model, **{part: replace(getattr(model, part), **{fld: float(value)})})
+    return model
+
+
+def run_impact_analysis(case_model: Any, analysis: Any,
+                        progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+    """Run an ``impacts`` or ``impacts-sweep`` analysis of a case (see :func:`impact_run`,
+    :func:`impact_sweep`); ``attrs["name"]`` is the analysis name."""
+    model = impact_model(case_model, **analysis.overrides())
+    if analysis.type == "impacts":
+        if progress is not None:
+            progress(0, 1)
+        ds = impact_run(model, analysis.t_end, seed=analysis.seed, n_save=analysis.n_save, rtol=analysis.rtol,
+                        atol=analysis.atol, sliding_fraction=analysis.sliding_fraction)  # fmt: skip
+        if progress is not None:
+            progress(1, 1)
+    elif analysis.type == "impacts-sweep":
+        ds = impact_sweep(model, analysis.values, param=analysis.param, n_sequences=analysis.n_sequences,
+                          t_end=analysis.t_end, seed=analysis.seed, rtol=analysis.rtol, atol=analysis.atol,
+                          sliding_fraction=analysis.sliding_fraction, progress=progress)  # fmt: skip
+    else:
+        raise ValueError(f"not an impact analysis: {analysis.type!r}")
+    ds.attrs["name"] = analysis.name
+    return ds
+
+
+def paper_counts(ds: xarray.Dataset) -> list[int | None]:
+    """Seed 001's printed count for each swept stone mass, where the sweep matches the table.
+
+    The table applies to the general (tilting) rotor, stone-mass sweeps, Delta t = 0.035 s and
+    10 s runs; other entries are None.
+    """
+    a = ds.attrs
+    applies = (a.get("param") == "stone_mass" and not a.get("translational")
+               and abs(float(a.get("interval", 0)) - 0.035) < 1e-12 and abs(float(a.get("t_end", 0)) - 10.0) < 1e-12)  # fmt: skip
+    out: list[int | None] = []
+    for v in ds.value.values:
+        hit = [n for m, n in SEED001_TABLE.items() if abs(m - float(v)) < 1e-9]
+        out.append(hit[0] if applies and hit else None)
+    return out

@@ -1,0 +1,281 @@
+"""The ``impacts`` and ``impacts-sweep`` commands: the rotor striking its housing (seed 001).
+
+Both take a case file (or built-in case) with an ``impact_rotor`` model. Defaults come from the
+case's first ``impacts`` / ``impacts-sweep`` analysis (or the one named by ``--analysis``);
+options override them. Values are SI at this edge already (kg, s); JSON output is SI with the
+unit in each key. ``impacts-sweep`` is this issue's sweep over stone mass with many random stone
+sequences (named apart from the general ``sweep`` command).
+"""
+
+from __future__ import annotations
+
+import math
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+import typer
+
+from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
+from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
+
+__all__ = ["impacts_command", "impacts_sweep_command", "impact_tables"]
+
+AnalysisOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
+    "--analysis", metavar="NAME", help="Which analysis of the case supplies the defaults (default: the first).")]
+PlotOpt = Annotated[Optional[Path], typer.Option(  # noqa: UP007
+    "--plot", metavar="FILE", help="Save the figure (PNG, PDF or SVG by suffix).")]
+OutOpt = Annotated[Optional[Path], typer.Option(  # noqa: UP007
+    "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")]
+TEndOpt = Annotated[Optional[float], typer.Option(  # noqa: UP007
+    "--t-end", metavar="SECONDS", help="Duration of a run (s).")]
+SeedOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
+    "--seed", metavar="N", help="Seed of the (first) stone sequence, >= 0.")]
+
+
+def _positive(option: str, value: float | None, unit: str) -> None:
+    if value is not None and not (math.isfinite(value) and value > 0):
+        raise BadInput(f"{option} = {value:g}: must be a finite number > 0 ({unit})")
+
+
+def _check_file(option: str, path: Path | None) -> None:
+    if path is None:
+        return
+    if path.is_dir():
+        raise BadInput(f"{option} = {path}: is a folder (give a file name)")
+    if not path.absolute().parent.is_dir():
+        raise BadInput(f"{option} = {path}: folder {path.absolute().parent} does not exist")
+
+
+def _impact_case(case: str) -> Any:
+    loaded = _load(case)
+    if getattr(loaded.model, "type", None) != "impact_rotor":
+        raise BadInput(f"case {loaded.name}: needs an impact_rotor model (this case has '{loaded.model.type}')")
+    return loaded
+
+
+def _spec(loaded: Any, kind: str, name: str | None) -> Any:
+    from rotorlab.io import ImpactsSpec, ImpactsSweepSpec
+
+    found = [a for a in loaded.analyses if a.type == kind]
+    if name is not None:
+        for a in found:
+            if a.name == name:
+                return a
+        names = ", ".join(a.name for a in found) or "none"
+        raise BadInput(f"--analysis = {name}: no {kind} analysis of that name ({kind} analyses: {names})")
+    if found:
+        return found[0]
+    if kind == "impacts":
+        return ImpactsSpec(name="impacts")
+    return ImpactsSweepSpec(name="impacts-sweep", values=[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 3.0])
+
+
+def _write(ds: Any, plot: Path | None, out: Path | None) -> list[str]:
+    written = []
+    if plot is not None:
+        from rotorlab.plot import impact_figures
+
+        for fig in impact_figures(ds, "x").values():
+            fig.savefig(plot, dpi=110)
+        written.append(str(plot))
+    if out is not None:
+        from rotorlab.io import save_netcdf
+
+        written.append(str(save_netcdf(ds, out)))
+    return written
+
+
+@app.command("impacts")
+def impacts_command(
+    ctx: typer.Context,
+    case: CaseArg,
+    stone_mass: Annotated[Optional[float], typer.Option(  # noqa: UP007
+        "--stone-mass", metavar="KG", help="Mass of every stone (kg).")] = None,
+    t_end: TEndOpt = None,
+    seed: SeedOpt = None,
+    analysis: AnalysisOpt = None,
+    plot: PlotOpt = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Simulate one run from rest: regime, impacts, sliding time, energy ratio eta.
+
+    Regimes: none, rebounds, sliding (sliding contact for >= 2 % of the run), backward_whirl
+    (the run was stopped: a self-feeding dry-friction backward whirl). --plot draws the
+    trajectory of the gap point P in the rotating frame (seed 001, Figs. 3, 4).
+    """
+    settings = _settings(ctx)
+    with handled(settings):
+        _positive("--stone-mass", stone_mass, "kg")
+        _positive("--t-end", t_end, "s")
+        if seed is not None and seed < 0:
+            raise BadInput(f"--seed = {seed}: must be an integer >= 0")
+        _check_file("--plot", plot)
+        _check_file("--out", out)
+        loaded = _impact_case(case)
+        spec = _spec(loaded, "impacts", analysis)
+        from rotorlab.analyses import impact_model, impact_run, impact_summary
+
+        overrides = spec.overrides()
+        if stone_mass is not None:
+            overrides["stone_mass"] = stone_mass
+        model = impact_model(loaded.model, **overrides)
+        duration = spec.t_end if t_end is None else t_end
+        run_seed = spec.seed if seed is None else seed
+        info(settings, f"Simulating {loaded.name}: {duration:g} s, stones {model.stones.mass:g} kg, seed {run_seed} ...",
+             json_mode=json_out)  # fmt: skip
+        with status(settings, "Integrating ..."):
+            ds = impact_run(model, duration, seed=run_seed, n_save=spec.n_save, rtol=spec.rtol, atol=spec.atol,
+                            sliding_fraction=spec.sliding_fraction)  # fmt: skip
+        ds.attrs["case"] = loaded.name
+        written = _write(ds, plot, out)
+        doc = {"case": loaded.name, "source": loaded.source, **impact_summary(ds), "files": written}
+        if json_out:
+            emit_json(doc)
+            return
+        if settings.quiet:
+            return
+        con = stdout()
+        for table in impact_tables({spec.name: ds}):
+            con.print(table)
+        for path in written:
+            con.print(f"Wrote {path}", markup=False)
+
+
+def _param(stone_mass: str | None, param: str | None) -> tuple[str | None, Any]:
+    import numpy as np
+
+    from rotorlab.cli._steady import parse_range
+    from rotorlab.io import IMPACT_SWEEP_PARAMETERS
+
+    if stone_mass is not None and param is not None:
+        raise BadInput("--stone-mass and --param exclude each other: give only one")
+    if stone_mass is not None:
+        lo, hi, n = parse_range("--stone-mass", stone_mass, "mass")
+        if not lo > 0:
+            raise BadInput(f"--stone-mass = {stone_mass}: masses must be > 0 (kg)")
+        return "stone_mass", np.linspace(lo, hi, n)
+    if param is None:
+        return None, None
+    name, sep, grid = param.partition("=")
+    if not sep or name not in IMPACT_SWEEP_PARAMETERS:
+        raise BadInput(f"--param = {param}: must be NAME=A:B:N with NAME one of {', '.join(IMPACT_SWEEP_PARAMETERS)}")
+    dim, unit = IMPACT_SWEEP_PARAMETERS[name]
+    lo, hi, n = parse_range("--param", grid, dim)
+    if lo < 0 or (name in ("stone_mass", "interval") and lo == 0) or (name == "restitution" and hi > 1):
+        raise BadInput(f"--param = {param}: values out of range for {name}")
+    return name, np.linspace(lo, hi, n)
+
+
+@app.command("impacts-sweep")
+def impacts_sweep_command(
+    ctx: typer.Context,
+    case: CaseArg,
+    stone_mass: Annotated[Optional[str], typer.Option(  # noqa: UP007
+        "--stone-mass", metavar="A:B:N", help="N stone masses from A to B (kg, or with a unit: 500g:3kg:6).")] = None,
+    param: Annotated[Optional[str], typer.Option(  # noqa: UP007
+        "--param", metavar="NAME=A:B:N", help="Sweep another parameter: interval, internal_friction, "
+        "restitution or friction (SI, or with a unit).")] = None,
+    sequences: Annotated[Optional[int], typer.Option(  # noqa: UP007
+        "--sequences", metavar="N", help="Random stone sequences per value (>= 1).")] = None,
+    t_end: TEndOpt = None,
+    seed: SeedOpt = None,
+    analysis: AnalysisOpt = None,
+    plot: PlotOpt = None,
+    out: OutOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Impact counts over many random stone sequences per stone mass (seed 001's table, Fig. 5).
+
+    Prints per value the median and quartiles of the impacts, the regimes of the runs and the
+    median energy ratio eta; for the seed's own parameters also the paper's count.
+    """
+    settings = _settings(ctx)
+    with handled(settings):
+        name, values = _param(stone_mass, param)
+        if sequences is not None and sequences < 1:
+            raise BadInput(f"--sequences = {sequences}: must be an integer >= 1")
+        _positive("--t-end", t_end, "s")
+        if seed is not None and seed < 0:
+            raise BadInput(f"--seed = {seed}: must be an integer >= 0")
+        _check_file("--plot", plot)
+        _check_file("--out", out)
+        loaded = _impact_case(case)
+        spec = _spec(loaded, "impacts-sweep", analysis)
+        if name is None:
+            name, values = spec.param, list(spec.values)
+        from rotorlab.analyses import impact_model, impact_sweep
+
+        overrides = {k: v for k, v in spec.overrides().items() if k != name}
+        model = impact_model(loaded.model, **overrides)
+        n_seq = spec.n_sequences if sequences is None else sequences
+        duration = spec.t_end if t_end is None else t_end
+        first = spec.seed if seed is None else seed
+        info(settings, f"Sweeping {name} of {loaded.name}: {len(values)} values x {n_seq} sequences x {duration:g} s ...",
+             json_mode=json_out)  # fmt: skip
+        with status(settings, "Integrating ..."):
+            ds = impact_sweep(model, values, param=name, n_sequences=n_seq, t_end=duration, seed=first,
+                              rtol=spec.rtol, atol=spec.atol, sliding_fraction=spec.sliding_fraction)  # fmt: skip
+        ds.attrs["case"] = loaded.name
+        written = _write(ds, plot, out)
+        from rotorlab.analyses import sweep_summary
+
+        doc = {"case": loaded.name, "source": loaded.source, **sweep_summary(ds), "files": written}
+        from rotorlab.analyses import paper_counts
+
+        for row, p in zip(doc["rows"], paper_counts(ds)):
+            row["paper_impacts"] = p
+        if json_out:
+            emit_json(doc)
+            return
+        if settings.quiet:
+            return
+        con = stdout()
+        for table in impact_tables({spec.name: ds}):
+            con.print(table)
+        for path in written:
+            con.print(f"Wrote {path}", markup=False)
+
+
+def impact_tables(results: dict[str, Any]) -> list[Any]:
+    """Rich tables of impact results (``impacts`` and ``impacts-sweep`` Datasets), by name."""
+    from rich.table import Table
+
+    from rotorlab.analyses import impact_summary, paper_counts, sweep_summary
+
+    tables = []
+    for name, ds in results.items():
+        kind = ds.attrs.get("analysis")
+        if kind == "impacts":
+            s = impact_summary(ds)
+            t = Table(title=f"{name}: {s['t_end_s']:g} s, stones {s['stone_mass_kg']:g} kg, seed {s['seed']}",
+                      title_justify="left")  # fmt: skip
+            for col in ("regime", "impacts", "all impacts", "slides", "sliding (s)", "eta", "max approach (m/s)",
+                        "max penetration (m)"):  # fmt: skip
+                t.add_column(col, justify="left" if col == "regime" else "right")
+            eta = "-" if s["energy_ratio"] is None else f"{s['energy_ratio']:.3g}"
+            t.add_row(s["regime"] + (" (stopped)" if s["backward_whirl"] else ""), str(s["impacts"]),
+                      str(s["impacts_all"]), str(s["slides"]), f"{s['sliding_time_s']:.4g}", eta,
+                      f"{s['max_approach_speed_m_s']:.3g}", f"{s['max_penetration_m']:.2g}")  # fmt: skip
+            tables.append(t)
+        elif kind == "impacts-sweep":
+            doc = sweep_summary(ds)
+            paper = paper_counts(ds)
+            unit = f" ({doc['units']})" if doc["units"] not in ("", "1") else ""
+            t = Table(title=f"{name}: impacts in {doc['t_end_s']:g} s over {doc['n_sequences']} stone sequences",
+                      title_justify="left")  # fmt: skip
+            cols = [doc["param"] + unit, "median", "quartiles", "min-max", "none", "rebounds", "sliding",
+                    "whirl", "eta (median)"] + (["paper"] if any(p is not None for p in paper) else [])  # fmt: skip
+            for col in cols:
+                t.add_column(col, justify="right")
+            for row, p in zip(doc["rows"], paper):
+                r = row["regimes"]
+                eta = "-" if row["energy_ratio_median"] is None else f"{row['energy_ratio_median']:.3g}"
+                cells = [f"{row['value']:.4g}", f"{row['impacts_median']:g}",
+                         f"{row['impacts_q25']:g}-{row['impacts_q75']:g}", f"{row['impacts_min']}-{row['impacts_max']}",
+                         str(r["none"]), str(r["rebounds"]), str(r["sliding"]), str(r["backward_whirl"]), eta]  # fmt: skip
+                if len(cols) > 9:
+                    cells.append("-" if p is None else str(p))
+                t.add_row(*cells)
+            tables.append(t)
+    return tables

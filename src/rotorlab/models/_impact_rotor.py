@@ -1,0 +1,943 @@
+r"""Centrifuge rotor kicked by stones and striking its conical housing (``impact_rotor``, seed 001).
+
+The rotor of a stone-crusher centrifuge (Krasnov, Tovstik & Tovstik 2003) is a dynamically
+symmetric rigid body (mass m, transverse and polar moments of inertia A1 = A2, A3) spinning at
+the constant speed omega0 about the vertical k. Two ring membranes at the heights h1, h2 (from
+the centre of mass) hold it upright; every stone its accelerator throws pushes it sideways; when
+the pushes are strong enough the circle of the gap point P (radius r_P, height h_P) strikes the
+conical housing (gap Delta along the cone normal, half-angle measured by beta).
+
+Small motions in the frame rotating at omega0 are the displacement u = u1 i + u2 j of the centre
+of mass and the tilt t = t1 i + t2 j of the axis (t1, t2: small rotations of the axis in the
+planes XZ, YZ; a point at height z moves by u + z t horizontally). The state, the packed
+parameters and the kernels are in :mod:`rotorlab._kernels.impact_rotor`.
+
+Equations (seed 001, numbers as printed)
+----------------------------------------
+::
+
+    (2.2)  m (u'' + 2 w0 x u' - w0^2 u)               = F_m + F_q + F_c
+           A1 t'' - (A3 - 2 A1) w0 x t' - (A1 - A3) w0^2 t = M_m + M_q + M_c
+    (4.1)  F_m = -c L(u + n_m t),   M_m = n_m F_m - c_* L(t),   L(x) = x + (gamma/w0)(x' + w0 x x)
+           c = c1 + c2, n_m = (c1 h1 + c2 h2)/c, c_* = c1 c2 (h1 - h2)^2 / c
+    (4.2)  F_q = sum_n m_n w0^2 R_q P(alpha_n k) J(w0 (t - t_n)),   M_q = h_q F_q
+    (3.2)  w = u sin(beta) + l_P t,  l_P = r_P cos(beta) + h_P sin(beta);  impact when |w| = Delta,
+           at the angle phi of w
+    (3.9)  S_n = (1 + k) m* v_P,  1/m* = sin^2(beta)/m + l_P^2/A1
+           u'+ = u'- - (S_n/m)(sin(beta) e + f e_perp),  t'+ = t'- - (S_n/A1)(l_P e + f h_P e_perp)
+
+with ``w0 = omega0 k``, moments written as the plane vectors ``M = M_y i - M_x j`` of (2.3),
+``e = (cos phi, sin phi)`` the direction of w and ``e_perp = k x e`` the direction in which the
+material point P slides over the housing (its speed omega0 r_P dwarfs the vibration). In the
+translational variant the tilt is frozen (t = 0, ``1/m* = sin^2(beta)/m``).
+
+Reconstructions of garbled formulas
+-----------------------------------
+The OCR of the paper garbles four formulas; each is rebuilt from mechanics and checked:
+
+1. **(3.9), impact map.** Printed: ``Sn = (1 + k)m* vp``, ``sin^ ll_ m* m Ai'`` and four lines
+   ``«+ = «p Sn m``, ``t+ = t1- Sn``. Reconstructed: integrating (2.2) over the impact with the
+   impulse ``S = -S_n n - f S_n e_perp`` (3.6)-(3.7) at R_P gives the plane impulse
+   ``-S_n (sin(beta) e + f e_perp)`` and the plane moment ``R_P x S = -S_n (l_P e + f h_P e_perp)``
+   (in the (2.3) convention); the normal speed ``v_P = e . w'`` then changes by ``-S_n/m*`` with
+   ``1/m* = sin^2(beta)/m + l_P^2/A1`` (friction acts along e_perp and does not change it), so
+   (3.5) ``v+ = -k v-`` gives ``S_n = (1 + k) m* v-``. Checked: the normal speed after the map is
+   exactly ``-k v-``; with k = 1, f = 0 the Jacobi energy (:meth:`ImpactRotor.jacobi_energy`) is
+   unchanged by any impact and conserved over thousands of impacts; with k < 1 its loss equals the
+   sum of ``1/2 m* (1 - k^2) v^2`` (``tests/validation/test_impact_energy.py``).
+2. **(4.1), membrane forces with Sorokin's internal friction.** Printed (OCR):
+   ``Fm = -c I ит + — {ит + x ит) ), ^о``, ``м = -сЛ t + ^-(t + c¿¿0 xt) )+hmF``, ``—c(u + nmt)``.
+   Reconstructed: ``F_m = -c (u_m + (gamma/w0)(u_m' + w0 x u_m))``, ``u_m = u + n_m t``, and
+   ``M_m = -c_* (t + (gamma/w0)(t' + w0 x t)) + n_m F_m``. Mechanics: each membrane at height
+   h_i acts with ``-c_i L(u + h_i t)`` at that height, and ``u' + w0 x u`` is the velocity
+   relative to the fixed membrane seen in the rotating frame, so the friction is a viscous force
+   ``c gamma / w0`` of the *non-rotating* membranes (Sorokin's loss factor gamma at the frequency
+   w0). Summing the membranes gives exactly the printed c, n_m and c_* (checked symbolically by
+   ``c_* + c n_m^2 = c1 h1^2 + c2 h2^2`` in ``test_impact_frames.py``). Checked: the rotating-
+   frame solution equals the inertial-frame equations (fixed viscous damping, gyroscopic
+   ``A1 tau'' - i A3 w0 tau' = M``) integrated by scipy and rotated
+   (``tests/validation/test_impact_frames.py``).
+3. **(4.3), the stone on its guide.** Printed: ``dv/dT = r cos a - Ft, dr/dT = v cos a`` with
+   ``tg a = r dphi/dr, Ft = fq Fn, Fn = Kv +2v + r sin a``. Reconstructed: ``F_n = kappa v^2 +
+   2 v + r sin a`` (the OCR lost the square of the centripetal term ``kappa v^2``), in units of
+   R_q, tau = w0 t, per unit stone mass: guide reaction normal to the guide = curvature term +
+   Coriolis ``2 v`` + the component ``r sin a`` of the centrifugal force. For the logarithmic
+   spiral ``r = r0 exp(phi cot a)`` the curvature is ``kappa = sin(a) / r``. Checked: the motor
+   work on one stone equals its kinetic-energy gain in the fixed frame plus the heat of guide
+   friction (``tests/validation/test_impact_stones.py``).
+4. **J(tau), push of one stone on the rotor.** Printed (OCR): ``J_x = F_n sin(phi + a) -
+   [..] cos(phi + a), J_y = -F_n cos(phi + a) - [..] sin(phi + a)`` with the friction term
+   dropped. Reconstructed: by Newton's third law the rotor receives ``-F_n e_n + F_t e_t`` with
+   ``e_t = (cos(phi + a), sin(phi + a))`` along the guide and ``e_n = k x e_t``:
+   ``J_x = F_n sin(phi + a) + F_t cos(phi + a)``, ``J_y = -F_n cos(phi + a) + F_t sin(phi + a)``
+   (friction drags the guide *outwards*, the way the stone slides). Checked by the same energy
+   balance (the printed sign of F_t adds ``2 int r F_t sin(a) dtau``, 81 % too much), see
+   :func:`stone_push` and ``test_impact_stones.py``.
+
+Parameters the paper does not give are explicit, with defaults documented on
+:class:`StoneFeed` (start radius and speed of a stone on its guide, number N of guides, the guide
+sequence, the first stone time, spreads of mass and time) and :class:`Housing` (the speed
+thresholds of chatter and of impact counting, the backward-whirl limit).
+
+Sliding contact
+---------------
+When an impact would rebound slower than ``rest_speed`` (an accumulation of impacts, k^n -> 0),
+the rotor is put in sustained contact: P stays on the housing (|w| = Delta), the normal force is
+``N = m* (e . w''_free + (|w'|^2 - (e . w')^2) / Delta)`` with friction ``f N`` along
+``-e_perp``, and the rotor leaves the housing when N would pull (N = 0). The contact force and
+moment are those of (3.9) with S_n -> N. A sliding contact whose point runs *backwards* in the
+fixed frame faster than ``whirl_limit`` (default twice the spin speed) is the self-feeding
+dry-friction backward whirl: the run is stopped and flagged (the small-motion model stops being
+valid there). The friction force ``-f N e_perp`` drives the contact point backwards; the faster
+it whirls, the larger N (centripetal term) and the friction: once past a threshold nothing in
+the linear model limits it (the whirl speed grows to ~1e12 rad/s within a second). Evidence for
+the default: over 48 runs (1.5, 2, 3 kg, seeds 0-15, 10 s) the limits 2, 4 and 8 omega0 flag
+exactly the runs that blow up without a limit, stopping them shortly before; the limit omega0
+also flags 8 runs whose backward sliding dies out again.
+
+Energy
+------
+The motor keeps omega0 constant; it spends ``m_n w0^2 R_q^2 W`` on each stone (W from
+:func:`stone_push`) and ``f r_P w0 (sum S_n + int N dt)`` on friction at the housing. Their ratio
+is the paper's eta (Fig. 5).
+
+References
+----------
+Krasnov A. A., Tovstik P. E., Tovstik T. P. Dynamics of a centrifuge with impacts. Vestnik
+St. Petersburg Univ., Ser. 1, 2003, no. 3 (17), eqs. (2.1)-(4.3), section 5.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field, replace
+from functools import lru_cache
+from typing import Literal
+
+import numpy as np
+
+from rotorlab._kernels import impact_rotor as _k
+from rotorlab.models._base import EventSpec, Kernels
+
+__all__ = [
+    "CentrifugeRotor",
+    "Housing",
+    "StoneFeed",
+    "StoneSequence",
+    "StonePush",
+    "ImpactRotor",
+    "stone_push",
+    "krasnov_crusher",
+    "EVENT_NAMES",
+    "STATE_NAMES",
+    "RECONSTRUCTIONS",
+    "Reconstruction",
+]
+
+#: Event functions of the model, in kernel order.
+EVENT_NAMES = ("impact", "lift_off", "stone", "backward_whirl")
+
+#: Names of the state entries, in kernel order.
+STATE_NAMES = (
+    "u1", "u2", "t1", "t2", "du1", "du2", "dt1", "dt2", "int_contact_force",
+    "mode", "i_breakpoint", "t_reset", "n_impacts", "n_impacts_all", "n_slides", "t_slide_start",
+    "t_sliding", "impulse_sum", "e_restitution", "v_max", "penetration_max", "whirl",
+)  # fmt: skip
+
+_KERNELS = Kernels(
+    rhs=_k.rhs,
+    n_state=_k.N_STATE,
+    n_discrete=_k.N_DISCRETE,
+    events=_k.events,
+    reset=_k.reset,
+    event_specs=tuple(EventSpec(name, -1, "reset") for name in EVENT_NAMES),
+)
+
+
+def _num(owner: str, name: str, value, *, lo: float | None = 0.0, lo_open: bool = True,
+         hi: float | None = None, hi_open: bool = False, unit: str = "") -> float:  # fmt: skip
+    """Check a number against its bounds; raise ValueError naming the parameter."""
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        v = math.nan
+    ok = math.isfinite(v)
+    if ok and lo is not None:
+        ok = v > lo if lo_open else v >= lo
+    if ok and hi is not None:
+        ok = v < hi if hi_open else v <= hi
+    if not ok:
+        parts = []
+        if lo is not None:
+            parts.append(f"{'>' if lo_open else '>='} {lo:g}")
+        if hi is not None:
+            parts.append(f"{'<' if hi_open else '<='} {hi:g}")
+        bound = " and ".join(parts) or "finite"
+        u = f" ({unit})" if unit else ""
+        raise ValueError(f"{owner}.{name} must be a finite number {bound}{u}, got {value!r}")
+    return v
+
+
+# ------------------------------------------------------------------------------------ parameters
+@dataclass(frozen=True, slots=True)
+class CentrifugeRotor:
+    """The rigid rotor and its two membranes.
+
+    Parameters
+    ----------
+    mass : float
+        m, mass of the rotor (kg), > 0.
+    inertia_transverse : float
+        A1 = A2, central moment of inertia about a transverse axis (kg m^2), > 0.
+    inertia_polar : float
+        A3, moment of inertia about the axis of symmetry (kg m^2), > 0.
+    spin_speed : float
+        omega0, constant spin speed (rad/s), > 0.
+    stiffness_1, stiffness_2 : float
+        c1, c2, lateral stiffness of the two membranes (N/m), > 0.
+    height_1, height_2 : float
+        h1, h2, heights of the membranes above the centre of mass (m), distinct.
+    internal_friction : float
+        gamma, Sorokin's dimensionless coefficient of internal friction of the membranes, >= 0.
+    translational : bool
+        Freeze the tilt (the paper's "translational motion of the axis").
+
+    Examples
+    --------
+    >>> r = CentrifugeRotor(635.7, 70.35, 115.68, 160.0, 3.22e6, 3.22e6, -0.05, 0.2, 0.2)
+    >>> round(r.stiffness, 0), round(r.membrane_offset, 4), round(r.tilt_stiffness, 1)
+    (6440000.0, 0.075, 100625.0)
+    >>> CentrifugeRotor(635.7, 70.35, 115.68, -1.0, 3.22e6, 3.22e6, -0.05, 0.2, 0.2)
+    Traceback (most recent call last):
+    ...
+    ValueError: CentrifugeRotor.spin_speed must be a finite number > 0 (rad/s), got -1.0
+    """
+
+    mass: float
+    inertia_transverse: float
+    inertia_polar: float
+    spin_speed: float
+    stiffness_1: float
+    stiffness_2: float
+    height_1: float
+    height_2: float
+    internal_friction: float = 0.2
+    translational: bool = False
+
+    def __post_init__(self) -> None:
+        o = "CentrifugeRotor"
+        for name, unit in (("mass", "kg"), ("inertia_transverse", "kg m^2"),
+                           ("inertia_polar", "kg m^2"), ("spin_speed", "rad/s"),
+                           ("stiffness_1", "N/m"), ("stiffness_2", "N/m")):  # fmt: skip
+            object.__setattr__(self, name, _num(o, name, getattr(self, name), unit=unit))
+        for name in ("height_1", "height_2"):
+            object.__setattr__(self, name, _num(o, name, getattr(self, name), lo=None, unit="m"))
+        object.__setattr__(
+            self, "internal_friction", _num(o, "internal_friction", self.internal_friction, lo_open=False)
+        )
+        if self.height_1 == self.height_2:
+            raise ValueError(f"{o}.height_2 must differ from height_1 ({self.height_1:g} m), got {self.height_2!r}")
+        if not isinstance(self.translational, bool):
+            raise ValueError(f"{o}.translational must be True or False, got {self.translational!r}")
+
+    @property
+    def stiffness(self) -> float:
+        """c = c1 + c2 (N/m)."""
+        return self.stiffness_1 + self.stiffness_2
+
+    @property
+    def membrane_offset(self) -> float:
+        """n_m = (c1 h1 + c2 h2) / c (m)."""
+        return (self.stiffness_1 * self.height_1 + self.stiffness_2 * self.height_2) / self.stiffness
+
+    @property
+    def tilt_stiffness(self) -> float:
+        """c_* = c1 c2 (h1 - h2)^2 / c (N m/rad)."""
+        return self.stiffness_1 * self.stiffness_2 * (self.height_1 - self.height_2) ** 2 / self.stiffness
+
+
+@dataclass(frozen=True, slots=True)
+class Housing:
+    """The conical housing, the gap point P and the impact laws.
+
+    Parameters
+    ----------
+    radius : float
+        r_P, radius of the circle of P (m), > 0.
+    height : float
+        h_P, height of P above the centre of mass (m).
+    gap : float
+        Delta, gap along the cone normal (m), > 0.
+    cone_angle : float
+        beta, angle of the cone normal ``n = sin(beta) e_r - cos(beta) k`` (rad), in (0, pi/2];
+        pi/2 is a cylinder.
+    restitution : float
+        k, Newton's coefficient of restitution, in [0, 1].
+    friction : float
+        f, Coulomb friction coefficient between rotor and housing, >= 0.
+    rest_speed : float
+        Rebound speed (m/s) below which a run of impacts is taken as accumulated and the rotor
+        slides on the housing; default 1e-4 m/s. Must be < count_speed.
+    count_speed : float
+        Approach speed (m/s) from which an impact is counted; default 1e-3 m/s (the impacts of
+        a chatter below it are not counted, so counts do not depend on the tolerance).
+    whirl_limit : float or None
+        Backward angular speed (rad/s) of the contact point in the fixed frame during sliding
+        above which the run is stopped and flagged as dry-friction backward whirl; ``None``
+        (default) takes twice the spin speed (see the module docstring).
+
+    Examples
+    --------
+    >>> import math
+    >>> h = Housing(0.625, -0.2, 4.5e-3, math.radians(55), 0.5, 0.2)
+    >>> round(h.lever(), 4)
+    0.1947
+    """
+
+    radius: float
+    height: float
+    gap: float
+    cone_angle: float
+    restitution: float = 0.5
+    friction: float = 0.2
+    rest_speed: float = 1e-4
+    count_speed: float = 1e-3
+    whirl_limit: float | None = None
+
+    def __post_init__(self) -> None:
+        o = "Housing"
+        object.__setattr__(self, "radius", _num(o, "radius", self.radius, unit="m"))
+        object.__setattr__(self, "height", _num(o, "height", self.height, lo=None, unit="m"))
+        object.__setattr__(self, "gap", _num(o, "gap", self.gap, unit="m"))
+        object.__setattr__(self, "cone_angle", _num(o, "cone_angle", self.cone_angle, hi=math.pi / 2, unit="rad"))
+        object.__setattr__(self, "restitution", _num(o, "restitution", self.restitution, lo_open=False, hi=1.0))
+        object.__setattr__(self, "friction", _num(o, "friction", self.friction, lo_open=False))
+        object.__setattr__(self, "rest_speed", _num(o, "rest_speed", self.rest_speed, unit="m/s"))
+        object.__setattr__(self, "count_speed", _num(o, "count_speed", self.count_speed, unit="m/s"))
+        if self.rest_speed >= self.count_speed:
+            raise ValueError(
+                f"Housing.rest_speed must be < count_speed ({self.count_speed:g} m/s), got {self.rest_speed!r}"
+            )
+        if self.whirl_limit is not None:
+            object.__setattr__(self, "whirl_limit", _num(o, "whirl_limit", self.whirl_limit, unit="rad/s"))
+
+    def lever(self) -> float:
+        """l_P = r_P cos(beta) + h_P sin(beta) (m), eq. (3.2)."""
+        return self.radius * math.cos(self.cone_angle) + self.height * math.sin(self.cone_angle)
+
+
+@dataclass(frozen=True, slots=True)
+class StonePush:
+    """The push of one stone on its guide, from eq. (4.3) (dimensionless, tau = omega0 t).
+
+    Attributes
+    ----------
+    tau : ndarray, shape (n,)
+        Uniform grid on [0, tau_end].
+    jx, jy, djx, djy : ndarray, shape (n,)
+        J(tau) in the guide's frame (the guide starts at angle 0) and its derivative.
+    work : ndarray, shape (n,)
+        Motor work on the stone up to tau, in units of m_q R_q^2 omega0^2.
+    radius, angle : ndarray, shape (n,)
+        Position of the stone: radius in units of R_q and polar angle in the guide's frame (rad).
+    tau_end : float
+        Time on the guide (rad of rotor turn).
+    exit_speed : float
+        Speed along the guide at the rim, in units of R_q omega0.
+    friction_heat : float
+        Heat of guide friction, in units of m_q R_q^2 omega0^2.
+    kinetic_gain : float
+        Kinetic energy gained in the fixed frame, same units.
+    """
+
+    tau: np.ndarray
+    jx: np.ndarray
+    jy: np.ndarray
+    djx: np.ndarray
+    djy: np.ndarray
+    work: np.ndarray
+    radius: np.ndarray
+    angle: np.ndarray
+    tau_end: float
+    exit_speed: float
+    friction_heat: float
+    kinetic_gain: float
+
+
+@lru_cache(maxsize=32)
+def _push_cached(r0: float, v0: float, a: float, fq: float, n: int) -> StonePush:
+    from scipy.integrate import solve_ivp
+
+    sa, ca, ta = math.sin(a), math.cos(a), math.tan(a)
+
+    def f(tau, y):
+        r, v = y[0], y[1]
+        fn = sa * v * v / r + 2.0 * v + r * sa
+        ft = fq * fn
+        dv = r * ca - ft
+        return [v * ca, dv, r * (fn * ca - ft * sa), ft * v]
+
+    def rim(tau, y):
+        return y[0] - 1.0
+
+    rim.terminal = True
+    rim.direction = 1
+    sol = solve_ivp(f, (0.0, 1e3), [r0, v0, 0.0, 0.0], method="DOP853", rtol=1e-12, atol=1e-14,
+                    events=rim, dense_output=True)  # fmt: skip
+    if sol.status != 1:
+        raise ValueError("the stone does not reach the rim of the accelerator (check guide_friction)")
+    tau_end = float(sol.t_events[0][0])
+    tau = np.linspace(0.0, tau_end, n)
+    r, v, work, heat = sol.sol(tau)
+    r[-1] = 1.0
+    dr = v * ca
+    fn = sa * v * v / r + 2.0 * v + r * sa
+    ft = fq * fn
+    dv = r * ca - ft
+    dfn = sa * (2.0 * v * dv / r - v * v * dr / (r * r)) + 2.0 * dv + dr * sa
+    psi = ta * np.log(r / r0) + a  # polar angle of the stone + angle of the guide to the radius
+    dpsi = v * sa / r
+    sp, cp = np.sin(psi), np.cos(psi)
+    jx = fn * (sp + fq * cp)
+    jy = fn * (-cp + fq * sp)
+    djx = dfn * (sp + fq * cp) + fn * dpsi * (cp - fq * sp)
+    djy = dfn * (-cp + fq * sp) + fn * dpsi * (sp + fq * cp)
+    ve = float(v[-1])
+    kin = 0.5 * (ve * ve + 1.0 + 2.0 * ve * sa) - 0.5 * (v0 * v0 + r0 * r0 + 2.0 * v0 * r0 * sa)
+    return StonePush(tau, jx, jy, djx, djy, work, r, psi - a, tau_end, ve, float(heat[-1]), kin)
+
+
+def stone_push(start_radius: float, spiral_angle: float, guide_friction: float,
+               start_speed: float = 0.0, n_table: int = 2049) -> StonePush:  # fmt: skip
+    """Integrate eq. (4.3) for one stone on a logarithmic-spiral guide and tabulate J(tau).
+
+    Parameters
+    ----------
+    start_radius : float
+        r0, radius where the stone lands on its guide, in units of R_q, in (0, 1).
+    spiral_angle : float
+        a, angle between the guide and the radius (rad), in (0, pi/2).
+    guide_friction : float
+        f_q, friction between stone and guide, >= 0 and < cot(a) (else the stone stays put).
+    start_speed : float
+        Initial speed along the guide, units of R_q omega0, >= 0.
+    n_table : int
+        Points of the table.
+
+    Returns
+    -------
+    StonePush
+
+    Examples
+    --------
+    >>> import math
+    >>> sp = stone_push(0.25, math.radians(30), 0.5)
+    >>> round(sp.tau_end, 4), bool(abs(sp.work[-1] - sp.kinetic_gain - sp.friction_heat) < 1e-10)
+    (4.4063, True)
+    """
+    r0 = _num("stone_push", "start_radius", start_radius, hi=1.0, hi_open=True)
+    a = _num("stone_push", "spiral_angle", spiral_angle, hi=math.pi / 2, hi_open=True, unit="rad")
+    fq = _num("stone_push", "guide_friction", guide_friction, lo_open=False)
+    v0 = _num("stone_push", "start_speed", start_speed, lo_open=False)
+    if fq >= 1.0 / math.tan(a):
+        raise ValueError(
+            f"stone_push.guide_friction must be < cot(spiral_angle) = {1 / math.tan(a):.4g} "
+            f"(else a stone at rest stays on its guide), got {guide_friction!r}"
+        )
+    return _push_cached(r0, v0, a, fq, int(n_table))
+
+
+@dataclass(frozen=True, slots=True)
+class StoneFeed:
+    """The stones and the accelerator that throws them.
+
+    Parameters
+    ----------
+    mass : float
+        m_q, nominal mass of a stone (kg), > 0.
+    interval : float
+        Delta t, nominal time between two stones (s), > 0.
+    radius : float
+        R_q, radius of the accelerator: a stone leaves its guide there (m), > 0.
+    height : float
+        h_q, height of the accelerator above the centre of mass (m).
+    spiral_angle : float
+        a, angle of the logarithmic-spiral guides to the radius (rad), in (0, pi/2).
+    guide_friction : float
+        f_q, friction between stone and guide, >= 0.
+    start_radius : float
+        Radius where a stone lands on its guide (m), in (0, R_q). Not given in the paper;
+        default 0.15 m (a quarter of the paper's R_q).
+    start_speed : float
+        Speed of a landing stone along its guide (m/s), >= 0; default 0 (not given).
+    n_guides : int
+        N, number of guides at the angles 2 pi j / N; default 4 (not given).
+    guides : {"random", "cyclic"}
+        Which guide each stone takes: uniformly at random (default) or in turn.
+    first_time : float or None
+        Time of the first stone (s), > 0; ``None`` (default) is one interval.
+    mass_spread : float
+        Stone masses are uniform in ``mass * (1 +- mass_spread)``; default 0 (all equal, as in
+        the paper's examples). In [0, 1).
+    time_jitter : float
+        Stone times are ``first_time + (n + U(-j, j)) interval``; default 0 (regular). In
+        [0, 0.5).
+
+    Examples
+    --------
+    >>> import math
+    >>> feed = StoneFeed(0.7, 0.035, 0.6, 0.28, math.radians(30), 0.5)
+    >>> seq = feed.sequence(1.0, seed=1)
+    >>> len(seq), seq.times[:2].round(3).tolist(), float(seq.masses[0])
+    (28, [0.035, 0.07], 0.7)
+    """
+
+    mass: float
+    interval: float
+    radius: float
+    height: float
+    spiral_angle: float
+    guide_friction: float
+    start_radius: float = 0.15
+    start_speed: float = 0.0
+    n_guides: int = 4
+    guides: Literal["random", "cyclic"] = "random"
+    first_time: float | None = None
+    mass_spread: float = 0.0
+    time_jitter: float = 0.0
+
+    def __post_init__(self) -> None:
+        o = "StoneFeed"
+        object.__setattr__(self, "mass", _num(o, "mass", self.mass, unit="kg"))
+        object.__setattr__(self, "interval", _num(o, "interval", self.interval, unit="s"))
+        object.__setattr__(self, "radius", _num(o, "radius", self.radius, unit="m"))
+        object.__setattr__(self, "height", _num(o, "height", self.height, lo=None, unit="m"))
+        object.__setattr__(self, "spiral_angle",
+                           _num(o, "spiral_angle", self.spiral_angle, hi=math.pi / 2, hi_open=True, unit="rad"))
+        object.__setattr__(self, "guide_friction", _num(o, "guide_friction", self.guide_friction, lo_open=False))
+        object.__setattr__(self, "start_radius",
+                           _num(o, "start_radius", self.start_radius, hi=self.radius, hi_open=True, unit="m"))
+        object.__setattr__(self, "start_speed", _num(o, "start_speed", self.start_speed, lo_open=False, unit="m/s"))
+        if isinstance(self.n_guides, bool) or not isinstance(self.n_guides, (int, np.integer)) or self.n_guides < 1:
+            raise ValueError(f"{o}.n_guides must be an integer >= 1, got {self.n_guides!r}")
+        if self.guides not in ("random", "cyclic"):
+            raise ValueError(f"{o}.guides must be 'random' or 'cyclic', got {self.guides!r}")
+        if self.first_time is not None:
+            object.__setattr__(self, "first_time", _num(o, "first_time", self.first_time, unit="s"))
+        object.__setattr__(self, "mass_spread", _num(o, "mass_spread", self.mass_spread, lo_open=False, hi=1.0, hi_open=True))
+        object.__setattr__(self, "time_jitter", _num(o, "time_jitter", self.time_jitter, lo_open=False, hi=0.5, hi_open=True))
+        if self.guide_friction >= 1.0 / math.tan(self.spiral_angle):
+            raise ValueError(
+                f"{o}.guide_friction must be < cot(spiral_angle) = {1 / math.tan(self.spiral_angle):.4g}"
+                f" (else a stone stays on its guide), got {self.guide_friction!r}"
+            )
+
+    def push(self, spin_speed: float) -> StonePush:
+        """The tabulated push J(tau) of one stone (see :func:`stone_push`)."""
+        return stone_push(self.start_radius / self.radius, self.spiral_angle, self.guide_friction,
+                          self.start_speed / (self.radius * spin_speed))  # fmt: skip
+
+    def sequence(self, t_end: float, seed: int | None = 0) -> StoneSequence:
+        """Draw the stones that land before ``t_end`` (s) with a seeded generator.
+
+        Parameters
+        ----------
+        t_end : float
+            End of the run (s).
+        seed : int or None
+            Seed of ``numpy.random.default_rng``; the same seed gives the same stones.
+
+        Returns
+        -------
+        StoneSequence
+        """
+        t_end = _num("StoneFeed.sequence", "t_end", t_end, unit="s")
+        rng = np.random.default_rng(seed)
+        t1 = self.interval if self.first_time is None else self.first_time
+        n = max(0, int(math.floor((t_end - t1) / self.interval)) + 1)
+        idx = np.arange(n, dtype=float)
+        if self.time_jitter > 0.0:
+            idx = idx + rng.uniform(-self.time_jitter, self.time_jitter, n)
+        times = t1 + idx * self.interval
+        if self.guides == "random":
+            guides = rng.integers(0, self.n_guides, n)
+        else:
+            guides = np.arange(n) % self.n_guides
+        masses = np.full(n, self.mass)
+        if self.mass_spread > 0.0:
+            masses = self.mass * (1.0 + rng.uniform(-self.mass_spread, self.mass_spread, n))
+        keep = (times > 0.0) & (times < t_end)
+        return StoneSequence(times[keep], masses[keep], guides[keep].astype(np.int64), self.n_guides,
+                             -1 if seed is None else int(seed))  # fmt: skip
+
+
+@dataclass(frozen=True)
+class StoneSequence:
+    """The stones of one run: landing times (s), masses (kg) and guide numbers 0 .. N-1.
+
+    Parameters
+    ----------
+    times : ndarray, shape (n,)
+        Strictly increasing, > 0 (s).
+    masses : ndarray, shape (n,)
+        > 0 (kg).
+    guides : ndarray of int, shape (n,)
+        Guide j sits at the angle 2 pi j / n_guides.
+    n_guides : int
+    seed : int
+        Seed it was drawn with (-1: not drawn / unseeded).
+    """
+
+    times: np.ndarray = field(default_factory=lambda: np.empty(0))
+    masses: np.ndarray = field(default_factory=lambda: np.empty(0))
+    guides: np.ndarray = field(default_factory=lambda: np.empty(0, dtype=np.int64))
+    n_guides: int = 4
+    seed: int = -1
+
+    def __post_init__(self) -> None:
+        t = np.asarray(self.times, dtype=float).ravel()
+        m = np.asarray(self.masses, dtype=float).ravel()
+        g = np.asarray(self.guides).ravel().astype(np.int64)
+        if not (t.size == m.size == g.size):
+            raise ValueError(f"StoneSequence.times, masses and guides must have the same length, got {t.size}, {m.size}, {g.size}")
+        if t.size and (not np.all(np.isfinite(t)) or t[0] <= 0.0 or np.any(np.diff(t) <= 0.0)):
+            raise ValueError("StoneSequence.times must be finite, > 0 and strictly increasing (s)")
+        if np.any(~(m > 0.0)) or not np.all(np.isfinite(m)):
+            raise ValueError("StoneSequence.masses must be finite and > 0 (kg)")
+        if np.any((g < 0) | (g >= self.n_guides)):
+            raise ValueError(f"StoneSequence.guides must be in 0 .. {self.n_guides - 1}")
+        object.__setattr__(self, "times", t)
+        object.__setattr__(self, "masses", m)
+        object.__setattr__(self, "guides", g)
+
+    def __len__(self) -> int:
+        return int(self.times.size)
+
+    def angles(self) -> np.ndarray:
+        """Angles alpha_n of the guides (rad)."""
+        return 2.0 * math.pi * self.guides / self.n_guides
+
+
+# ----------------------------------------------------------------------------------------- model
+@dataclass(frozen=True)
+class ImpactRotor:
+    """The centrifuge rotor with stones and housing: the model object the integrator runs.
+
+    Parameters
+    ----------
+    rotor : CentrifugeRotor
+    housing : Housing
+    stones : StoneFeed
+    sequence : StoneSequence
+        The stones of this run (default none: :meth:`with_stones` draws them).
+
+    Notes
+    -----
+    State and packed parameters: :mod:`rotorlab._kernels.impact_rotor`. Events
+    ``impact, lift_off, stone, backward_whirl`` (all resets; the last stops the run).
+
+    Examples
+    --------
+    >>> model = krasnov_crusher().with_stones(t_end=0.2, seed=3)
+    >>> model.n_state, len(model.sequence), round(model.equivalent_mass, 2)
+    (22, 5, 627.3)
+    """
+
+    rotor: CentrifugeRotor
+    housing: Housing
+    stones: StoneFeed
+    sequence: StoneSequence = field(default_factory=StoneSequence)
+
+    def __post_init__(self) -> None:
+        for name, cls in (("rotor", CentrifugeRotor), ("housing", Housing), ("stones", StoneFeed),
+                          ("sequence", StoneSequence)):  # fmt: skip
+            if not isinstance(getattr(self, name), cls):
+                raise ValueError(f"ImpactRotor.{name} must be a {cls.__name__}, got {type(getattr(self, name)).__name__}")
+        if self.sequence.n_guides != self.stones.n_guides and len(self.sequence):
+            raise ValueError("ImpactRotor.sequence must use the feed's n_guides")
+
+    # ---- contract -----------------------------------------------------------------------------
+    @property
+    def kernels(self) -> Kernels:
+        """Compiled kernels (shared by all instances)."""
+        return _KERNELS
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return STATE_NAMES
+
+    @property
+    def n_state(self) -> int:
+        return _k.N_STATE
+
+    @property
+    def translational(self) -> bool:
+        return self.rotor.translational
+
+    @property
+    def equivalent_mass(self) -> float:
+        """m*, eq. (3.9) (kg): ``1/m* = sin^2(beta)/m + l_P^2/A1`` (no tilt term if translational)."""
+        return 1.0 / self._inv_mstar()
+
+    def _inv_mstar(self) -> float:
+        sb = math.sin(self.housing.cone_angle)
+        inv = sb * sb / self.rotor.mass
+        if not self.translational:
+            inv += self.housing.lever() ** 2 / self.rotor.inertia_transverse
+        return inv
+
+    def with_stones(self, t_end: float, seed: int | None = 0, **changes) -> ImpactRotor:
+        """This model with the stones of a run to ``t_end`` drawn from ``seed``.
+
+        Keyword arguments replace fields of the :class:`StoneFeed` first (e.g. ``mass=3.0``).
+        """
+        feed = replace(self.stones, **changes) if changes else self.stones
+        return replace(self, stones=feed, sequence=feed.sequence(t_end, seed))
+
+    def push(self) -> StonePush:
+        """J(tau) of one stone (see :func:`stone_push`)."""
+        return self.stones.push(self.rotor.spin_speed)
+
+    def to_array(self) -> np.ndarray:
+        """Packed parameters (layout in :mod:`rotorlab._kernels.impact_rotor`)."""
+        r, h, s, seq = self.rotor, self.housing, self.stones, self.sequence
+        w0 = r.spin_speed
+        push = self.push()
+        head = np.zeros(_k.P_HEADER)
+        head[[_k.P_M, _k.P_A1, _k.P_A3, _k.P_W0, _k.P_C, _k.P_NM, _k.P_CS, _k.P_GAM]] = (
+            r.mass, r.inertia_transverse, r.inertia_polar, w0, r.stiffness, r.membrane_offset,
+            r.tilt_stiffness, r.internal_friction,
+        )  # fmt: skip
+        head[[_k.P_SB, _k.P_CB, _k.P_LP, _k.P_HP, _k.P_RP, _k.P_GAP, _k.P_K, _k.P_F]] = (
+            math.sin(h.cone_angle), math.cos(h.cone_angle), h.lever(), h.height, h.radius, h.gap,
+            h.restitution, h.friction,
+        )  # fmt: skip
+        head[_k.P_IMS] = self._inv_mstar()
+        head[_k.P_HQ] = s.height
+        head[_k.P_TRANS] = 1.0 if r.translational else 0.0
+        head[_k.P_VREST] = h.rest_speed
+        head[_k.P_VCOUNT] = h.count_speed
+        head[_k.P_WHIRL] = 2.0 * w0 if h.whirl_limit is None else h.whirl_limit
+        head[_k.P_TAUEND] = push.tau_end
+        # stones: t_n, m_n w0^2 R_q, cos(alpha_n), sin(alpha_n)
+        n = len(seq)
+        ang = seq.angles()
+        stones = np.column_stack([seq.times, seq.masses * w0 * w0 * s.radius, np.cos(ang), np.sin(ang)])
+        bp, active = _breakpoints(seq.times, push.tau_end / w0)
+        n_act = active.shape[1]
+        tab = np.column_stack([push.jx, push.jy, push.djx, push.djy])
+        o_st = _k.P_HEADER
+        o_bp = o_st + 4 * n
+        o_act = o_bp + bp.size
+        o_tab = o_act + active.size
+        head[[_k.P_NST, _k.P_OST, _k.P_NBP, _k.P_OBP, _k.P_OACT, _k.P_NACT, _k.P_NTAB, _k.P_OTAB, _k.P_DTAU]] = (
+            n, o_st, bp.size, o_bp, o_act, n_act, push.tau.size, o_tab, push.tau[1] - push.tau[0],
+        )  # fmt: skip
+        return np.concatenate([head, stones.ravel(), bp, active.ravel().astype(float), tab.ravel()])
+
+    def initial_state(self, u=(0.0, 0.0), tilt=(0.0, 0.0), du=(0.0, 0.0), dtilt=(0.0, 0.0)) -> np.ndarray:
+        """State at rest (default) or with the given displacement, tilt and rates (SI).
+
+        The rotor must start clear of the housing (|w| < Delta).
+        """
+        y = np.zeros(_k.N_STATE)
+        y[_k.U1:_k.U2 + 1] = u
+        y[_k.DU1:_k.DU2 + 1] = du
+        if not self.translational:
+            y[_k.T1:_k.T2 + 1] = tilt
+            y[_k.DT1:_k.DT2 + 1] = dtilt
+        y[_k.T_RESET] = -1.0
+        w = self.gap_vector(y)
+        if np.hypot(*w) >= self.housing.gap:
+            raise ValueError(f"initial state must be clear of the housing: |w| = {np.hypot(*w):.4g} m >= gap {self.housing.gap:g} m")
+        return y
+
+    # ---- physics helpers (numpy, for analyses and tests) ---------------------------------------
+    def gap_vector(self, y) -> np.ndarray:
+        """w = u sin(beta) + l_P t at states ``y`` (..., 22) -> (..., 2) (m)."""
+        y = np.asarray(y, dtype=float)
+        sb = math.sin(self.housing.cone_angle)
+        lp = self.housing.lever()
+        return sb * y[..., 0:2] + lp * y[..., 2:4]
+
+    def jacobi_energy(self, y) -> np.ndarray:
+        """Energy of the small motions in the rotating frame (J), conserved without gamma, f, stones.
+
+        ``1/2 m |u'|^2 + 1/2 A1 |t'|^2 + 1/2 c |u + n_m t|^2 + 1/2 c_* |t|^2 - 1/2 m w0^2 |u|^2
+        + 1/2 (A3 - A1) w0^2 |t|^2``.
+        """
+        y = np.asarray(y, dtype=float)
+        r = self.rotor
+        w0 = r.spin_speed
+        u, t, du, dt = y[..., 0:2], y[..., 2:4], y[..., 4:6], y[..., 6:8]
+        um = u + r.membrane_offset * t
+
+        def sq(v):
+            return np.sum(v * v, axis=-1)
+
+        return (0.5 * r.mass * sq(du) + 0.5 * r.inertia_transverse * sq(dt) + 0.5 * r.stiffness * sq(um)
+                + 0.5 * r.tilt_stiffness * sq(t) - 0.5 * r.mass * w0 * w0 * sq(u)
+                + 0.5 * (r.inertia_polar - r.inertia_transverse) * w0 * w0 * sq(t))  # fmt: skip
+
+    def stone_energy(self, t_end: float) -> float:
+        """Energy the motor spends on the stones landed before ``t_end`` (J), partial last ones."""
+        push = self.push()
+        w0 = self.rotor.spin_speed
+        seq = self.sequence
+        tau = np.clip(w0 * (t_end - seq.times), 0.0, push.tau_end)
+        frac = np.interp(tau, push.tau, push.work)
+        return float(np.sum(seq.masses * (self.stones.radius * w0) ** 2 * frac))
+
+    def state_matrix(self) -> np.ndarray:
+        """A of the free small motions ``x' = A x``, x = (u, t, u', t') in the rotating frame.
+
+        Without stones and contact; exact (the equations are linear), from the compiled kernel.
+
+        Returns
+        -------
+        ndarray, shape (8, 8)
+
+        Examples
+        --------
+        >>> a = krasnov_crusher().state_matrix()
+        >>> bool(np.all(np.linalg.eigvals(a).real < 0))
+        True
+        """
+        base = replace(self, sequence=StoneSequence(n_guides=self.stones.n_guides))
+        p = base.to_array()
+        out = np.empty(_k.N_STATE)
+        a = np.zeros((8, 8))
+        for j in range(8):
+            y = base.initial_state()
+            y[j] = 1.0
+            _k.rhs(0.0, y, p, out)
+            a[:, j] = out[:8]
+        if self.translational:  # the tilt is frozen
+            a[:, [2, 3, 6, 7]] = 0.0
+            a[[2, 3, 6, 7], :] = 0.0
+        return a
+
+    def rhs(self, t: float, y) -> np.ndarray:
+        """dy/dt at one state (calls the compiled kernel)."""
+        out = np.empty(_k.N_STATE)
+        _k.rhs(float(t), np.asarray(y, dtype=float), self.to_array(), out)
+        return out
+
+
+def _breakpoints(times: np.ndarray, duration: float) -> tuple[np.ndarray, np.ndarray]:
+    """Sorted distinct arrival/departure times and the stones active after each of them.
+
+    Returns ``bp`` (n_bp,) and ``active`` (n_bp + 1, n_act) with -1 padding; row i lists the
+    stones on their guides after i breakpoints have passed.
+    """
+    n = times.size
+    if n == 0:
+        return np.empty(0), np.full((1, 1), -1.0)
+    ends = times + duration
+    bp = np.unique(np.concatenate([times, ends]))
+    rows: list[list[int]] = [[]]
+    for tb in bp:
+        act = np.nonzero((times <= tb) & (ends > tb))[0]
+        rows.append(act.tolist())
+    n_act = max(1, max(len(r) for r in rows))
+    active = np.full((len(rows), n_act), -1.0)
+    for i, r in enumerate(rows):
+        active[i, : len(r)] = r
+    return bp, active
+
+
+def krasnov_crusher(*, translational: bool = False, stone_mass: float = 0.7, interval: float = 0.035,
+                    internal_friction: float = 0.2, restitution: float = 0.5, friction: float = 0.2,
+                    **feed) -> ImpactRotor:  # fmt: skip
+    """The stone-crusher rotor of seed 001, section 5 (its translational variant on request).
+
+    Parameters
+    ----------
+    translational : bool
+        The paper's variant with the axis translating: h1 = -h2 = 0.15 m, h_q = 0, beta = 90 deg
+        and the tilt frozen.
+    stone_mass, interval, internal_friction, restitution, friction : float
+        m_q (kg), Delta t (s), gamma, k, f; defaults the section-5 values.
+    **feed
+        Other :class:`StoneFeed` fields (``n_guides``, ``start_radius``, ...).
+
+    Returns
+    -------
+    ImpactRotor
+        Without stones; draw them with :meth:`ImpactRotor.with_stones`.
+
+    Examples
+    --------
+    >>> m = krasnov_crusher()
+    >>> round(m.housing.lever(), 4), m.rotor.spin_speed, m.stones.mass
+    (0.1947, 160.0, 0.7)
+    >>> round(krasnov_crusher(translational=True).equivalent_mass, 1)
+    635.7
+    """
+    h1, h2, hq, beta = (0.15, -0.15, 0.0, 90.0) if translational else (-0.05, 0.2, 0.28, 55.0)
+    rotor = CentrifugeRotor(635.7, 70.35, 115.68, 160.0, 3.22e6, 3.22e6, h1, h2, internal_friction,
+                            translational)  # fmt: skip
+    housing = Housing(0.625, -0.2, 4.5e-3, math.radians(beta), restitution, friction)
+    stones = StoneFeed(stone_mass, interval, 0.6, hq, math.radians(30.0), 0.5, **feed)
+    return ImpactRotor(rotor, housing, stones)
+
+
+@dataclass(frozen=True, slots=True)
+class Reconstruction:
+    """One formula of seed 001 garbled by the OCR and rebuilt from mechanics.
+
+    Attributes
+    ----------
+    equation : str
+        Equation number in the paper.
+    printed : str
+        What the OCR'd text shows.
+    reconstructed : str
+        The formula the model uses.
+    check : str
+        How it was checked.
+    test : str
+        The test that checks it.
+    """
+
+    equation: str
+    printed: str
+    reconstructed: str
+    check: str
+    test: str
+
+
+#: The reconstructions documented in this module's docstring, as data (shown in the report).
+RECONSTRUCTIONS = (
+    Reconstruction(
+        "(3.9)", "Sn = (1 + k)m* vp; 'sin^ ll_ m* m Ai''; '«+ = «p Sn m', 't+ = t1- Sn'",
+        "S_n = (1 + k) m* v, 1/m* = sin^2(beta)/m + l_P^2/A1; u'+ = u'- - (S_n/m)(sin(beta) e + f e_perp), "
+        "t'+ = t'- - (S_n/A1)(l_P e + f h_P e_perp)",
+        "normal speed after = -k x before; elastic frictionless impacts conserve the Jacobi energy; "
+        "restitution loss = sum 1/2 m* (1 - k^2) v^2",
+        "tests/validation/test_impact_energy.py",
+    ),
+    Reconstruction(
+        "(4.1)", "Fm = -c I ит + — {ит + x ит) ), ^о; м = -сЛ t + ^-(t + c¿¿0 xt) )+hmF",
+        "F_m = -c (u_m + (gamma/w0)(u_m' + w0 x u_m)), u_m = u + n_m t; "
+        "M_m = -c_* (t + (gamma/w0)(t' + w0 x t)) + n_m F_m",
+        "sum over the two membranes gives c, n_m, c_*; rotating-frame solution = fixed-frame equations "
+        "(viscous dampers c gamma/w0 on fixed membranes) integrated by scipy and rotated",
+        "tests/validation/test_impact_frames.py",
+    ),
+    Reconstruction(
+        "(4.3)", "dv/dT = r cos a - Ft, dr/dT = v cos a, Fn = Kv +2v + r sin a",
+        "F_n = kappa v^2 + 2 v + r sin a, kappa = sin(a)/r on the logarithmic spiral",
+        "frictionless guide: v_exit = sqrt(1 - r0^2) (stone's Jacobi integral); motor work = kinetic "
+        "gain in the fixed frame + guide friction heat",
+        "tests/validation/test_impact_stones.py",
+    ),
+    Reconstruction(
+        "J(tau)", "J_x = F_n sin(phi + a) - [..] cos(phi + a), J_y = -F_n cos(phi + a) - [..] sin(phi + a)",
+        "J_x = F_n sin(phi + a) + F_t cos(phi + a), J_y = -F_n cos(phi + a) + F_t sin(phi + a) "
+        "(-F_n e_n + F_t e_t, Newton's third law)",
+        "the torque of J on the rotor does the motor work = kinetic gain + friction heat; the printed "
+        "sign of F_t gives 81 % too much",
+        "tests/validation/test_impact_stones.py",
+    ),
+)

@@ -1,0 +1,106 @@
+"""Report sections of the rotor striking its housing (seed 001): runs, sweeps, reconstructions.
+
+Datasets from :func:`rotorlab.analyses.impact_run` and :func:`rotorlab.analyses.impact_sweep`;
+the figures come from :func:`rotorlab.plot.impact_figures`.
+"""
+
+from __future__ import annotations
+
+import html
+from typing import TYPE_CHECKING, Any
+
+if TYPE_CHECKING:
+    import xarray
+
+__all__ = ["impact_section", "reconstructions_section"]
+
+
+def _e(value: Any) -> str:
+    return html.escape(str(value))
+
+
+def _table(header: list[str], rows: list[list[Any]], numeric: set[int] = frozenset()) -> str:
+    head = "".join(f"<th>{_e(h)}</th>" for h in header)
+    body = "".join(
+        "<tr>" + "".join(f'<td class="num">{_e(c)}</td>' if i in numeric else f"<td>{_e(c)}</td>"
+                         for i, c in enumerate(r)) + "</tr>"
+        for r in rows
+    )  # fmt: skip
+    return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
+
+
+def _run_html(ds: xarray.Dataset) -> str:
+    from rotorlab.analyses import impact_summary
+
+    s = impact_summary(ds)
+    eta = "-" if s["energy_ratio"] is None else f"{s['energy_ratio']:.4g}"
+    rows = [
+        ["regime", s["regime"] + (" (run stopped at the backward whirl)" if s["backward_whirl"] else ""), ""],
+        ["impacts (approach >= count_speed)", s["impacts"], ""],
+        ["impacts, chatter included", s["impacts_all"], ""],
+        ["sliding episodes", s["slides"], ""],
+        ["time in sliding contact", f"{s['sliding_time_s']:.4g}", "s"],
+        ["energy on the stones", f"{s['energy_stones_J']:.4g}", "J"],
+        ["energy against friction at the housing", f"{s['energy_friction_J']:.4g}", "J"],
+        ["eta (seed 001, Fig. 5)", eta, "1"],
+        ["largest approach speed", f"{s['max_approach_speed_m_s']:.4g}", "m/s"],
+        ["largest penetration (should be 0)", f"{s['max_penetration_m']:.3g}", "m"],
+        ["stones", s["n_stones"], ""],
+        ["seed of the stone sequence", s["seed"], "numpy.random.default_rng"],
+        ["run ended at", f"{s['t_final_s']:.6g}", "s"],
+    ]
+    return "<h3>Result</h3>" + _table(["quantity", "value", "unit"], rows, numeric={1})
+
+
+def _sweep_html(ds: xarray.Dataset) -> str:
+    from rotorlab.analyses import paper_counts, sweep_summary
+
+    doc = sweep_summary(ds)
+    paper = paper_counts(ds)
+    unit = f" ({doc['units']})" if doc["units"] not in ("", "1") else ""
+    header = [doc["param"] + unit, "impacts median", "quartiles", "min-max", "none", "rebounds", "sliding",
+              "backward whirl", "eta median", "seed 001"]  # fmt: skip
+    rows = []
+    for row, p in zip(doc["rows"], paper):
+        r = row["regimes"]
+        eta = "-" if row["energy_ratio_median"] is None else f"{row['energy_ratio_median']:.3g}"
+        rows.append([f"{row['value']:.4g}", f"{row['impacts_median']:g}",
+                     f"{row['impacts_q25']:g}-{row['impacts_q75']:g}", f"{row['impacts_min']}-{row['impacts_max']}",
+                     r["none"], r["rebounds"], r["sliding"], r["backward_whirl"], eta,
+                     "-" if p is None else p])  # fmt: skip
+    text = (f'<p class="muted">{doc["n_sequences"]} random stone sequences per value (seeds {doc["seed"]} to '
+            f'{doc["seed"] + doc["n_sequences"] - 1}, the same at every value), {doc["t_end_s"]:g} s each. '
+            "Regime counts are numbers of runs. The paper's counts come from one sequence each and from "
+            "parameters it does not give (start radius, number of guides, guide sequence).</p>")  # fmt: skip
+    return "<h3>Impacts over stone sequences</h3>" + text + _table(header, rows, numeric={0, 1, 4, 5, 6, 7, 8, 9})
+
+
+def impact_section(ds: xarray.Dataset) -> str:
+    """Return the HTML tables of an ``impacts`` or ``impacts-sweep`` result.
+
+    Examples
+    --------
+    >>> from rotorlab.analyses import impact_run
+    >>> from rotorlab.models import krasnov_crusher
+    >>> "<table>" in impact_section(impact_run(krasnov_crusher(), t_end=0.2, n_save=20))
+    True
+    """
+    if ds.attrs.get("analysis") == "impacts":
+        return _run_html(ds)
+    return _sweep_html(ds)
+
+
+def reconstructions_section() -> str:
+    """Return the HTML table of the formulas of seed 001 rebuilt from mechanics.
+
+    Examples
+    --------
+    >>> "(3.9)" in reconstructions_section()
+    True
+    """
+    from rotorlab.models._impact_rotor import RECONSTRUCTIONS
+
+    rows = [[r.equation, r.printed, r.reconstructed, r.check, r.test] for r in RECONSTRUCTIONS]
+    return ("<h2>Seed 001: formulas garbled in print, rebuilt from mechanics</h2>"
+            '<p class="muted">rotorlab.models._impact_rotor.RECONSTRUCTIONS; each is checked by the test named.</p>'
+            + _table(["equation", "printed (OCR)", "used", "checked by", "test"], rows))  # fmt: skip

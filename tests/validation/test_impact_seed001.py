@@ -1,0 +1,129 @@
+"""Seed 001, section 5: the stone-crusher rotor's regimes and impact counts (Krasnov et al. 2003).
+
+The paper's results come from one random stone sequence each and depend on parameters it does
+not give (start radius of a stone on its guide, number of guides, guide sequence); here every
+number is a median or a fraction over many seeded sequences with the documented defaults, and
+the comparison with the printed numbers is stated with the factor it holds to.
+
+Printed table (impacts in 10 s at Delta t = 0.035 s)::
+
+    m_q (kg)  0.5  0.6  0.7  0.8  0.9  1.0  3.0
+    N         0    2    12   23   43   400  34000 ("sliding, a series of very frequent impacts")
+"""
+
+import numpy as np
+import pytest
+
+from rotorlab.analyses import REGIMES, impact_sweep
+from rotorlab.models import krasnov_crusher
+
+PAPER = {0.5: 0, 0.6: 2, 0.7: 12, 0.8: 23, 0.9: 43, 1.0: 400}
+
+
+@pytest.fixture(scope="module")
+def table():
+    masses = [0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 2.0, 3.0]
+    return impact_sweep(krasnov_crusher(), masses, n_sequences=16, t_end=10.0, seed=100)
+
+
+def _fraction(ds, mass, regime):
+    i = int(np.argmin(np.abs(ds.value.values - mass)))
+    return float(ds.regime_fraction.values[i, REGIMES.index(regime)])
+
+
+def test_section5_parameters():
+    m = krasnov_crusher()
+    assert m.housing.lever() == pytest.approx(0.625 * np.cos(np.radians(55)) - 0.2 * np.sin(np.radians(55)))
+    assert m.rotor.membrane_offset == pytest.approx(0.075)
+    # 28 stones have fallen in the first second (Fig. 3: "28 камней")
+    assert len(m.with_stones(1.0, seed=0).sequence) == 28
+
+
+def test_fig3_no_impact_in_the_first_second_then_impacts(table):
+    ds = impact_sweep(krasnov_crusher(), [0.7], n_sequences=16, t_end=1.0, seed=100)
+    # the paper's sequence had no impact in the first second; so have about half of ours
+    assert (ds.impacts.values[0] == 0).mean() >= 0.4
+    # and over 10 s every sequence strikes the housing, with rebounds only
+    assert _fraction(table, 0.7, "rebounds") == 1.0
+
+
+def test_table_impacts_grow_with_stone_mass_as_printed(table):
+    med = table.impacts_median.values
+    masses = table.value.values
+    light = masses <= 1.0
+    assert np.all(np.diff(med[light]) > 0)  # strictly growing from 0.5 to 1.0 kg
+    assert med[0] <= 2  # 0.5 kg: (almost) no impacts
+    for m, n in PAPER.items():
+        if n:
+            got = med[np.argmin(np.abs(masses - m))]
+            assert n / 3.5 <= got <= 3.5 * n, (m, got, n)  # within a factor 3.5 of the table
+
+
+def test_three_regimes_appear_as_stone_mass_grows(table):
+    assert _fraction(table, 0.5, "none") >= 0.25
+    assert _fraction(table, 0.8, "rebounds") == 1.0
+    heavy = _fraction(table, 2.0, "sliding") + _fraction(table, 2.0, "backward_whirl")
+    assert heavy >= 0.75
+    assert _fraction(table, 2.0, "sliding") >= 0.25
+    # at 3 kg sliding contact runs into the dry-friction backward whirl in most sequences
+    assert _fraction(table, 3.0, "backward_whirl") >= 0.5
+    assert _fraction(table, 3.0, "rebounds") == 0.0
+    assert table.max_penetration.values.max() < 1e-6 * 4.5e-3
+
+
+def test_fig4_translational_regimes():
+    # Fig. 4: Delta t = 0.07 s, gamma = 0.5, k = 0.7, f = 0.3, 2 s; 1.3 kg no impacts, then impacts
+    model = krasnov_crusher(translational=True, interval=0.07, internal_friction=0.5,
+                            restitution=0.7, friction=0.3)  # fmt: skip
+    ds = impact_sweep(model, [1.3, 1.8, 3.0, 5.0, 8.0], n_sequences=8, t_end=2.0, seed=100)
+    assert _fraction(ds, 1.3, "none") == 1.0
+    assert _fraction(ds, 1.8, "rebounds") == 1.0
+    med = ds.impacts_median.values
+    assert np.all(np.diff(med) > 0)
+    assert ds.sliding_time_median.values[-1] > ds.sliding_time_median.values[2]
+    assert _fraction(ds, 8.0, "sliding") >= 0.5
+
+
+def test_fig5_friction_losses_rise_earlier_with_tilt():
+    # Fig. 5: Delta t = 0.07 s, gamma = 0.3, k = 0.7, f = 0.3, 10 s; curve 1 (with tilt) rises
+    # at much smaller stone masses than curve 2 (translational)
+    kw = dict(interval=0.07, internal_friction=0.3, restitution=0.7, friction=0.3)
+    masses = [1.0, 2.0, 3.0, 5.0]
+    gen = impact_sweep(krasnov_crusher(**kw), masses, n_sequences=8, t_end=10.0, seed=100)
+    tra = impact_sweep(krasnov_crusher(translational=True, **kw), masses, n_sequences=8, t_end=10.0, seed=100)
+    eg, et = gen.eta_median.values, tra.eta_median.values
+    assert np.all(eg > et)
+    assert np.all(np.diff(et) > 0)
+    assert eg[1] > 1.0 > et[1]  # at 2 kg friction costs more than the stones only with tilt
+    assert et[-1] > 1.0  # the translational rotor gets there at 5 kg (sliding)
+
+
+def test_tilt_vibrations_decay_much_slower_than_translational_ones():
+    # Section 5: "the tilt vibrations decay much more slowly than the translational ones"
+    # (hyperboloidal precession). Slowest decay rate of the free rotor, with and without tilt:
+    gen = np.linalg.eigvals(krasnov_crusher().state_matrix()).real
+    tra = np.linalg.eigvals(krasnov_crusher(translational=True).state_matrix())
+    tra = tra[np.abs(tra) > 0].real
+    assert -gen.max() == pytest.approx(0.035, abs=0.001)  # 1/s: the slow backward tilt whirl
+    assert -tra.max() == pytest.approx(6.44e6 * 0.2 / 160.0 / (2 * 635.7), rel=1e-9)  # c gamma / (2 m w0)
+    assert -tra.max() / -gen.max() > 100
+
+
+def test_translational_amplitude_is_smaller_than_with_tilt():
+    # Section 5 says "several times smaller" at otherwise equal conditions; with this model and
+    # the documented defaults the largest |w| (no housing, 0.7 kg stones, 5 s, 4 sequences) is
+    # smaller by a factor of 1.1 to 1.5 only -- the claim holds in direction, not in size.
+    from dataclasses import replace
+
+    from rotorlab.analyses import impact_run
+
+    ratios = []
+    for seed in range(4):
+        amp = []
+        for tr in (False, True):
+            m = krasnov_crusher(translational=tr)
+            m = replace(m, housing=replace(m.housing, gap=1.0))
+            ds = impact_run(m, t_end=5.0, seed=seed, n_save=5001)
+            amp.append(float(np.hypot(ds.p_x, ds.p_y).max()))
+        ratios.append(amp[0] / amp[1])
+    assert all(1.05 < r < 1.6 for r in ratios), ratios
