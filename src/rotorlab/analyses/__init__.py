@@ -21,7 +21,7 @@ from rotorlab.analyses._case import (
     summarize,
 )
 from rotorlab.analyses import _impact_sweep, _impacts
-from rotorlab.analyses._impact_sweep import ImpactAnalysis, impact_sweep, impact_sweep_definition
+from rotorlab.analyses._impact_sweep import ImpactAnalysis, impact_sweep, impact_sweep_definition, summarize_impact_sweep
 from rotorlab.analyses._impacts import (
     IMPACT_ANALYSES,
     REGIMES,

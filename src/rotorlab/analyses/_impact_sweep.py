@@ -39,7 +39,7 @@ if TYPE_CHECKING:
 
     from rotorlab.models import ImpactRotor
 
-__all__ = ["ImpactAnalysis", "impact_sweep", "impact_sweep_definition"]
+__all__ = ["ImpactAnalysis", "impact_sweep", "impact_sweep_definition", "summarize_impact_sweep"]
 
 #: Result variables of a point, in order (see :func:`rotorlab.analyses.impact_run`).
 POINT_VARIABLES = ("impacts", "impacts_all", "slides", "sliding_time", "max_penetration", "max_approach_speed",
@@ -179,6 +179,12 @@ def impact_sweep_definition(model: ImpactRotor, values: Sequence[float], *, para
     return Sweep(analysis, axes=(ListAxis(param, values), ListAxis("seed", seeds)))
 
 
+def default_chunk(sweep: Any, *, split: bool) -> int:
+    """Runs per chunk of an impact sweep: one value's sequences if ``split``, else every run."""
+    n_val, n_seq = sweep.shape
+    return n_seq if split else n_val * n_seq
+
+
 def impact_sweep(model: ImpactRotor, values: Sequence[float], *, param: str = "stone_mass",
                  n_sequences: int = 16, t_end: float = 10.0, seed: int = 0, rtol: float = 1e-8,
                  atol: float = 1e-11, sliding_fraction: float = SLIDING_FRACTION,
@@ -224,7 +230,8 @@ def impact_sweep(model: ImpactRotor, values: Sequence[float], *, param: str = "s
         Where the chunks run (default: this process). Results do not depend on it.
     chunk_size : int, optional
         Runs per chunk (default: all runs in one chunk, or one value's sequences per chunk with
-        a ``store`` or ``progress``; a resumed store keeps its own). Results do not depend on it.
+        a ``store``, an ``executor`` or ``progress``; a resumed store keeps its own). Results do
+        not depend on it.
 
     Returns
     -------
@@ -251,9 +258,8 @@ def impact_sweep(model: ImpactRotor, values: Sequence[float], *, param: str = "s
 
     sweep = impact_sweep_definition(model, values, param=param, n_sequences=n_sequences, t_end=t_end, seed=seed,
                                     rtol=rtol, atol=atol, sliding_fraction=sliding_fraction)  # fmt: skip
-    n_val, n_seq = sweep.shape
     if chunk_size is None and not (resume and store is not None):
-        chunk_size = n_seq if (store is not None or progress is not None) else n_val * n_seq
+        chunk_size = default_chunk(sweep, split=store is not None or progress is not None or executor is not None)
 
     def report(p: Any) -> None:
         if progress is not None and p.computed:
@@ -261,10 +267,10 @@ def impact_sweep(model: ImpactRotor, values: Sequence[float], *, param: str = "s
 
     runs = run_sweep(sweep, store=store, resume=resume, chunk_size=chunk_size,
                      executor=executor or InProcess(threads), progress=report)  # fmt: skip
-    return summarize_sweep(runs, model, param=param, seed=int(seed))
+    return summarize_impact_sweep(runs, model, param=param, seed=int(seed))
 
 
-def summarize_sweep(runs: xarray.Dataset, model: ImpactRotor, *, param: str, seed: int) -> xarray.Dataset:
+def summarize_impact_sweep(runs: xarray.Dataset, model: ImpactRotor, *, param: str, seed: int) -> xarray.Dataset:
     """The Dataset of :func:`impact_sweep` from the per-run table of its sweep (dims ``param``, ``seed``)."""
     import xarray as xr
 
