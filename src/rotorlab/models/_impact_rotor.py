@@ -118,6 +118,7 @@ import numpy as np
 
 from rotorlab._kernels import impact_rotor as _k
 from rotorlab.models._base import EventSpec, Kernels
+from rotorlab.models._checks import check_number as _num
 
 __all__ = [
     "CentrifugeRotor",
@@ -152,30 +153,6 @@ _KERNELS = Kernels(
     reset=_k.reset,
     event_specs=tuple(EventSpec(name, -1, "reset") for name in EVENT_NAMES),
 )
-
-
-def _num(owner: str, name: str, value, *, lo: float | None = 0.0, lo_open: bool = True,
-         hi: float | None = None, hi_open: bool = False, unit: str = "") -> float:  # fmt: skip
-    """Check a number against its bounds; raise ValueError naming the parameter."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = math.nan
-    ok = math.isfinite(v)
-    if ok and lo is not None:
-        ok = v > lo if lo_open else v >= lo
-    if ok and hi is not None:
-        ok = v < hi if hi_open else v <= hi
-    if not ok:
-        parts = []
-        if lo is not None:
-            parts.append(f"{'>' if lo_open else '>='} {lo:g}")
-        if hi is not None:
-            parts.append(f"{'<' if hi_open else '<='} {hi:g}")
-        bound = " and ".join(parts) or "finite"
-        u = f" ({unit})" if unit else ""
-        raise ValueError(f"{owner}.{name} must be a finite number {bound}{u}, got {value!r}")
-    return v
 
 
 # ------------------------------------------------------------------------------------ parameters
