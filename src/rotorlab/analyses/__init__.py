@@ -20,6 +20,8 @@ from rotorlab.analyses._case import (
     run_case,
     summarize,
 )
+from rotorlab.analyses import _impact_sweep, _impacts
+from rotorlab.analyses._impact_sweep import ImpactAnalysis, impact_sweep, impact_sweep_definition, summarize_impact_sweep
 from rotorlab.analyses._impacts import (
     IMPACT_ANALYSES,
     REGIMES,
@@ -30,7 +32,6 @@ from rotorlab.analyses._impacts import (
     impact_model,
     impact_run,
     impact_summary,
-    impact_sweep,
     paper_counts,
     run_impact_analysis,
     stacked_params,
@@ -64,20 +65,8 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
-    "IMPACT_ANALYSES",
-    "REGIMES",
-    "SEED001_TABLE",
-    "SLIDING_FRACTION",
-    "SWEEP_PARAMS",
-    "classify_impacts",
-    "impact_model",
-    "impact_run",
-    "impact_summary",
-    "impact_sweep",
-    "paper_counts",
-    "run_impact_analysis",
-    "stacked_params",
-    "sweep_summary",
+    *_impacts.__all__,
+    *_impact_sweep.__all__,
     "BALANCED_FRACTION",
     "BASIN_ANALYSES",
     "DATA_AUDITS",

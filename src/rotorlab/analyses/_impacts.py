@@ -43,7 +43,6 @@ __all__ = [
     "classify_impacts",
     "impact_model",
     "impact_run",
-    "impact_sweep",
     "run_impact_analysis",
     "impact_summary",
     "paper_counts",
@@ -280,102 +279,6 @@ def impact_run(model: ImpactRotor, t_end: float = 10.0, *, seed: int | None = 0,
     return ds
 
 
-def impact_sweep(model: ImpactRotor, values: Sequence[float], *, param: str = "stone_mass",
-                 n_sequences: int = 16, t_end: float = 10.0, seed: int = 0, rtol: float = 1e-8,
-                 atol: float = 1e-11, sliding_fraction: float = SLIDING_FRACTION,
-                 threads: int | None = None,
-                 progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
-    """Run many random stone sequences at each value of one parameter (the seed's table, Fig. 5).
-
-    Sequence j uses the seed ``seed + j`` at every value (common random numbers), so values are
-    compared on the same stones.
-
-    Parameters
-    ----------
-    model : ImpactRotor
-    values : sequence of float
-        Values of ``param`` (SI).
-    param : str
-        One of :data:`SWEEP_PARAMS`: ``stone_mass`` (kg), ``interval`` (s),
-        ``internal_friction``, ``restitution``, ``friction``.
-    n_sequences : int
-        Random stone sequences per value, >= 1.
-    t_end : float
-        Duration of each run (s).
-    seed : int
-        Seed of the first sequence.
-    rtol, atol : float
-        Integrator tolerances.
-    sliding_fraction : float
-        See :func:`classify_impacts`.
-    threads : int, optional
-        Threads of the ensemble (results do not depend on it).
-    progress : callable, optional
-        ``progress(done, total)`` after each chunk of runs.
-
-    Returns
-    -------
-    xarray.Dataset
-        Dims ``value`` (the swept parameter, named in ``attrs["param"]``) and ``sequence``:
-        every scalar of :func:`impact_run` plus ``regime``; per value the median and quartiles of
-        ``impacts`` and ``eta`` and the fraction of runs in each regime (dim ``regime``).
-
-    Examples
-    --------
-    >>> from rotorlab.models import krasnov_crusher
-    >>> ds = impact_sweep(krasnov_crusher(), [0.5, 1.0], n_sequences=2, t_end=2.0)
-    >>> ds.impacts.values[0].tolist(), bool((ds.impacts.values[1] > 10).all()), ds.attrs["param"]
-    ([0, 0], True, 'stone_mass')
-    """
-    import xarray as xr
-
-    from rotorlab.integrate import solve_ensemble
-
-    if param not in SWEEP_PARAMS:
-        raise ValueError(f"param must be one of {', '.join(SWEEP_PARAMS)}, got {param!r}")
-    values = np.atleast_1d(np.asarray(values, dtype=float))
-    if values.ndim != 1 or values.size == 0:
-        raise ValueError("values must be a non-empty 1-D sequence")
-    if int(n_sequences) < 1:
-        raise ValueError(f"n_sequences must be >= 1, got {n_sequences!r}")
-    if not (t_end > 0 and math.isfinite(t_end)):
-        raise ValueError(f"t_end must be a finite number > 0 (s), got {t_end!r}")
-    part, fld, unit = SWEEP_PARAMS[param]
-    n_seq = int(n_sequences)
-    models = []
-    for v in values:
-        base = replace(model, **{part: replace(getattr(model, part), **{fld: float(v)})})
-        models.extend(base.with_stones(t_end, seed + j) for j in range(n_seq))
-    P = stacked_params(models)
-    sol = solve_ensemble(models[0], models[0].initial_state(), (0.0, t_end), params=P,
-                         control=_control(rtol, atol), threads=threads,
-                         chunk_size=None if progress is None else max(1, n_seq),
-                         progress=progress)  # fmt: skip
-    sc = _scalars(models, sol)
-    shape = (values.size, n_seq)
-    sc = {k: v.reshape(shape) for k, v in sc.items()}
-    sc["regime"] = classify_impacts(sc["impacts"], sc["sliding_time"], sc["t_final"], sc["whirl"],
-                                    sc["status"], sliding_fraction)  # fmt: skip
-    data = {k: (("value", "sequence"), v, {"units": _UNITS[k], "description": _DESCRIPTIONS[k]})
-            for k, v in sc.items()}  # fmt: skip
-    for name in ("impacts", "eta", "sliding_time"):
-        arr = sc[name].astype(float)
-        q = np.nanquantile(arr, [0.25, 0.5, 0.75], axis=1) if np.isfinite(arr).any() else np.full((3, values.size), np.nan)
-        for tag, row in zip(("q25", "median", "q75"), q):
-            data[f"{name}_{tag}"] = (("value",), row, {"units": _UNITS[name], "description": f"{tag} over sequences"})
-    frac = np.stack([(sc["regime"] == c).mean(axis=1) for c in range(len(REGIMES))], axis=1)
-    data["regime_fraction"] = (("value", "regime_label"), frac, {"units": "1"})
-    data["failed_fraction"] = (("value",), (sc["regime"] < 0).mean(axis=1), {"units": "1"})
-    data["seed"] = (("sequence",), seed + np.arange(n_seq), {"units": "1", "description": "seed of the stone sequence"})
-    ds = xr.Dataset(data, coords={"value": ("value", values, {"units": unit, "long_name": param}),
-                                  "sequence": ("sequence", np.arange(n_seq), {"units": "1"}),
-                                  "regime_label": list(REGIMES)})  # fmt: skip
-    ds.attrs.update(_model_attrs(model, t_end, sliding_fraction))
-    ds.attrs.update({"analysis": "impacts-sweep", "param": param, "param_units": unit, "seed": int(seed),
-                     "n_sequences": n_seq})  # fmt: skip
-    return ds
-
-
 def _num(x: Any) -> float | int | None:
     v = float(x)
     if not math.isfinite(v):
@@ -496,6 +399,8 @@ def run_impact_analysis(case_model: Any, analysis: Any,
         if progress is not None:
             progress(1, 1)
     elif analysis.type == "impacts-sweep":
+        from rotorlab.analyses._impact_sweep import impact_sweep
+
         ds = impact_sweep(model, analysis.values, param=analysis.param, n_sequences=analysis.n_sequences,
                           t_end=analysis.t_end, seed=analysis.seed, rtol=analysis.rtol, atol=analysis.atol,
                           sliding_fraction=analysis.sliding_fraction, progress=progress)  # fmt: skip

@@ -9,14 +9,13 @@ sequences (named apart from the general ``sweep`` command).
 
 from __future__ import annotations
 
-import math
 from pathlib import Path
 from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
-from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
+from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
+from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stderr, stdout
 
 __all__ = ["impacts_command", "impacts_sweep_command", "impact_tables"]
 
@@ -32,18 +31,18 @@ SeedOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
     "--seed", metavar="N", help="Seed of the (first) stone sequence, >= 0.")]
 
 
-def _positive(option: str, value: float | None, unit: str) -> None:
-    if value is not None and not (math.isfinite(value) and value > 0):
-        raise BadInput(f"{option} = {value:g}: must be a finite number > 0 ({unit})")
+def _check(stone_mass: float | None, t_end: float | None, seed: int | None, plot: Path | None,
+           out: Path | None) -> None:
+    """Check the options both commands share (bad input: BadInput naming the option)."""
+    from rotorlab.cli._app import _positive
+    from rotorlab.cli._steady import _check_plot
 
-
-def _check_file(option: str, path: Path | None) -> None:
-    if path is None:
-        return
-    if path.is_dir():
-        raise BadInput(f"{option} = {path}: is a folder (give a file name)")
-    if not path.absolute().parent.is_dir():
-        raise BadInput(f"{option} = {path}: folder {path.absolute().parent} does not exist")
+    for option, value, unit in (("--stone-mass", stone_mass, "kg"), ("--t-end", t_end, "s")):
+        _positive(option, None if value is None else [value], unit)
+    if seed is not None and seed < 0:
+        raise BadInput(f"--seed = {seed}: must be an integer >= 0")
+    _check_plot("--plot", plot)
+    _check_plot("--out", out)
 
 
 def _impact_case(case: str) -> Any:
@@ -56,22 +55,19 @@ def _impact_case(case: str) -> Any:
 def _spec(loaded: Any, kind: str, name: str | None) -> Any:
     from rotorlab.io import ImpactsSpec, ImpactsSweepSpec
 
-    found = [a for a in loaded.analyses if a.type == kind]
-    if name is not None:
-        for a in found:
-            if a.name == name:
-                return a
-        names = ", ".join(a.name for a in found) or "none"
-        raise BadInput(f"--analysis = {name}: no {kind} analysis of that name ({kind} analyses: {names})")
-    if found:
-        return found[0]
+    found = find_analysis(loaded, kind, name)
+    if found is not None:
+        return found
     if kind == "impacts":
         return ImpactsSpec(name="impacts")
     return ImpactsSweepSpec(name="impacts-sweep", values=[0.5, 0.6, 0.7, 0.8, 0.9, 1.0, 3.0])
 
 
-def _write(ds: Any, plot: Path | None, out: Path | None) -> list[str]:
-    written = []
+def _finish(settings: Any, loaded: Any, spec: Any, ds: Any, summary: dict[str, Any], plot: Path | None,
+            out: Path | None, json_out: bool, files: tuple[str, ...] = ()) -> None:
+    """Write the figure and NetCDF file, then print the JSON document or the tables."""
+    ds.attrs["case"] = loaded.name
+    written = [*files]
     if plot is not None:
         from rotorlab.plot import impact_figures
 
@@ -82,7 +78,22 @@ def _write(ds: Any, plot: Path | None, out: Path | None) -> list[str]:
         from rotorlab.io import save_netcdf
 
         written.append(str(save_netcdf(ds, out)))
-    return written
+    doc = {"case": loaded.name, "source": loaded.source, **summary, "files": written}
+    if ds.attrs.get("analysis") == "impacts-sweep":
+        from rotorlab.analyses import paper_counts
+
+        for row, p in zip(doc["rows"], paper_counts(ds)):
+            row["paper_impacts"] = p
+    if json_out:
+        emit_json(doc)
+        return
+    if settings.quiet:
+        return
+    con = stdout()
+    for table in impact_tables({spec.name: ds}):
+        con.print(table)
+    for path in written:
+        con.print(f"Wrote {path}", markup=False)
 
 
 @app.command("impacts")
@@ -106,12 +117,7 @@ def impacts_command(
     """
     settings = _settings(ctx)
     with handled(settings):
-        _positive("--stone-mass", stone_mass, "kg")
-        _positive("--t-end", t_end, "s")
-        if seed is not None and seed < 0:
-            raise BadInput(f"--seed = {seed}: must be an integer >= 0")
-        _check_file("--plot", plot)
-        _check_file("--out", out)
+        _check(stone_mass, t_end, seed, plot, out)
         loaded = _impact_case(case)
         spec = _spec(loaded, "impacts", analysis)
         from rotorlab.analyses import impact_model, impact_run, impact_summary
@@ -127,19 +133,7 @@ def impacts_command(
         with status(settings, "Integrating ..."):
             ds = impact_run(model, duration, seed=run_seed, n_save=spec.n_save, rtol=spec.rtol, atol=spec.atol,
                             sliding_fraction=spec.sliding_fraction)  # fmt: skip
-        ds.attrs["case"] = loaded.name
-        written = _write(ds, plot, out)
-        doc = {"case": loaded.name, "source": loaded.source, **impact_summary(ds), "files": written}
-        if json_out:
-            emit_json(doc)
-            return
-        if settings.quiet:
-            return
-        con = stdout()
-        for table in impact_tables({spec.name: ds}):
-            con.print(table)
-        for path in written:
-            con.print(f"Wrote {path}", markup=False)
+        _finish(settings, loaded, spec, ds, impact_summary(ds), plot, out, json_out)
 
 
 def _param(stone_mass: str | None, param: str | None) -> tuple[str | None, Any]:
@@ -167,6 +161,71 @@ def _param(stone_mass: str | None, param: str | None) -> tuple[str | None, Any]:
     return name, np.linspace(lo, hi, n)
 
 
+def _executor(workers: int | None, scheduler: str | None, chunk: int | None, store: Path | None,
+              resume: bool) -> Any:
+    """The executor of ``--workers`` / ``--scheduler`` (None: in-process), after checking the options."""
+    for option, value in (("--workers", workers), ("--chunk", chunk)):
+        if value is not None and value < 1:
+            raise BadInput(f"{option} = {value}: must be an integer >= 1")
+    if scheduler is not None and workers is not None:
+        raise BadInput("--scheduler and --workers exclude each other: give only one")
+    if scheduler is not None and "://" not in scheduler:
+        raise BadInput(f"--scheduler = {scheduler}: must be an address like tcp://HOST:PORT")
+    if resume and store is None:
+        raise BadInput("--resume needs --out STORE.zarr (the store of the sweep to continue)")
+    if store is not None:
+        from rotorlab.cli._sweep import _check_store_path
+
+        _check_store_path(store, resume)
+    if scheduler is None and workers is None:
+        return None
+    from rotorlab.sweep import DaskExecutor
+
+    return DaskExecutor(scheduler=scheduler) if scheduler else DaskExecutor(workers=workers)
+
+
+def _run_stored(settings: Any, sweep: Any, *, store: Path | None, resume: bool, chunk: int | None,
+                executor: Any, title: str) -> tuple[Any, Any]:
+    """Run the sweep (into ``store`` if given) with a progress bar; BadInput / exit 130 on failure.
+
+    Returns the per-run Dataset and the last :class:`rotorlab.sweep.SweepProgress`.
+    """
+    from rotorlab.analyses._impact_sweep import default_chunk
+    from rotorlab.cli._sweep import _Bar
+    from rotorlab.sweep import ExecutorError, InProcess, SweepStoreError, run_sweep, store_info
+
+    existed = store is not None and store.exists()
+    last: list[Any] = []
+    split = store is not None or executor is not None
+    size = chunk if chunk is not None or (resume and existed) else default_chunk(sweep, split=split)
+    try:
+        with _Bar(settings, title) as bar:
+
+            def progress(p: Any) -> None:
+                last[:] = [p]
+                bar(p)
+
+            runs = run_sweep(sweep, store=store, resume=resume, chunk_size=size, executor=executor or InProcess(),
+                             progress=progress)  # fmt: skip
+    except SweepStoreError as exc:
+        raise BadInput(f"--out = {store}: {exc}") from None
+    except ExecutorError as exc:
+        if store is not None and not existed and store.exists() and store_info(store)["chunks_done"] == 0:
+            import shutil
+
+            shutil.rmtree(store)  # nothing computed: leave nothing behind
+        raise BadInput(str(exc)) from None
+    except KeyboardInterrupt:
+        if store is None:
+            raise
+        kept = store_info(store)["chunks_done"] if store.exists() else 0
+        total = last[0].n_chunks if last else "?"
+        stderr().print(f"interrupted: {kept} of {total} chunks are kept in {store}; continue with the same "
+                       "command and --resume", markup=False)  # fmt: skip
+        raise typer.Exit(130) from None
+    return runs, last[-1]
+
+
 @app.command("impacts-sweep")
 def impacts_sweep_command(
     ctx: typer.Context,
@@ -182,59 +241,62 @@ def impacts_sweep_command(
     seed: SeedOpt = None,
     analysis: AnalysisOpt = None,
     plot: PlotOpt = None,
-    out: OutOpt = None,
+    out: Annotated[Optional[Path], typer.Option(  # noqa: UP007
+        "--out", "-o", metavar="FILE.nc|STORE.zarr", help="Write the result Dataset to this NetCDF file; or, "
+        "with the suffix .zarr, every run to this sweep store chunk by chunk (resumable with --resume).")] = None,
+    resume: Annotated[bool, typer.Option("--resume", help="Continue the sweep in --out STORE.zarr: run only its "
+                                         "missing chunks.")] = False,  # fmt: skip
+    workers: Annotated[Optional[int], typer.Option(  # noqa: UP007
+        "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")] = None,
+    scheduler: Annotated[Optional[str], typer.Option(  # noqa: UP007
+        "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")] = None,
+    chunk: Annotated[Optional[int], typer.Option(  # noqa: UP007
+        "--chunk", metavar="N", help="Runs per chunk (default: one value's sequences; a resumed store keeps "
+        "its own).")] = None,
     json_out: JsonOpt = False,
 ) -> None:
     """Impact counts over many random stone sequences per stone mass (seed 001's table, Fig. 5).
 
     Prints per value the median and quartiles of the impacts, the regimes of the runs and the
-    median energy ratio eta; for the seed's own parameters also the paper's count.
+    median energy ratio eta; for the seed's own parameters also the paper's count. With --out
+    STORE.zarr every finished chunk of runs is kept at once and an interrupted sweep continues
+    with --resume; results are identical, bit for bit, whatever --workers, --scheduler or --chunk.
     """
     settings = _settings(ctx)
     with handled(settings):
         name, values = _param(stone_mass, param)
         if sequences is not None and sequences < 1:
             raise BadInput(f"--sequences = {sequences}: must be an integer >= 1")
-        _positive("--t-end", t_end, "s")
-        if seed is not None and seed < 0:
-            raise BadInput(f"--seed = {seed}: must be an integer >= 0")
-        _check_file("--plot", plot)
-        _check_file("--out", out)
+        store = out if out is not None and out.suffix == ".zarr" else None
+        _check(None, t_end, seed, plot, None if store is not None else out)
+        executor = _executor(workers, scheduler, chunk, store, resume)
         loaded = _impact_case(case)
         spec = _spec(loaded, "impacts-sweep", analysis)
         if name is None:
             name, values = spec.param, list(spec.values)
-        from rotorlab.analyses import impact_model, impact_sweep
+        from rotorlab.analyses import impact_model, impact_sweep_definition, summarize_impact_sweep, sweep_summary
 
         overrides = {k: v for k, v in spec.overrides().items() if k != name}
         model = impact_model(loaded.model, **overrides)
         n_seq = spec.n_sequences if sequences is None else sequences
         duration = spec.t_end if t_end is None else t_end
         first = spec.seed if seed is None else seed
-        info(settings, f"Sweeping {name} of {loaded.name}: {len(values)} values x {n_seq} sequences x {duration:g} s ...",
-             json_mode=json_out)  # fmt: skip
-        with status(settings, "Integrating ..."):
-            ds = impact_sweep(model, values, param=name, n_sequences=n_seq, t_end=duration, seed=first,
-                              rtol=spec.rtol, atol=spec.atol, sliding_fraction=spec.sliding_fraction)  # fmt: skip
-        ds.attrs["case"] = loaded.name
-        written = _write(ds, plot, out)
-        from rotorlab.analyses import sweep_summary
-
-        doc = {"case": loaded.name, "source": loaded.source, **sweep_summary(ds), "files": written}
-        from rotorlab.analyses import paper_counts
-
-        for row, p in zip(doc["rows"], paper_counts(ds)):
-            row["paper_impacts"] = p
-        if json_out:
-            emit_json(doc)
-            return
-        if settings.quiet:
-            return
-        con = stdout()
-        for table in impact_tables({spec.name: ds}):
-            con.print(table)
-        for path in written:
-            con.print(f"Wrote {path}", markup=False)
+        sweep = impact_sweep_definition(model, values, param=name, n_sequences=n_seq, t_end=duration, seed=first,
+                                        rtol=spec.rtol, atol=spec.atol, sliding_fraction=spec.sliding_fraction)  # fmt: skip
+        where = "" if executor is None else f", {executor.describe()}"
+        into = "" if store is None else f", into {store}"
+        info(settings, f"Sweeping {name} of {loaded.name}: {len(values)} values x {n_seq} sequences x {duration:g} s"
+             f"{where}{into} ...", json_mode=json_out)  # fmt: skip
+        runs, p = _run_stored(settings, sweep, store=store, resume=resume, chunk=chunk, executor=executor,
+                              title=loaded.name)  # fmt: skip
+        ds = summarize_impact_sweep(runs, model, param=name, seed=first)
+        summary = sweep_summary(ds)
+        if store is not None or executor is not None:
+            summary["sweep"] = {"store": None if store is None else str(store),
+                                "executor": "in-process" if executor is None else executor.describe(),
+                                "chunks": {"total": p.n_chunks, "computed": p.computed, "skipped": p.skipped}}  # fmt: skip
+        _finish(settings, loaded, spec, ds, summary, plot, None if store is not None else out, json_out,
+                files=() if store is None else (str(store),))  # fmt: skip
 
 
 def impact_tables(results: dict[str, Any]) -> list[Any]:

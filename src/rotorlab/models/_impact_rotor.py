@@ -118,6 +118,7 @@ import numpy as np
 
 from rotorlab._kernels import impact_rotor as _k
 from rotorlab.models._base import EventSpec, Kernels
+from rotorlab.models._checks import check_number as _num
 
 __all__ = [
     "CentrifugeRotor",
@@ -152,30 +153,6 @@ _KERNELS = Kernels(
     reset=_k.reset,
     event_specs=tuple(EventSpec(name, -1, "reset") for name in EVENT_NAMES),
 )
-
-
-def _num(owner: str, name: str, value, *, lo: float | None = 0.0, lo_open: bool = True,
-         hi: float | None = None, hi_open: bool = False, unit: str = "") -> float:  # fmt: skip
-    """Check a number against its bounds; raise ValueError naming the parameter."""
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = math.nan
-    ok = math.isfinite(v)
-    if ok and lo is not None:
-        ok = v > lo if lo_open else v >= lo
-    if ok and hi is not None:
-        ok = v < hi if hi_open else v <= hi
-    if not ok:
-        parts = []
-        if lo is not None:
-            parts.append(f"{'>' if lo_open else '>='} {lo:g}")
-        if hi is not None:
-            parts.append(f"{'<' if hi_open else '<='} {hi:g}")
-        bound = " and ".join(parts) or "finite"
-        u = f" ({unit})" if unit else ""
-        raise ValueError(f"{owner}.{name} must be a finite number {bound}{u}, got {value!r}")
-    return v
 
 
 # ------------------------------------------------------------------------------------ parameters
@@ -816,6 +793,59 @@ class ImpactRotor:
             a[:, [2, 3, 6, 7]] = 0.0
             a[[2, 3, 6, 7], :] = 0.0
         return a
+
+    def linearize(self):
+        """M, C, G, K of the free small motions in the rotating frame (no stones, no contact).
+
+        ``M q'' + (C + G) q' + K q = 0`` for ``q = (u1, u2, t1, t2)`` (translational model:
+        ``q = (u1, u2)``); the equations are linear, so this is exact.
+
+        Returns
+        -------
+        rotorlab.models.Linearization
+            ``M = diag(m, m, A1, A1)`` (kg, kg m^2); ``C = (gamma / omega0) S`` (Sorokin's internal
+            friction, symmetric); ``G`` skew: ``2 m omega0`` between u1, u2 (Coriolis) and
+            ``(A3 - 2 A1) omega0`` between t1, t2 (gyroscopic, rotating frame); ``K = S - diag(m
+            omega0^2, m omega0^2, (A1 - A3) omega0^2, ...) + gamma J S``: membrane stiffness ``S``
+            (c on u, ``c n_m`` coupling, ``c n_m^2 + c_*`` on t), the centrifugal softening and
+            the circulatory part of the internal friction (``J`` turns axis 1 into axis 2);
+            ``A = [[0, I], [-M^-1 K, -M^-1 (C + G)]]`` equals :meth:`state_matrix`.
+
+        References
+        ----------
+        Krasnov, Tovstik & Tovstik (2003), eqs (2.2), (4.1) as reconstructed in this module.
+
+        Examples
+        --------
+        >>> lin = krasnov_crusher().linearize()
+        >>> lin.M.shape, bool(np.allclose(lin.G, -lin.G.T)), bool(np.allclose(lin.A, krasnov_crusher().state_matrix()))
+        ((4, 4), True, True)
+        """
+        from rotorlab.models._jeffcott_physics import Linearization
+
+        r = self.rotor
+        m, a1, a3, w0, gam = r.mass, r.inertia_transverse, r.inertia_polar, r.spin_speed, r.internal_friction
+        c, nm, cs = r.stiffness, r.membrane_offset, r.tilt_stiffness
+        n = 2 if r.translational else 4
+        s2 = np.array([[c, c * nm], [c * nm, c * nm * nm + cs]])[: n // 2, : n // 2]  # one axis: (u, t)
+        S = np.zeros((n, n))
+        circ = np.zeros((n, n))
+        for a in range(2):
+            dofs = [a, 2 + a][: n // 2]
+            S[np.ix_(dofs, dofs)] = s2
+            other = [1 - a, 3 - a][: n // 2]
+            circ[np.ix_(dofs, other)] = (-1.0 if a == 0 else 1.0) * s2
+        M = np.diag([m, m, a1, a1][:n])
+        G = np.zeros((n, n))
+        G[1, 0], G[0, 1] = 2.0 * m * w0, -2.0 * m * w0
+        if n == 4:
+            g = (a3 - 2.0 * a1) * w0
+            G[2, 3], G[3, 2] = g, -g
+        K = S - np.diag([m * w0**2, m * w0**2, (a1 - a3) * w0**2, (a1 - a3) * w0**2][:n]) + gam * circ
+        C = (gam / w0) * S
+        minv = np.diag(1.0 / np.diag(M))
+        A = np.block([[np.zeros((n, n)), np.eye(n)], [-minv @ K, -minv @ (C + G)]])
+        return Linearization(A=A, M=M, C=C, G=G, K=K, spin_speed=w0, residual=np.zeros(2 * n))
 
     def rhs(self, t: float, y) -> np.ndarray:
         """dy/dt at one state (calls the compiled kernel)."""

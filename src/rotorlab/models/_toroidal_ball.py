@@ -92,6 +92,7 @@ import numpy as np
 
 from rotorlab._kernels import toroidal_ball as _k
 from rotorlab.models._base import EventSpec, Kernels
+from rotorlab.models._checks import check_number
 
 __all__ = ["ToroidalBall", "WorkingPoint", "strautmanis_torus", "EVENT_NAMES"]
 
@@ -108,17 +109,6 @@ _KERNELS = Kernels(
     reset=_k.reset,
     event_specs=tuple(EventSpec(name, -1, "count" if name == "lift_off" else "reset") for name in EVENT_NAMES),
 )
-
-
-def _positive(name: str, value, *, allow_zero: bool = False, unit: str = "") -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = math.nan
-    if not math.isfinite(v) or v < 0.0 or (v == 0.0 and not allow_zero):
-        bound = ">= 0" if allow_zero else "> 0"
-        raise ValueError(f"ToroidalBall.{name} must be a finite number {bound} ({unit}), got {value!r}")
-    return v
 
 
 @dataclass(frozen=True, slots=True)
@@ -221,7 +211,8 @@ class ToroidalBall:
                                  ("ball_radius", "m", False), ("spin_speed", "rad/s", False),
                                  ("offset", "m", True), ("rolling_friction", "m", True),
                                  ("gravity", "m/s^2", True)):  # fmt: skip
-            object.__setattr__(self, name, _positive(name, getattr(self, name), allow_zero=zero, unit=unit))
+            object.__setattr__(self, name, check_number("ToroidalBall", name, getattr(self, name), lo_open=not zero,
+                                                         unit=unit))  # fmt: skip
         if self.ball_radius >= self.tube_radius:
             raise ValueError(
                 f"ToroidalBall.ball_radius must be < tube_radius ({self.tube_radius:g} m), got {self.ball_radius!r}"
