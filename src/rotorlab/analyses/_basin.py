@@ -41,13 +41,15 @@ def _num(value: Any) -> float | None:
 
 
 def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None) -> Any:
-    """Build the mapper of a ``basin`` analysis.
+    """Build the mapper of a ``basin`` (or ``sweep``) analysis.
 
     Parameters
     ----------
     case_model : rotorlab.io.ToroidalBallSpec or rotorlab.io.JeffcottBallsSpec
         ``Case.model``.
-    analysis : rotorlab.io.BasinSpec
+    analysis : rotorlab.io.BasinSpec or rotorlab.io.SweepSpec
+        Gives ``n_horizons``, ``t_end``, ``window_revolutions``, ``spare_turns``, ``rtol``,
+        ``atol`` (None: the mapper's default) and ``spin_speed(case_model)``.
     t_end : float, optional
         Simulated time (s) instead of the analysis' (or the mapper's default).
 
