@@ -96,3 +96,92 @@ def test_sweep_cli_toroidal_ball_bad_input_exits_2(tmp_path):
         res = invoke(*base, *extra)
         assert res.exit_code == 2 and message in res.stderr and "Traceback" not in res.output, (extra, res.stderr)
         assert not out.exists()
+
+
+# --------------------------------------------------------------------------- checkpointed basins
+
+
+def _basin_spec(case, name="basin-k1e-4", **updates):
+    """The spec ``rotorlab basin CASE --analysis NAME --x ... --y ... --t-end ...`` builds."""
+    from rotorlab.io import BasinSpec
+
+    base = case.analysis(name)
+    return BasinSpec.model_validate({**base.model_dump(), **updates})
+
+
+class _Stop:
+    """A progress callback that raises KeyboardInterrupt (Ctrl-C) after ``k`` finished chunks."""
+
+    def __init__(self, k: int) -> None:
+        self.k, self.calls = k, 0
+
+    def __call__(self, done: int, total: int) -> None:
+        self.calls += 1
+        if self.calls >= self.k:
+            raise KeyboardInterrupt
+
+
+GRID = {"x": ("psi", 0.0, 6.0, 4), "y": ("dpsi", -280.0, 140.0, 3), "t_end": 2.0}
+
+
+def test_basin_interrupted_then_resumed_is_bit_identical_python(tmp_path):
+    from rotorlab.analyses import run_basin_analysis
+
+    case = load_case("strautmanis-torus")
+    spec = _basin_spec(case, **GRID)
+    ref = run_basin_analysis(case.model, spec, chunk_size=5)  # in memory, other chunking
+    store = tmp_path / "b.zarr"
+    with pytest.raises(KeyboardInterrupt):
+        run_basin_analysis(case.model, spec, chunk_size=4, store=store, progress=_Stop(2))
+    info = store_info(store)
+    assert info["chunks_done"] == 2 and not info["complete"] and info["n_chunks"] == 3
+    calls = []
+    ds = run_basin_analysis(case.model, spec, store=store, resume=True,
+                            progress=lambda done, total: calls.append(done))  # fmt: skip
+    assert calls == [12]  # only the missing chunk was computed (the store keeps its chunk size)
+    assert store_info(store)["done"].tolist() == [1, 1, 2]
+    xr.testing.assert_identical(ref, ds)
+    assert _bits(ref) == _bits(ds)
+    assert set(np.unique(ds.outcome.values)) <= {0, 1, 2} and ds["count"].values[-1].sum() == 12
+    # random starts (basin stability) through a store give the in-memory result too
+    rnd = _basin_spec(case, **GRID, samples=7, seed=3)
+    a = run_basin_analysis(case.model, rnd, chunk_size=3)
+    b = run_basin_analysis(case.model, rnd, chunk_size=2, store=tmp_path / "r.zarr")
+    xr.testing.assert_identical(a, b)
+    assert _bits(a) == _bits(b) and float(b.ci_low.min()) >= 0.0
+    with pytest.raises(ValueError, match="working-point"):
+        run_basin_analysis(case.model, case.analysis("working-point"), store=tmp_path / "w.zarr")
+
+
+def test_basin_cli_store_resume_gives_the_in_memory_json_and_netcdf(tmp_path):
+    from rotorlab.analyses import run_basin_analysis
+
+    case = load_case("strautmanis-torus")
+    args = ["basin", "strautmanis-torus", "--analysis", "basin-k1e-4", "--x", "psi=0:6:4", "--y", "dpsi=-280:140:3",
+            "--t-end", "2", "--json"]  # fmt: skip
+    plain = invoke(*args, "--out", str(tmp_path / "plain.nc"))
+    assert plain.exit_code == 0, plain.output
+    store = tmp_path / "b.zarr"
+    # an interrupted checkpointed run (Ctrl-C after one chunk of four points) ...
+    with pytest.raises(KeyboardInterrupt):
+        run_basin_analysis(case.model, _basin_spec(case, **GRID), chunk_size=4, store=store, progress=_Stop(1))
+    assert store_info(store)["chunks_done"] == 1
+    # ... is refused without --resume, and continued with it
+    again = invoke(*args, "--store", str(store))
+    assert again.exit_code == 2 and "--store = " in again.stderr and "--resume" in again.stderr
+    resumed = invoke(*args, "--store", str(store), "--resume", "--out", str(tmp_path / "resumed.nc"))
+    assert resumed.exit_code == 0, resumed.output
+    assert store_info(store)["done"].tolist() == [1, 2, 2]
+    a, b = json.loads(plain.stdout), json.loads(resumed.stdout)
+    assert a.pop("files") != b.pop("files")
+    assert a == b and a["n"] == 12
+    from rotorlab.io import load_netcdf
+
+    x, y = load_netcdf(tmp_path / "plain.nc"), load_netcdf(tmp_path / "resumed.nc")
+    xr.testing.assert_identical(x, y)
+    assert x.label.values.tobytes() == y.label.values.tobytes()
+    # a store of another basin (another --t-end) is refused, naming what differs
+    other = invoke(*[a if a != "2" else "3" for a in args], "--store", str(store), "--resume")
+    assert other.exit_code == 2 and "holds a different sweep" in other.stderr and "t_end" in other.stderr
+    bad = invoke(*args, "--resume")
+    assert bad.exit_code == 2 and "--resume needs --store" in bad.stderr

@@ -125,13 +125,24 @@ def basin_command(
         "--out", "-o", metavar="FILE.nc", help="Write the basin Dataset to this NetCDF file.")] = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--plot", metavar="FILE", help="Save the basin map (PNG, PDF or SVG by suffix).")] = None,
+    store: Annotated[Optional[Path], typer.Option(  # noqa: UP007
+        "--store", metavar="STORE.zarr", help="Checkpoint: write every finished chunk to this Zarr store, so that "
+        "an interrupted basin continues with --resume (results are the same).")] = None,
+    resume: Annotated[bool, typer.Option("--resume", help="Continue the basin in --store: compute only its "
+                                         "missing chunks.")] = False,  # fmt: skip
+    scheduler: Annotated[Optional[str], typer.Option(  # noqa: UP007
+        "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")] = None,
+    workers: Annotated[Optional[int], typer.Option(  # noqa: UP007
+        "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")] = None,
     json_out: JsonOpt = False,
 ) -> None:
     """Map starts to regimes: basin map, basin fractions against the simulated time, settling times.
 
     Without --x/--y the grid of the case's (first, or --analysis) basin analysis is used. The
     toroidal ball's regimes are working, spare and other; a rotor with balls has balanced, one
-    per side motion, non-synchronous and other.
+    per side motion, non-synchronous and other. With --store every finished chunk is kept in a
+    Zarr store: Ctrl-C (or a killed run) loses nothing, and the same command with --resume
+    computes only the missing chunks.
     """
     settings = _settings(ctx)
     with handled(settings):
@@ -142,6 +153,13 @@ def basin_command(
             raise BadInput(f"--t-end = {t_end:g}: must be a finite number > 0 (s)")
         _check_plot("--plot", plot)
         _check_plot("--out", out)
+        from rotorlab.cli._sweep import check_store_path, executor_from_options, run_into_store
+
+        executor = executor_from_options(scheduler, workers)
+        if resume and store is None:
+            raise BadInput("--resume needs --store STORE.zarr (the store to continue)")
+        if store is not None:
+            check_store_path(store, resume, "--store")
         loaded = _load(case)
         from rotorlab.io import coordinate_dimensions
 
@@ -162,8 +180,9 @@ def basin_command(
         n = spec.samples if spec.samples is not None else spec.x[3] * spec.y[3]
         info(settings, f"Mapping {loaded.name}: {n} starts ...", json_mode=json_out)
         with progress_bar(settings, {spec.name: n}) as update:
-            ds = run_basin_analysis(loaded.model, spec, chunk_size=chunk,
-                                    progress=lambda done, total: update(spec.name, done, total))  # fmt: skip
+            ds = run_into_store(lambda: run_basin_analysis(
+                loaded.model, spec, chunk_size=chunk, progress=lambda done, total: update(spec.name, done, total),
+                store=store, resume=resume, executor=executor), store, "--store")  # fmt: skip
         ds.attrs["case"] = loaded.name
         written = []
         if plot is not None:
