@@ -185,3 +185,69 @@ def test_basin_cli_store_resume_gives_the_in_memory_json_and_netcdf(tmp_path):
     assert other.exit_code == 2 and "holds a different sweep" in other.stderr and "t_end" in other.stderr
     bad = invoke(*args, "--resume")
     assert bad.exit_code == 2 and "--resume needs --store" in bad.stderr
+
+
+# --------------------------------------------------------------------------- sweep analyses in rotorlab run
+
+SWEEP_CASE = """\
+schema_version = 1
+name = "torus-sweep"
+description = "toroidal ball: regimes over friction and the ring angle"
+
+[model]
+type = "toroidal_ball"
+ring_radius = "0.2 m"
+tube_radius = "0.015 m"
+ball_radius = "0.0125 m"
+spin_speed = "140 rad/s"
+offset = "0.02 m"
+rolling_friction = "1e-4 m"
+
+[[analysis]]
+type = "sweep"
+name = "k-map"
+param = { rolling_friction = ["1e-5 m", "1e-4 m", 3] }
+ic = { psi = ["0 deg", "300 deg", 6] }
+t_end = "2 s"
+n_horizons = 2
+chunk = 7
+
+[[analysis]]
+type = "sweep"
+name = "random"
+ic = { psi = ["0 deg", "360 deg"], dpsi = [-280, 140] }
+sample = 9
+seed = 4
+t_end = "1 s"
+n_horizons = 2
+"""
+
+
+def test_run_command_runs_sweep_analyses(tmp_path):
+    from rotorlab.analyses._sweep import build_sweep
+    from rotorlab.io import load_netcdf
+    from rotorlab.sweep import run_sweep
+
+    path = tmp_path / "torus-sweep.toml"
+    path.write_text(SWEEP_CASE)
+    res = invoke("run", str(path), "--out", str(tmp_path / "out"), "--json")
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout)
+    assert {"k-map.nc", "random.nc", "k-map_basin.png", "k-map_fractions.png", "random_fractions.png",
+            "report.html"} == set(doc["files"])  # fmt: skip
+    rows = doc["analyses"]["k-map"]["rows"]
+    assert doc["analyses"]["k-map"]["type"] == "sweep" and [r["regime"] for r in rows] == ["working", "spare", "other"]
+    assert sum(r["count"] for r in rows) == 18 and sum(r["fraction"] for r in rows) == pytest.approx(1.0)
+    # the saved results are the engine's, bit for bit (grid and seeded sample)
+    case = parse_case(SWEEP_CASE, origin=str(path))
+    for name, dims in (("k-map", ("rolling_friction", "psi", "horizon")), ("random", ("sample", "horizon"))):
+        saved = load_netcdf(tmp_path / "out" / f"{name}.nc")
+        spec = case.analysis(name)
+        ref = run_sweep(build_sweep(case.model, spec), chunk_size=3)
+        assert saved.label.dims == dims and saved.label.values.tobytes() == ref.label.values.tobytes()
+        assert saved.attrs["analysis"] == "sweep" and saved.fraction.attrs["units"] == "1"
+        counts = np.bincount(ref.outcome.values.ravel(), minlength=3)
+        assert saved["count"].values[-1].tolist() == counts.tolist()
+    html = (tmp_path / "out" / "report.html").read_text()
+    assert "Analysis: k-map (sweep)" in html and "Regimes of a grid of 18 starts over rolling_friction × psi" in html
+    assert "Regimes of 9 random points (seed 4) over psi × dpsi" in html and html.count("<img") == 3

@@ -79,13 +79,48 @@ def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None 
 
 
 def run_sweep_analysis(case_model: Any, spec: Any, progress: Callable[[int, int], None] | None = None) -> Any:
-    """Run a case's ``sweep`` analysis in this process (no store) and return its Dataset."""
+    """Run a case's ``sweep`` analysis in this process (no store) and return its Dataset.
+
+    Parameters
+    ----------
+    case_model : rotorlab.io.JeffcottBallsSpec or rotorlab.io.ToroidalBallSpec
+        ``Case.model``.
+    spec : rotorlab.io.SweepSpec
+    progress : callable, optional
+        ``progress(done, total)``: points finished.
+
+    Returns
+    -------
+    xarray.Dataset
+        The sweep's Dataset (:func:`rotorlab.sweep.run_sweep`; dims: one per swept quantity,
+        or ``sample``, then ``horizon``) plus ``fraction`` and ``count`` (horizon, regime) of
+        :func:`rotorlab.explore.basin_fractions`; attrs ``analysis = "sweep"``, ``name``,
+        ``mode`` (``"grid"`` or ``"sample"``, with ``seed``).
+
+    Examples
+    --------
+    >>> from rotorlab.io import load_case, SweepSpec
+    >>> case = load_case("strautmanis-torus")
+    >>> ds = run_sweep_analysis(case.model, SweepSpec(name="s", ic={"psi": [1.0, 5.0, 3]}, t_end=1.0,
+    ...                                               n_horizons=1))
+    >>> ds.fraction.sum("regime").values.tolist(), ds.attrs["mode"]
+    ([1.0], 'grid')
+    """
+    from rotorlab.explore import basin_fractions
     from rotorlab.sweep import run_sweep
 
     def report(p: Any) -> None:
         if progress is not None:
             progress(p.done, p.total)
 
-    ds = run_sweep(build_sweep(case_model, spec), chunk_size=spec.chunk, progress=report)
-    ds.attrs.update(analysis="sweep", name=spec.name)
+    sweep = build_sweep(case_model, spec)
+    ds = run_sweep(sweep, chunk_size=spec.chunk, progress=report)
+    fr = basin_fractions(ds)
+    ds = ds.assign(fraction=fr["fraction"], count=fr["count"])
+    ds["fraction"].attrs.update(units="1", description="fraction of the points with each label")
+    ds["count"].attrs.update(units="1", description="number of points with each label")
+    ds.attrs.update(analysis="sweep", name=spec.name, model=str(case_model.type),
+                    mode="grid" if sweep.axes else "sample")  # fmt: skip
+    if sweep.sample is not None:
+        ds.attrs["seed"] = sweep.sample.seed
     return ds

@@ -238,7 +238,9 @@ def basin_tables(results: dict[str, Any], tables: dict[str, list[dict[str, Any]]
         horizons = ds["horizon"].values
         n = rows[0]["n"] if rows else 0
         fixed = ", ".join(f"{k[6:]} = {float(v):g}" for k, v in ds.attrs.items() if k.startswith("fixed_"))
-        table = Table(title=f"{name}: {n} starts, {ds.attrs.get('x')} x {ds.attrs.get('y')}"
+        over = (f"{ds.attrs.get('x')} x {ds.attrs.get('y')}" if "x" in ds.attrs else
+                " x ".join(d for d in ds["label"].dims if d != "horizon"))  # fmt: skip
+        table = Table(title=f"{name}: {n} starts, {over}"
                             + (f" ({fixed})" if fixed else "") + f", after {float(horizons[-1]):g} s",
                       title_justify="left")  # fmt: skip
         half = rows[0]["horizon_half_s"] if rows else float(horizons[-1])

@@ -22,7 +22,7 @@ from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
 from rotorlab.cli._output import BadInput, emit_json, handled, info, stderr, stdout
 
 __all__ = ["sweep_command", "show_command", "parse_axis", "check_store_path", "executor_from_options",
-           "run_into_store", "sweep_figures"]
+           "run_into_store"]
 
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -391,7 +391,7 @@ def show_command(
             if sub is not None:
                 fractions, n = _fractions(sub)
             if meta["complete"]:
-                written = _figures(ds, folder, meta)
+                written = _figures(ds, folder)
         doc = {"store": str(store), "dims": meta["dims"], "shape": meta["shape"], "n_points": meta["n_points"],
                "chunks": {"total": meta["n_chunks"], "done": meta["chunks_done"]}, "complete": meta["complete"],
                "runs": meta["runs"], "versions": meta["versions"], "fixed": meta["fixed"],
@@ -421,18 +421,13 @@ def show_command(
             con.print(f"Wrote {path}", markup=False)
 
 
-def _figures(ds: Any, folder: Path, meta: dict[str, Any]) -> list[str]:
-    from rotorlab.explore import basin_fractions
-    from rotorlab.plot._basin import basin_figure, fractions_figure
+def _figures(ds: Any, folder: Path) -> list[str]:
+    from rotorlab.plot import sweep_figures
 
     folder.mkdir(exist_ok=True)
     out = []
-    grid_dims = [d for d in ds["label"].dims if d != "horizon"]
-    if meta.get("grid") and len(grid_dims) == 2:
-        path = folder / "basin.png"
-        basin_figure(ds).savefig(path, dpi=110)
+    for stem, fig in sweep_figures(ds).items():
+        path = folder / f"{stem}.png"
+        fig.savefig(path, dpi=110)
         out.append(str(path))
-    path = folder / "fractions.png"
-    fractions_figure(basin_fractions(ds)).savefig(path, dpi=110)
-    out.append(str(path))
     return out

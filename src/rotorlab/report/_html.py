@@ -263,7 +263,7 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
             parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
             shown.update(key for key in pngs if key.startswith(f"{name}_"))
             continue
-        if analysis.type in ("basin", "working-point") and ds is not None:
+        if analysis.type in ("basin", "working-point", "sweep") and ds is not None:
             parts += [_table(("key", "value", "unit", "also"), rows, numeric={1}),
                       basin_section(ds, summary_tables.get(name), _table)]
             parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
