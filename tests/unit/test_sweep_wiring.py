@@ -251,3 +251,39 @@ def test_run_command_runs_sweep_analyses(tmp_path):
     html = (tmp_path / "out" / "report.html").read_text()
     assert "Analysis: k-map (sweep)" in html and "Regimes of a grid of 18 starts over rolling_friction × psi" in html
     assert "Regimes of 9 random points (seed 4) over psi × dpsi" in html and html.count("<img") == 3
+
+
+# --------------------------------------------------------------------------- stability chart on the engine
+
+
+def test_stability_chart_is_a_sweep_of_steady_stability(tmp_path):
+    from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, RotorParams
+    from rotorlab.steady import EXACT_VERDICTS, SteadyStability, stability_chart
+    from rotorlab.sweep import ListAxis, LocalProcesses, Sweep, run_sweep
+
+    ball = BallParams(mass=0.03, radius=0.06, damping=2e-3)
+    rotor = RotorParams(disc_mass=2.0, eccentricity=1.08e-3, stiffness=2e4, damping=8.0)
+    model = JeffcottBalls(rotor, (ball, ball), speed=ConstantSpeed(1.0))
+    speeds, masses = np.array([40.0, 90.0, 150.0, 300.0]), np.array([0.01, 0.03, 0.06])
+    chart = stability_chart(model, speeds, param="ball_mass", values=masses)
+    sweep = Sweep(SteadyStability(model, "ball_mass"), axes=(ListAxis("ball_mass", masses), ListAxis("spin_speed", speeds)))
+    # chunked into a store on two worker processes: the chart's numbers, bit for bit
+    res = run_sweep(sweep, store=tmp_path / "chart.zarr", chunk_size=5, executor=LocalProcesses(workers=2, threads=1))
+    for name in ("exists", "stable_exact", "stable_hamilton", "growth_rate", "amplitude", "ball_angle"):
+        assert res[name].values.tobytes() == chart[name].values.tobytes(), name
+    verdicts = np.array(EXACT_VERDICTS)[res.verdict_exact.values]
+    assert (verdicts == chart.verdict_exact.values).all()
+    assert res.growth_rate.attrs["units"] == "1/s" and res.spin_speed.attrs["units"] == "rad/s"
+    # physics (seed 002): with eta = M1 e / (m R) < 2 the balanced motions are stable only above
+    # the critical speed (here at 3 p); with eta > 2 (the lightest balls) they do not exist
+    p = res.critical_speed.values
+    main = chart.kind.values == "main"
+    eta = rotor.disc_mass * rotor.eccentricity / (masses * ball.radius)
+    assert eta.round(2).tolist() == [3.6, 1.2, 0.6]
+    ratio = speeds[None, :] / p
+    assert chart.speed_ratio.values.tobytes() == ratio.tobytes()
+    assert not chart.balanced.values[ratio < 1].any() and (ratio < 1).sum() == 6
+    assert chart.balanced.values[1:, -1].all() and ratio[1:, -1].min() > 3
+    assert not chart.exists.values[0][:, main].any() and not chart.balanced.values[0].any()
+    with pytest.raises(ValueError, match="unknown chart parameter"):
+        SteadyStability(model, "disc_mass")
