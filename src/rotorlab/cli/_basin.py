@@ -16,6 +16,7 @@ import typer
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, emit_json, handled, info, progress_bar, stdout
 from rotorlab.cli._steady import _check_plot, parse_range
+from rotorlab.cli._sweep import SchedulerOpt, WorkersOpt
 
 __all__ = ["basin_command", "basin_tables"]
 
@@ -130,10 +131,8 @@ def basin_command(
         "an interrupted basin continues with --resume (results are the same).")] = None,
     resume: Annotated[bool, typer.Option("--resume", help="Continue the basin in --store: compute only its "
                                          "missing chunks.")] = False,  # fmt: skip
-    scheduler: Annotated[Optional[str], typer.Option(  # noqa: UP007
-        "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")] = None,
-    workers: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")] = None,
+    scheduler: SchedulerOpt = None,
+    workers: WorkersOpt = None,
     json_out: JsonOpt = False,
 ) -> None:
     """Map starts to regimes: basin map, basin fractions against the simulated time, settling times.

@@ -12,8 +12,8 @@ from __future__ import annotations
 
 import math
 import time
-from pathlib import Path
 from collections.abc import Callable
+from pathlib import Path
 from typing import Annotated, Any, Optional
 
 import typer
@@ -25,6 +25,12 @@ __all__ = ["sweep_command", "show_command", "parse_axis", "check_store_path", "e
            "run_into_store"]
 
 _RPM = 60.0 / (2.0 * math.pi)
+
+# options shared by the commands that run on the sweep engine (sweep, basin)
+SchedulerOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
+    "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")]
+WorkersOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
+    "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")]
 
 
 def parse_axis(option: str, text: str, kind: str, sample: bool) -> tuple[str, tuple]:
@@ -232,10 +238,8 @@ def sweep_command(
         "--t-end", metavar="SECONDS", help="Simulated time (s).")] = None,
     resume: Annotated[bool, typer.Option("--resume", help="Continue the sweep in --out: compute only its "
                                          "missing chunks.")] = False,  # fmt: skip
-    scheduler: Annotated[Optional[str], typer.Option(  # noqa: UP007
-        "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")] = None,
-    workers: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")] = None,
+    scheduler: SchedulerOpt = None,
+    workers: WorkersOpt = None,
     chunk: Annotated[Optional[int], typer.Option(  # noqa: UP007
         "--chunk", metavar="N", help="Points per chunk (default: the case's, else 1024; a resumed store keeps "
         "its own).")] = None,
