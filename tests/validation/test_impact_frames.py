@@ -13,7 +13,6 @@ in complex form (X = x + i y, Theta = tilt, both fixed frame)::
 rotated by exp(-i w0 t).
 """
 
-import math
 from dataclasses import replace
 
 import numpy as np

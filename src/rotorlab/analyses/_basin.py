@@ -41,13 +41,15 @@ def _num(value: Any) -> float | None:
 
 
 def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None) -> Any:
-    """Build the mapper of a ``basin`` analysis.
+    """Build the mapper of a ``basin`` (or ``sweep``) analysis.
 
     Parameters
     ----------
     case_model : rotorlab.io.ToroidalBallSpec or rotorlab.io.JeffcottBallsSpec
         ``Case.model``.
-    analysis : rotorlab.io.BasinSpec
+    analysis : rotorlab.io.BasinSpec or rotorlab.io.SweepSpec
+        Gives ``n_horizons``, ``t_end``, ``window_revolutions``, ``spare_turns``, ``rtol``,
+        ``atol`` (None: the mapper's default) and ``spin_speed(case_model)``.
     t_end : float, optional
         Simulated time (s) instead of the analysis' (or the mapper's default).
 
@@ -105,6 +107,9 @@ def run_basin(
     threads: int | None = None,
     chunk_size: int | None = None,
     progress: Callable[[int, int], None] | None = None,
+    store: Any = None,
+    resume: bool = False,
+    executor: Any = None,
 ) -> xarray.Dataset:
     """Map a grid (or random sample) of two start coordinates to regimes, with fractions.
 
@@ -121,6 +126,14 @@ def run_basin(
         Random starts: seed and level of the Wilson intervals.
     threads, chunk_size, progress
         As for :func:`rotorlab.explore.map_starts`; results do not depend on them.
+    store : path-like, optional
+        Checkpoint: write every chunk to this Zarr store as it finishes; an interrupted run
+        continues with ``resume=True``, computing only the missing chunks. The Dataset is the
+        same, bit for bit, as without a store.
+    resume : bool
+        Continue ``store`` (it must hold the same starts and mapper).
+    executor : rotorlab.sweep.InProcess, LocalProcesses or DaskExecutor, optional
+        Where the chunks run (instead of ``threads``); results do not depend on it.
 
     Returns
     -------
@@ -135,15 +148,15 @@ def run_basin(
 
     fixed = dict(fixed or {})
     if samples is None:
-        ds = basin_map(mapper, GridAxis(*x), GridAxis(*y), fixed=fixed, threads=threads,
-                       chunk_size=chunk_size, progress=progress)  # fmt: skip
+        ds = basin_map(mapper, GridAxis(*x), GridAxis(*y), fixed=fixed, threads=threads, chunk_size=chunk_size,
+                       progress=progress, store=store, resume=resume, executor=executor)  # fmt: skip
         fr = basin_fractions(ds)
         ds = ds.assign(fraction=fr["fraction"], count=fr["count"])
         mode = "grid"
     else:
         ds = basin_stability(mapper, {x[0]: (x[1], x[2]), y[0]: (y[1], y[2])}, samples, seed=seed,
-                             confidence=confidence, fixed=fixed, threads=threads,
-                             chunk_size=chunk_size, progress=progress)  # fmt: skip
+                             confidence=confidence, fixed=fixed, threads=threads, chunk_size=chunk_size,
+                             progress=progress, store=store, resume=resume, executor=executor)  # fmt: skip
         ds = ds.assign(fraction=ds["probability"])
         mode = "random"
         for name, value in fixed.items():
@@ -156,7 +169,8 @@ def run_basin(
 
 def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = None,
                        threads: int | None = None, chunk_size: int | None = None,
-                       progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+                       progress: Callable[[int, int], None] | None = None, store: Any = None,
+                       resume: bool = False, executor: Any = None) -> xarray.Dataset:  # fmt: skip
     """Run one ``basin`` or ``working-point`` analysis of a case.
 
     Parameters
@@ -166,8 +180,8 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
     analysis : rotorlab.io.BasinSpec or rotorlab.io.WorkingPointSpec
     t_end : float, optional
         Simulated time (s) instead of the analysis' (basin only).
-    threads, chunk_size, progress
-        As for :func:`run_basin`.
+    threads, chunk_size, progress, store, resume, executor
+        As for :func:`run_basin` (basin only; a ``working-point`` refuses a store).
 
     Returns
     -------
@@ -193,12 +207,15 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
     (True, True)
     """
     if analysis.type == "working-point":
+        if store is not None or executor is not None:
+            raise ValueError(f"analysis {analysis.name}: a working-point analysis runs no sweep (no store or executor)")
         ds = _working_point(case_model, analysis, progress)
     else:
         mapper = basin_mapper(case_model, analysis, t_end=t_end)
         ds = run_basin(mapper, analysis.x, analysis.y, fixed=analysis.fixed, samples=analysis.samples,
                        seed=analysis.seed, confidence=analysis.confidence, threads=threads,
-                       chunk_size=chunk_size, progress=progress)  # fmt: skip
+                       chunk_size=chunk_size, progress=progress, store=store, resume=resume,
+                       executor=executor)  # fmt: skip
     ds.attrs["name"] = analysis.name
     ds.attrs["model"] = str(case_model.type)
     if analysis.type == "basin":

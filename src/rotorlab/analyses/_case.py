@@ -29,7 +29,7 @@ if TYPE_CHECKING:
 __all__ = ["RUNNABLE_ANALYSES", "build_model", "run_analysis", "run_case", "summarize"]
 
 #: Analysis types (the ``type`` of a case's ``[[analysis]]``) that :func:`run_case` can run.
-RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES, *STEADY_ANALYSES, *BASIN_ANALYSES, *IMPACT_ANALYSES)
+RUNNABLE_ANALYSES = ("simulate", *LINEAR_ANALYSES, *STEADY_ANALYSES, *BASIN_ANALYSES, *IMPACT_ANALYSES, "sweep")
 
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -260,7 +260,7 @@ def summarize(ds: xarray.Dataset) -> list[dict[str, Any]]:
         from rotorlab.analyses._steady import steady_rows
 
         return steady_rows(ds)
-    if ds.attrs.get("analysis") in BASIN_ANALYSES:
+    if ds.attrs.get("analysis") in (*BASIN_ANALYSES, "sweep"):
         from rotorlab.analyses._basin import basin_rows
 
         return basin_rows(ds)

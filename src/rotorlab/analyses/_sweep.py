@@ -1,7 +1,9 @@
 """From a case's ``sweep`` analysis (or the ``rotorlab sweep`` options) to a :class:`~rotorlab.sweep.Sweep`.
 
-The per-point analysis of a rotor with balls is :class:`rotorlab.explore.BalancerRegimes` wrapped
-in :class:`rotorlab.explore.MapperAnalysis`; the points are a grid over the given parameters and
+The per-point analysis is the case model's regime mapper, built like a ``basin`` analysis' by
+:func:`rotorlab.analyses.basin_mapper` (:class:`rotorlab.explore.BalancerRegimes` for a rotor
+with balls, :class:`rotorlab.explore.TorusRegimes` for a toroidal ball), wrapped in
+:class:`rotorlab.explore.MapperAnalysis`; the points are a grid over the given parameters and
 initial conditions (first one slowest) or a seeded random sample of their ranges.
 """
 
@@ -20,7 +22,7 @@ def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None 
 
     Parameters
     ----------
-    case_model : rotorlab.io.JeffcottBallsSpec
+    case_model : rotorlab.io.JeffcottBallsSpec or rotorlab.io.ToroidalBallSpec
         ``Case.model``.
     spec : rotorlab.io.SweepSpec
         The analysis (base speed, tolerances, horizons; its ``param`` and ``ic`` unless ``axes``).
@@ -48,21 +50,20 @@ def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None 
     >>> sw = build_sweep(case.model, spec)
     >>> sw.dims, sw.n_points
     (('psi_1',), 4)
+    >>> torus = load_case("strautmanis-torus")
+    >>> sw = build_sweep(torus.model, SweepSpec(param={"rolling_friction": [1e-5, 1e-4, 2]},
+    ...                                         ic={"psi": [0.0, 6.0, 3]}, t_end=1.0))
+    >>> type(sw.analysis.mapper).__name__, sw.dims, sw.shape
+    ('TorusRegimes', ('rolling_friction', 'psi'), (2, 3))
     """
-    from rotorlab.analyses._case import build_model
-    from rotorlab.explore import BalancerRegimes, MapperAnalysis
-    from rotorlab.integrate import StepControl
-    from rotorlab.models import ConstantSpeed
+    from rotorlab.analyses._basin import basin_mapper
+    from rotorlab.explore import MapperAnalysis
     from rotorlab.sweep import GridAxis, Sample, Sweep
 
     omega = spec.spin_speed(case_model)
-    model = build_model(case_model).with_speed(ConstantSpeed(omega))
     duration = t_end if t_end is not None else (
         spec.t_end if spec.t_end is not None else spec.revolutions * 2.0 * math.pi / omega)  # fmt: skip
-    mapper = BalancerRegimes(model, t_end=duration, n_horizons=spec.n_horizons,
-                             window_revolutions=spec.window_revolutions,
-                             control=StepControl(rtol=spec.rtol, atol=spec.atol))  # fmt: skip
-    analysis = MapperAnalysis(mapper)
+    analysis = MapperAnalysis(basin_mapper(case_model, spec, t_end=duration))
     chosen = dict(axes) if axes is not None else {**spec.param, **spec.ic}
     n_sample = sample if sample is not None else (spec.sample if axes is None else None)
     if n_sample is not None:
@@ -78,13 +79,48 @@ def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None 
 
 
 def run_sweep_analysis(case_model: Any, spec: Any, progress: Callable[[int, int], None] | None = None) -> Any:
-    """Run a case's ``sweep`` analysis in this process (no store) and return its Dataset."""
+    """Run a case's ``sweep`` analysis in this process (no store) and return its Dataset.
+
+    Parameters
+    ----------
+    case_model : rotorlab.io.JeffcottBallsSpec or rotorlab.io.ToroidalBallSpec
+        ``Case.model``.
+    spec : rotorlab.io.SweepSpec
+    progress : callable, optional
+        ``progress(done, total)``: points finished.
+
+    Returns
+    -------
+    xarray.Dataset
+        The sweep's Dataset (:func:`rotorlab.sweep.run_sweep`; dims: one per swept quantity,
+        or ``sample``, then ``horizon``) plus ``fraction`` and ``count`` (horizon, regime) of
+        :func:`rotorlab.explore.basin_fractions`; attrs ``analysis = "sweep"``, ``name``,
+        ``mode`` (``"grid"`` or ``"sample"``, with ``seed``).
+
+    Examples
+    --------
+    >>> from rotorlab.io import load_case, SweepSpec
+    >>> case = load_case("strautmanis-torus")
+    >>> ds = run_sweep_analysis(case.model, SweepSpec(name="s", ic={"psi": [1.0, 5.0, 3]}, t_end=1.0,
+    ...                                               n_horizons=1))
+    >>> ds.fraction.sum("regime").values.tolist(), ds.attrs["mode"]
+    ([1.0], 'grid')
+    """
+    from rotorlab.explore import basin_fractions
     from rotorlab.sweep import run_sweep
 
     def report(p: Any) -> None:
         if progress is not None:
             progress(p.done, p.total)
 
-    ds = run_sweep(build_sweep(case_model, spec), chunk_size=spec.chunk, progress=report)
-    ds.attrs.update(analysis="sweep", name=spec.name)
+    sweep = build_sweep(case_model, spec)
+    ds = run_sweep(sweep, chunk_size=spec.chunk, progress=report)
+    fr = basin_fractions(ds)
+    ds = ds.assign(fraction=fr["fraction"], count=fr["count"])
+    ds["fraction"].attrs.update(units="1", description="fraction of the points with each label")
+    ds["count"].attrs.update(units="1", description="number of points with each label")
+    ds.attrs.update(analysis="sweep", name=spec.name, model=str(case_model.type),
+                    mode="grid" if sweep.axes else "sample")  # fmt: skip
+    if sweep.sample is not None:
+        ds.attrs["seed"] = sweep.sample.seed
     return ds

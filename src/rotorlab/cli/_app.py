@@ -97,6 +97,10 @@ def _task_size(case_model: Any, analysis: Any) -> int:
     """Steps of an analysis for the progress bar: trajectories of a simulation or basin, else 1."""
     if analysis.type == "basin":
         return analysis.samples if analysis.samples is not None else analysis.x[3] * analysis.y[3]
+    if analysis.type == "sweep":
+        from rotorlab.analyses._sweep import build_sweep
+
+        return build_sweep(case_model, analysis).n_points
     return _trajectory_count(case_model, analysis) if analysis.type == "simulate" else 1
 
 
@@ -232,7 +236,7 @@ def run_command(
         from rotorlab.analyses import STEADY_ANALYSES, run_case, summarize
 
         tasks = {a.name: _task_size(loaded.model, a) for a in loaded.analyses}
-        units = {a.name: "trajectories" if a.type in ("simulate", "basin") else "done"
+        units = {a.name: "trajectories" if a.type in ("simulate", "basin", "sweep") else "done"
                  for a in loaded.analyses}
         with progress_bar(settings, tasks, units) as update:
             results = run_case(loaded, progress=update)
@@ -249,7 +253,7 @@ def run_command(
                     linear_figures)
                 if ds.attrs.get("analysis") in STEADY_ANALYSES:
                     draw = steady_figures
-                if ds.attrs.get("analysis") in BASIN_ANALYSES:
+                if ds.attrs.get("analysis") in (*BASIN_ANALYSES, "sweep"):
                     draw = basin_figures
                 if ds.attrs.get("analysis") in ("impacts", "impacts-sweep"):
                     from rotorlab.plot import impact_figures as draw
@@ -281,7 +285,8 @@ def run_command(
             con.print(table)
         from rotorlab.cli._basin import basin_tables
 
-        basins = {n: linear.pop(n) for n in list(linear) if linear[n].attrs.get("analysis") in BASIN_ANALYSES}
+        basins = {n: linear.pop(n) for n in list(linear)
+                  if linear[n].attrs.get("analysis") in (*BASIN_ANALYSES, "sweep")}
         for table in basin_tables(basins, tables):
             con.print(table)
         from rotorlab.cli._impacts import impact_tables

@@ -16,6 +16,7 @@ import typer
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, emit_json, handled, info, progress_bar, stdout
 from rotorlab.cli._steady import _check_plot, parse_range
+from rotorlab.cli._sweep import SchedulerOpt, WorkersOpt
 
 __all__ = ["basin_command", "basin_tables"]
 
@@ -125,13 +126,22 @@ def basin_command(
         "--out", "-o", metavar="FILE.nc", help="Write the basin Dataset to this NetCDF file.")] = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--plot", metavar="FILE", help="Save the basin map (PNG, PDF or SVG by suffix).")] = None,
+    store: Annotated[Optional[Path], typer.Option(  # noqa: UP007
+        "--store", metavar="STORE.zarr", help="Checkpoint: write every finished chunk to this Zarr store, so that "
+        "an interrupted basin continues with --resume (results are the same).")] = None,
+    resume: Annotated[bool, typer.Option("--resume", help="Continue the basin in --store: compute only its "
+                                         "missing chunks.")] = False,  # fmt: skip
+    scheduler: SchedulerOpt = None,
+    workers: WorkersOpt = None,
     json_out: JsonOpt = False,
 ) -> None:
     """Map starts to regimes: basin map, basin fractions against the simulated time, settling times.
 
     Without --x/--y the grid of the case's (first, or --analysis) basin analysis is used. The
     toroidal ball's regimes are working, spare and other; a rotor with balls has balanced, one
-    per side motion, non-synchronous and other.
+    per side motion, non-synchronous and other. With --store every finished chunk is kept in a
+    Zarr store: Ctrl-C (or a killed run) loses nothing, and the same command with --resume
+    computes only the missing chunks.
     """
     settings = _settings(ctx)
     with handled(settings):
@@ -142,6 +152,13 @@ def basin_command(
             raise BadInput(f"--t-end = {t_end:g}: must be a finite number > 0 (s)")
         _check_plot("--plot", plot)
         _check_plot("--out", out)
+        from rotorlab.cli._sweep import check_store_path, executor_from_options, run_into_store
+
+        executor = executor_from_options(scheduler, workers)
+        if resume and store is None:
+            raise BadInput("--resume needs --store STORE.zarr (the store to continue)")
+        if store is not None:
+            check_store_path(store, resume, "--store")
         loaded = _load(case)
         from rotorlab.io import coordinate_dimensions
 
@@ -162,8 +179,9 @@ def basin_command(
         n = spec.samples if spec.samples is not None else spec.x[3] * spec.y[3]
         info(settings, f"Mapping {loaded.name}: {n} starts ...", json_mode=json_out)
         with progress_bar(settings, {spec.name: n}) as update:
-            ds = run_basin_analysis(loaded.model, spec, chunk_size=chunk,
-                                    progress=lambda done, total: update(spec.name, done, total))  # fmt: skip
+            ds = run_into_store(lambda: run_basin_analysis(
+                loaded.model, spec, chunk_size=chunk, progress=lambda done, total: update(spec.name, done, total),
+                store=store, resume=resume, executor=executor), store, "--store")  # fmt: skip
         ds.attrs["case"] = loaded.name
         written = []
         if plot is not None:
@@ -219,7 +237,9 @@ def basin_tables(results: dict[str, Any], tables: dict[str, list[dict[str, Any]]
         horizons = ds["horizon"].values
         n = rows[0]["n"] if rows else 0
         fixed = ", ".join(f"{k[6:]} = {float(v):g}" for k, v in ds.attrs.items() if k.startswith("fixed_"))
-        table = Table(title=f"{name}: {n} starts, {ds.attrs.get('x')} x {ds.attrs.get('y')}"
+        over = (f"{ds.attrs.get('x')} x {ds.attrs.get('y')}" if "x" in ds.attrs else
+                " x ".join(d for d in ds["label"].dims if d != "horizon"))  # fmt: skip
+        table = Table(title=f"{name}: {n} starts, {over}"
                             + (f" ({fixed})" if fixed else "") + f", after {float(horizons[-1]):g} s",
                       title_justify="left")  # fmt: skip
         half = rows[0]["horizon_half_s"] if rows else float(horizons[-1])

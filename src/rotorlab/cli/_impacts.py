@@ -15,7 +15,8 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
-from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stderr, stdout
+from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
+from rotorlab.cli._sweep import SchedulerOpt, WorkersOpt
 
 __all__ = ["impacts_command", "impacts_sweep_command", "impact_tables"]
 
@@ -164,65 +165,48 @@ def _param(stone_mass: str | None, param: str | None) -> tuple[str | None, Any]:
 def _executor(workers: int | None, scheduler: str | None, chunk: int | None, store: Path | None,
               resume: bool) -> Any:
     """The executor of ``--workers`` / ``--scheduler`` (None: in-process), after checking the options."""
-    for option, value in (("--workers", workers), ("--chunk", chunk)):
-        if value is not None and value < 1:
-            raise BadInput(f"{option} = {value}: must be an integer >= 1")
-    if scheduler is not None and workers is not None:
-        raise BadInput("--scheduler and --workers exclude each other: give only one")
-    if scheduler is not None and "://" not in scheduler:
-        raise BadInput(f"--scheduler = {scheduler}: must be an address like tcp://HOST:PORT")
+    from rotorlab.cli._sweep import check_store_path, executor_from_options
+
+    if chunk is not None and chunk < 1:
+        raise BadInput(f"--chunk = {chunk}: must be an integer >= 1")
+    executor = executor_from_options(scheduler, workers)
     if resume and store is None:
         raise BadInput("--resume needs --out STORE.zarr (the store of the sweep to continue)")
     if store is not None:
-        from rotorlab.cli._sweep import _check_store_path
-
-        _check_store_path(store, resume)
-    if scheduler is None and workers is None:
-        return None
-    from rotorlab.sweep import DaskExecutor
-
-    return DaskExecutor(scheduler=scheduler) if scheduler else DaskExecutor(workers=workers)
+        check_store_path(store, resume)
+    return None if scheduler is None and workers is None else executor
 
 
 def _run_stored(settings: Any, sweep: Any, *, store: Path | None, resume: bool, chunk: int | None,
                 executor: Any, title: str) -> tuple[Any, Any]:
-    """Run the sweep (into ``store`` if given) with a progress bar; BadInput / exit 130 on failure.
+    """Run the sweep (into ``store`` if given) with a progress bar; BadInput / exit 130 on failure
+    (:func:`rotorlab.cli._sweep.run_into_store`).
 
     Returns the per-run Dataset and the last :class:`rotorlab.sweep.SweepProgress`.
     """
     from rotorlab.analyses._impact_sweep import default_chunk
-    from rotorlab.cli._sweep import _Bar
-    from rotorlab.sweep import ExecutorError, InProcess, SweepStoreError, run_sweep, store_info
+    from rotorlab.cli._sweep import _Bar, run_into_store
+    from rotorlab.sweep import InProcess, run_sweep
 
-    existed = store is not None and store.exists()
     last: list[Any] = []
     split = store is not None or executor is not None
-    size = chunk if chunk is not None or (resume and existed) else default_chunk(sweep, split=split)
-    try:
+    size = chunk if chunk is not None or (resume and store is not None and store.exists()) else (
+        default_chunk(sweep, split=split))
+
+    def run() -> Any:
         with _Bar(settings, title) as bar:
 
             def progress(p: Any) -> None:
                 last[:] = [p]
                 bar(p)
 
-            runs = run_sweep(sweep, store=store, resume=resume, chunk_size=size, executor=executor or InProcess(),
+            return run_sweep(sweep, store=store, resume=resume, chunk_size=size, executor=executor or InProcess(),
                              progress=progress)  # fmt: skip
-    except SweepStoreError as exc:
-        raise BadInput(f"--out = {store}: {exc}") from None
-    except ExecutorError as exc:
-        if store is not None and not existed and store.exists() and store_info(store)["chunks_done"] == 0:
-            import shutil
 
-            shutil.rmtree(store)  # nothing computed: leave nothing behind
-        raise BadInput(str(exc)) from None
-    except KeyboardInterrupt:
-        if store is None:
-            raise
-        kept = store_info(store)["chunks_done"] if store.exists() else 0
-        total = last[0].n_chunks if last else "?"
-        stderr().print(f"interrupted: {kept} of {total} chunks are kept in {store}; continue with the same "
-                       "command and --resume", markup=False)  # fmt: skip
-        raise typer.Exit(130) from None
+    if store is None and executor is None:
+        runs = run()  # in memory: a plain Ctrl-C, nothing to keep
+    else:
+        runs = run_into_store(run, store)
     return runs, last[-1]
 
 
@@ -246,10 +230,8 @@ def impacts_sweep_command(
         "with the suffix .zarr, every run to this sweep store chunk by chunk (resumable with --resume).")] = None,
     resume: Annotated[bool, typer.Option("--resume", help="Continue the sweep in --out STORE.zarr: run only its "
                                          "missing chunks.")] = False,  # fmt: skip
-    workers: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")] = None,
-    scheduler: Annotated[Optional[str], typer.Option(  # noqa: UP007
-        "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")] = None,
+    workers: WorkersOpt = None,
+    scheduler: SchedulerOpt = None,
     chunk: Annotated[Optional[int], typer.Option(  # noqa: UP007
         "--chunk", metavar="N", help="Runs per chunk (default: one value's sequences; a resumed store keeps "
         "its own).")] = None,

@@ -12,6 +12,7 @@ from __future__ import annotations
 
 import math
 import time
+from collections.abc import Callable
 from pathlib import Path
 from typing import Annotated, Any, Optional
 
@@ -20,9 +21,16 @@ import typer
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
 from rotorlab.cli._output import BadInput, emit_json, handled, info, stderr, stdout
 
-__all__ = ["sweep_command", "show_command", "parse_axis"]
+__all__ = ["sweep_command", "show_command", "parse_axis", "check_store_path", "executor_from_options",
+           "run_into_store"]
 
 _RPM = 60.0 / (2.0 * math.pi)
+
+# options shared by the commands that run on the sweep engine (sweep, basin)
+SchedulerOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
+    "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")]
+WorkersOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
+    "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")]
 
 
 def parse_axis(option: str, text: str, kind: str, sample: bool) -> tuple[str, tuple]:
@@ -55,7 +63,7 @@ def parse_axis(option: str, text: str, kind: str, sample: bool) -> tuple[str, tu
     >>> parse_axis("--ic", "dpsi_1=-5:5", "ic", True)
     ('dpsi_1', (-5.0, 5.0))
     """
-    from rotorlab.io._sweep_specs import SWEEP_PARAMETERS, coordinate_dimension
+    from rotorlab.io._sweep_specs import _allowed, coordinate_dimension
 
     name, sep, rest = text.partition("=")
     name = name.strip()
@@ -64,10 +72,8 @@ def parse_axis(option: str, text: str, kind: str, sample: bool) -> tuple[str, tu
         raise BadInput(f"{option} = {text}: must be {form}")
     dimension = coordinate_dimension(name, kind)
     if dimension is None:
-        allowed = (", ".join(SWEEP_PARAMETERS) if kind == "param"
-                   else "psi_<i> (ball angle), dpsi_<i> (ball rate)")  # fmt: skip
         raise BadInput(f"{option} = {text}: unknown {'parameter' if kind == 'param' else 'initial condition'} "
-                       f"{name!r} (allowed: {allowed})")  # fmt: skip
+                       f"{name!r} (allowed: {_allowed(kind)})")  # fmt: skip
     parts = rest.split(":")
     if len(parts) != (2 if sample else 3):
         raise BadInput(f"{option} = {text}: must be {form}" + (" (with --sample)" if sample else ""))
@@ -97,18 +103,60 @@ def parse_axis(option: str, text: str, kind: str, sample: bool) -> tuple[str, tu
     return name, (ends[0], ends[1], count)
 
 
-def _check_store_path(out: Path, resume: bool) -> None:
+def check_store_path(out: Path, resume: bool, option: str = "--out") -> None:
+    """Refuse (BadInput) a store path that exists without ``--resume``, is not a sweep store, or
+    lies in a missing folder."""
     if out.exists() and not resume:
-        raise BadInput(f"--out = {out}: exists; give --resume to continue that sweep, or another path")
+        raise BadInput(f"{option} = {out}: exists; give --resume to continue that sweep, or another path")
     if not out.absolute().parent.is_dir():
-        raise BadInput(f"--out = {out}: folder {out.absolute().parent} does not exist")
+        raise BadInput(f"{option} = {out}: folder {out.absolute().parent} does not exist")
     if out.exists():
         from rotorlab.sweep import SweepStoreError, store_info
 
         try:
             store_info(out)
         except SweepStoreError as exc:
-            raise BadInput(f"--out = {out}: {exc}") from None
+            raise BadInput(f"{option} = {out}: {exc}") from None
+
+
+def executor_from_options(scheduler: str | None, workers: int | None) -> Any:
+    """The executor of ``--scheduler ADDR`` / ``--workers N`` (None: in this process), checked."""
+    if scheduler is not None and workers is not None:
+        raise BadInput("--scheduler and --workers exclude each other: give only one")
+    if scheduler is not None and "://" not in scheduler:
+        raise BadInput(f"--scheduler = {scheduler}: must be an address like tcp://HOST:PORT")
+    if workers is not None and workers < 1:
+        raise BadInput(f"--workers = {workers}: must be an integer >= 1")
+    from rotorlab.sweep import DaskExecutor, InProcess
+
+    return (DaskExecutor(scheduler=scheduler) if scheduler else DaskExecutor(workers=workers) if workers
+            else InProcess())  # fmt: skip
+
+
+def run_into_store(run: Callable[[], Any], store: Path | None, option: str = "--out") -> Any:
+    """Return ``run()``, a sweep into ``store``: store and executor errors become BadInput (an
+    unreachable scheduler leaves no store behind), and Ctrl-C says what is kept and exits 130."""
+    from rotorlab.sweep import ExecutorError, SweepStoreError, store_info
+
+    existed = store is not None and store.exists()
+    try:
+        return run()
+    except SweepStoreError as exc:
+        raise BadInput(f"{option} = {store}: {exc}") from None
+    except ExecutorError as exc:
+        if store is not None and not existed and store.exists() and store_info(store)["chunks_done"] == 0:
+            import shutil
+
+            shutil.rmtree(store)  # nothing computed: leave nothing behind
+        raise BadInput(str(exc)) from None
+    except KeyboardInterrupt:
+        if store is None:
+            stderr().print("interrupted", markup=False)
+            raise typer.Exit(130) from None
+        meta = store_info(store) if store.exists() else {"chunks_done": 0, "n_chunks": "?"}
+        stderr().print(f"interrupted: {meta['chunks_done']} of {meta['n_chunks']} chunks are kept in {store}; "
+                       "continue with the same command and --resume", markup=False)  # fmt: skip
+        raise typer.Exit(130) from None
 
 
 def _pick(loaded: Any, name: str | None) -> Any:
@@ -190,10 +238,8 @@ def sweep_command(
         "--t-end", metavar="SECONDS", help="Simulated time (s).")] = None,
     resume: Annotated[bool, typer.Option("--resume", help="Continue the sweep in --out: compute only its "
                                          "missing chunks.")] = False,  # fmt: skip
-    scheduler: Annotated[Optional[str], typer.Option(  # noqa: UP007
-        "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")] = None,
-    workers: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")] = None,
+    scheduler: SchedulerOpt = None,
+    workers: WorkersOpt = None,
     chunk: Annotated[Optional[int], typer.Option(  # noqa: UP007
         "--chunk", metavar="N", help="Points per chunk (default: the case's, else 1024; a resumed store keeps "
         "its own).")] = None,
@@ -207,11 +253,8 @@ def sweep_command(
     """
     settings = _settings(ctx)
     with handled(settings):
-        if scheduler is not None and workers is not None:
-            raise BadInput("--scheduler and --workers exclude each other: give only one")
-        if scheduler is not None and "://" not in scheduler:
-            raise BadInput(f"--scheduler = {scheduler}: must be an address like tcp://HOST:PORT")
-        for option, value in (("--workers", workers), ("--chunk", chunk), ("--sample", sample)):
+        executor = executor_from_options(scheduler, workers)
+        for option, value in (("--chunk", chunk), ("--sample", sample)):
             if value is not None and value < 1:
                 raise BadInput(f"{option} = {value}: must be an integer >= 1")
         for option, value in (("--speed-rpm", speed_rpm), ("--speed-ratio", speed_ratio), ("--t-end", t_end)):
@@ -230,16 +273,30 @@ def sweep_command(
                 axes[name] = entry
         if sample is not None and not axes:
             raise BadInput("--sample needs the ranges to draw from: give --param and/or --ic NAME=LOW:HIGH")
-        _check_store_path(out, resume)
+        check_store_path(out, resume)
         loaded = _load(case)
-        if getattr(loaded.model, "type", None) != "jeffcott_balls" or loaded.model.n_balls < 1:
-            raise BadInput(f"case {loaded.name}: rotorlab sweep runs rotors with balls (a jeffcott_balls model), "
-                           f"this case's model is '{loaded.model.type}'")  # fmt: skip
-        for name in axes:
-            if name.startswith(("psi_", "dpsi_")) and int(name.split("_")[1]) > loaded.model.n_balls:
-                raise BadInput(f"--ic {name}: the model of {loaded.name} has {loaded.model.n_balls} ball(s)")
-        spec = _pick(loaded, analysis)
         from rotorlab.io import SweepSpec
+        from rotorlab.io._sweep_specs import sweep_coordinates
+
+        kind = getattr(loaded.model, "type", None)
+        if not sweep_coordinates(loaded.model, "ic"):
+            raise BadInput(f"case {loaded.name}: rotorlab sweep runs models with a regime mapper (a jeffcott_balls "
+                           f"model with balls, or a toroidal_ball model), this case's model is '{kind}'")  # fmt: skip
+        for option, texts, what in (("--param", param, "param"), ("--ic", ic, "ic")):
+            known = sweep_coordinates(loaded.model, what)
+            for text in texts or ():
+                name = text.partition("=")[0].strip()
+                if name in known:
+                    continue
+                if kind == "jeffcott_balls" and what == "ic":
+                    raise BadInput(f"--ic {name}: the model of {loaded.name} has {loaded.model.n_balls} ball(s)")
+                raise BadInput(f"{option} = {text}: {name!r} is not a{' parameter' if what == 'param' else 'n initial'}"
+                               f"{'' if what == 'param' else ' condition'} of this {kind} model (allowed: "
+                               f"{', '.join(known)})")  # fmt: skip
+        if kind == "toroidal_ball" and (speed_rpm is not None or speed_ratio is not None):
+            raise BadInput(f"--speed-{'rpm' if speed_rpm is not None else 'ratio'}: a toroidal_ball spins at its "
+                           "model's spin_speed; vary it with --param spin_speed=A:B:N")  # fmt: skip
+        spec = _pick(loaded, analysis)
 
         update: dict[str, Any] = {}
         if speed_rpm is not None:
@@ -251,20 +308,19 @@ def sweep_command(
         if spec is None:
             if not axes:
                 raise BadInput(f"case {loaded.name} has no sweep analysis: give --param and/or --ic")
-            profile = loaded.model.speed_profile()
-            if not update and (profile is None or not profile.is_constant or profile.final_speed == 0):
+            profile = loaded.model.speed_profile() if kind == "jeffcott_balls" else None
+            if kind == "jeffcott_balls" and not update and (
+                    profile is None or not profile.is_constant or profile.final_speed == 0):
                 raise BadInput(f"case {loaded.name} has no constant speed: give --speed-rpm or --speed-ratio")
             spec = SweepSpec(name="sweep", revolutions=200.0, t_end=None)
         spec = spec.model_copy(update=update)
         from rotorlab.analyses._sweep import build_sweep
-        from rotorlab.sweep import DaskExecutor, ExecutorError, InProcess, SweepStoreError, run_sweep, store_info
+        from rotorlab.sweep import run_sweep
 
         try:
             sweep = build_sweep(loaded.model, spec, axes=axes or None, sample=sample, seed=seed, t_end=t_end)
         except ValueError as exc:
             raise BadInput(str(exc)) from None
-        executor = (DaskExecutor(scheduler=scheduler) if scheduler else DaskExecutor(workers=workers) if workers
-                    else InProcess())  # fmt: skip
         size = chunk if chunk is not None else (None if resume and out.exists() else spec.chunk)
         where = executor.describe()
         shape = " x ".join(str(s) for s in sweep.shape)
@@ -272,30 +328,14 @@ def sweep_command(
              f"{sweep.analysis.mapper.t_end:.6g} s each, {where}, into {out} ...", json_mode=json_out)  # fmt: skip
         started = time.perf_counter()
         last: list[Any] = []
-        existed = out.exists()
-        try:
-            with _Bar(settings, loaded.name) as bar:
+        with _Bar(settings, loaded.name) as bar:
 
-                def progress(p: Any) -> None:
-                    last[:] = [p]
-                    bar(p)
+            def progress(p: Any) -> None:
+                last[:] = [p]
+                bar(p)
 
-                ds = run_sweep(sweep, store=out, resume=resume, chunk_size=size, executor=executor,
-                               progress=progress)  # fmt: skip
-        except SweepStoreError as exc:
-            raise BadInput(f"--out = {out}: {exc}") from None
-        except ExecutorError as exc:
-            if not existed and out.exists() and store_info(out)["chunks_done"] == 0:
-                import shutil
-
-                shutil.rmtree(out)  # nothing computed: leave nothing behind
-            raise BadInput(str(exc)) from None
-        except KeyboardInterrupt:
-            kept = store_info(out)["chunks_done"] if out.exists() else 0
-            total = last[0].n_chunks if last else "?"
-            stderr().print(f"interrupted: {kept} of {total} chunks are kept in {out}; continue with the same "
-                           "command and --resume", markup=False)  # fmt: skip
-            raise typer.Exit(130) from None
+            ds = run_into_store(lambda: run_sweep(sweep, store=out, resume=resume, chunk_size=size,
+                                                  executor=executor, progress=progress), out)  # fmt: skip
         seconds = time.perf_counter() - started
         p = last[-1]
         fractions, n = _fractions(ds)
@@ -355,7 +395,7 @@ def show_command(
             if sub is not None:
                 fractions, n = _fractions(sub)
             if meta["complete"]:
-                written = _figures(ds, folder, meta)
+                written = _figures(ds, folder)
         doc = {"store": str(store), "dims": meta["dims"], "shape": meta["shape"], "n_points": meta["n_points"],
                "chunks": {"total": meta["n_chunks"], "done": meta["chunks_done"]}, "complete": meta["complete"],
                "runs": meta["runs"], "versions": meta["versions"], "fixed": meta["fixed"],
@@ -385,18 +425,13 @@ def show_command(
             con.print(f"Wrote {path}", markup=False)
 
 
-def _figures(ds: Any, folder: Path, meta: dict[str, Any]) -> list[str]:
-    from rotorlab.explore import basin_fractions
-    from rotorlab.plot._basin import basin_figure, fractions_figure
+def _figures(ds: Any, folder: Path) -> list[str]:
+    from rotorlab.plot import sweep_figures
 
     folder.mkdir(exist_ok=True)
     out = []
-    grid_dims = [d for d in ds["label"].dims if d != "horizon"]
-    if meta.get("grid") and len(grid_dims) == 2:
-        path = folder / "basin.png"
-        basin_figure(ds).savefig(path, dpi=110)
+    for stem, fig in sweep_figures(ds).items():
+        path = folder / f"{stem}.png"
+        fig.savefig(path, dpi=110)
         out.append(str(path))
-    path = folder / "fractions.png"
-    fractions_figure(basin_fractions(ds)).savefig(path, dpi=110)
-    out.append(str(path))
     return out

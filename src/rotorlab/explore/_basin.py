@@ -6,13 +6,12 @@ mapper's job (:func:`rotorlab.explore.map_starts`).
 
 from __future__ import annotations
 
-import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
 import numpy as np
 
-from rotorlab.explore._mapper import AbstractMapper, MapperAnalysis, _flags_as_arrays, _sweep_progress
+from rotorlab.explore._mapper import AbstractMapper, MapperAnalysis, run_mapped
 from rotorlab.sweep._axes import GridAxis, Sample
 
 __all__ = ["GridAxis", "basin_map", "basin_fractions", "basin_stability", "wilson_interval"]
@@ -26,6 +25,9 @@ def basin_map(
     threads: int | None = None,
     chunk_size: int | None = None,
     progress: Callable[[int, int], None] | None = None,
+    store: Any = None,
+    resume: bool = False,
+    executor: Any = None,
 ):
     """Label every point of a 2-D grid of start coordinates (a basin map).
 
@@ -38,6 +40,13 @@ def basin_map(
         Values of other coordinates (default: the mapper's base values).
     threads, chunk_size, progress
         As for :func:`map_starts`; results do not depend on them.
+    store : path-like, optional
+        Write every chunk to this Zarr store as it finishes (:func:`rotorlab.sweep.run_sweep`),
+        so that an interrupted map can be resumed; the Dataset is the same as without it.
+    resume : bool
+        Continue ``store``: compute only its missing chunks (it must hold the same map).
+    executor : rotorlab.sweep.InProcess, LocalProcesses or DaskExecutor, optional
+        Where the chunks run (instead of ``threads``); results do not depend on it.
 
     Returns
     -------
@@ -62,23 +71,11 @@ def basin_map(
     clash = {x.name, y.name} & set(fixed)
     if clash:
         raise ValueError(f"coordinates {sorted(clash)} are both varied and fixed")
-    from rotorlab.sweep import InProcess, Sweep, run_sweep
+    from rotorlab.sweep import Sweep
 
-    analysis = MapperAnalysis(mapper)
-    sweep = Sweep(analysis, axes=(y, x), fixed=fixed)
-    ds = run_sweep(sweep, chunk_size=_chunk(chunk_size), executor=InProcess(threads),
-                   progress=_sweep_progress(progress))  # fmt: skip
-    return _flags_as_arrays(ds)
-
-
-def _chunk(chunk_size: int | None) -> int:
-    from rotorlab.explore._mapper import DEFAULT_CHUNK
-
-    if chunk_size is None:
-        return DEFAULT_CHUNK
-    if isinstance(chunk_size, bool) or int(chunk_size) != chunk_size or chunk_size < 1:
-        raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
-    return int(chunk_size)
+    sweep = Sweep(MapperAnalysis(mapper), axes=(y, x), fixed=fixed)
+    return run_mapped(sweep, threads=threads, chunk_size=chunk_size, progress=progress, store=store, resume=resume,
+                      executor=executor)  # fmt: skip
 
 
 def basin_fractions(ds):
@@ -174,6 +171,9 @@ def basin_stability(
     threads: int | None = None,
     chunk_size: int | None = None,
     progress: Callable[[int, int], None] | None = None,
+    store: Any = None,
+    resume: bool = False,
+    executor: Any = None,
 ):
     """Probability of reaching each regime from random starts (basin stability).
 
@@ -193,7 +193,7 @@ def basin_stability(
         Seed of the random generator.
     confidence : float
         Level of the Wilson score intervals, in (0, 1).
-    fixed, threads, chunk_size, progress
+    fixed, threads, chunk_size, progress, store, resume, executor
         As for :func:`basin_map`.
 
     Returns
@@ -216,11 +216,11 @@ def basin_stability(
     clash = set(ranges) & set(fixed or {})
     if clash:
         raise ValueError(f"coordinates {sorted(clash)} are both drawn and fixed")
-    from rotorlab.sweep import InProcess, Sweep, run_sweep
+    from rotorlab.sweep import Sweep
 
     sweep = Sweep(MapperAnalysis(mapper), sample=sample, fixed=dict(fixed or {}))
-    ds = _flags_as_arrays(run_sweep(sweep, chunk_size=_chunk(chunk_size), executor=InProcess(threads),
-                                    progress=_sweep_progress(progress)))  # fmt: skip
+    ds = run_mapped(sweep, threads=threads, chunk_size=chunk_size, progress=progress, store=store, resume=resume,
+                    executor=executor)  # fmt: skip
     fr = basin_fractions(ds)
     low, high = wilson_interval(fr["count"].values, int(n), confidence)
     out = ds.assign(

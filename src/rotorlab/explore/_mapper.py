@@ -221,6 +221,39 @@ def _sweep_progress(progress: Callable[[int, int], None] | None):
     return report
 
 
+def _check_chunk(chunk_size: int | None) -> int:
+    if chunk_size is None:
+        return DEFAULT_CHUNK
+    if isinstance(chunk_size, bool) or int(chunk_size) != chunk_size or chunk_size < 1:
+        raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
+    return int(chunk_size)
+
+
+def run_mapped(sweep: Any, *, threads: int | None = None, chunk_size: int | None = None,
+               progress: Callable[[int, int], None] | None = None, store: Any = None, resume: bool = False,
+               executor: Any = None):  # fmt: skip
+    """Run a sweep of :class:`MapperAnalysis` for the explore functions (the shared tail of
+    :func:`map_starts`, :func:`~rotorlab.explore.basin_map` and
+    :func:`~rotorlab.explore.basin_stability`).
+
+    In memory by default, or chunk by chunk into a Zarr ``store`` (``resume`` continues it; a
+    resumed store keeps its chunk size unless ``chunk_size`` is given) on ``executor`` (default
+    :class:`rotorlab.sweep.InProcess` with ``threads``). The Dataset is the same either way: the
+    store's own attributes (``sweep``, ``fingerprint``, ``complete``) are not copied into it.
+    """
+    from rotorlab.sweep import InProcess, run_sweep
+
+    if executor is not None and threads is not None:
+        raise ValueError("give threads or executor, not both (an executor has its own threads)")
+    size = None if store is not None and chunk_size is None else _check_chunk(chunk_size)
+    ds = run_sweep(sweep, store=store, resume=resume, chunk_size=size, executor=executor or InProcess(threads),
+                   progress=_sweep_progress(progress))  # fmt: skip
+    if store is not None:
+        for key in ("sweep", "fingerprint", "complete"):
+            ds.attrs.pop(key, None)
+    return _flags_as_arrays(ds)
+
+
 def map_starts(
     mapper: AbstractMapper,
     coords: Mapping[str, Any],
@@ -263,12 +296,8 @@ def map_starts(
     ValueError
         Unknown or malformed coordinates.
     """
-    from rotorlab.sweep import InProcess, Points, Sweep, run_sweep
+    from rotorlab.sweep import Points, Sweep
 
     cols, _ = _check_coords(mapper, coords)
-    if chunk_size is not None and (isinstance(chunk_size, bool) or int(chunk_size) != chunk_size or chunk_size < 1):
-        raise ValueError(f"chunk_size must be >= 1, got {chunk_size!r}")
     sweep = Sweep(MapperAnalysis(mapper), points=Points(cols, dim="ic"))
-    ds = run_sweep(sweep, chunk_size=DEFAULT_CHUNK if chunk_size is None else int(chunk_size),
-                   executor=InProcess(threads), progress=_sweep_progress(progress))  # fmt: skip
-    return _flags_as_arrays(ds)
+    return run_mapped(sweep, threads=threads, chunk_size=_check_chunk(chunk_size), progress=progress)

@@ -253,7 +253,7 @@ class AbstractLinearModelSpec(AbstractModelSpec):
             if at not in names:
                 hint = did_you_mean(at, names)
                 listing = ", ".join(f'"{n}"' for n in names)
-                return None, "at", (f"no node or component of that name"
+                return None, "at", ("no node or component of that name"
                                     + (f"; {hint}" if hint else "") + f" (names: {listing})")
             return names[at], "", ""
         z = self.node_positions()

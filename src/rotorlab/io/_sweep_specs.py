@@ -1,5 +1,5 @@
-"""Case-file spec of the ``sweep`` analysis: regimes of a rotor with balls over a grid (or a
-seeded random sample) of model parameters and initial conditions.
+"""Case-file spec of the ``sweep`` analysis: regimes of a rotor with balls or of a toroidal ball
+over a grid (or a seeded random sample) of model parameters and initial conditions.
 
 Run by :func:`rotorlab.analyses.run_analysis` (in-process) and by ``rotorlab sweep`` (which adds
 a Zarr store, resume and Dask); registered in :mod:`rotorlab.io._schema`.
@@ -20,10 +20,11 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
+from rotorlab.io._basin_specs import TORUS_COORDINATES, _any_dimension, coordinate_dimensions
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _error, _QuantityValidator, integer, quantity
 
-__all__ = ["SWEEP_PARAMETERS", "SweepSpec", "coordinate_dimension"]
+__all__ = ["SWEEP_PARAMETERS", "TORUS_STATES", "SweepSpec", "coordinate_dimension", "sweep_coordinates"]
 
 #: Model parameters a sweep of a rotor with balls can vary: name -> (dimension, SI unit).
 SWEEP_PARAMETERS: dict[str, tuple[str, str]] = {
@@ -39,21 +40,62 @@ SWEEP_PARAMETERS: dict[str, tuple[str, str]] = {
 }
 _STATE = re.compile(r"^(d?)psi_([1-9][0-9]*)$")
 
+#: Initial conditions of a toroidal ball (its state entries; the rest of
+#: :data:`rotorlab.io.TORUS_COORDINATES` are parameters).
+TORUS_STATES = ("psi", "alpha", "dpsi", "dalpha")
+
+
+def _is_state(name: str) -> bool:
+    return name in TORUS_STATES or _STATE.match(name) is not None
+
 
 def coordinate_dimension(name: str, kind: str) -> str | None:
-    """Return the dimension of a sweep coordinate (``kind`` "param" or "ic"), None if unknown.
+    """Return the dimension of a sweep coordinate of any model (``kind`` "param" or "ic"), None
+    if no model has it.
 
     Examples
     --------
     >>> coordinate_dimension("dpsi_2", "ic"), coordinate_dimension("ball_mass", "param")
     ('angular_speed', 'mass')
+    >>> coordinate_dimension("rolling_friction", "param"), coordinate_dimension("psi", "ic")
+    ('length', 'angle')
+    >>> coordinate_dimension("psi", "param") is None
+    True
     """
-    if kind == "param":
-        return SWEEP_PARAMETERS.get(name, (None,))[0]
-    m = _STATE.match(name)
-    if m is None:
+    if _is_state(name) != (kind == "ic"):
         return None
-    return "angular_speed" if m.group(1) else "angle"
+    return _any_dimension(name)
+
+
+def sweep_coordinates(model: Any, kind: str) -> dict[str, str]:
+    """Return the coordinates of kind ``kind`` ("param" or "ic") a sweep of ``model`` can vary.
+
+    Parameters
+    ----------
+    model : rotorlab.io.JeffcottBallsSpec or rotorlab.io.ToroidalBallSpec
+        A validated ``[model]`` table.
+    kind : {"param", "ic"}
+
+    Returns
+    -------
+    dict of str to str
+        Name to dimension; empty for a model rotorlab has no regime mapper for (the
+        coordinates are those of :func:`rotorlab.io.coordinate_dimensions`).
+
+    Examples
+    --------
+    >>> from rotorlab.io import load_case
+    >>> list(sweep_coordinates(load_case("strautmanis-torus").model, "ic"))
+    ['psi', 'alpha', 'dpsi', 'dalpha']
+    """
+    return {n: d for n, d in coordinate_dimensions(model).items() if _is_state(n) == (kind == "ic")}
+
+
+def _allowed(kind: str) -> str:
+    if kind == "param":
+        params = [*SWEEP_PARAMETERS, *(k for k in TORUS_COORDINATES if k not in SWEEP_PARAMETERS and not _is_state(k))]
+        return ", ".join(params)
+    return "psi_<i> (ball angle), dpsi_<i> (ball rate); toroidal ball: " + ", ".join(TORUS_STATES)
 
 
 class _AxesValidator:
@@ -69,9 +111,7 @@ class _AxesValidator:
         for name, entry in value.items():
             dim = coordinate_dimension(str(name), self.kind)
             if dim is None:
-                allowed = (", ".join(SWEEP_PARAMETERS) if self.kind == "param"
-                           else "psi_<i> (ball angle, rad), dpsi_<i> (ball rate, rad/s)")  # fmt: skip
-                raise _error(f"{name}: unknown {self.kind} coordinate (allowed: {allowed})")
+                raise _error(f"{name}: unknown {self.kind} coordinate (allowed: {_allowed(self.kind)})")
             if not isinstance(entry, (list, tuple)) or len(entry) not in (2, 3):
                 raise _error(f"{name}: must be [start, stop, count] (or [low, high] with sample)")
             ends = []
@@ -98,23 +138,28 @@ def _axes(kind: str) -> Any:
 
 
 class SweepSpec(AbstractAnalysisSpec):
-    """Regimes of a rotor with balls at every point of a grid or a random sample.
+    """Regimes of a rotor with balls or of a toroidal ball at every point of a grid or a sample.
 
-    Every point is a start-up at a constant speed, classified like
-    :class:`rotorlab.explore.BalancerRegimes` (balanced, side motions, non-synchronous, other).
+    Every point is a start-up at a constant speed, classified by the model's mapper (built like
+    a ``basin`` analysis', :func:`rotorlab.analyses.basin_mapper`):
+    :class:`rotorlab.explore.BalancerRegimes` (balanced, side motions, non-synchronous, other)
+    or :class:`rotorlab.explore.TorusRegimes` (working, spare, other).
 
     Parameters
     ----------
     speed_ratio : float, optional
-        Base spin speed as a multiple of the critical speed p (-), > 0.
+        Rotor with balls: base spin speed as a multiple of the critical speed p (-), > 0.
     speed : float, optional
-        Base spin speed (rad/s), > 0. Neither: the model's constant ``[model.speed]``.
+        Rotor with balls: base spin speed (rad/s), > 0. Neither: the model's constant
+        ``[model.speed]`` (a toroidal ball always spins at its model's ``spin_speed``).
     param : dict of str to [start, stop, count] or [low, high]
-        Model parameters to vary (:data:`SWEEP_PARAMETERS`; SI or with units), one result
-        dimension each in the order given.
+        Model parameters to vary (SI or with units; a rotor with balls:
+        :data:`SWEEP_PARAMETERS`, a toroidal ball: its geometry, ``spin_speed``, ``offset``,
+        ``rolling_friction``, ``gravity``), one result dimension each in the order given.
     ic : dict of str to [start, stop, count] or [low, high]
         Initial conditions to vary: ``psi_<i>`` (angle of ball i from the unbalance, rad),
-        ``dpsi_<i>`` (its rate relative to the rotor, rad/s).
+        ``dpsi_<i>`` (its rate relative to the rotor, rad/s); toroidal ball: ``psi``,
+        ``alpha`` (rad), ``dpsi``, ``dalpha`` (rad/s).
     sample : int, optional
         Draw this many random points (entries are then [low, high] ranges) instead of a grid.
     seed : int
@@ -125,12 +170,16 @@ class SweepSpec(AbstractAnalysisSpec):
         Simulated time in revolutions at the base speed, > 0.
     n_horizons : int
         Horizons at which trajectories are classified, >= 1.
-    window_revolutions : float
-        Classification window (revolutions at the base speed), > 0.
+    window_revolutions : float, optional
+        Classification window (revolutions at the base speed), > 0 (default: the mapper's, 10
+        for a rotor with balls, 20 for a toroidal ball).
+    spare_turns : float, optional
+        Toroidal ball: turns round the ring within the window that make the regime *spare*.
     chunk : int
         Points per chunk, >= 1.
-    rtol, atol : float
-        Integrator tolerances.
+    rtol, atol : float, optional
+        Integrator tolerances (default: the mapper's, 1e-8 / 1e-10 for a rotor with balls,
+        1e-6 / 1e-8 for a toroidal ball).
     """
 
     exclusive: ClassVar[tuple[tuple[str, str, bool], ...]] = (
@@ -148,20 +197,31 @@ class SweepSpec(AbstractAnalysisSpec):
     t_end: quantity("time", gt=0) | None = Field(None, description="simulated time (s)")
     revolutions: quantity("dimensionless", gt=0) | None = Field(None, description="simulated revolutions (-)")
     n_horizons: integer(ge=1) = Field(4, description="classification horizons")
-    window_revolutions: quantity("dimensionless", gt=0) = Field(10.0, description="classification window (-)")
+    window_revolutions: quantity("dimensionless", gt=0) | None = Field(None, description="classification window (-)")
+    spare_turns: quantity("dimensionless", gt=0) | None = Field(
+        None, description="turns in the window that make a moving ball spare (toroidal ball)")
     chunk: integer(ge=1) = Field(1024, description="points per chunk")
-    rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
-    atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
+    rtol: quantity("dimensionless", gt=0, lt=1) | None = Field(None, description="relative tolerance")
+    atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check the model (a rotor with balls), the ball indices and grid / sample entries."""
+        """Check the model (one with a regime mapper), the coordinates and grid / sample entries."""
         issues = []
-        if getattr(model, "type", None) != "jeffcott_balls" or model.n_balls < 1:
-            return [Issue(("type",), "needs a jeffcott_balls model with at least one ball", self.type)]
-        for name in self.ic:
-            i = int(_STATE.match(name).group(2))
-            if i > model.n_balls:
-                issues.append(Issue(("ic", name), f"the model has {model.n_balls} ball(s)", name))
+        kind = getattr(model, "type", None)
+        if not coordinate_dimensions(model):
+            return [Issue(("type",), "needs a jeffcott_balls model with at least one ball or a toroidal_ball "
+                                     "model", self.type)]  # fmt: skip
+        for key in ("param", "ic"):
+            known = sweep_coordinates(model, key)
+            for name in getattr(self, key):
+                if name in known:
+                    continue
+                m = _STATE.match(name)
+                if kind == "jeffcott_balls" and m is not None:
+                    issues.append(Issue((key, name), f"the model has {model.n_balls} ball(s)", name))
+                else:
+                    issues.append(Issue((key, name), f"not a{'n initial condition' if key == 'ic' else ' parameter'}"
+                                                     f" of this {kind} model (allowed: {', '.join(known)})", name))
         for key in ("param", "ic"):
             for name, entry in getattr(self, key).items():
                 if self.sample is not None and len(entry) != 2:
@@ -170,6 +230,14 @@ class SweepSpec(AbstractAnalysisSpec):
                     issues.append(Issue((key, name), "give [start, stop, count] (or set sample)", list(entry)))
         if not self.param and not self.ic:
             issues.append(Issue(("param",), "give at least one param or ic to vary", None, show_value=False))
+        if kind == "toroidal_ball":
+            for key in ("speed_ratio", "speed"):
+                if getattr(self, key) is not None:
+                    issues.append(Issue((key,), "applies to a rotor with balls only; a toroidal_ball spins at its "
+                                                "model's spin_speed (vary it with param)", getattr(self, key)))
+            return issues
+        if self.spare_turns is not None:
+            issues.append(Issue(("spare_turns",), "applies to a toroidal_ball model only", self.spare_turns))
         if self.speed is None and self.speed_ratio is None:
             profile = model.speed_profile()
             if profile is None or not profile.is_constant or profile.final_speed == 0:
@@ -181,6 +249,8 @@ class SweepSpec(AbstractAnalysisSpec):
 
     def spin_speed(self, model: AbstractModelSpec) -> float:
         """Return the base spin speed (rad/s)."""
+        if getattr(model, "type", None) == "toroidal_ball":
+            return model.spin_speed
         if self.speed is not None:
             return self.speed
         if self.speed_ratio is not None:

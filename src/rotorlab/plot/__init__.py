@@ -4,7 +4,7 @@ Numerics never import this package. Figures are made without pyplot (Agg canvas)
 or using it changes no global matplotlib state.
 """
 
-from rotorlab.plot._basin import basin_figure, basin_figures, fractions_figure, restoring_force_figure
+from rotorlab.plot._basin import basin_figure, basin_figures, fractions_figure, restoring_force_figure, sweep_figures
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
 from rotorlab.plot._impacts import impact_figures, impact_sweep_figure, p_trajectory_figure
 from rotorlab.plot._linear import linear_figures, mode_shapes_figure, unbalance_response_figure
@@ -40,6 +40,7 @@ __all__ = [
     "simulation_figures",
     "speed_label",
     "stability_chart_figure",
+    "sweep_figures",
     "unbalance_response_figure",
     "verify_figure",
 ]

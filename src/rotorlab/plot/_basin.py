@@ -205,7 +205,8 @@ def basin_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
     name : str
         Analysis name; the stems are ``<name>_map``, ``<name>_map_mid`` (the map halfway through
         the simulated time, when it differs from the final one) and ``<name>_fractions`` (basin)
-        or ``<name>_force`` and ``<name>_phase`` (working point).
+        or ``<name>_force`` and ``<name>_phase`` (working point); a ``sweep`` result gets
+        :func:`sweep_figures`.
 
     Returns
     -------
@@ -217,6 +218,8 @@ def basin_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
         return {f"{name}_force": restoring_force_figure(
             curve, title=f"restoring force on the ball at rest, k = {k:g} m (seed 004 Fig. 3)"),
             f"{name}_phase": working_phase_figure(ds)}
+    if ds.attrs.get("analysis") == "sweep":
+        return sweep_figures(ds, name)
     if ds.attrs.get("analysis") != "basin":
         return {}
     fr = ds[["fraction"]]
@@ -228,4 +231,35 @@ def basin_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
         out[f"{name}_map_mid"] = basin_figure(ds, horizon=float(h[mid]),
                                               title=f"{name}: regimes after {float(h[mid]):g} s")
     out[f"{name}_fractions"] = fractions_figure(fr, title=f"{name}: fractions against the simulated time")
+    return out
+
+
+def sweep_figures(ds: xarray.Dataset, name: str | None = None) -> dict[str, Figure]:
+    """Return the figures of a sweep of a regime mapper by file stem (``rotorlab show``, ``rotorlab run``).
+
+    Parameters
+    ----------
+    ds : xarray.Dataset
+        From :func:`rotorlab.sweep.run_sweep` with :class:`rotorlab.explore.MapperAnalysis`
+        (``label`` over the swept dims and ``horizon``), or from a ``sweep`` analysis.
+    name : str, optional
+        Analysis name: the stems are ``<name>_basin`` (the map of the last horizon, for a grid of
+        two swept quantities only) and ``<name>_fractions``; without a name ``basin`` and
+        ``fractions``.
+
+    Returns
+    -------
+    dict of str to matplotlib.figure.Figure
+    """
+    from rotorlab.explore import basin_fractions
+
+    prefix = f"{name}_" if name else ""
+    out = {}
+    dims = [d for d in ds["label"].dims if d != "horizon"]
+    if len(dims) == 2 and not {"sample", "ic"} & set(dims):
+        title = f"{name}: regimes after {float(ds.horizon[-1]):g} s" if name else None
+        out[f"{prefix}basin"] = basin_figure(ds, title=title)
+    fr = ds[["fraction"]] if "fraction" in ds else basin_fractions(ds)
+    out[f"{prefix}fractions"] = fractions_figure(fr, title=f"{name}: fractions against the simulated time"
+                                                 if name else None)  # fmt: skip
     return out

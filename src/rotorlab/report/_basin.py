@@ -65,7 +65,14 @@ def basin_section(ds: xarray.Dataset, rows: Sequence[Mapping[str, Any]] | None, 
     t_end = float(horizons[-1])
     where = (f"{n} random starts (seed {ds.attrs.get('seed')}, Wilson intervals at "
              f"{float(ds.attrs.get('confidence', 0.95)):.0%})" if ds.attrs.get("mode") == "random"
+             else f"{n} random points (seed {ds.attrs.get('seed')})" if ds.attrs.get("mode") == "sample"
              else f"a grid of {n} starts")  # fmt: skip
+    if "x" in ds.attrs:
+        over = f"{ds.attrs.get('x')} × {ds.attrs.get('y')}"
+    elif ds.attrs.get("mode") == "sample":  # a sweep's sample: the drawn coordinates
+        over = " × ".join(str(k) for k in ds.coords if ds[k].dims == ("sample",) and k != "sample")
+    else:  # a sweep's grid: one dim per swept quantity
+        over = " × ".join(d for d in ds["label"].dims if d != "horizon")
     fixed = ", ".join(f"{k[6:]} = {float(v):g}" for k, v in ds.attrs.items() if k.startswith("fixed_"))
     frac = ds["fraction"].values
     half = rows[0]["horizon_half_s"] if rows else t_end
@@ -78,7 +85,7 @@ def basin_section(ds: xarray.Dataset, rows: Sequence[Mapping[str, Any]] | None, 
     header = ("regime", f"% at {t_end:g} s", "starts", "CI (%)", f"% at {half:g} s",
               "label kept since, median / max (s)")  # fmt: skip
     return "".join([
-        f"<p>Regimes of {where} over {_e(ds.attrs.get('x'))} × {_e(ds.attrs.get('y'))}"
+        f"<p>Regimes of {where} over {_e(over)}"
         + (f" ({_e(fixed)})" if fixed else "") + f", classified every {float(horizons[0]):g} s up to "
         f"{t_end:g} s.</p>",
         table(header, basin_table_rows(rows), numeric={1, 2, 4}),

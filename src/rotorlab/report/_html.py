@@ -263,7 +263,7 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
             parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
             shown.update(key for key in pngs if key.startswith(f"{name}_"))
             continue
-        if analysis.type in ("basin", "working-point", "impacts", "impacts-sweep") and ds is not None:
+        if analysis.type in ("basin", "working-point", "sweep", "impacts", "impacts-sweep") and ds is not None:
             if analysis.type in ("impacts", "impacts-sweep"):  # rotorlab.report._impacts
                 from rotorlab.report._impacts import impact_section
 

@@ -13,7 +13,7 @@ conclusions are in :mod:`rotorlab.steady._corrections` (:data:`SEED_NOTES`); the
 
 from rotorlab.steady._analysis import Disagreement, SteadyAnalysis, analyze_steady
 from rotorlab.steady._cases import Regime, SteadyCase, steady_case, steady_case_names
-from rotorlab.steady._chart import PARAMETERS, stability_chart, stable_intervals, with_parameter
+from rotorlab.steady._chart import EXACT_VERDICTS, PARAMETERS, SteadyStability, stability_chart, stable_intervals, with_parameter
 from rotorlab.steady._corrections import SEED_NOTES, SeedNote
 from rotorlab.steady._motions import (
     SteadyMotion,
@@ -29,6 +29,7 @@ from rotorlab.steady._verify import OTHER_OUTCOMES, ball_grid, match_state, veri
 
 __all__ = [
     "Disagreement",
+    "EXACT_VERDICTS",
     "OTHER_OUTCOMES",
     "PARAMETERS",
     "Regime",
@@ -38,6 +39,7 @@ __all__ = [
     "SteadyAnalysis",
     "SteadyCase",
     "SteadyMotion",
+    "SteadyStability",
     "analyze_steady",
     "assess_stability",
     "averaged_jacobian",

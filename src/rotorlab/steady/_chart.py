@@ -1,13 +1,17 @@
 """Stability chart: which steady motions exist and which are stable, over speed (and a parameter).
 
 Each grid point is one :func:`rotorlab.steady.analyze_steady`; the chart keeps, per motion label,
-its existence, the three verdicts, the exact growth rate, the deflection and H~*.
+its existence, the three verdicts, the exact growth rate, the deflection and H~*. The chart is a
+use of the sweep engine: :class:`SteadyStability` is its per-point analysis (so a chart can also
+run in chunks on local processes or Dask, into a resumable store, with
+:func:`rotorlab.sweep.run_sweep`), and :func:`stability_chart` arranges the engine's result.
 """
 
 from __future__ import annotations
 
 import math
-from dataclasses import replace
+from collections.abc import Mapping
+from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -20,7 +24,7 @@ if TYPE_CHECKING:
 
     from rotorlab.models import JeffcottBalls
 
-__all__ = ["PARAMETERS", "stability_chart", "stable_intervals", "with_parameter"]
+__all__ = ["PARAMETERS", "EXACT_VERDICTS", "SteadyStability", "stability_chart", "stable_intervals", "with_parameter"]
 
 #: Second parameters of a chart and their units.
 PARAMETERS = {
@@ -30,6 +34,10 @@ PARAMETERS = {
     "support_damping": "N s/m",
 }
 _RPM = 60.0 / (2.0 * math.pi)
+
+#: The exact verdicts of a steady motion (:attr:`rotorlab.steady.Stability.exact`), in the order
+#: of the integer codes of :class:`SteadyStability`'s ``verdict_exact``.
+EXACT_VERDICTS = ("stable", "unstable", "marginal", "partly stable", "absent")
 
 
 def with_parameter(model: JeffcottBalls, name: str, value: float) -> JeffcottBalls:
@@ -86,6 +94,118 @@ def with_parameter(model: JeffcottBalls, name: str, value: float) -> JeffcottBal
     return replace(model, balls=balls)
 
 
+@dataclass(frozen=True, eq=False)
+class SteadyStability:
+    """The per-point analysis of a stability chart: every steady motion at one spin speed (and one
+    value of a parameter), for :func:`rotorlab.sweep.run_sweep`.
+
+    Parameters
+    ----------
+    model : JeffcottBalls
+        The rotor with balls (its speed profile is not used: the speed is a coordinate).
+    param : str, optional
+        A second coordinate (see :func:`with_parameter` and :data:`PARAMETERS`).
+    family_samples : int
+        Samples per free angle of a family of main motions (n >= 3).
+
+    Notes
+    -----
+    Coordinates: ``spin_speed`` (rad/s) and ``param``. Per point (trailing dims ``motion`` and
+    ``ball``): ``exists``, ``stable_hamilton``, ``stable_averaged``, ``stable_exact``,
+    ``disagreement`` (bool), ``verdict_exact`` (int code into :data:`EXACT_VERDICTS`),
+    ``growth_rate`` (1/s), ``amplitude`` (m), ``phase`` (rad), ``h_tilde`` (J), ``ball_angle``
+    (rad), and ``critical_speed`` (rad/s). Each point is computed on its own, so the values do
+    not depend on the chunk or the executor.
+
+    Examples
+    --------
+    >>> from rotorlab.models import JeffcottBalls, RotorParams, BallParams, ConstantSpeed
+    >>> ball = BallParams(mass=0.03, radius=0.06, damping=2e-3)
+    >>> rotor = RotorParams(disc_mass=2.0, eccentricity=1.08e-3, stiffness=2e4, damping=8.0)
+    >>> a = SteadyStability(JeffcottBalls(rotor, (ball, ball), speed=ConstantSpeed(1.0)))
+    >>> out = a.run_chunk({"spin_speed": np.array([50.0, 300.0])})
+    >>> out["stable_exact"].values[:, :2].tolist(), out["stable_exact"].dims
+    ([[False, False], [True, True]], ('motion',))
+    """
+
+    model: Any
+    param: str | None = None
+    family_samples: int = 8
+
+    def __post_init__(self) -> None:
+        if self.param is not None and self.param not in PARAMETERS:
+            raise ValueError(f"unknown chart parameter {self.param!r}; choose one of {', '.join(PARAMETERS)}")
+
+    @property
+    def coordinate_units(self) -> Mapping[str, str]:
+        units = {"spin_speed": "rad/s"}
+        if self.param is not None:
+            units[self.param] = PARAMETERS[self.param]
+        return units
+
+    def trailing_coords(self) -> dict[str, tuple[np.ndarray, dict[str, Any]]]:
+        labels = motion_labels(self.model.n_balls)  # numbered (a Zarr store keeps no text arrays), named in attrs
+        return {"motion": (np.arange(len(labels)), {"units": "1", "labels": list(labels)}),
+                "ball": (np.arange(1, self.model.n_balls + 1), {"units": "1"})}  # fmt: skip
+
+    def result_attrs(self) -> dict[str, Any]:
+        return {"analysis": "stability-chart", "model": "jeffcott_balls", "verdicts": list(EXACT_VERDICTS)}
+
+    def run_chunk(self, coords: Mapping[str, np.ndarray], threads: int | None = None) -> dict[str, Any]:
+        """Analyse the steady motions at every point of one chunk (``threads`` is not used)."""
+        from rotorlab.sweep import ChunkVar
+
+        om = np.asarray(coords["spin_speed"], dtype=float)
+        vals = np.asarray(coords[self.param], dtype=float) if self.param is not None else None
+        n_pt, n = om.size, self.model.n_balls
+        shape = (n_pt, len(motion_labels(n)))
+        out_b = {k: np.zeros(shape, dtype=bool) for k in ("exists", "stable_hamilton", "stable_averaged",
+                                                          "stable_exact", "disagreement")}  # fmt: skip
+        out_f = {k: np.full(shape, np.nan) for k in ("growth_rate", "amplitude", "phase", "h_tilde")}
+        verdict = np.zeros(shape, dtype=np.int8)
+        angle = np.full(shape + (n,), np.nan)
+        crit = np.empty(n_pt)
+        for i in range(n_pt):
+            mod = self.model if vals is None else with_parameter(self.model, self.param, float(vals[i]))
+            crit[i] = mod.critical_speed
+            res = analyze_steady(mod, float(om[i]), family_samples=self.family_samples)
+            bad = {d.label for d in res.disagreements}
+            for c, m in enumerate(res.motions):
+                st = m.stability
+                out_b["exists"][i, c] = m.exists
+                for meth in ("hamilton", "averaged", "exact"):
+                    out_b[f"stable_{meth}"][i, c] = st.is_stable(meth)
+                out_b["disagreement"][i, c] = m.label in bad
+                verdict[i, c] = EXACT_VERDICTS.index(st.exact)
+                out_f["growth_rate"][i, c] = st.growth_rate
+                if m.exists:
+                    out_f["amplitude"][i, c] = m.amplitude
+                    out_f["phase"][i, c] = m.phase
+                    out_f["h_tilde"][i, c] = m.h_tilde
+                    angle[i, c] = m.ball_angles
+        out = {k: ChunkVar(("motion",), v, {"units": _VAR_ATTRS[k][0], "long_name": _VAR_ATTRS[k][1]})
+               for k, v in {**out_b, **out_f}.items()}  # fmt: skip
+        out["verdict_exact"] = ChunkVar(("motion",), verdict, {"units": "1", "long_name": "exact verdict (code)",
+                                                               "flag_meanings": list(EXACT_VERDICTS)})  # fmt: skip
+        out["ball_angle"] = ChunkVar(("motion", "ball"), angle, {"units": "rad",
+                                                                 "long_name": "ball angle from the unbalance"})
+        out["critical_speed"] = ChunkVar((), crit, {"units": "rad/s", "long_name": "critical speed p"})
+        return out
+
+
+_VAR_ATTRS = {
+    "exists": ("1", "motion exists"),
+    "stable_hamilton": ("1", "stable by seed 003's method (least H~*, Hessian of f)"),
+    "stable_averaged": ("1", "stable by seed 002's averaged equations"),
+    "stable_exact": ("1", "exactly stable (eigenvalues of the full Jacobian)"),
+    "disagreement": ("1", "a first-order method disagrees with the exact eigenvalues"),
+    "growth_rate": ("1/s", "largest real part of the exact eigenvalues"),
+    "amplitude": ("m", "shaft deflection"),
+    "phase": ("rad", "angle of the deflection from the unbalance"),
+    "h_tilde": ("J", "H~* = Pi - T0 (seed 003 (10))"),
+}
+
+
 def stability_chart(model: JeffcottBalls, speeds: Any, *, param: str | None = None, values: Any = None,
                     family_samples: int = 8) -> xarray.Dataset:  # fmt: skip
     """Compute which steady motions exist and which are stable over a grid of speeds.
@@ -133,53 +253,25 @@ def stability_chart(model: JeffcottBalls, speeds: Any, *, param: str | None = No
     if param is not None and param not in PARAMETERS:
         raise ValueError(f"unknown chart parameter {param!r}; choose one of {', '.join(PARAMETERS)}")
     vals = np.atleast_1d(np.asarray(values, dtype=float)) if param is not None else np.array([np.nan])
+    from rotorlab.sweep import InProcess, ListAxis, Sweep, run_sweep
+
     n = model.n_balls
     labels = motion_labels(n)
+    axes = (ListAxis("spin_speed", om),) if param is None else (ListAxis(param, vals), ListAxis("spin_speed", om))
+    res = run_sweep(Sweep(SteadyStability(model, param, family_samples), axes=axes), executor=InProcess())
     shape = (vals.size, om.size, len(labels))
-    out_b = {k: np.zeros(shape, dtype=bool) for k in ("exists", "stable_hamilton", "stable_averaged",
-                                                      "stable_exact", "disagreement")}  # fmt: skip
-    out_f = {k: np.full(shape, np.nan) for k in ("growth_rate", "amplitude", "phase", "h_tilde")}
-    verdict = np.empty(shape, dtype=object)
-    angle = np.full(shape + (n,), np.nan)
-    crit = np.empty(vals.size)
-    for a, v in enumerate(vals):
-        mod = model if param is None else with_parameter(model, param, float(v))
-        crit[a] = mod.critical_speed
-        for b, w in enumerate(om):
-            res = analyze_steady(mod, float(w), family_samples=family_samples)
-            bad = {d.label for d in res.disagreements}
-            for c, m in enumerate(res.motions):
-                st = m.stability
-                out_b["exists"][a, b, c] = m.exists
-                for meth in ("hamilton", "averaged", "exact"):
-                    out_b[f"stable_{meth}"][a, b, c] = st.is_stable(meth)
-                out_b["disagreement"][a, b, c] = m.label in bad
-                verdict[a, b, c] = st.exact
-                out_f["growth_rate"][a, b, c] = st.growth_rate
-                if m.exists:
-                    out_f["amplitude"][a, b, c] = m.amplitude
-                    out_f["phase"][a, b, c] = m.phase
-                    out_f["h_tilde"][a, b, c] = m.h_tilde
-                    angle[a, b, c] = m.ball_angles
+    dims = ("param", "speed", "motion")
+    data = {k: (dims, res[k].values.reshape(shape), {"units": u, "long_name": d}) for k, (u, d) in _VAR_ATTRS.items()}
+    verdict = np.array(EXACT_VERDICTS, dtype=object)[res["verdict_exact"].values.reshape(shape)]
+    data["verdict_exact"] = (dims, verdict.astype(str), {"units": "1", "long_name": "exact verdict"})
+    data["ball_angle"] = (dims + ("ball",), res["ball_angle"].values.reshape(shape + (n,)),
+                          {"units": "rad", "long_name": "ball angle from the unbalance"})  # fmt: skip
+    crit = res["critical_speed"].values.reshape(shape[:2])[:, 0]
+    stable = data["stable_exact"][1]
     kinds = ["main" if lab.startswith("main") else "side" for lab in labels]
     main = np.array([k == "main" for k in kinds])
-    dims = ("param", "speed", "motion")
-    attrs = {
-        "exists": ("1", "motion exists"),
-        "stable_hamilton": ("1", "stable by seed 003's method (least H~*, Hessian of f)"),
-        "stable_averaged": ("1", "stable by seed 002's averaged equations"),
-        "stable_exact": ("1", "exactly stable (eigenvalues of the full Jacobian)"),
-        "disagreement": ("1", "a first-order method disagrees with the exact eigenvalues"),
-        "growth_rate": ("1/s", "largest real part of the exact eigenvalues"),
-        "amplitude": ("m", "shaft deflection"),
-        "phase": ("rad", "angle of the deflection from the unbalance"),
-        "h_tilde": ("J", "H~* = Pi - T0 (seed 003 (10))"),
-    }
-    data = {k: (dims, arr, {"units": attrs[k][0], "long_name": attrs[k][1]}) for k, arr in {**out_b, **out_f}.items()}
-    data["verdict_exact"] = (dims, verdict.astype(str), {"units": "1", "long_name": "exact verdict"})
-    data["ball_angle"] = (dims + ("ball",), angle, {"units": "rad", "long_name": "ball angle from the unbalance"})
-    n_stable = out_b["stable_exact"].sum(axis=2)
-    balanced = out_b["stable_exact"][:, :, main].any(axis=2) if main.any() else np.zeros(shape[:2], bool)
+    n_stable = stable.sum(axis=2)
+    balanced = stable[:, :, main].any(axis=2) if main.any() else np.zeros(shape[:2], bool)
     data["n_stable_exact"] = (dims[:2], n_stable, {"units": "1", "long_name": "exactly stable motions"})
     data["balanced"] = (dims[:2], balanced, {"units": "1", "long_name": "a main (balanced) motion is exactly stable"})
     data["critical_speed"] = (("param",), crit, {"units": "rad/s", "long_name": "critical speed p"})

@@ -113,7 +113,7 @@ def assemble(dims, shape, grid: bool, coords, fixed, trailing, flat, attrs, unit
             out_coords[dim] = (dim, values, {"units": units.get(dim, "")})
     else:
         dim = dims[0]
-        out_coords[dim] = np.arange(shape[0])
+        out_coords[dim] = (dim, np.arange(shape[0]), {"units": "1", "description": "point number"})
         for name, values in coords.items():
             out_coords[name] = (dim, np.asarray(values), {"units": units.get(name, "")})
     for dim, (values, cattrs) in trailing.items():
