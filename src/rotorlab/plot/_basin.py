@@ -203,8 +203,9 @@ def basin_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
     ds : xarray.Dataset
         From :func:`rotorlab.analyses.run_basin_analysis`.
     name : str
-        Analysis name; the stems are ``<name>_map``, ``<name>_map_mid`` (the map halfway through
-        the simulated time, when it differs from the final one) and ``<name>_fractions`` (basin)
+        Analysis name; the stems are ``<name>_map``, ``<name>_map_first`` and ``<name>_map_mid``
+        (the map at the first horizon and halfway through the simulated time, each when it
+        differs from the final one) and ``<name>_fractions`` (basin)
         or ``<name>_force`` and ``<name>_phase`` (working point); a ``sweep`` result gets
         :func:`sweep_figures`.
 
@@ -226,10 +227,13 @@ def basin_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
     out = {f"{name}_map": basin_figure(ds, title=f"{name}: regimes after {float(ds.horizon[-1]):g} s")}
     h = ds.horizon.values
     mid = int(np.argmin(np.abs(h - h[-1] / 2.0)))
-    if mid < h.size - 1 and not np.array_equal(ds.fraction.values[mid], ds.fraction.values[-1]):
-        # the map still changes: show it halfway too (a long transient is visible there)
-        out[f"{name}_map_mid"] = basin_figure(ds, horizon=float(h[mid]),
-                                              title=f"{name}: regimes after {float(h[mid]):g} s")
+    # Where the map still changes, show it earlier too: at the first horizon (the basins of
+    # analyses with the same horizons can be compared there) and halfway (a long transient).
+    for suffix, j in (("first", 0), ("mid", mid)):
+        if j < h.size - 1 and (suffix == "first" or j > 0) and not np.array_equal(ds.fraction.values[j],
+                                                                                  ds.fraction.values[-1]):
+            out[f"{name}_map_{suffix}"] = basin_figure(ds, horizon=float(h[j]),
+                                                       title=f"{name}: regimes after {float(h[j]):g} s")
     out[f"{name}_fractions"] = fractions_figure(fr, title=f"{name}: fractions against the simulated time")
     return out
 
