@@ -75,22 +75,9 @@ class AbstractMapper(Protocol):
 def _check_coords(mapper: AbstractMapper, coords: Mapping[str, Any]) -> tuple[dict[str, np.ndarray], int]:
     if not isinstance(mapper, AbstractMapper):
         raise TypeError(f"mapper must implement AbstractMapper, got {type(mapper).__name__}")
-    known = mapper.coordinate_units
-    out: dict[str, np.ndarray] = {}
-    sizes = set()
-    for name, values in coords.items():
-        if name not in known:
-            raise ValueError(f"unknown coordinate {name!r}; this mapper accepts: {', '.join(known)}")
-        arr = np.atleast_1d(np.asarray(values, dtype=float))
-        if arr.ndim != 1 or not np.all(np.isfinite(arr)):
-            raise ValueError(f"coordinate {name!r} must be a finite 1-D array, got shape {arr.shape}")
-        out[name] = arr
-        sizes.add(arr.size)
-    sizes.discard(1)
-    if len(sizes) > 1:
-        raise ValueError(f"coordinates disagree on the number of start points: {sorted(sizes)}")
-    n = sizes.pop() if sizes else 1
-    return {k: np.broadcast_to(v, (n,)).copy() for k, v in out.items()}, n
+    from rotorlab.sweep._axes import point_columns
+
+    return point_columns(coords, mapper.coordinate_units)
 
 
 def label_since(labels: np.ndarray, horizons: np.ndarray) -> np.ndarray:

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["GridAxis", "ListAxis", "Sample", "Points"]
+__all__ = ["GridAxis", "ListAxis", "Sample", "Points", "point_columns"]
 
 _AXIS = re.compile(r"^\s*([A-Za-z_][A-Za-z0-9_]*)\s*=\s*([^:]+):([^:]+):([^:]+)\s*$")
 _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
@@ -193,6 +193,39 @@ class Sample:
                 "dim": self.dim}  # fmt: skip
 
 
+def point_columns(coords: Mapping[str, Any], known: Mapping[str, Any] | None = None) -> tuple[dict[str, np.ndarray], int]:
+    """Return the coordinates of a list of points as equal-length float columns, and their count.
+
+    Parameters
+    ----------
+    coords : mapping of str to array_like, shape (N,) or scalar
+        Scalars are shared by all points.
+    known : mapping, optional
+        The allowed names (ValueError for any other).
+
+    Examples
+    --------
+    >>> cols, n = point_columns({"psi": [0.0, 1.0], "dpsi": 3.0})
+    >>> n, cols["dpsi"].tolist()
+    (2, [3.0, 3.0])
+    """
+    out: dict[str, np.ndarray] = {}
+    sizes = set()
+    for name, values in dict(coords).items():
+        if known is not None and name not in known:
+            raise ValueError(f"unknown coordinate {name!r}; this mapper accepts: {', '.join(known)}")
+        arr = np.atleast_1d(np.asarray(values, dtype=float))
+        if arr.ndim != 1 or not np.all(np.isfinite(arr)):
+            raise ValueError(f"coordinate {name!r} must be a finite 1-D array, got shape {arr.shape}")
+        out[name] = arr
+        sizes.add(arr.size)
+    sizes.discard(1)
+    if len(sizes) > 1:
+        raise ValueError(f"coordinates disagree on the number of start points: {sorted(sizes)}")
+    n = sizes.pop() if sizes else 1
+    return {k: np.broadcast_to(v, (n,)).copy() for k, v in out.items()}, n
+
+
 @dataclass(frozen=True, eq=False)
 class Points:
     """An explicit list of points: every coordinate has one value per point.
@@ -215,19 +248,7 @@ class Points:
 
     def __post_init__(self) -> None:
         _check_name("Points", self.dim)
-        out: dict[str, np.ndarray] = {}
-        sizes = set()
-        for name, values in dict(self.coords).items():
-            arr = np.atleast_1d(np.asarray(values, dtype=float))
-            if arr.ndim != 1 or not np.all(np.isfinite(arr)):
-                raise ValueError(f"coordinate {name!r} must be a finite 1-D array, got shape {arr.shape}")
-            out[name] = arr
-            sizes.add(arr.size)
-        sizes.discard(1)
-        if len(sizes) > 1:
-            raise ValueError(f"coordinates disagree on the number of start points: {sorted(sizes)}")
-        n = sizes.pop() if sizes else 1
-        full = {k: np.broadcast_to(v, (n,)).copy() for k, v in out.items()}
+        full, _ = point_columns(self.coords)
         for v in full.values():
             v.setflags(write=False)
         object.__setattr__(self, "coords", full)
