@@ -22,7 +22,7 @@ from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
 from rotorlab.cli._output import BadInput, emit_json, handled, info, stderr, stdout
 
 __all__ = ["sweep_command", "show_command", "parse_axis", "check_store_path", "executor_from_options",
-           "run_into_store"]
+           "run_into_store", "stability_sweep", "stability_summary", "impact_summary", "STABILITY_AXES"]
 
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -33,7 +33,8 @@ WorkersOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
     "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")]
 
 
-def parse_axis(option: str, text: str, kind: str, sample: bool) -> tuple[str, tuple]:
+def parse_axis(option: str, text: str, kind: str, sample: bool,
+               dimensions: dict[str, str] | None = None) -> tuple[str, tuple]:  # fmt: skip
     """Read ``NAME=START:STOP:N`` (a grid) or, for a sample, ``NAME=LOW:HIGH``.
 
     Parameters
@@ -45,6 +46,8 @@ def parse_axis(option: str, text: str, kind: str, sample: bool) -> tuple[str, tu
     kind : {"param", "ic"}
     sample : bool
         Whether the sweep is a random sample (ranges) rather than a grid.
+    dimensions : dict of str to str, optional
+        The allowed names and their dimensions (default: every coordinate of a regime sweep).
 
     Returns
     -------
@@ -70,10 +73,11 @@ def parse_axis(option: str, text: str, kind: str, sample: bool) -> tuple[str, tu
     form = "NAME=LOW:HIGH" if sample else "NAME=START:STOP:N"
     if not sep:
         raise BadInput(f"{option} = {text}: must be {form}")
-    dimension = coordinate_dimension(name, kind)
+    dimension = coordinate_dimension(name, kind) if dimensions is None else dimensions.get(name)
     if dimension is None:
+        allowed = _allowed(kind) if dimensions is None else ", ".join(dimensions)
         raise BadInput(f"{option} = {text}: unknown {'parameter' if kind == 'param' else 'initial condition'} "
-                       f"{name!r} (allowed: {_allowed(kind)})")  # fmt: skip
+                       f"{name!r} (allowed: {allowed})")  # fmt: skip
     parts = rest.split(":")
     if len(parts) != (2 if sample else 3):
         raise BadInput(f"{option} = {text}: must be {form}" + (" (with --sample)" if sample else ""))
@@ -211,6 +215,44 @@ class _Bar:
         self.progress.update(self.task, completed=p.done, rate=f"{rate:.3g}/s")
 
 
+def _run_with_bar(settings: Any, title: str, sweep: Any, out: Path, resume: bool, size: int | None,
+                  executor: Any) -> tuple[Any, Any, float]:  # fmt: skip
+    """Run ``sweep`` into ``out`` under a progress bar: the Dataset, the last progress, seconds."""
+    from rotorlab.sweep import run_sweep
+
+    started = time.perf_counter()
+    last: list[Any] = []
+    with _Bar(settings, title) as bar:
+
+        def progress(p: Any) -> None:
+            last[:] = [p]
+            bar(p)
+
+        ds = run_into_store(lambda: run_sweep(sweep, store=out, resume=resume, chunk_size=size,
+                                              executor=executor, progress=progress), out)  # fmt: skip
+    return ds, last[-1], time.perf_counter() - started
+
+
+def _report(settings: Any, json_out: bool, loaded: Any, out: Path, sweep: Any, where: str, p: Any, seconds: float,
+            extra: dict[str, Any], lines: list[str]) -> None:  # fmt: skip
+    """Print what ``rotorlab sweep`` did (or its JSON document, with ``extra``)."""
+    doc = {"case": loaded.name, "source": loaded.source, "store": str(out), "dims": list(sweep.dims),
+           "shape": list(sweep.shape), "n_points": sweep.n_points, "executor": where,
+           "chunks": {"total": p.n_chunks, "computed": p.computed, "skipped": p.skipped}, **extra,
+           "seconds": round(seconds, 3)}  # fmt: skip
+    if json_out:
+        emit_json(doc)
+        return
+    if settings.quiet:
+        return
+    con = stdout()
+    con.print(f"{loaded.name}: {sweep.n_points} points, {p.computed} chunk(s) computed, {p.skipped} already "
+              f"in the store, {seconds:.1f} s", markup=False)  # fmt: skip
+    for line in lines:
+        con.print(line, markup=False)
+    con.print(f"Wrote {out} (rotorlab show {out})", markup=False)
+
+
 @app.command("sweep")
 def sweep_command(
     ctx: typer.Context,
@@ -243,9 +285,14 @@ def sweep_command(
     chunk: Annotated[Optional[int], typer.Option(  # noqa: UP007
         "--chunk", metavar="N", help="Points per chunk (default: the case's, else 1024; a resumed store keeps "
         "its own).")] = None,
+    per_point: Annotated[str, typer.Option(
+        "--per-point", metavar="ANALYSIS", help="What each point computes: 'regimes' (integrate and classify) or "
+        "'stability' (existence and stability of every steady motion; --param over speed_rpm, speed_ratio or "
+        "spin_speed and ball_mass, ball_damping, eccentricity, support_damping).")] = "regimes",
     json_out: JsonOpt = False,
 ) -> None:
-    """Run the regimes of a rotor with balls over a grid or sample of parameters and initial conditions.
+    """Run the regimes (or, with --per-point stability, the steady-motion stability) of a rotor with
+    balls over a grid or sample of parameters and initial conditions.
 
     Results go to a Zarr store as each chunk finishes; an interrupted sweep (Ctrl-C, a killed
     process, a lost worker) continues with --resume, computing only what is missing. Results
@@ -253,6 +300,8 @@ def sweep_command(
     """
     settings = _settings(ctx)
     with handled(settings):
+        if per_point not in ("regimes", "stability"):
+            raise BadInput(f"--per-point = {per_point}: must be 'regimes' or 'stability'")
         executor = executor_from_options(scheduler, workers)
         for option, value in (("--chunk", chunk), ("--sample", sample)):
             if value is not None and value < 1:
@@ -264,6 +313,14 @@ def sweep_command(
             raise BadInput("--speed-rpm and --speed-ratio exclude each other: give only one")
         if seed is not None and sample is None:
             raise BadInput("--seed needs --sample")
+        if per_point == "stability":
+            for option, value in (("--ic", ic), ("--t-end", t_end), ("--analysis", analysis)):
+                if value is not None:
+                    raise BadInput(f"{option}: not with --per-point stability (steady motions have no initial "
+                                   "conditions, simulated time or case sweep analysis)")  # fmt: skip
+            _stability_sweep(settings, case, out, param or [], sample, seed, speed_rpm, speed_ratio, resume,
+                             executor, chunk, json_out)  # fmt: skip
+            return
         axes: dict[str, tuple] = {}
         for option, texts, kind in (("--param", param, "param"), ("--ic", ic, "ic")):
             for text in texts or ():
@@ -315,7 +372,6 @@ def sweep_command(
             spec = SweepSpec(name="sweep", revolutions=200.0, t_end=None)
         spec = spec.model_copy(update=update)
         from rotorlab.analyses._sweep import build_sweep
-        from rotorlab.sweep import run_sweep
 
         try:
             sweep = build_sweep(loaded.model, spec, axes=axes or None, sample=sample, seed=seed, t_end=t_end)
@@ -326,35 +382,163 @@ def sweep_command(
         shape = " x ".join(str(s) for s in sweep.shape)
         info(settings, f"Sweeping {loaded.name}: {sweep.n_points} points ({' x '.join(sweep.dims)} = {shape}), "
              f"{sweep.analysis.mapper.t_end:.6g} s each, {where}, into {out} ...", json_mode=json_out)  # fmt: skip
-        started = time.perf_counter()
-        last: list[Any] = []
-        with _Bar(settings, loaded.name) as bar:
-
-            def progress(p: Any) -> None:
-                last[:] = [p]
-                bar(p)
-
-            ds = run_into_store(lambda: run_sweep(sweep, store=out, resume=resume, chunk_size=size,
-                                                  executor=executor, progress=progress), out)  # fmt: skip
-        seconds = time.perf_counter() - started
-        p = last[-1]
+        ds, p, seconds = _run_with_bar(settings, loaded.name, sweep, out, resume, size, executor)
         fractions, n = _fractions(ds)
-        doc = {"case": loaded.name, "source": loaded.source, "store": str(out), "dims": list(sweep.dims),
-               "shape": list(sweep.shape), "n_points": sweep.n_points, "executor": where,
-               "chunks": {"total": p.n_chunks, "computed": p.computed, "skipped": p.skipped},
-               "fractions": fractions, "n": n, "t_end": float(ds.attrs["t_end"]),
-               "seconds": round(seconds, 3)}  # fmt: skip
-        if json_out:
-            emit_json(doc)
-            return
-        if settings.quiet:
-            return
-        con = stdout()
-        con.print(f"{loaded.name}: {sweep.n_points} points, {p.computed} chunk(s) computed, {p.skipped} already "
-                  f"in the store, {seconds:.1f} s", markup=False)  # fmt: skip
-        con.print("fractions after {:g} s: {}".format(float(ds.attrs["t_end"]), ", ".join(
-            f"{k} {100 * v:.1f}%" for k, v in fractions.items() if v > 0)), markup=False)  # fmt: skip
-        con.print(f"Wrote {out} (rotorlab show {out})", markup=False)
+        _report(settings, json_out, loaded, out, sweep, where, p, seconds,
+                {"fractions": fractions, "n": n, "t_end": float(ds.attrs["t_end"])},
+                ["fractions after {:g} s: {}".format(float(ds.attrs["t_end"]), ", ".join(
+                    f"{k} {100 * v:.1f}%" for k, v in fractions.items() if v > 0))])  # fmt: skip
+
+
+#: Coordinates of ``rotorlab sweep --per-point stability`` and their dimensions: the speed (one of
+#: three spellings; ``speed_rpm`` is stored as the ``spin_speed`` axis in rad/s) and the steady
+#: parameters of :data:`rotorlab.steady.PARAMETERS`.
+STABILITY_AXES = {"speed_rpm": "dimensionless", "speed_ratio": "dimensionless", "spin_speed": "angular_speed",
+                  "ball_mass": "mass", "ball_damping": "torque_damping", "eccentricity": "length",
+                  "support_damping": "damping"}  # fmt: skip
+_SPEEDS = ("speed_rpm", "speed_ratio", "spin_speed")
+#: Points per chunk of a stability sweep when none is given (a point takes milliseconds).
+STABILITY_CHUNK = 64
+
+
+def stability_sweep(model: Any, axes: dict[str, tuple], *, sample: int | None = None, seed: int | None = None,
+                    fixed: dict[str, float] | None = None) -> Any:  # fmt: skip
+    """The :class:`rotorlab.sweep.Sweep` of ``rotorlab sweep --per-point stability``.
+
+    Parameters
+    ----------
+    model : JeffcottBalls
+    axes : dict of str to tuple
+        Name (a key of :data:`STABILITY_AXES`) to ``(start, stop, n)``, or ``(low, high)`` with
+        ``sample``; ``speed_rpm`` becomes the ``spin_speed`` axis (rad/s).
+    sample, seed : int, optional
+        A seeded random sample of ``sample`` points instead of a grid.
+    fixed : dict of str to float, optional
+        The speed when it is not swept (``spin_speed`` in rad/s or ``speed_ratio``).
+
+    Returns
+    -------
+    rotorlab.sweep.Sweep
+        Points evaluated by :class:`rotorlab.steady.SteadyStability`.
+    """
+    from rotorlab.steady import SteadyStability
+    from rotorlab.sweep import GridAxis, Sample, Sweep
+
+    conv = {name: (("spin_speed", 1.0 / _RPM) if name == "speed_rpm" else (name, 1.0)) for name in axes}
+    ranges = {conv[k][0]: tuple(v * conv[k][1] for v in entry[:2]) + tuple(entry[2:]) for k, entry in axes.items()}
+    analysis = SteadyStability(model)
+    if sample is not None:
+        return Sweep(analysis, sample=Sample({k: v[:2] for k, v in ranges.items()}, sample, 0 if seed is None else seed),
+                     fixed=fixed or {})  # fmt: skip
+    return Sweep(analysis, axes=tuple(GridAxis(k, *v) for k, v in ranges.items()), fixed=fixed or {})
+
+
+def _stability_sweep(settings: Any, case: str, out: Path, texts: list[str], sample: int | None, seed: int | None,
+                     speed_rpm: float | None, speed_ratio: float | None, resume: bool, executor: Any,
+                     chunk: int | None, json_out: bool) -> None:  # fmt: skip
+    axes: dict[str, tuple] = {}
+    for text in texts:
+        name, entry = parse_axis("--param", text, "param", sample is not None, STABILITY_AXES)
+        if name in axes:
+            raise BadInput(f"--param = {text}: {name} is given twice")
+        if name in _SPEEDS and set(axes) & set(_SPEEDS):
+            raise BadInput(f"--param = {text}: the speed is already swept by --param {next(iter(set(axes) & set(_SPEEDS)))}")
+        positive = name in _SPEEDS or name == "ball_mass"
+        if not all(v > 0 if positive else v >= 0 for v in entry[:2]):
+            raise BadInput(f"--param = {text}: {name} must be {'> 0' if positive else '>= 0'}")
+        axes[name] = entry
+    if not axes:
+        raise BadInput("--per-point stability needs the points: give --param NAME=A:B:N (speed_rpm, speed_ratio, "
+                       "spin_speed, ball_mass, ball_damping, eccentricity, support_damping)")  # fmt: skip
+    swept_speed = set(axes) & set(_SPEEDS)
+    if swept_speed and (speed_rpm is not None or speed_ratio is not None):
+        raise BadInput(f"--speed-{'rpm' if speed_rpm is not None else 'ratio'}: the speed is swept by "
+                       f"--param {next(iter(swept_speed))}")  # fmt: skip
+    check_store_path(out, resume)
+    loaded = _load(case)
+    from rotorlab.cli._steady import _model
+
+    model = _model(loaded, {})
+    fixed: dict[str, float] = {}
+    if speed_rpm is not None:
+        fixed["spin_speed"] = speed_rpm / _RPM
+    elif speed_ratio is not None:
+        fixed["speed_ratio"] = speed_ratio
+    elif not swept_speed:
+        profile = loaded.model.speed_profile()
+        if profile is None or not profile.is_constant or profile.final_speed == 0:
+            raise BadInput(f"case {loaded.name} has no constant speed: give --speed-rpm, --speed-ratio or "
+                           "--param speed_rpm=A:B:N")  # fmt: skip
+        fixed["spin_speed"] = float(profile.final_speed)
+    from rotorlab.steady import with_parameter
+
+    for name, entry in axes.items():  # a bad value fails here, before the store exists
+        if name not in _SPEEDS:
+            for v in entry[:2]:
+                try:
+                    with_parameter(model, name, v)
+                except ValueError as exc:
+                    raise BadInput(f"--param {name}: {exc}") from None
+    sweep = stability_sweep(model, axes, sample=sample, seed=seed, fixed=fixed)
+    size = chunk if chunk is not None else (None if resume and out.exists() else STABILITY_CHUNK)
+    where = executor.describe()
+    shape = " x ".join(str(s) for s in sweep.shape)
+    info(settings, f"Sweeping the steady motions of {loaded.name}: {sweep.n_points} points "
+         f"({' x '.join(sweep.dims)} = {shape}), {where}, into {out} ...", json_mode=json_out)  # fmt: skip
+    ds, p, seconds = _run_with_bar(settings, loaded.name, sweep, out, resume, size, executor)
+    summary = stability_summary(ds.stack(point=list(sweep.dims)))
+    _report(settings, json_out, loaded, out, sweep, where, p, seconds,
+            {"per_point": "stability", "fixed": fixed, "stability": summary}, [_stability_line(summary)])
+
+
+def stability_summary(flat: Any) -> dict[str, Any]:
+    """Fractions of the points of a steady-stability sweep (``point`` x ``motion``) where a main
+    (balanced) motion, any motion, and each motion is stable by the exact eigenvalues."""
+    import numpy as np
+
+    stable = np.asarray(flat["stable_exact"].transpose("point", "motion").values, dtype=bool)
+    labels = list(flat["motion"].attrs.get("labels", [str(m) for m in flat["motion"].values]))
+    main = np.array([str(lab).startswith("main") for lab in labels])
+    n = stable.shape[0]
+
+    def frac(x: Any) -> float:
+        return float(np.count_nonzero(x)) / n if n else float("nan")
+
+    return {"n": n, "balanced": frac(stable[:, main].any(axis=1)), "any_stable": frac(stable.any(axis=1)),
+            "motions": {str(lab): frac(stable[:, i]) for i, lab in enumerate(labels)}}  # fmt: skip
+
+
+def _stability_line(summary: dict[str, Any]) -> str:
+    return (f"exactly stable over {summary['n']} finished points: a main (balanced) motion "
+              f"{100 * summary['balanced']:.1f}%, any motion {100 * summary['any_stable']:.1f}%; " + ", ".join(
+                  f"{k} {100 * v:.1f}%" for k, v in summary["motions"].items() if v > 0))  # fmt: skip
+
+
+def impact_summary(flat: Any) -> dict[str, Any]:
+    """Regime fractions and impact counts of the runs of an impact store (``point``)."""
+    import numpy as np
+
+    names = list(flat.attrs.get("regimes", []))
+    codes = np.asarray(flat["regime"].values) if "regime" in flat else np.zeros(0, int)
+    impacts = np.asarray(flat["impacts"].values)
+    n = impacts.size
+    regimes = {str(name): float(np.count_nonzero(codes == i)) / n for i, name in enumerate(names)} if n else {}
+    return {"n": n, "regimes": regimes, "impacts_mean": float(impacts.mean()) if n else float("nan"),
+            "impacts_max": int(impacts.max()) if n else 0}  # fmt: skip
+
+
+def _analysis_name(meta: dict[str, Any]) -> str:
+    res = meta["result_attrs"]
+    if res.get("mapper") or res.get("analysis"):
+        return str(res.get("mapper") or res.get("analysis"))
+    import json
+
+    desc = meta.get("sweep")
+    try:
+        desc = json.loads(desc) if isinstance(desc, str) else desc
+        return str(desc["analysis"]["type"]).rsplit(".", 1)[-1]
+    except (TypeError, KeyError, ValueError):
+        return "?"
 
 
 @app.command("show")
@@ -366,7 +550,11 @@ def show_command(
         "'-figures').")] = None,
     json_out: JsonOpt = False,
 ) -> None:
-    """Print a summary of a sweep store and write its figures (basin map of a 2-D sweep, fractions)."""
+    """Print a summary of a sweep store and write its figures (basin map of a 2-D sweep, fractions).
+
+    Regime stores get regime fractions and figures; steady-stability stores the fractions of
+    points where a motion is exactly stable; impact stores the impact counts and regimes.
+    """
     settings = _settings(ctx)
     with handled(settings):
         from rotorlab.sweep import SweepStoreError, open_sweep, store_info
@@ -385,22 +573,28 @@ def show_command(
             raise BadInput(f"--figures = {folder}: folder {folder.absolute().parent} does not exist")
         done = meta["done"] > 0
         written = []
-        fractions, n = None, 0
+        fractions, n, stability, impacts = None, 0, None, None
+        mask = done.repeat(meta["chunk_size"])[: meta["n_points"]]  # the finished points only
+        flat = ds.stack(point=list(meta["dims"])).isel(point=mask).reset_index("point", drop=True) \
+            if mask.any() else None  # fmt: skip
         if "label" in ds:
-            sub = ds
-            if not meta["complete"]:  # count the finished points only
-                flat = ds.stack(point=list(meta["dims"]))
-                mask = (done.repeat(meta["chunk_size"])[: meta["n_points"]])
-                sub = flat.isel(point=mask).reset_index("point", drop=True) if mask.any() else None
-            if sub is not None:
-                fractions, n = _fractions(sub)
+            if flat is not None:
+                fractions, n = _fractions(ds if meta["complete"] else flat)
             if meta["complete"]:
                 written = _figures(ds, folder)
-        doc = {"store": str(store), "dims": meta["dims"], "shape": meta["shape"], "n_points": meta["n_points"],
-               "chunks": {"total": meta["n_chunks"], "done": meta["chunks_done"]}, "complete": meta["complete"],
-               "runs": meta["runs"], "versions": meta["versions"], "fixed": meta["fixed"],
-               "result": dict(meta["result_attrs"]), "variables": sorted(ds.data_vars),
-               "fractions": fractions, "n": n, "figures": written}  # fmt: skip
+        elif "stable_exact" in ds and flat is not None:
+            stability = stability_summary(flat)
+            n = stability["n"]
+        elif "impacts" in ds and flat is not None:
+            impacts = impact_summary(flat)
+            n = impacts["n"]
+        name = _analysis_name(meta)
+        doc = {"store": str(store), "analysis": name, "dims": meta["dims"], "shape": meta["shape"],
+               "n_points": meta["n_points"], "chunks": {"total": meta["n_chunks"], "done": meta["chunks_done"]},
+               "complete": meta["complete"], "runs": meta["runs"], "versions": meta["versions"],
+               "fixed": meta["fixed"], "result": dict(meta["result_attrs"]), "variables": sorted(ds.data_vars),
+               "fractions": fractions, "stability": stability, "impacts": impacts, "n": n,
+               "figures": written}  # fmt: skip
         if json_out:
             emit_json(doc)
             return
@@ -412,8 +606,9 @@ def show_command(
                   f"chunks done" + ("" if meta["complete"] else " (unfinished: continue with rotorlab sweep "
                                     "... --resume)"), markup=False)  # fmt: skip
         res = meta["result_attrs"]
-        con.print(f"analysis: {res.get('mapper', '?')}, {res.get('t_end', float('nan')):.6g} s per point; "
-                  f"written in {meta['runs']} run(s) by rotorlab {meta['versions'].get('rotorlab')}", markup=False)
+        per = f", {float(res['t_end']):.6g} s per point" if "t_end" in res else ""
+        con.print(f"analysis: {name}{per}; written in {meta['runs']} run(s) by rotorlab "
+                  f"{meta['versions'].get('rotorlab')}", markup=False)  # fmt: skip
         for name in meta["dims"]:
             c = ds[name]
             con.print(f"  {name}: {float(c.min()):.6g} .. {float(c.max()):.6g} {c.attrs.get('units', '')}",
@@ -421,6 +616,13 @@ def show_command(
         if fractions is not None:
             con.print(f"fractions of {n} finished points: " + ", ".join(
                 f"{k} {100 * v:.1f}%" for k, v in fractions.items() if v > 0), markup=False)  # fmt: skip
+        if stability is not None:
+            con.print(_stability_line(stability), markup=False)
+        if impacts is not None:
+            con.print(f"{n} finished runs: {impacts['impacts_mean']:.3g} impacts per run on average (at most "
+                      f"{impacts['impacts_max']}); regimes: " + (", ".join(
+                          f"{k} {100 * v:.1f}%" for k, v in impacts["regimes"].items() if v > 0) or "none"),
+                      markup=False)  # fmt: skip
         for path in written:
             con.print(f"Wrote {path}", markup=False)
 

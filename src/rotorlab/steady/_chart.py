@@ -110,7 +110,10 @@ class SteadyStability:
 
     Notes
     -----
-    Coordinates: ``spin_speed`` (rad/s) and ``param``. Per point (trailing dims ``motion`` and
+    Coordinates: the speed, as ``spin_speed`` (rad/s) or as ``speed_ratio`` (omega / p, p the
+    critical speed of the point's model; give one of the two), and any of :data:`PARAMETERS`
+    (applied with :func:`with_parameter` in the order of :data:`PARAMETERS`; ``param`` only
+    names the chart's second one). Per point (trailing dims ``motion`` and
     ``ball``): ``exists``, ``stable_hamilton``, ``stable_averaged``, ``stable_exact``,
     ``disagreement`` (bool), ``verdict_exact`` (int code into :data:`EXACT_VERDICTS`),
     ``growth_rate`` (1/s), ``amplitude`` (m), ``phase`` (rad), ``h_tilde`` (J), ``ball_angle``
@@ -138,10 +141,7 @@ class SteadyStability:
 
     @property
     def coordinate_units(self) -> Mapping[str, str]:
-        units = {"spin_speed": "rad/s"}
-        if self.param is not None:
-            units[self.param] = PARAMETERS[self.param]
-        return units
+        return {"spin_speed": "rad/s", "speed_ratio": "1", **PARAMETERS}
 
     def trailing_coords(self) -> dict[str, tuple[np.ndarray, dict[str, Any]]]:
         labels = motion_labels(self.model.n_balls)  # numbered (a Zarr store keeps no text arrays), named in attrs
@@ -155,8 +155,11 @@ class SteadyStability:
         """Analyse the steady motions at every point of one chunk (``threads`` is not used)."""
         from rotorlab.sweep import ChunkVar
 
-        om = np.asarray(coords["spin_speed"], dtype=float)
-        vals = np.asarray(coords[self.param], dtype=float) if self.param is not None else None
+        if ("spin_speed" in coords) == ("speed_ratio" in coords):
+            raise ValueError("a steady-stability point needs exactly one of spin_speed and speed_ratio")
+        ratio = "speed_ratio" in coords
+        om = np.asarray(coords["speed_ratio" if ratio else "spin_speed"], dtype=float)
+        vals = {k: np.asarray(coords[k], dtype=float) for k in PARAMETERS if k in coords}
         n_pt, n = om.size, self.model.n_balls
         shape = (n_pt, len(motion_labels(n)))
         out_b = {k: np.zeros(shape, dtype=bool) for k in ("exists", "stable_hamilton", "stable_averaged",
@@ -166,9 +169,11 @@ class SteadyStability:
         angle = np.full(shape + (n,), np.nan)
         crit = np.empty(n_pt)
         for i in range(n_pt):
-            mod = self.model if vals is None else with_parameter(self.model, self.param, float(vals[i]))
+            mod = self.model
+            for name, v in vals.items():
+                mod = with_parameter(mod, name, float(v[i]))
             crit[i] = mod.critical_speed
-            res = analyze_steady(mod, float(om[i]), family_samples=self.family_samples)
+            res = analyze_steady(mod, float(om[i] * crit[i] if ratio else om[i]), family_samples=self.family_samples)
             bad = {d.label for d in res.disagreements}
             for c, m in enumerate(res.motions):
                 st = m.stability
