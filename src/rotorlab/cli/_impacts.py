@@ -15,7 +15,7 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
-from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
+from rotorlab.cli._output import BadInput, console_or_json, handled, info, status
 from rotorlab.cli._sweep import SchedulerOpt, WorkersOpt
 
 __all__ = ["impacts_command", "impacts_sweep_command", "impact_tables"]
@@ -85,12 +85,9 @@ def _finish(settings: Any, loaded: Any, spec: Any, ds: Any, summary: dict[str, A
 
         for row, p in zip(doc["rows"], paper_counts(ds)):
             row["paper_impacts"] = p
-    if json_out:
-        emit_json(doc)
+    con = console_or_json(settings, json_out, doc)
+    if con is None:
         return
-    if settings.quiet:
-        return
-    con = stdout()
     for table in impact_tables({spec.name: ds}):
         con.print(table)
     for path in written:

@@ -89,6 +89,17 @@ def emit_json(document: Any) -> None:
     sys.stdout.flush()
 
 
+def console_or_json(settings: Settings, json_out: bool, document: Any) -> Any:
+    """Finish a command's output: in ``--json`` mode write ``document`` and return None; when
+    quiet return None; else return the stdout console for the human-readable output."""
+    if json_out:
+        emit_json(document)
+        return None
+    if settings.quiet:
+        return None
+    return stdout()
+
+
 @contextlib.contextmanager
 def handled(settings: Settings) -> Iterator[None]:
     """Turn exceptions into one clear message on stderr and the documented exit code.

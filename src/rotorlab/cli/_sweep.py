@@ -19,7 +19,7 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
-from rotorlab.cli._output import BadInput, emit_json, handled, info, stderr, stdout
+from rotorlab.cli._output import BadInput, console_or_json, handled, info, stderr
 
 __all__ = ["sweep_command", "show_command", "parse_axis", "check_store_path", "executor_from_options",
            "run_into_store", "stability_sweep", "stability_summary", "impact_summary", "STABILITY_AXES"]
@@ -240,12 +240,9 @@ def _report(settings: Any, json_out: bool, loaded: Any, out: Path, sweep: Any, w
            "shape": list(sweep.shape), "n_points": sweep.n_points, "executor": where,
            "chunks": {"total": p.n_chunks, "computed": p.computed, "skipped": p.skipped}, **extra,
            "seconds": round(seconds, 3)}  # fmt: skip
-    if json_out:
-        emit_json(doc)
+    con = console_or_json(settings, json_out, doc)
+    if con is None:
         return
-    if settings.quiet:
-        return
-    con = stdout()
     con.print(f"{loaded.name}: {sweep.n_points} points, {p.computed} chunk(s) computed, {p.skipped} already "
               f"in the store, {seconds:.1f} s", markup=False)  # fmt: skip
     for line in lines:
@@ -595,12 +592,9 @@ def show_command(
                "fixed": meta["fixed"], "result": dict(meta["result_attrs"]), "variables": sorted(ds.data_vars),
                "fractions": fractions, "stability": stability, "impacts": impacts, "n": n,
                "figures": written}  # fmt: skip
-        if json_out:
-            emit_json(doc)
+        con = console_or_json(settings, json_out, doc)
+        if con is None:
             return
-        if settings.quiet:
-            return
-        con = stdout()
         shape = " x ".join(f"{d} {s}" for d, s in zip(meta["dims"], meta["shape"]))
         con.print(f"{store}: {meta['n_points']} points ({shape}); {meta['chunks_done']} of {meta['n_chunks']} "
                   f"chunks done" + ("" if meta["complete"] else " (unfinished: continue with rotorlab sweep "
