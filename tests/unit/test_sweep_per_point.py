@@ -12,7 +12,7 @@ import numpy as np
 import pytest
 from typer.testing import CliRunner
 
-from rotorlab.cli import _sweep as cli_sweep
+from rotorlab.cli import _sweep_common as cli_sweep
 from rotorlab.cli import app
 from rotorlab.sweep import open_sweep, store_info
 
@@ -70,7 +70,7 @@ def test_stability_sweep_equals_stability_chart_and_resumes_bit_identical(tmp_pa
         if len(calls) == 3:
             raise KeyboardInterrupt
 
-    monkeypatch.setattr(cli_sweep._Bar, "__call__", stop)
+    monkeypatch.setattr(cli_sweep.SweepBar, "__call__", stop)
     res = invoke(*STAB, "--out", str(part))
     assert res.exit_code == 130 and store_info(part)["chunks_done"] == 2
     monkeypatch.undo()

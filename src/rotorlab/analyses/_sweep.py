@@ -13,7 +13,10 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-__all__ = ["build_sweep", "run_sweep_analysis"]
+_RPM = 60.0 / (2.0 * math.pi)
+
+__all__ = ["build_sweep", "run_sweep_analysis", "stability_sweep", "stability_summary", "impact_store_summary",
+           "STABILITY_AXES", "SPEED_AXES", "STABILITY_CHUNK"]
 
 
 def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None = None,
@@ -124,3 +127,77 @@ def run_sweep_analysis(case_model: Any, spec: Any, progress: Callable[[int, int]
     if sweep.sample is not None:
         ds.attrs["seed"] = sweep.sample.seed
     return ds
+
+
+#: Coordinates of a steady-stability sweep (``rotorlab sweep --per-point stability``) and their dimensions: the speed (one of
+#: three spellings; ``speed_rpm`` is stored as the ``spin_speed`` axis in rad/s) and the steady
+#: parameters of :data:`rotorlab.steady.PARAMETERS`.
+STABILITY_AXES = {"speed_rpm": "dimensionless", "speed_ratio": "dimensionless", "spin_speed": "angular_speed",
+                  "ball_mass": "mass", "ball_damping": "torque_damping", "eccentricity": "length",
+                  "support_damping": "damping"}  # fmt: skip
+#: The names of the speed among :data:`STABILITY_AXES`.
+SPEED_AXES = ("speed_rpm", "speed_ratio", "spin_speed")
+#: Points per chunk of a stability sweep when none is given (a point takes milliseconds).
+STABILITY_CHUNK = 64
+
+
+def stability_sweep(model: Any, axes: dict[str, tuple], *, sample: int | None = None, seed: int | None = None,
+                    fixed: dict[str, float] | None = None) -> Any:  # fmt: skip
+    """The :class:`rotorlab.sweep.Sweep` of a steady-stability sweep (``rotorlab sweep --per-point stability``).
+
+    Parameters
+    ----------
+    model : JeffcottBalls
+    axes : dict of str to tuple
+        Name (a key of :data:`STABILITY_AXES`) to ``(start, stop, n)``, or ``(low, high)`` with
+        ``sample``; ``speed_rpm`` becomes the ``spin_speed`` axis (rad/s).
+    sample, seed : int, optional
+        A seeded random sample of ``sample`` points instead of a grid.
+    fixed : dict of str to float, optional
+        The speed when it is not swept (``spin_speed`` in rad/s or ``speed_ratio``).
+
+    Returns
+    -------
+    rotorlab.sweep.Sweep
+        Points evaluated by :class:`rotorlab.steady.SteadyStability`.
+    """
+    from rotorlab.steady import SteadyStability
+    from rotorlab.sweep import GridAxis, Sample, Sweep
+
+    conv = {name: (("spin_speed", 1.0 / _RPM) if name == "speed_rpm" else (name, 1.0)) for name in axes}
+    ranges = {conv[k][0]: tuple(v * conv[k][1] for v in entry[:2]) + tuple(entry[2:]) for k, entry in axes.items()}
+    analysis = SteadyStability(model)
+    if sample is not None:
+        return Sweep(analysis, sample=Sample({k: v[:2] for k, v in ranges.items()}, sample, 0 if seed is None else seed),
+                     fixed=fixed or {})  # fmt: skip
+    return Sweep(analysis, axes=tuple(GridAxis(k, *v) for k, v in ranges.items()), fixed=fixed or {})
+
+
+def stability_summary(flat: Any) -> dict[str, Any]:
+    """Fractions of the points of a steady-stability sweep (``point`` x ``motion``) where a main
+    (balanced) motion, any motion, and each motion is stable by the exact eigenvalues."""
+    import numpy as np
+
+    stable = np.asarray(flat["stable_exact"].transpose("point", "motion").values, dtype=bool)
+    labels = list(flat["motion"].attrs.get("labels", [str(m) for m in flat["motion"].values]))
+    main = np.array([str(lab).startswith("main") for lab in labels])
+    n = stable.shape[0]
+
+    def frac(x: Any) -> float:
+        return float(np.count_nonzero(x)) / n if n else float("nan")
+
+    return {"n": n, "balanced": frac(stable[:, main].any(axis=1)), "any_stable": frac(stable.any(axis=1)),
+            "motions": {str(lab): frac(stable[:, i]) for i, lab in enumerate(labels)}}  # fmt: skip
+
+
+def impact_store_summary(flat: Any) -> dict[str, Any]:
+    """Regime fractions and impact counts of the runs of an impact store (``point``)."""
+    import numpy as np
+
+    names = list(flat.attrs.get("regimes", []))
+    codes = np.asarray(flat["regime"].values) if "regime" in flat else np.zeros(0, int)
+    impacts = np.asarray(flat["impacts"].values)
+    n = impacts.size
+    regimes = {str(name): float(np.count_nonzero(codes == i)) / n for i, name in enumerate(names)} if n else {}
+    return {"n": n, "regimes": regimes, "impacts_mean": float(impacts.mean()) if n else float("nan"),
+            "impacts_max": int(impacts.max()) if n else 0}  # fmt: skip

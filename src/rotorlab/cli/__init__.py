@@ -8,8 +8,9 @@ Importing this package stays light (no numpy, numba, xarray or matplotlib), so t
 from rotorlab.cli import _basin  # noqa: F401 - registers the basin command
 from rotorlab.cli import _impacts  # noqa: F401 - registers the impacts and impacts-sweep commands
 from rotorlab.cli import _linear  # noqa: F401 - registers the campbell and modes commands
+from rotorlab.cli import _show  # noqa: F401 - registers the show command
 from rotorlab.cli import _steady  # noqa: F401 - registers the steady and stability-chart commands
-from rotorlab.cli import _sweep  # noqa: F401 - registers the sweep and show commands
+from rotorlab.cli import _sweep  # noqa: F401 - registers the sweep command
 from rotorlab.cli._app import app, main
 
 __all__ = ["app", "main"]

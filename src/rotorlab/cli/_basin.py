@@ -16,7 +16,7 @@ import typer
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, emit_json, handled, info, progress_bar, stdout
 from rotorlab.cli._steady import _check_plot, parse_range
-from rotorlab.cli._sweep import SchedulerOpt, WorkersOpt
+from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
 
 __all__ = ["basin_command", "basin_tables"]
 
@@ -152,7 +152,7 @@ def basin_command(
             raise BadInput(f"--t-end = {t_end:g}: must be a finite number > 0 (s)")
         _check_plot("--plot", plot)
         _check_plot("--out", out)
-        from rotorlab.cli._sweep import check_store_path, executor_from_options, run_into_store
+        from rotorlab.cli._sweep_common import check_store_path, executor_from_options, run_into_store
 
         executor = executor_from_options(scheduler, workers)
         if resume and store is None:

@@ -16,7 +16,7 @@ import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, console_or_json, handled, info, status
-from rotorlab.cli._sweep import SchedulerOpt, WorkersOpt
+from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
 
 __all__ = ["impacts_command", "impacts_sweep_command", "impact_tables"]
 
@@ -162,7 +162,7 @@ def _param(stone_mass: str | None, param: str | None) -> tuple[str | None, Any]:
 def _executor(workers: int | None, scheduler: str | None, chunk: int | None, store: Path | None,
               resume: bool) -> Any:
     """The executor of ``--workers`` / ``--scheduler`` (None: in-process), after checking the options."""
-    from rotorlab.cli._sweep import check_store_path, executor_from_options
+    from rotorlab.cli._sweep_common import check_store_path, executor_from_options
 
     if chunk is not None and chunk < 1:
         raise BadInput(f"--chunk = {chunk}: must be an integer >= 1")
@@ -177,12 +177,12 @@ def _executor(workers: int | None, scheduler: str | None, chunk: int | None, sto
 def _run_stored(settings: Any, sweep: Any, *, store: Path | None, resume: bool, chunk: int | None,
                 executor: Any, title: str) -> tuple[Any, Any]:
     """Run the sweep (into ``store`` if given) with a progress bar; BadInput / exit 130 on failure
-    (:func:`rotorlab.cli._sweep.run_into_store`).
+    (:func:`rotorlab.cli._sweep_common.run_into_store`).
 
     Returns the per-run Dataset and the last :class:`rotorlab.sweep.SweepProgress`.
     """
     from rotorlab.analyses._impact_sweep import default_chunk
-    from rotorlab.cli._sweep import _Bar, run_into_store
+    from rotorlab.cli._sweep_common import SweepBar, run_into_store
     from rotorlab.sweep import InProcess, run_sweep
 
     last: list[Any] = []
@@ -191,7 +191,7 @@ def _run_stored(settings: Any, sweep: Any, *, store: Path | None, resume: bool, 
         default_chunk(sweep, split=split))
 
     def run() -> Any:
-        with _Bar(settings, title) as bar:
+        with SweepBar(settings, title) as bar:
 
             def progress(p: Any) -> None:
                 last[:] = [p]

@@ -1,0 +1,148 @@
+"""What the commands that run on the sweep engine share (``sweep``, ``show``, ``basin``,
+``impacts-sweep``): the ``--scheduler``/``--workers`` options, checks of a store path and of the
+executor options, running into a store (store and executor errors are bad input, Ctrl-C keeps the
+finished chunks) and the progress bar of a sweep.
+"""
+
+from __future__ import annotations
+
+import time
+from collections.abc import Callable
+from pathlib import Path
+from typing import Annotated, Any, Optional
+
+import typer
+
+from rotorlab.cli._output import BadInput, stderr
+
+__all__ = ["SchedulerOpt", "WorkersOpt", "check_store_path", "executor_from_options", "run_into_store",
+           "SweepBar", "run_with_bar", "stability_line", "regime_fractions"]
+
+# options shared by the commands that run on the sweep engine (sweep, basin)
+SchedulerOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
+    "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")]
+WorkersOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
+    "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")]
+
+
+def check_store_path(out: Path, resume: bool, option: str = "--out") -> None:
+    """Refuse (BadInput) a store path that exists without ``--resume``, is not a sweep store, or
+    lies in a missing folder."""
+    if out.exists() and not resume:
+        raise BadInput(f"{option} = {out}: exists; give --resume to continue that sweep, or another path")
+    if not out.absolute().parent.is_dir():
+        raise BadInput(f"{option} = {out}: folder {out.absolute().parent} does not exist")
+    if out.exists():
+        from rotorlab.sweep import SweepStoreError, store_info
+
+        try:
+            store_info(out)
+        except SweepStoreError as exc:
+            raise BadInput(f"{option} = {out}: {exc}") from None
+
+
+def executor_from_options(scheduler: str | None, workers: int | None) -> Any:
+    """The executor of ``--scheduler ADDR`` / ``--workers N`` (None: in this process), checked."""
+    if scheduler is not None and workers is not None:
+        raise BadInput("--scheduler and --workers exclude each other: give only one")
+    if scheduler is not None and "://" not in scheduler:
+        raise BadInput(f"--scheduler = {scheduler}: must be an address like tcp://HOST:PORT")
+    if workers is not None and workers < 1:
+        raise BadInput(f"--workers = {workers}: must be an integer >= 1")
+    from rotorlab.sweep import DaskExecutor, InProcess
+
+    return (DaskExecutor(scheduler=scheduler) if scheduler else DaskExecutor(workers=workers) if workers
+            else InProcess())  # fmt: skip
+
+
+def run_into_store(run: Callable[[], Any], store: Path | None, option: str = "--out") -> Any:
+    """Return ``run()``, a sweep into ``store``: store and executor errors become BadInput (an
+    unreachable scheduler leaves no store behind), and Ctrl-C says what is kept and exits 130."""
+    from rotorlab.sweep import ExecutorError, SweepStoreError, store_info
+
+    existed = store is not None and store.exists()
+    try:
+        return run()
+    except SweepStoreError as exc:
+        raise BadInput(f"{option} = {store}: {exc}") from None
+    except ExecutorError as exc:
+        if store is not None and not existed and store.exists() and store_info(store)["chunks_done"] == 0:
+            import shutil
+
+            shutil.rmtree(store)  # nothing computed: leave nothing behind
+        raise BadInput(str(exc)) from None
+    except KeyboardInterrupt:
+        if store is None:
+            stderr().print("interrupted", markup=False)
+            raise typer.Exit(130) from None
+        meta = store_info(store) if store.exists() else {"chunks_done": 0, "n_chunks": "?"}
+        stderr().print(f"interrupted: {meta['chunks_done']} of {meta['n_chunks']} chunks are kept in {store}; "
+                       "continue with the same command and --resume", markup=False)  # fmt: skip
+        raise typer.Exit(130) from None
+
+
+class SweepBar:
+    """Rich progress bar of a sweep on stderr: points done, rate, time left (terminals only)."""
+
+    def __init__(self, settings: Any, title: str) -> None:
+        from rich.progress import BarColumn, MofNCompleteColumn, Progress, TextColumn, TimeElapsedColumn, \
+            TimeRemainingColumn  # fmt: skip
+
+        console = stderr()
+        self.progress = Progress(TextColumn("{task.description}"), BarColumn(), MofNCompleteColumn(),
+                                 TextColumn("points"), TextColumn("{task.fields[rate]}"), TimeElapsedColumn(),
+                                 TextColumn("left"), TimeRemainingColumn(), console=console, transient=True,
+                                 disable=settings.quiet or not console.is_terminal)  # fmt: skip
+        self.title = title
+        self.task = None
+        self.start = time.perf_counter()
+        self.first = 0
+
+    def __enter__(self) -> SweepBar:
+        self.progress.__enter__()
+        return self
+
+    def __exit__(self, *exc: Any) -> None:
+        self.progress.__exit__(*exc)
+
+    def __call__(self, p: Any) -> None:
+        if self.task is None:
+            self.first = p.done
+            self.task = self.progress.add_task(self.title, total=p.total, completed=p.done, rate="")
+            return
+        elapsed = time.perf_counter() - self.start
+        rate = (p.done - self.first) / elapsed if elapsed > 0 else 0.0
+        self.progress.update(self.task, completed=p.done, rate=f"{rate:.3g}/s")
+
+
+def run_with_bar(settings: Any, title: str, sweep: Any, out: Path, resume: bool, size: int | None,
+                  executor: Any) -> tuple[Any, Any, float]:  # fmt: skip
+    """Run ``sweep`` into ``out`` under a progress bar: the Dataset, the last progress, seconds."""
+    from rotorlab.sweep import run_sweep
+
+    started = time.perf_counter()
+    last: list[Any] = []
+    with SweepBar(settings, title) as bar:
+
+        def progress(p: Any) -> None:
+            last[:] = [p]
+            bar(p)
+
+        ds = run_into_store(lambda: run_sweep(sweep, store=out, resume=resume, chunk_size=size,
+                                              executor=executor, progress=progress), out)  # fmt: skip
+    return ds, last[-1], time.perf_counter() - started
+
+
+def stability_line(summary: dict[str, Any]) -> str:
+    """One line: where a main (balanced) motion, any motion and each motion is exactly stable."""
+    return (f"exactly stable over {summary['n']} finished points: a main (balanced) motion "
+              f"{100 * summary['balanced']:.1f}%, any motion {100 * summary['any_stable']:.1f}%; " + ", ".join(
+                  f"{k} {100 * v:.1f}%" for k, v in summary["motions"].items() if v > 0))  # fmt: skip
+
+
+def regime_fractions(ds: Any) -> tuple[dict[str, float], int]:
+    """Final regime fractions of a regime sweep and the number of its points."""
+    from rotorlab.explore import basin_fractions
+
+    fr = basin_fractions(ds).isel(horizon=-1)
+    return {str(r): float(v) for r, v in zip(fr.regime.values, fr.fraction.values)}, int(fr.attrs["n"])
