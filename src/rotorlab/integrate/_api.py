@@ -491,7 +491,7 @@ def solve_ensemble(
         ensemble_driver, serial_driver = drivers_for(kernels)
         driver = serial_driver if threads == 1 else ensemble_driver
     else:  # ---- lane driver hook (rotorlab.integrate._lanes): same call signature ----
-        from rotorlab.integrate._lanes import lane_driver
+        from rotorlab.integrate._lanes_build import lane_driver
 
         driver = lane_driver(kernels, lanes, n_ev, ev_act, serial=threads == 1)
     step = N if chunk_size is None else max(1, int(chunk_size))
