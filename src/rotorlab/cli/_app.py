@@ -233,7 +233,7 @@ def run_command(
         info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
              json_mode=json_out)  # fmt: skip
         start = time.perf_counter()
-        from rotorlab.analyses import STEADY_ANALYSES, run_case, summarize
+        from rotorlab.analyses import run_case, summarize
 
         tasks = {a.name: _task_size(loaded.model, a) for a in loaded.analyses}
         units = {a.name: "trajectories" if a.type in ("simulate", "basin", "sweep") else "done"
@@ -241,23 +241,14 @@ def run_command(
         with progress_bar(settings, tasks, units) as update:
             results = run_case(loaded, progress=update)
         computed = time.perf_counter() - start
-        from rotorlab.analyses import BASIN_ANALYSES
-        from rotorlab.plot import basin_figures, linear_figures, simulation_figures
-        from rotorlab.report import steady_figures, write_report
+        from rotorlab.report import write_report
 
+        families = {name: analysis_family(ds.attrs.get("analysis", "")) for name, ds in results.items()}
         tables = {name: summarize(ds) for name, ds in results.items()}
         with status(settings, "Drawing figures and writing the report ..."):
             figures = {}
             for name, ds in results.items():
-                draw = simulation_figures if ds.attrs.get("analysis") == "simulate" else (
-                    linear_figures)
-                if ds.attrs.get("analysis") in STEADY_ANALYSES:
-                    draw = steady_figures
-                if ds.attrs.get("analysis") in (*BASIN_ANALYSES, "sweep"):
-                    draw = basin_figures
-                if ds.attrs.get("analysis") in ("impacts", "impacts-sweep"):
-                    from rotorlab.plot import impact_figures as draw
-                figures.update(draw(ds, name))
+                figures.update(_figure_function(families[name])(ds, name))
             report = write_report(out, loaded, results, figures, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results), *(f"{k}.png" for k in figures)])
         total = time.perf_counter() - start
@@ -270,38 +261,61 @@ def run_command(
         if settings.quiet:
             return
         con = stdout()
-        simulated = {n: rows for n, rows in tables.items()
-                     if results[n].attrs.get("analysis") == "simulate"}
+        simulated = {n: rows for n, rows in tables.items() if families[n] == "simulate"}
         if simulated:
             con.print(summary_table(simulated))
-        from rotorlab.cli._linear import linear_tables
-
-        linear = {n: ds for n, ds in results.items() if n not in simulated}
-        from rotorlab.cli._steady import steady_tables
-
-        steady = {n: linear.pop(n) for n in list(linear)
-                  if linear[n].attrs.get("analysis") in STEADY_ANALYSES}
-        for table in steady_tables(steady, tables):
-            con.print(table)
-        from rotorlab.cli._basin import basin_tables
-
-        basins = {n: linear.pop(n) for n in list(linear)
-                  if linear[n].attrs.get("analysis") in (*BASIN_ANALYSES, "sweep")}
-        for table in basin_tables(basins, tables):
-            con.print(table)
-        from rotorlab.cli._impacts import impact_tables
-
-        impacts = {n: linear.pop(n) for n in list(linear)
-                   if linear[n].attrs.get("analysis") in ("impacts", "impacts-sweep")}
-        for table in impact_tables(impacts):
-            con.print(table)
-        for table in linear_tables(linear, tables):
-            con.print(table)
+        for family in ("steady", "basin", "impacts", "linear"):
+            chosen = {n: ds for n, ds in results.items() if families[n] == family}
+            for table in _table_function(family)(chosen, tables):
+                con.print(table)
         if settings.verbose:
             for name, rows in simulated.items():
                 con.print(outcome_table(name, rows))
             con.print(f"computed in {computed:.1f} s, total {total:.1f} s", markup=False)
         con.print(f"Report: {report}", markup=False)
+
+
+def analysis_family(kind: str) -> str:
+    """How a result of analysis type ``kind`` is presented: ``simulate``, ``steady``, ``basin``,
+    ``impacts`` or ``linear`` (figures and console tables of ``rotorlab run``)."""
+    from rotorlab.analyses import BASIN_ANALYSES, IMPACT_ANALYSES, STEADY_ANALYSES
+
+    for family, kinds in (("simulate", ("simulate",)), ("steady", STEADY_ANALYSES),
+                          ("basin", (*BASIN_ANALYSES, "sweep")), ("impacts", IMPACT_ANALYSES)):  # fmt: skip
+        if kind in kinds:
+            return family
+    return "linear"
+
+
+def _figure_function(family: str) -> Any:
+    """``figures(ds, name) -> {stem: Figure}`` of a presentation family."""
+    import rotorlab.plot as plot
+
+    if family == "steady":
+        from rotorlab.report import steady_figures
+
+        return steady_figures
+    return getattr(plot, {"simulate": "simulation_figures", "basin": "basin_figures", "impacts": "impact_figures",
+                          "linear": "linear_figures"}[family])  # fmt: skip
+
+
+def _table_function(family: str) -> Any:
+    """``tables(results, rows) -> [rich tables]`` of a presentation family (not ``simulate``)."""
+    if family == "steady":
+        from rotorlab.cli._steady import steady_tables
+
+        return steady_tables
+    if family == "basin":
+        from rotorlab.cli._basin import basin_tables
+
+        return basin_tables
+    if family == "impacts":
+        from rotorlab.cli._impacts import impact_tables
+
+        return lambda results, rows: impact_tables(results)
+    from rotorlab.cli._linear import linear_tables
+
+    return linear_tables
 
 
 # --------------------------------------------------------------------------- simulate
