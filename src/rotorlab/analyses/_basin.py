@@ -465,18 +465,3 @@ def _spans(values: Sequence[float], mask: Sequence[bool]) -> str:
             runs.append([v, v])
         prev = m
     return ", ".join(f"{a:g}" if a == b else f"{a:g}-{b:g}" for a, b in runs)
-
-
-def _percent(value: float | None) -> str:
-    return "" if value is None else f"{100.0 * value:.1f}"
-
-
-def basin_table_rows(rows: Sequence[Mapping[str, Any]]) -> list[list[str]]:
-    """Rows of strings for a printed or HTML basin table (regime, %, count, CI, half, since)."""
-    out = []
-    for r in rows:
-        ci = "" if r["ci_low"] is None else f"{_percent(r['ci_low'])} - {_percent(r['ci_high'])}"
-        since = "" if r["label_since_median_s"] is None else (
-            f"{r['label_since_median_s']:.3g} / {r['label_since_max_s']:.3g}")
-        out.append([r["regime"], _percent(r["fraction"]), str(r["count"]), ci, _percent(r["fraction_half"]), since])
-    return out

@@ -220,7 +220,8 @@ def basin_tables(results: dict[str, Any], tables: dict[str, list[dict[str, Any]]
     """
     from rich.table import Table
 
-    from rotorlab.analyses._basin import basin_table_rows, compare_basins
+    from rotorlab.analyses._basin import compare_basins
+    from rotorlab.report._basin import basin_table_rows
 
     out = []
     for name, ds in results.items():

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     import xarray
 
-__all__ = ["basin_section", "basin_comparison_section"]
+__all__ = ["basin_section", "basin_comparison_section", "basin_table_rows"]
 
 _TableFn = Callable[..., str]
 
@@ -55,7 +55,7 @@ def basin_section(ds: xarray.Dataset, rows: Sequence[Mapping[str, Any]] | None, 
     table : callable
         ``table(header, rows, numeric=...)`` of the report.
     """
-    from rotorlab.analyses._basin import basin_rows, basin_table_rows
+    from rotorlab.analyses._basin import basin_rows
 
     if ds.attrs.get("analysis") == "working-point":
         return _working_point_html(ds, table)
@@ -116,3 +116,18 @@ def basin_comparison_section(results: Mapping[str, xarray.Dataset], table: _Tabl
         f"<p>{_e(cmp['verdict'])}</p>",
         table(header, rows, numeric=set(range(len(header) - 1))),
     ])
+
+
+def _percent(value: float | None) -> str:
+    return "" if value is None else f"{100.0 * value:.1f}"
+
+
+def basin_table_rows(rows: Sequence[Mapping[str, Any]]) -> list[list[str]]:
+    """Rows of strings for a printed or HTML basin table (regime, %, count, CI, half, since)."""
+    out = []
+    for r in rows:
+        ci = "" if r["ci_low"] is None else f"{_percent(r['ci_low'])} - {_percent(r['ci_high'])}"
+        since = "" if r["label_since_median_s"] is None else (
+            f"{r['label_since_median_s']:.3g} / {r['label_since_max_s']:.3g}")
+        out.append([r["regime"], _percent(r["fraction"]), str(r["count"]), ci, _percent(r["fraction_half"]), since])
+    return out
