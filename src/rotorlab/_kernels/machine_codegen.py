@@ -187,7 +187,7 @@ class Layout:
     @property
     def key(self) -> str:
         """Short identifier of the sizes (used in the generated module's name)."""
-        races = "-".join(str(n) for n in self.races) or "0"
+        races = "x".join(str(n) for n in self.races) or "0"
         return (f"z{self.n_z}r{races}u{self.n_unbalance}{self.drive[0]}{self.speed_kind[0]}"
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}")
 
