@@ -18,6 +18,8 @@ From the paper (printed numbers and statements):
   balanced operation" (Section 4).
 - "the balancing process only works for sufficiently high rotation speeds above the second
   critical frequency" (Section 5); for large Omega B is stable (Hcon, Section 3.2.1).
+- The boundaries of B's stable regions in Fig. 5(a), read from the figure's vector graphics
+  (``FIG5A_BOUNDARIES``): the rigid-kinematics reference meets every one within 0.01.
 - A disc rotor (Jp > Jt) has no conical critical speed and no stable balanced state (m = eps):
   Rodrigues et al. 2011, IJNLM 46, Section 5 and Fig. 13(b).
 
@@ -227,13 +229,49 @@ def _stable_intervals(sys_, omegas):
     return [(omegas[r[0]], omegas[r[-1]]) for r in runs if st[r[0]]]
 
 
+#: Fig. 5(a) of the preprint, the stability chart of B in the (Omega, m) plane, read from the
+#: figure's vector graphics (its shaded polygons, the frame mapped to 0 <= Omega <= 6,
+#: 0 <= m <= 0.04; the line m = m_c = 0.0025 lands at 0.0025): the speeds where a horizontal
+#: line m = const enters (+1) or leaves (-1) the shaded region, each bracketed by the 0.01 grid
+#: it was sampled on. Above the last entry B stays stable up to the chart's end, Omega = 6.
+#: (m = 0.015 is left out: there the secondary region ends in a sliver 0.01 wide at 2.03.)
+FIG5A_BOUNDARIES = {
+    0.005: [(2.94, 2.95, +1)],
+    0.01: [(3.52, 3.53, +1)],
+    0.02: [(1.96, 1.97, +1), (2.08, 2.09, -1), (4.27, 4.28, +1)],
+    0.025: [(1.91, 1.92, +1), (2.15, 2.16, -1), (4.59, 4.60, +1)],
+    0.03: [(1.96, 1.97, +1), (2.23, 2.24, -1), (4.90, 4.91, +1)],
+}
+
+
+@pytest.mark.parametrize("m", sorted(FIG5A_BOUNDARIES))
+def test_stability_boundaries_of_fig5a(m):
+    """The rigid-kinematics reference crosses each boundary of Fig. 5(a) within its 0.01 bracket
+    (widened by 0.005 for the drawing): the paper's Hopf curves H_cyl, H_con are reproduced."""
+    sys_ = ref.TwoPlane.long_rotor(m, kinematics="rigid")
+    for lo, hi, sign in FIG5A_BOUNDARIES[m]:
+        before = ref.spectral_abscissa(sys_, lo - 0.005)
+        after = ref.spectral_abscissa(sys_, hi + 0.005)
+        assert (before < 0) != (after < 0), (lo, hi, before, after)
+        assert (after < 0) == (sign > 0)
+
+
+def test_lateral_kinematics_shifts_the_boundaries():
+    """Without the balls' axial motion (lateral kinematics, the model of Rodrigues et al. 2011 and
+    of rotorlab's Machine) the primary region starts at Omega ~= 4.48 instead of the paper's 4.60
+    at m = 0.025 (and 4.74 instead of 4.90 at m = 0.03): the balls' own tilt inertia matters."""
+    lateral = ref.TwoPlane.long_rotor(0.025, kinematics="lateral")
+    assert ref.spectral_abscissa(lateral, 4.47) > 0 > ref.spectral_abscissa(lateral, 4.49)
+    assert ref.spectral_abscissa(lateral, 4.55) < 0  # the paper (and rigid kinematics): unstable
+    assert ref.spectral_abscissa(ref.TwoPlane.long_rotor(0.025, kinematics="rigid"), 4.55) > 0
+
+
 @pytest.mark.parametrize("kinematics", KINEMATICS)
 def test_stability_over_speed(kinematics):
-    """m = 0.025 (Fig. 5(a), Fig. 6): B is unstable at every speed below Omega_2; it is stable
-    in a narrow secondary region just above Omega_2 (holding Omega = 2, Fig. 11 (i)), unstable
-    again, and stable in the primary region from about 4.5 up to at least Omega = 6 (the chart's
-    end). The reference puts the secondary region at 1.9-2.15 (rigid) / 1.85-2.1 (lateral) and
-    the primary one from 4.6 / 4.5 (grid 0.05)."""
+    """m = 0.025 (Fig. 5(a)): B is unstable at every speed below Omega_2 ("the balancing process
+    only works for sufficiently high rotation speeds above the second critical frequency",
+    Section 5); it is stable in a narrow secondary region just above Omega_2 (holding Omega = 2,
+    Fig. 11 (i)), unstable again, and stable in the primary region up to the chart's end."""
     omegas = np.round(np.arange(0.2, 6.0001, 0.05), 6)
     sys_ = ref.TwoPlane.long_rotor(0.025, kinematics=kinematics)
     runs = _stable_intervals(sys_, omegas)
