@@ -224,6 +224,11 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
     return ds
 
 
+def basin_task_size(case_model: Any, analysis: Any) -> int:
+    """Starts of a case's ``basin`` analysis (its progress-bar total)."""
+    return analysis.samples if analysis.samples is not None else analysis.x[3] * analysis.y[3]
+
+
 def _effective_values(case_model: Any, analysis: Any) -> dict[str, float]:
     """Every start coordinate that is not varied, with the value the starts use (SI)."""
     from rotorlab.io import coordinate_dimensions

@@ -410,6 +410,16 @@ def run_impact_analysis(case_model: Any, analysis: Any,
     return ds
 
 
+def impact_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """The summary rows of an ``impacts`` run: one row, :func:`impact_summary`."""
+    return [impact_summary(ds)]
+
+
+def sweep_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """The summary rows of an ``impacts-sweep``: one per swept value (:func:`sweep_summary`)."""
+    return sweep_summary(ds)["rows"]
+
+
 def paper_counts(ds: xarray.Dataset) -> list[int | None]:
     """Seed 001's printed count for each swept stone mass, where the sweep matches the table.
 

@@ -24,6 +24,7 @@ __all__ = [
     "LINEAR_ANALYSES",
     "DATA_AUDITS",
     "run_linear_analysis",
+    "run_linear_case_analysis",
     "summarize_linear",
     "campbell_summary",
     "modes_summary",
@@ -191,6 +192,18 @@ def run_linear_analysis(case_model: Any, analysis: Any) -> xarray.Dataset:
     ds = runner(case_model, analysis)
     ds.attrs["analysis"] = analysis.type
     ds.attrs["model"] = case_model.type
+    return ds
+
+
+def run_linear_case_analysis(case_model: Any, analysis: Any,
+                             progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+    """:func:`run_linear_analysis` with progress (0 of 1, then 1 of 1) and ``attrs["name"]``."""
+    if progress is not None:
+        progress(0, 1)
+    ds = run_linear_analysis(case_model, analysis)
+    ds.attrs["name"] = analysis.name
+    if progress is not None:
+        progress(1, 1)
     return ds
 
 

@@ -45,16 +45,6 @@ def _deg(values: Any) -> list[float | None]:
     return [_num(np.degrees(v)) for v in np.atleast_1d(np.asarray(values, dtype=float))]
 
 
-def _profile(spec: Any) -> Any:
-    from rotorlab.models import ConstantSpeed, HillRunUp, LinearRamp
-
-    if spec.profile == "constant":
-        return ConstantSpeed(spec.speed)
-    if spec.profile == "ramp":
-        return LinearRamp(spec.start, spec.stop, spec.duration)
-    return HillRunUp(spec.max_speed, spec.t_half, spec.exponent)
-
-
 def steady_model(case_model: Any, analysis: Any) -> JeffcottBalls:
     """Build the model of a case with an analysis' regime overrides applied.
 
@@ -120,6 +110,7 @@ def run_steady_analysis(case_model: Any, analysis: Any,
         The type is not one of :data:`STEADY_ANALYSES`.
     """
     from rotorlab import steady
+    from rotorlab.analyses._builders import speed_profile
 
     if analysis.type not in STEADY_ANALYSES:
         raise ValueError(f"analysis {analysis.name}: {analysis.type!r} is not a steady-motion analysis")
@@ -140,7 +131,7 @@ def run_steady_analysis(case_model: Any, analysis: Any,
                            family_samples=analysis.family_samples)  # fmt: skip
     else:
         profile = analysis.profile(case_model)
-        ds = steady.run_up(model, _profile(profile), t_end=analysis.t_end, t_start=analysis.t_start,
+        ds = steady.run_up(model, speed_profile(profile), t_end=analysis.t_end, t_start=analysis.t_start,
                            initial_ball_angles=analysis.initial_ball_angles, n_save=analysis.n_save,
                            settle_revolutions=analysis.settle_revolutions, rate_tol=analysis.rate_tol,
                            angle_tol=analysis.angle_tol, rtol=analysis.rtol, atol=analysis.atol)  # fmt: skip

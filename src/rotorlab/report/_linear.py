@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["linear_section", "linear_model_rows"]
+__all__ = ["linear_section"]
 
 _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
 _WHIRL_CODE = {1: "forward", -1: "backward", 0: "mixed"}
@@ -138,12 +138,3 @@ def linear_section(kind: str, ds: Any, rows: Sequence[dict[str, Any]],
     if kind == "data_audit":
         return _audit(rows, table)
     return ""
-
-
-def linear_model_rows(model: Any) -> list[tuple[str, str, str, str]]:
-    """Return derived rows of a linear model: degrees of freedom and nodes (name at position)."""
-    z = model.node_positions()
-    nodes = ", ".join(f"{lab}" + ("" if not np.isfinite(p) else f" ({p * 1e3:.6g} mm)")
-                      for lab, p in zip(model.node_labels(), z))
-    return [("degrees of freedom (x, y, phi_x, phi_y per node)", str(model.n_dof), "1", ""),
-            ("nodes", nodes, "", "")]
