@@ -41,6 +41,11 @@ def _pct(part: int, whole: int) -> str:
     return f"{100.0 * part / whole:.1f} %" if whole else "–"
 
 
+def _span(values: Sequence[float]) -> str:
+    low, high = f"{min(values):.3g}", f"{max(values):.3g}"
+    return low if low == high else f"{low} to {high}"
+
+
 def _list(values: Sequence[float], fmt: str = ".0f") -> str:
     return ", ".join(format(v, fmt) for v in values)
 
@@ -68,8 +73,8 @@ def simulation_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
         amps = [r["final_amplitude"] for r in here if r["final_amplitude"] is not None]
         ratios = [r["amplitude_ratio"] for r in here if r["amplitude_ratio"] is not None]
         if amps:
-            numbers.append(f"final shaft deflection at {rpm:.0f} rpm: {min(amps) * 1e3:.3g} to {max(amps) * 1e3:.3g} mm"
-                           + (f" ({min(ratios):.3g} to {max(ratios):.3g} × the unbalance alone)" if ratios else ""))
+            numbers.append(f"final shaft deflection at {rpm:.0f} rpm: {_span([a * 1e3 for a in amps])} mm"
+                           + (f" ({_span(ratios)} × the unbalance alone)" if ratios else ""))
     return Findings(". ".join(verdicts), tuple(numbers))
 
 
@@ -96,8 +101,10 @@ def _fractions(ds: xarray.Dataset, rows: Rows) -> Findings:
     n = rows[0]["n"]
     t_end = float(ds["horizon"].values[-1]) if "horizon" in ds.coords else math.nan
     first = rows[0]
-    verdict = f"{first['regime']} from {first['count']} of {n} starts ({100.0 * first['fraction']:.1f} %) after {t_end:g} s"
-    numbers = [f"{r['regime']}: {r['count']} of {n} starts ({100.0 * r['fraction']:.1f} %)" for r in rows[1:]]
+    verdict = (f"{first['regime']} from {first['count']} of {n} starts ({100.0 * first['fraction']:.1f} %) "
+               f"after {t_end:g} s")
+    numbers = [f"{r['regime']}: {r['count']} of {n} starts ({100.0 * r['fraction']:.1f} %)" for r in rows[1:]
+               if r["count"]]
     if first.get("ci_low") is not None:
         numbers.append(f"{first['regime']} confidence interval {100.0 * first['ci_low']:.1f} to "
                        f"{100.0 * first['ci_high']:.1f} %")  # fmt: skip
@@ -210,16 +217,21 @@ def impact_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
 def _crossings(ds: xarray.Dataset, rows: Rows) -> Findings:
     if not rows:
         return Findings("no critical speed in the range")
-    return Findings(f"critical speeds {_list([r['speed_rpm'] for r in rows])} rpm",
-                    tuple(f"{r['speed_rpm']:.0f} rpm: {_WHIRL[r['whirl']]} whirl on the {r['harmonic']}x line, "
-                          f"{r['frequency_hz']:.4g} Hz" for r in rows))  # fmt: skip
+    speeds = ", ".join(f"{r['speed_rpm']:.0f} ({_WHIRL[r['whirl']]})" for r in rows)
+    lines = sorted({r["harmonic"] for r in rows})
+    return Findings(f"critical speeds {speeds} rpm",
+                    (f"natural frequencies there {_list([r['frequency_hz'] for r in rows], '.4g')} Hz",
+                     "excitation line" + ("s " if len(lines) > 1 else " ") + ", ".join(f"{h}x" for h in lines)))
 
 
 def _modes(ds: xarray.Dataset, rows: Rows) -> Findings:
     freqs = [r["frequency_hz"] for r in rows if r["frequency_hz"] is not None]
+    whirl = Counter(_WHIRL[r["whirl"]] for r in rows)
+    zeta = [r["damping_ratio"] for r in rows if r["damping_ratio"] is not None]
+    damping = ("undamped (every damping ratio is 0)" if zeta and max(map(abs, zeta)) == 0.0 else
+               f"damping ratios {min(zeta):.3g} to {max(zeta):.3g}" if zeta else "damping ratios unknown")
     return Findings(f"natural frequencies {_list(freqs, '.4g')} Hz",
-                    tuple(f"mode {r['mode']}: {_WHIRL[r['whirl']]} whirl, damping ratio "
-                          + ("–" if r["damping_ratio"] is None else f"{r['damping_ratio']:.3g}") for r in rows))
+                    (", ".join(f"{n} {w}" for w, n in whirl.items()) + " whirl", damping))
 
 
 def _unbalance(ds: xarray.Dataset, rows: Rows) -> Findings:
@@ -241,7 +253,7 @@ def _identify(ds: xarray.Dataset, rows: Rows) -> Findings:
 
 def _audit(ds: xarray.Dataset, rows: Rows) -> Findings:
     return Findings(f"{_count(len(rows), 'finding')} in the printed data, each resolved",
-                    tuple(f"{r['finding']}: {r['resolved']}" for r in rows))
+                    (", ".join(r["finding"] for r in rows),))
 
 
 _LINEAR_FINDINGS: Mapping[str, Callable[[Any, Rows], Findings]] = {

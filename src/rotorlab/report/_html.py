@@ -19,6 +19,7 @@ from rotorlab.report._table import table as _table
 __all__ = ["render_report", "parameter_rows", "versions"]
 
 _RPM = 60.0 / (2.0 * math.pi)
+_MAX_NUMBERS = 5  # key numbers shown in a findings box
 
 _CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,Helvetica,Arial,sans-serif;
@@ -136,7 +137,10 @@ def _quantity_rows(results: Mapping[str, Any]) -> list[tuple[str, str, str, str]
 
 def _findings_box(analysis: Any, ds: Any, rows: Sequence[Mapping[str, Any]]) -> str:
     found = presentation_of(analysis.type).findings(ds, rows)
-    numbers = "".join(f"<li>{_e(n)}</li>" for n in found.numbers)
+    shown = found.numbers[:_MAX_NUMBERS]
+    more = len(found.numbers) - len(shown)
+    numbers = "".join(f"<li>{_e(n)}</li>" for n in shown) + (
+        f'<li class="muted">{more} more in the section below</li>' if more > 0 else "")
     return (f'<div class="finding"><h3><a href="#{_e(_anchor(analysis.name))}">{_e(analysis.name)}</a> '
             f'<span class="muted">({_e(analysis.type)})</span></h3>'
             f'<p class="verdict">{_e(found.verdict)}</p>' + (f"<ul>{numbers}</ul>" if numbers else "") + "</div>")
