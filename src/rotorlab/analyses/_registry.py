@@ -15,9 +15,10 @@ presentation; no other module changes.
    :mod:`rotorlab.io._schema`) and register it: ``rotorlab.io.register_model_spec(MySpec)`` or
    ``rotorlab.io.register_analysis_spec(MySpec)``.
 2. A model type: register a :class:`ModelType` whose ``build(spec)`` returns the model object
-   the analyses use, and whose ``quantities(spec)`` returns the derived quantities shown with the
-   model's parameters (physics belongs here, not in the report):
-   ``register_model_type(ModelType("my_model", build=..., quantities=...))``.
+   the analyses use, whose ``quantities(spec)`` returns the derived quantities shown with the
+   model's parameters (physics belongs here, not in the report) and, if its start-ups can be
+   classified into regimes, whose ``mapper`` builds the regime mapper of basins and sweeps:
+   ``register_model_type(ModelType("my_model", build=..., quantities=..., mapper=...))``.
 3. An analysis type: register an :class:`AnalysisType` with
 
    - ``run(case_model, analysis, progress)``: a Dataset with ``attrs["name"]`` (the analysis
@@ -78,11 +79,17 @@ class ModelType:
         ``quantities(spec) -> list of dict``: derived quantities (keys ``quantity``, ``value``
         (SI), ``unit``, ``sign`` ("" or "±")), carried in ``attrs["model_quantities"]`` of
         every result.
+    mapper : callable, optional
+        ``mapper(spec, analysis, options) -> rotorlab.explore.AbstractMapper or None``: the
+        regime mapper of ``basin`` and ``sweep`` analyses (``options``: keyword arguments of
+        the mapper from the analysis, to complete); None (or a mapper returning None): the model
+        has no basins.
     """
 
     name: str
     build: Callable[[Any], Any]
     quantities: Callable[[Any], list[dict[str, Any]]] = no_quantities
+    mapper: Callable[[Any, Any, dict[str, Any]], Any] | None = None
 
 
 @dataclass(frozen=True)
@@ -139,14 +146,14 @@ def _register_builtins() -> None:
     from rotorlab.analyses import _basin, _builders, _impacts, _linear, _simulate, _steady, _sweep
     from rotorlab.analyses._linear_build import build_linear_system
 
-    for name, build, quantities in (
-        ("jeffcott_balls", _builders.jeffcott_balls_model, _builders.jeffcott_quantities),
-        ("multibody", build_linear_system, _builders.linear_quantities),
-        ("fe_rotor", build_linear_system, _builders.linear_quantities),
-        ("toroidal_ball", _builders.toroidal_ball_model, _builders.reference_speed_quantities),
-        ("impact_rotor", _impacts.impact_model, _builders.reference_speed_quantities),
+    for name, build, quantities, mapper in (
+        ("jeffcott_balls", _builders.jeffcott_balls_model, _builders.jeffcott_quantities, _basin.balancer_mapper),
+        ("multibody", build_linear_system, _builders.linear_quantities, None),
+        ("fe_rotor", build_linear_system, _builders.linear_quantities, None),
+        ("toroidal_ball", _builders.toroidal_ball_model, _builders.reference_speed_quantities, _basin.torus_mapper),
+        ("impact_rotor", _impacts.impact_model, _builders.reference_speed_quantities, None),
     ):
-        register_model_type(ModelType(name, build, quantities))
+        register_model_type(ModelType(name, build, quantities, mapper))
 
     trajectories = {"progress_unit": "trajectories"}
     register_analysis_type(AnalysisType("simulate", _simulate.run_simulate_analysis, _simulate.simulation_rows,

@@ -125,16 +125,19 @@ def linear_section(kind: str, ds: Any, rows: Sequence[dict[str, Any]],
     str
         "" for an analysis type without tables.
     """
-    if kind == "campbell":
-        return _campbell(ds, rows, table)
-    if kind == "critical_speeds":
-        return "<h3>Critical speeds of the undamped rotor</h3>\n" + _crossings(rows, table)
-    if kind == "modes":
-        return _modes(rows, table)
-    if kind == "unbalance_response":
-        return _unbalance(ds, rows, table)
-    if kind == "identify":
-        return _identify(ds, rows, table)
-    if kind == "data_audit":
-        return _audit(rows, table)
-    return ""
+    render = _SECTIONS.get(kind)
+    return "" if render is None else render(ds, rows, table)
+
+
+def _critical(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    return "<h3>Critical speeds of the undamped rotor</h3>\n" + _crossings(rows, table)
+
+
+_SECTIONS: dict[str, Callable[[Any, Sequence[dict[str, Any]], Callable[..., str]], str]] = {
+    "campbell": _campbell,
+    "critical_speeds": _critical,
+    "modes": lambda ds, rows, table: _modes(rows, table),
+    "unbalance_response": _unbalance,
+    "identify": _identify,
+    "data_audit": lambda ds, rows, table: _audit(rows, table),
+}
