@@ -124,14 +124,17 @@ def parameter_rows(spec: Any, prefix: str = "") -> list[tuple[str, str, str, str
     return rows
 
 
+def _quantity_row(q: Mapping[str, Any]) -> tuple[str, str, str, str]:
+    also = _other_units(q["value"], q["unit"])
+    return q["quantity"], q["sign"] + _fmt(q["value"]), q["unit"], q["sign"] + also if also else ""
+
+
 def _quantity_rows(results: Mapping[str, Any]) -> list[tuple[str, str, str, str]]:
     """The model's derived quantities, as carried by its results (``attrs["model_quantities"]``)."""
     for ds in results.values():
         text = ds.attrs.get("model_quantities")
         if text:
-            return [(q["quantity"], q["sign"] + _fmt(q["value"]), q["unit"],
-                     (q["sign"] + _other_units(q["value"], q["unit"])) if _other_units(q["value"], q["unit"]) else "")
-                    for q in json.loads(text)]  # fmt: skip
+            return [_quantity_row(q) for q in json.loads(text)]
     return []
 
 
