@@ -98,7 +98,7 @@ def plane_matrix(kind: str) -> Any:
     schema = {"type": "array", "items": {"type": "array",
                                          "items": {"anyOf": [{"type": "number"},
                                                              {"type": "string"}]}}}
-    unit = {"compliance": "m/N; 1/N; rad/N/m", "stiffness": "N/m; N/rad; N*m/rad"}[kind]
+    unit = "; ".join(DIMENSIONS[d].si for d in _PLANE_DIMENSIONS[kind])  # per place, as in the docstring
     return Annotated[tuple[tuple[float, ...], ...], PlainValidator(_MatrixValidator(kind)),
                      WithJsonSchema(schema), Unit(unit)]
 
