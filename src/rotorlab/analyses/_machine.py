@@ -15,6 +15,8 @@ from typing import Any
 import numpy as np
 
 __all__ = ["machine_simulate", "machine_steady", "machine_run_up", "locked_structure", "orbit_amplitude",
+           "run_machine_analysis", "machine_rows", "machine_model", "machine_quantities",
+           "MACHINE_ANALYSES",
            "structure_critical_speeds", "unbalance_amplitudes", "NO_STEADY_STATUS"]
 
 #: Status of a steady analysis on a machine without co-rotating equilibria.
@@ -187,8 +189,10 @@ def machine_steady(machine, speeds, *, ball_angles=None):
     Returns
     -------
     xarray.Dataset
-        ``exists`` (speed): the balls can cancel the unbalance; ``ball_angle`` (speed, ball)
-        (rad); ``max_real_eigenvalue`` (speed) (1/s) of the linearised co-rotating equations;
+        ``exists`` (speed): a steady motion was found (the balanced one when the balls can
+        cancel the unbalance, else the one that starts from the best partial balance);
+        ``balanced`` (speed): it has no vibration; ``amplitude`` (speed, station): its whirl
+        radius per node (m); ``ball_angle`` (speed, ball) (rad); ``max_real_eigenvalue`` (speed) (1/s) of the linearised co-rotating equations;
         ``stable`` (speed); ``status`` (speed): 0, or ``NO_STEADY_STATUS`` with
         ``attrs["message"]`` when the machine has no co-rotating equilibria (anisotropic
         structure, gravity across the axis) - simulate it instead.
@@ -205,35 +209,45 @@ def machine_steady(machine, speeds, *, ball_angles=None):
     angles = np.full((om.size, nb), np.nan)
     lam_max = np.full(om.size, np.nan)
     stable = np.zeros(om.size, bool)
+    balanced = np.zeros(om.size, bool)
+    amplitude = np.full((om.size, machine.structure.n_nodes), np.nan)
     status = np.zeros(om.size, np.int64)
     probe = machine.with_drive(ConstantSpeed(float(om[0])))
     message = probe.why_no_rotating_frame()
     if message is not None:
         status[:] = NO_STEADY_STATUS
     else:
-        psi = probe.balanced_angles(ball_angles)
+        guess, near = ball_angles, None
         for i, w in enumerate(om):
-            if psi is None:
-                break
             m = machine.with_drive(ConstantSpeed(float(w)))
-            lin = m.linearize(m.balanced_state(psi))
-            lam = lin.eigenvalues
+            y = m.steady_state(guess, near=near)
+            if y is None:
+                continue
+            nz = m.n_coordinates
+            psi = y[2 * nz:2 * nz + nb]
+            guess, near = psi, y
+            lin = m.linearize(y)
             exists[i] = True
+            balanced[i] = bool(np.all(y[:nz] == 0.0))
             angles[i] = _wrap(psi)
-            lam_max[i] = float(lam.real.max())
+            lam_max[i] = float(lin.eigenvalues.real.max())
             stable[i] = lin.is_stable
-        if psi is None:
-            message = ("the balls cannot cancel the unbalance (capacity too small, or the races "
-                       "are not in planes that can balance it): no balanced state")
+            amp = m.station_amplitudes(m.rotating_to_fixed(y))
+            amplitude[i] = amp
+        if not exists.any():
+            message = "no steady motion found at any speed (the equilibrium solver did not converge)"
     ds = xr.Dataset(
         {
             "exists": (("speed",), exists),
             "ball_angle": (("speed", "ball"), angles, {"units": "rad"}),
             "max_real_eigenvalue": (("speed",), lam_max, {"units": "1/s"}),
             "stable": (("speed",), stable),
+            "balanced": (("speed",), balanced),
+            "amplitude": (("speed", "station"), amplitude, {"units": "m"}),
             "status": (("speed",), status),
         },
-        coords={"speed": ("speed", om, {"units": "rad/s"}), **_ball_coords(machine)},
+        coords={"speed": ("speed", om, {"units": "rad/s"}), "station": list(machine.structure.node_label),
+                **_ball_coords(machine)},
         attrs={"analysis": "steady", "model": "machine",
                **({"message": message} if message else {})},
     )
@@ -305,3 +319,138 @@ def _motor_top(machine) -> float:
         return float(w[k] + (w[k + 1] - w[k]) * t[k] / (t[k] - t[k + 1]))
     return float(w[-1])
 
+
+
+# --------------------------------------------------------------------------- case files
+
+
+def _num(v) -> float | None:
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def _deg(values) -> list[float | None]:
+    return [None if not np.isfinite(v) else round(float(np.degrees(v)), 3) for v in np.ravel(values)]
+
+
+def machine_model(case_model):
+    """Build the :class:`~rotorlab.models.Machine` of a ``machine`` spec."""
+    from rotorlab.io._machine_spec import build_machine
+
+    return build_machine(case_model)
+
+
+def machine_quantities(case_model) -> list[dict[str, Any]]:
+    """Derived quantities: critical speeds (balls locked), unbalance, capacity per race."""
+    m = machine_model(case_model)
+    rows = [{"quantity": "critical speeds (forward 1x, balls locked)",
+             "value": ", ".join(f"{w:.4g}" for w in structure_critical_speeds(m)[:6]),
+             "unit": "rad/s", "sign": ""},
+            {"quantity": "unbalance sum m e", "value": sum(u.mass_eccentricity for u in m.unbalances),
+             "unit": "kg*m", "sign": ""}]
+    for i, r in enumerate(m.races):
+        rows.append({"quantity": f"capacity of race {i} (sum m l)", "value": r.capacity,
+                     "unit": "kg*m", "sign": ""})
+    return rows
+
+
+def _variant(case_model, analysis):
+    """The case's machine with only the analysis' races (all when it names none)."""
+    from dataclasses import replace
+
+    m = machine_model(case_model)
+    if analysis.races is not None:
+        m = replace(m, races=tuple(m.races[i] for i in analysis.races))
+    return m
+
+
+def _run_steady(case_model, analysis, progress):
+    m = _variant(case_model, analysis)
+    return machine_steady(m, np.linspace(analysis.start, analysis.stop, analysis.n_speeds))
+
+
+def _run_simulate(case_model, analysis, progress):
+    from rotorlab.models import ConstantSpeed
+
+    m = _variant(case_model, analysis)
+    if analysis.speed is not None:
+        m = m.with_drive(ConstantSpeed(analysis.speed))
+    if analysis.initial_ball_angles is None or m.n_balls == 0:
+        angles = np.zeros((1, m.n_balls))
+    else:
+        angles = np.array([a[: m.n_balls] for a in analysis.initial_ball_angles], dtype=float)
+    return machine_simulate(m, angles, t_end=analysis.t_end, rtol=analysis.rtol, atol=analysis.atol,
+                            progress=progress)
+
+
+def _run_run_up(case_model, analysis, progress):
+    m = _variant(case_model, analysis)
+    angles = None if analysis.initial_ball_angles is None else list(analysis.initial_ball_angles)[: m.n_balls]
+    d = case_model.drive
+    start = getattr(d, "initial_speed", 0.0)
+    return machine_run_up(m, t_end=analysis.t_end, n_save=analysis.n_save, ball_angles=angles,
+                          rtol=analysis.rtol, atol=analysis.atol, initial_speed=start)
+
+
+_RUNNERS = {"machine-steady": _run_steady, "machine-simulate": _run_simulate,
+            "machine-run-up": _run_run_up}
+MACHINE_ANALYSES = tuple(_RUNNERS)
+
+
+def run_machine_analysis(case_model, analysis, progress=None):
+    """Run one machine analysis of a case (``machine-steady``, ``-simulate``, ``-run-up``)."""
+    ds = _RUNNERS[analysis.type](case_model, analysis, progress)
+    if analysis.races is not None:
+        ds.attrs["races"] = list(analysis.races)
+    ds.attrs["n_races"] = len(case_model.races) if analysis.races is None else len(analysis.races)
+    ds.attrs["name"] = analysis.name
+    if progress is not None:
+        progress(1, 1)
+    return ds
+
+
+def _steady_rows(ds) -> list[dict[str, Any]]:
+    msg = ds.attrs.get("message")
+    return [{"speed": _num(w), "speed_rpm": _num(w * 30 / np.pi), "exists": bool(e),
+             "balanced": bool(b), "stable": bool(s), "max_real_eigenvalue": _num(l),
+             "ball_angles_deg": _deg(a),
+             "amplitude": {str(k): _num(v) for k, v in zip(ds.station.values, amp)},
+             "status": int(st), **({"message": msg} if msg and int(st) != 0 else {})}
+            for w, e, b, s, l, a, amp, st in zip(ds.speed.values, ds.exists.values, ds.balanced.values,
+                                                 ds.stable.values, ds.max_real_eigenvalue.values,
+                                                 ds.ball_angle.values, ds.amplitude.values,
+                                                 ds.status.values)]
+
+
+def _simulate_rows(ds) -> list[dict[str, Any]]:
+    race = ds.race.values
+    rows = []
+    for i in range(ds.sizes["ic"]):
+        ang = ds.final_ball_angle.values[i]
+        rows.append({
+            "ic": i, "final_speed": _num(ds.final_speed.values[i]),
+            "final_ball_angles_deg": {f"race {r}": _deg(ang[race == r]) for r in np.unique(race)},
+            "amplitude": {str(s): _num(a) for s, a in zip(ds.station.values, ds.amplitude.values[i])},
+            "reference_amplitude": {str(s): _num(a) for s, a in
+                                    zip(ds.station.values, ds.reference_amplitude.values)},
+            "status": int(ds.status.values[i]),
+        })
+    return rows
+
+
+def _run_up_rows(ds) -> list[dict[str, Any]]:
+    a = ds.attrs
+    return [{"final_speed": _num(a["final_speed"]), "final_speed_rpm": _num(a["final_speed"] * 30 / np.pi),
+             "critical_speeds": [_num(w) for w in np.ravel(a["critical_speeds"])],
+             "passed": int(a["passed"]), "captured_at": _num(a["captured_at"]),
+             "residual_amplitude": {str(s): _num(v) for s, v in
+                                    zip(ds.station.values, ds.residual_amplitude.values)},
+             "status": int(a["status"])}]
+
+
+_ROWS = {"machine-steady": _steady_rows, "machine-simulate": _simulate_rows, "machine-run-up": _run_up_rows}
+
+
+def machine_rows(ds) -> list[dict[str, Any]]:
+    """Summary rows of a machine analysis (JSON-ready, SI; angles in degrees)."""
+    return _ROWS[ds.attrs["analysis"]](ds)

@@ -36,13 +36,14 @@ from pydantic import Field, field_validator, model_validator
 
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
-from rotorlab.io._fields import AbstractModelSpec, _Spec, integer, quantity
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _Spec, integer, quantity
 from rotorlab.io._jeffcott_specs import SPEED_PROFILES, AbstractSpeedProfile
 from rotorlab.io._linear_common import label
 from rotorlab.io._multibody_spec import MultibodySpec
 
 __all__ = ["MachineBallSpec", "RaceSpec", "MachineUnbalanceSpec", "GravitySpec", "MotorSpec",
-           "MachineSpec", "build_machine"]
+           "MachineSpec", "build_machine", "MachineSteadySpec", "MachineSimulateSpec",
+           "MachineRunUpSpec"]
 
 
 class _Station(_Spec):
@@ -291,3 +292,68 @@ def build_machine(spec: MachineSpec):
     gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)
     return Machine(structure, races=races, unbalances=unb, gravity=gravity, drive=drive,
                    n_modes=spec.n_modes)
+
+
+# --------------------------------------------------------------------------- analyses
+
+
+def _machine_issues(model: AbstractModelSpec) -> list[Issue]:
+    if isinstance(model, MachineSpec):
+        return []
+    return [Issue((), f'needs a machine model ([model] type "machine"), but the case\'s model is '
+                      f'"{model.type}"', show_value=False)]
+
+
+class _MachineAnalysis(AbstractAnalysisSpec):
+    """Options shared by the machine analyses: which races take part (variants)."""
+
+    races: tuple[integer(ge=0), ...] | None = Field(
+        None, description="indices of the races that take part (default: all)")
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        issues = _machine_issues(model)
+        if not issues and self.races is not None:
+            n = len(model.races)
+            issues += [Issue(("races", i), f"must be < {n} (the model has {n} race(s))", r)
+                       for i, r in enumerate(self.races) if r >= n]
+        return issues
+
+
+class MachineSteadySpec(_MachineAnalysis):
+    """Balanced states of a machine over ``n_speeds`` speeds and their exact stability."""
+
+    type: Literal["machine-steady"] = "machine-steady"
+    start: quantity("angular_speed", gt=0) = Field(description="lowest spin speed (rad/s)")
+    stop: quantity("angular_speed", gt=0) = Field(description="highest spin speed (rad/s)")
+    n_speeds: integer(ge=1) = Field(41, description="number of equally spaced speeds")
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.stop < self.start:
+            raise IssueGroup([Issue(("stop",), f"must be >= start = {self.start:.6g} rad/s", self.stop)])
+        return self
+
+
+class MachineSimulateSpec(_MachineAnalysis):
+    """Simulations of a machine from several ball starts: final ball angles, vibration."""
+
+    type: Literal["machine-simulate"] = "machine-simulate"
+    speed: quantity("angular_speed", gt=0) | None = Field(
+        None, description="constant spin speed instead of the model's drive (rad/s)")
+    initial_ball_angles: tuple[tuple[quantity("angle"), ...], ...] | None = Field(
+        None, description="ball angles of each start (rad), races in order")
+    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
+    rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
+    atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
+
+
+class MachineRunUpSpec(_MachineAnalysis):
+    """A run-up with the model's drive (motor or profile): criticals passed, residual vibration."""
+
+    type: Literal["machine-run-up"] = "machine-run-up"
+    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
+    n_save: integer(ge=10) = Field(1000, description="points of the saved time grid")
+    initial_ball_angles: tuple[quantity("angle"), ...] | None = Field(
+        None, description="initial ball angles (rad), races in order")
+    rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
+    atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")

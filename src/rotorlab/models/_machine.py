@@ -698,6 +698,52 @@ class Machine:
         y[2 * nz:2 * nz + nb] = psi
         return y
 
+    def steady_state(self, ball_angles=None, *, starts: int = 16, seed: int = 0,
+                     near=None) -> np.ndarray | None:
+        """Return a co-rotating equilibrium (a steady motion), balanced or not, or None.
+
+        Starts from the balanced state when the balls can cancel the unbalance, else from the
+        ball angles that cancel most of it (least squares) with the structure on its locked
+        response, and solves ``rotating_rhs(y) = 0`` for the positions (velocities zero) with
+        SciPy's hybrid Powell method; ``near`` (a co-rotating state, e.g. the steady motion at a
+        neighbouring speed) is tried first as the start.
+        """
+        from scipy.optimize import least_squares, root
+
+        om = self._require_rotating()
+        nz, nb = self.n_coordinates, self.n_balls
+        psi = self.balanced_angles(ball_angles, starts=starts, seed=seed)
+        if psi is not None:
+            return self.balanced_state(psi)
+        scale = max(sum(u.mass_eccentricity for u in self.unbalances), 1e-300)
+        rng = np.random.default_rng(seed)
+        guesses = ([np.asarray(ball_angles, float)] if ball_angles is not None else []) + \
+            [rng.uniform(0, 2 * np.pi, nb) for _ in range(starts)]
+        best = min((least_squares(lambda a: self.balance_residual(a) / scale, g) for g in guesses),
+                   key=lambda r: r.cost) if nb else None
+        psi0 = best.x if best is not None else np.zeros(0)
+        K0 = self.reduced["K"] - om * om * self._m0()
+        z0 = np.linalg.lstsq(K0, om * om * self.balance_residual(psi0), rcond=None)[0]
+
+        def residual(x):
+            y = np.zeros(2 * nz + 2 * nb)
+            y[:nz], y[2 * nz:2 * nz + nb] = x[:nz], x[nz:]
+            f = self.rotating_rhs(y)
+            return np.concatenate([f[nz:2 * nz], f[2 * nz + nb:]])
+
+        starts_x = [np.concatenate([z0, psi0])]
+        if near is not None:
+            near = np.asarray(near, dtype=float)
+            starts_x.insert(0, np.concatenate([near[:nz], near[2 * nz:2 * nz + nb]]))
+        zs = max(scale / max(self.structure.total_mass, 1e-300), 1e-300)
+        for x0 in starts_x:
+            sol = root(residual, x0, method="hybr", options={"xtol": 1e-13})
+            if np.max(np.abs(residual(sol.x))) <= 1e-9 * zs * max(1.0, om * om):
+                y = np.zeros(2 * nz + 2 * nb)
+                y[:nz], y[2 * nz:2 * nz + nb] = sol.x[:nz], sol.x[nz:]
+                return y
+        return None
+
     def reduction_change(self, spin_speed: float) -> float:
         """Relative change of the locked-ball unbalance response when ``n_modes`` doubles.
 
