@@ -169,11 +169,11 @@ def _register_builtins() -> None:
     register_analysis_type(AnalysisType("working-point", _basin.run_basin_analysis, _basin.basin_rows, "basin"))
     register_analysis_type(AnalysisType("sweep", _sweep.run_sweep_analysis, _basin.basin_rows, "basin",
                                         _sweep.sweep_task_size, **trajectories))  # fmt: skip
-    for name in _machine.MACHINE_ANALYSES:
-        register_analysis_type(AnalysisType(name, _machine.run_machine_analysis, _machine.machine_rows, "machine"))
     register_analysis_type(AnalysisType("impacts", _impacts.run_impact_analysis, _impacts.impact_rows, "impacts"))
     register_analysis_type(AnalysisType("impacts-sweep", _impacts.run_impact_analysis, _impacts.sweep_rows,
                                         "impacts"))  # fmt: skip
+    for name in _machine.MACHINE_ANALYSES:
+        register_analysis_type(AnalysisType(name, _machine.run_machine_analysis, _machine.machine_rows, "machine"))
 
 
 _register_builtins()
