@@ -92,6 +92,13 @@ def orbit_amplitude(machine, ys) -> np.ndarray:
     return np.hypot(dx, dy).max(axis=-2)
 
 
+def _with_units(ds):
+    """Give every variable and coordinate without a unit the unit "1" (counts, flags, labels)."""
+    for name in (*ds.data_vars, *ds.coords):
+        ds[name].attrs.setdefault("units", "1")
+    return ds
+
+
 def _ball_coords(machine) -> dict[str, Any]:
     race = [i for i, r in enumerate(machine.races) for _ in r.balls]
     return {"ball": np.arange(machine.n_balls), "race": ("ball", np.asarray(race, dtype=int))}
@@ -399,7 +406,7 @@ MACHINE_ANALYSES = tuple(_RUNNERS)
 
 def run_machine_analysis(case_model, analysis, progress=None):
     """Run one machine analysis of a case (``machine-steady``, ``-simulate``, ``-run-up``)."""
-    ds = _RUNNERS[analysis.type](case_model, analysis, progress)
+    ds = _with_units(_RUNNERS[analysis.type](case_model, analysis, progress))
     if analysis.races is not None:
         ds.attrs["races"] = list(analysis.races)
     ds.attrs["n_races"] = len(case_model.races) if analysis.races is None else len(analysis.races)
