@@ -139,7 +139,7 @@ def machine_figures(ds: Any, name: str) -> dict[str, Any]:
     import matplotlib.pyplot as plt
 
     kind = ds.attrs["analysis"]
-    if kind == "machine-steady" and ds.sizes["speed"] > 1:
+    if kind == "machine-steady" and ds.sizes["speed"] > 1 and bool(ds.exists.any()):
         fig, ax = plt.subplots(figsize=(6, 3.5))
         ax.plot(ds.speed.values * _RPM, ds.max_real_eigenvalue.values, ".-")
         ax.axhline(0.0, color="k", lw=0.8)
