@@ -276,6 +276,8 @@ def impact_run(model: ImpactRotor, t_end: float = 10.0, *, seed: int | None = 0,
                                   "stone": ("stone", np.arange(len(seq)), {"units": "1"})})  # fmt: skip
     ds.attrs.update(_model_attrs(run, t_end, sliding_fraction))
     ds.attrs.update({"analysis": "impacts", "regime": _label(code), "seed": -1 if seed is None else int(seed)})
+    if sol.notes and sol.notes[0]:
+        ds.attrs["status_detail"] = sol.notes[0]
     return ds
 
 

@@ -208,8 +208,9 @@ def simulate(
         )
         for i in range(n_ic):
             code = int(sol.status[i])
+            note = sol.notes[i] if sol.notes else ""
             out["outcome"][k, i] = classify(
-                code, Status(code).message, float(out["final_amplitude"][k, i]),
+                code, note or Status(code).message, float(out["final_amplitude"][k, i]),
                 float(reference[k]), out["final_ball_angle"][k, i],
                 float(out["max_final_rate"][k, i]), om_end,
             )  # fmt: skip
