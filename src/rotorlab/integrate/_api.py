@@ -493,6 +493,10 @@ def solve_ensemble(
     n_save = TS.shape[1]
     max_rec = max(0, int(max_events_recorded))
 
+    from rotorlab._memory import check_memory
+
+    check_memory(8.0 * N * n * (n_save + 4), f"{N} trajectories x {n_save} saved states x {n} state entries",
+                 "save fewer states (n_save) or integrate fewer trajectories")  # fmt: skip
     YS = np.full((N, n_save, n), np.nan)
     YF = np.empty((N, n))
     STATUS = np.empty(N, dtype=np.int64)
