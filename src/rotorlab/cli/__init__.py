@@ -41,10 +41,6 @@ def _terminated(signum: int, frame: Any) -> None:
     raise SystemExit(EXIT_TERMINATED)
 
 
-def _warning_line(message: Any, category: Any, filename: str, lineno: int, line: Any = None) -> str:
-    return f"warning: {message}\n"
-
-
 def main() -> None:
     """Run the ``rotorlab`` command line (the console-script entry point).
 
@@ -55,14 +51,20 @@ def main() -> None:
     import signal
     import sys
     import threading
-    import warnings
 
     try:
         if threading.current_thread() is threading.main_thread():
             signal.signal(signal.SIGTERM, _terminated)
-        warnings.formatwarning = _warning_line  # warnings of the library, as one line on stderr
         app = _load_app()
         app(prog_name="rotorlab")
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
         sys.exit(130)
+    except SystemExit as exc:
+        # typer turns a Ctrl-C outside a command's error handling (option parsing) into a silent
+        # exit 130: say it
+        from rotorlab.cli import _output
+
+        if exc.code == 130 and not _output._interrupt_reported:
+            sys.stderr.write("interrupted\n")
+        raise

@@ -114,30 +114,50 @@ def console_or_json(settings: Settings, json_out: bool, document: Any) -> Any:
 def handled(settings: Settings) -> Iterator[None]:
     """Turn exceptions into one clear message on stderr and the documented exit code.
 
-    Bad input (:class:`rotorlab.io.CaseError`, :class:`BadInput`): the message, exit code 2.
+    Bad input (:class:`rotorlab.io.CaseError`, :class:`BadInput`, a size that would not fit in
+    memory, :class:`rotorlab._memory.TooLarge`): the message, exit code 2. A write the system
+    refuses (disk full, permissions): the message with the path, exit code 1.
     Anything unexpected: a short message (traceback with ``-v``), exit code 1.
     """
-    from rotorlab.io import CaseError
+    import warnings
 
+    global _interrupt_reported
     try:
-        yield
+        with warnings.catch_warnings():
+            # rotorlab's own warnings (a case without schema_version, lost chunks recomputed) as
+            # one line each on stderr, every time
+            warnings.filterwarnings("always", category=UserWarning, module="rotorlab")
+            warnings.showwarning = _warning_line
+            yield
     except (typer.Exit, typer.Abort):
         raise
-    except (CaseError, BadInput) as exc:
-        sys.stderr.write(f"error: {exc}\n")
-        raise typer.Exit(EXIT_BAD_INPUT) from None
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
+        _interrupt_reported = True
         raise typer.Exit(130) from None
-    except OSError as exc:
-        if exc.errno not in _SYSTEM_REFUSALS:
-            _internal(settings, exc)
-        text = str(exc) if type(exc).__str__ is not OSError.__str__ else (
-            f"cannot write {exc.filename}: {exc.strerror}" if exc.filename else f"{exc.strerror or exc}")
-        sys.stderr.write(f"error: {text}\n")
-        raise typer.Exit(EXIT_INTERNAL) from None
     except Exception as exc:  # noqa: BLE001 - the last line of defence of the CLI
+        # imported here, not before the try: a Ctrl-C during these (heavy) imports is handled too
+        from rotorlab._memory import TooLarge
+        from rotorlab.io import CaseError
+
+        if isinstance(exc, (CaseError, BadInput, TooLarge)):
+            sys.stderr.write(f"error: {exc}\n")
+            raise typer.Exit(EXIT_BAD_INPUT) from None
+        if isinstance(exc, OSError) and exc.errno in _SYSTEM_REFUSALS:
+            text = str(exc) if type(exc).__str__ is not OSError.__str__ else (
+                f"cannot write {exc.filename}: {exc.strerror}" if exc.filename else f"{exc.strerror or exc}")
+            sys.stderr.write(f"error: {text}\n")
+            raise typer.Exit(EXIT_INTERNAL) from None
         _internal(settings, exc)
+
+
+#: Set when :func:`handled` has said "interrupted" (the entry point says it otherwise).
+_interrupt_reported = False
+
+
+def _warning_line(message: Any, category: Any, filename: str, lineno: int, file: Any = None,
+                  line: Any = None) -> None:  # fmt: skip
+    sys.stderr.write(f"warning: {message}\n")
 
 
 def _internal(settings: Settings, exc: BaseException) -> None:
