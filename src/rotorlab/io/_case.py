@@ -289,12 +289,6 @@ def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, defa
         raise CaseError(f"{origin}: a case must be a table of keys, got {format_value(data)}")
     doc = dict(data)
     doc.setdefault("name", default)
-    if text and "schema_version" not in doc:
-        import warnings
-
-        warnings.warn(f"{origin}: no schema_version: read as schema_version = {SCHEMA_VERSION} (the only version "
-                      f"so far); write 'schema_version = {SCHEMA_VERSION}' at the top so that a later schema reads "
-                      "it the same", stacklevel=3)  # fmt: skip
     try:
         case = Case.model_validate(doc, by_alias=True, by_name=False)
     except ValidationError as exc:
@@ -305,6 +299,12 @@ def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, defa
         raise CaseError(message, unique, origin) from None
     case._source = source
     case._text = text
+    if text and "schema_version" not in doc:
+        import warnings
+
+        warnings.warn(f"{origin}: no schema_version: read as schema_version = {SCHEMA_VERSION} (the only version "
+                      f"so far); write 'schema_version = {SCHEMA_VERSION}' at the top so that a later schema reads "
+                      "it the same", stacklevel=3)  # fmt: skip
     return case
 
 
