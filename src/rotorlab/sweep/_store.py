@@ -249,6 +249,10 @@ class ZarrSink:
             raise
 
     def _resume(self, sweep: Any, chunk_size: int | None) -> None:
+        # temporary files of zarr's atomic writes (``*.partial``) that a killed run left behind:
+        # no other run writes this store (we hold its lock)
+        for leftover in self.path.rglob("*.partial"):
+            leftover.unlink(missing_ok=True)
         self.group = _open_group(self.path, mode="r+")
         attrs = dict(self.group.attrs)
         if attrs.get("fingerprint") != sweep.fingerprint():
