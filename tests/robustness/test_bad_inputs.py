@@ -192,6 +192,18 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
      ["--param", "bogus"]),
     ("isweep-zero-sequences", ["impacts-sweep", "krasnov-crusher", "--sequences", "0"], None, ["--sequences"]),
     ("isweep-resume-without-out", ["impacts-sweep", "krasnov-crusher", "--resume"], None, ["--resume"]),
+    ("isweep-negative-workers", ["impacts-sweep", "krasnov-crusher", "--workers", "-1"], None, ["--workers"]),
+    # ---- edge numbers ------------------------------------------------------------------------------
+    ("simulate-infinite-t-end", ["simulate", "autobalancer", "--t-end", "inf"], None, ["--t-end", "finite"]),
+    ("simulate-overflowing-speed", ["simulate", "autobalancer", "--speed-rpm", "1e400"], None,
+     ["--speed-rpm", "finite"]),
+    ("impacts-nan-stone", ["impacts", "krasnov-crusher", "--stone-mass", "nan"], None, ["--stone-mass"]),
+    ("sweep-negative-chunk", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--ic", "psi_1=0:6:4", "--chunk", "-1"],
+     None, ["--chunk"]),
+    ("jb-huge-exponent", ["validate", FILE], ("autobalancer", 'eccentricity = "1.5 mm"', 'eccentricity = "1e400 mm"'),
+     ["model.eccentricity", "finite"]),
+    ("ir-n-save-absurd", ["impacts", FILE, "--t-end", "0.01"], ("krasnov-crusher", "seed = 0", "seed = 0\nn_save = 1e12"),
+     ["n_save = 1000000000000", "memory"]),
 ]
 
 
