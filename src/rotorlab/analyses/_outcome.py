@@ -115,7 +115,7 @@ def classify(status: int, status_message: str, final_amplitude: float, reference
     final_angles : array_like, shape (n,)
         Ball angles from the unbalance at the end (rad).
     max_rate : float
-        Largest |psi_i'| over the final window (rad/s); NaN counts as moving.
+        Largest ``|psi_i'|`` over the final window (rad/s); NaN counts as moving.
     spin_speed : float
         omega (rad/s) at the end.
     balanced_fraction, settle_rate, side_tolerance : float

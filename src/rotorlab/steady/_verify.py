@@ -142,7 +142,7 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
     settle_revolutions : float
         Length of the final window in which a start must be at rest in the co-rotating frame.
     rate_tol : float
-        At rest: every |psi_i'| and |(u', v')| / (deflection scale) below ``rate_tol * Omega``.
+        At rest: every ``|psi_i'|`` and ``|(u', v')|`` / (deflection scale) below ``rate_tol * Omega``.
     angle_tol : float
         Ball-angle tolerance of the match (rad), see :func:`match_state`.
     rtol, atol : float
@@ -158,7 +158,7 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
         Dims ``speed``, ``ic``, ``ball``, ``motion`` and ``outcome`` (the motion labels, then
         ``"not settled"``, ``"other"`` (settled on no predicted motion) and ``"failed"``).
         Variables: ``initial_ball_angle`` (ic, ball; rad), ``final_ball_angle`` (speed, ic, ball;
-        rad), ``final_amplitude`` (m), ``final_rate`` (largest |psi_i'| / Omega in the window),
+        rad), ``final_amplitude`` (m), ``final_rate`` (largest ``|psi_i'|`` / Omega in the window),
         ``mean_ball_speed`` (speed, ic, ball; absolute ball speed Omega + mean psi_i' over the
         window, rad/s: about p for balls captured in a non-synchronous whirl),
         ``status``, ``reached`` (label or other outcome), ``fraction`` (speed, outcome; the basin
