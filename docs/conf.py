@@ -37,6 +37,7 @@ extensions = [
 ]
 exclude_patterns = ["_build", "jupyter_execute", ".jupyter_cache"]
 html_theme = "alabaster"
+smartquotes = False  # keys and values are quoted as in the files
 html_title = f"rotorlab {release}"
 
 # API reference: numpydoc-style docstrings through napoleon, members in source order.
