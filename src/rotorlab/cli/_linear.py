@@ -136,8 +136,8 @@ def campbell_command(
         "--modes", metavar="K",
         help="Number of mode branches (default: the case's, or 6).")] = None,
     harmonic: Annotated[Optional[list[int]], typer.Option(  # noqa: UP007
-        "--harmonic", metavar="H", help="Excitation line H x for critical speeds; repeatable "
-                                        "(default: the case's, or 1).")] = None,
+        "--harmonic", metavar="H", help="Excitation line H x for critical speeds, added to the "
+                                        "case's lines (or 1x); repeatable.")] = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--plot", metavar="FILE", help="Write the Campbell diagram (.png, .pdf or .svg).")] = None,
     json_out: JsonOpt = False,
@@ -172,8 +172,8 @@ def campbell_command(
         analysis = CampbellSpec(
             name=spec.name if spec is not None else "campbell", start=start, stop=stop,
             n_speeds=n, n_modes=min(n_modes, n_dof),
-            harmonics=tuple(dict.fromkeys(harmonic)) if harmonic else (
-                spec.harmonics if spec is not None else (1,)))
+            harmonics=tuple(dict.fromkeys((*(spec.harmonics if spec is not None else (1,)),
+                                           *(harmonic or ())))))
         info(settings, f"{loaded.name}: {analysis.describe(loaded.model)} ...",
              json_mode=json_out)
         from rotorlab.analyses import campbell_summary, run_linear_analysis, summarize_linear
