@@ -108,3 +108,44 @@ def test_builtin_case_figures_render_cleanly(name, tmp_path, monkeypatch):
         messages = [str(w.message) for w in caught]
         assert not messages, f"{name}/{stem}: {messages}"
         assert not _outside(fig), f"{name}/{stem}: {_outside(fig)}"
+
+
+def _basin(x_values, **attrs):
+    import numpy as np
+    import xarray as xr
+
+    n = len(x_values)
+    return xr.Dataset(
+        {"label": (("psi_2", "psi_1", "horizon"), np.zeros((n, n, 1), dtype=np.int16),
+                   {"labels": ["balanced", "other"]})},
+        coords={"psi_1": ("psi_1", x_values, {"units": "rad"}),
+                "psi_2": ("psi_2", x_values, {"units": "rad"}),
+                "horizon": ("horizon", [2.0], {"units": "s"})},
+        attrs=attrs)
+
+
+def test_basin_map_in_the_units_of_its_input():
+    import numpy as np
+
+    from rotorlab.plot import basin_figure
+
+    # given in degrees (0 to 350 deg, as the autobalancer case): drawn in degrees
+    ax = basin_figure(_basin(np.radians(np.linspace(0.0, 350.0, 8)))).axes[0]
+    assert ax.get_xlabel() == "psi_1 (deg)" and ax.get_ylabel() == "psi_2 (deg)"
+    assert 340.0 < ax.get_xlim()[1] < 380.0
+    # given in radians (0 to 6 rad): drawn in radians
+    ax = basin_figure(_basin(np.linspace(0.0, 6.0, 8))).axes[0]
+    assert ax.get_xlabel() == "psi_1 (rad)" and 5.5 < ax.get_xlim()[1] < 7.0
+
+
+def test_three_ball_basin_says_where_the_third_ball_starts():
+    import math
+
+    import numpy as np
+
+    from rotorlab.plot import basin_figure
+
+    ds = _basin(np.radians(np.linspace(0.0, 350.0, 4)), value_psi_3=4.0 * math.pi / 3.0,
+                value_dpsi_3=0.0, value_disc_mass=1.0)
+    title = basin_figure(ds).axes[0].get_title()
+    assert "psi_3 = 240°" in title and "disc_mass" not in title
