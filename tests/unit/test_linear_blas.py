@@ -6,6 +6,7 @@ from __future__ import annotations
 import threading
 
 import numpy as np
+import scipy.linalg  # noqa: F401 - loaded, as by rotorlab.linear, before the first use
 from threadpoolctl import threadpool_info
 
 from rotorlab.linear._blas import single_threaded_blas
