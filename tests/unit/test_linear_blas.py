@@ -7,7 +7,7 @@ import threading
 
 import numpy as np
 import scipy.linalg  # noqa: F401 - loaded, as by rotorlab.linear, before the first use
-from threadpoolctl import threadpool_info
+from threadpoolctl import threadpool_info  # reads the thread counts back
 
 from rotorlab.linear._blas import single_threaded_blas
 
