@@ -252,12 +252,12 @@ def test_run_bad_linear_case_writes_nothing(tmp_path):
     text = Path(__file__).parent.joinpath("test_linear_cases.py").read_text()
     fe = re.search(r'FE = """\n(.*?)"""', text, re.S)[1]
     case = tmp_path / "bad.toml"
-    case.write_text(fe.replace('position = "0.5 m"', 'position = "0.6 m"'))
+    case.write_text(fe.replace('position = "0.5 m"', 'position = "1.6 m"'))
     out = tmp_path / "out"
     for command in (["run", str(case), "--out", str(out)], ["validate", str(case)],
                     ["campbell", str(case), "--speeds-rpm", "0:100:3"]):
         result = invoke(*command)
         assert result.exit_code == 2
         assert result.stderr.startswith("error: invalid case")
-        assert 'model.discs[0].position = "0.6 m": is not at a node' in result.stderr
+        assert 'model.discs[0].position = "1.6 m": must be on the shaft' in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml"]

@@ -172,7 +172,8 @@ def run_linear_analysis(case_model: Any, analysis: Any) -> xarray.Dataset:
         :func:`rotorlab.linear.unbalance_response` or
         :meth:`rotorlab.linear.Identification.to_dataset`, with node labels added; or the
         findings of a data audit (dim ``finding``). ``attrs["analysis"]`` is the analysis
-        type and ``attrs["model"]`` the model type.
+        type and ``attrs["model"]`` the model type; ``attrs["mesh"]`` says how an ``fe_rotor``
+        mesh was refined, when it was.
 
     Examples
     --------
@@ -191,6 +192,9 @@ def run_linear_analysis(case_model: Any, analysis: Any) -> xarray.Dataset:
     ds = runner(case_model, analysis)
     ds.attrs["analysis"] = analysis.type
     ds.attrs["model"] = case_model.type
+    note = getattr(case_model, "mesh_note", lambda: "")()
+    if note:
+        ds.attrs["mesh"] = note  # the nodes added so that discs and bearings sit on nodes
     return ds
 
 
