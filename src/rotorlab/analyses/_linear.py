@@ -242,7 +242,8 @@ def summarize_linear(ds: xarray.Dataset) -> list[dict[str, Any]]:
         Campbell diagram the branch ``mode``). ``modes``: one row per mode (``mode``,
         ``frequency_hz``, ``whirl``, ``damping_ratio``, ``log_decrement``). ``unbalance_response``:
         one row per shown node (``node``, ``label``, ``peak_amplitude`` (m, largest semi-axis of
-        the orbit), ``peak_speed_rpm``). ``identify``: one row per parameter (``parameter``,
+        the orbit, refined between grid speeds; None when undamped: unbounded),
+        ``peak_speed_rpm``, ``note``: why there is no peak, or ""). ``identify``: one row per parameter (``parameter``,
         ``unit``, ``initial``, ``value``, ``relative_std``). ``data_audit``: one row per finding
         (``finding``, ``printed``, ``resolved``, ``evidence``, ``measure``).
     """
@@ -260,11 +261,10 @@ def summarize_linear(ds: xarray.Dataset) -> list[dict[str, Any]]:
     if kind == "unbalance_response":
         rows = []
         for node in ds.attrs.get("output_nodes", []):
-            amp = ds.orbit_major.values[:, node]
-            k = int(np.nanargmax(amp)) if np.isfinite(amp).any() else 0
             rows.append({"node": int(node), "label": str(ds.node_label.values[node]),
-                         "peak_amplitude": _num(amp[k]),
-                         "peak_speed_rpm": _grid(ds.speed_rpm.values[k])})
+                         "peak_amplitude": _num(ds.peak_orbit.values[node]),
+                         "peak_speed_rpm": _num(ds.peak_speed.values[node] * 30.0 / np.pi),
+                         "note": str(ds.attrs.get("note", ""))})
         return rows
     if kind == "identify":
         return [{"parameter": str(ds.parameter.values[i]), "unit": str(ds.unit.values[i]),

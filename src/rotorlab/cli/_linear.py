@@ -110,6 +110,10 @@ def linear_tables(results: Mapping[str, Any], tables: Mapping[str, Sequence[Mapp
                     for r in rows]
             out.append(_table(f"{name}: largest orbit", ("node", "semi-major axis (mm)",
                                                          "at speed (rpm)"), body, {1, 2}))
+            if ds.attrs.get("note"):
+                from rich.text import Text
+
+                out.append(Text(f"{name}: {ds.attrs['note']}"))
         elif kind == "identify":
             body = [(r["parameter"], _g(r["initial"]), _g(r["value"]), r["unit"],
                      "-" if r["relative_std"] is None else f"{100 * r['relative_std']:.3g} %")
