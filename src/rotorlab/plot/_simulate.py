@@ -191,7 +191,7 @@ def ball_angle_figure(ds: xarray.Dataset) -> Figure:
         ax.set_yticks(np.arange(-180, 181, 60))
         ax.set_title(speed_label(ds, k) + "; line style = ball", fontsize=10)
         _time_axis(ax, float(t[-1]))
-        ax.set_ylabel("ball angle from\nunbalance (deg)")
+        ax.set_ylabel("ball angle from unbalance (deg)", fontsize=9)
         ax.grid(alpha=0.3)
         _legend(ax)
     return fig
