@@ -198,8 +198,6 @@ def basin_command(
             emit_json({"case": loaded.name, "source": loaded.source, "analysis": spec.name, **doc,
                        "files": written})  # fmt: skip
             return
-        if settings.quiet:
-            return
         from rotorlab.analyses._basin import basin_rows
 
         for table in basin_tables({spec.name: ds}, {spec.name: basin_rows(ds)}):

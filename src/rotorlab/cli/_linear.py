@@ -191,8 +191,6 @@ def campbell_command(
         if json_out:
             emit_json(campbell_summary(ds))
             return
-        if settings.quiet:
-            return
         con = stdout()
         con.print(_crossing_table(f"{loaded.name}: critical speeds", summarize_linear(ds)))
         doc = campbell_summary(ds)
@@ -244,8 +242,6 @@ def modes_command(
         ds = run_linear_analysis(loaded.model, analysis)
         if json_out:
             emit_json(modes_summary(ds))
-            return
-        if settings.quiet:
             return
         stdout().print(_modes_table(f"{loaded.name}: modes at {speed / _RPM_TO_RAD:.6g} rpm",
                                     summarize_linear(ds)))
