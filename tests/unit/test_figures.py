@@ -90,7 +90,8 @@ def test_builtin_case_figures_render_cleanly(name, tmp_path, monkeypatch):
     drawn = {}
 
     def keep(out, case, results, figures, tables):
-        drawn.update(figures)
+        for name, stems in figures.items():  # by analysis, then by file stem
+            drawn.update({f"{name}/{stem}": fig for stem, fig in stems.items()})
         return Path(out) / "report.html"
 
     monkeypatch.setattr(rotorlab.report, "write_report", keep)
