@@ -56,3 +56,10 @@ def test_friswell_case_reports_no_grid_artefact():
     assert all(r["peak_amplitude"] is None and r["peak_speed_rpm"] is None for r in rows)
     assert rows[0]["note"].startswith("undamped rotor: the response is unbounded at the critical "
                                       "speeds (825.134")
+
+
+def test_no_critical_speed_below_max_speed_is_an_empty_result():
+    from rotorlab.linear import critical_speeds
+
+    found = critical_speeds(_rotor(0.0), max_speed=100.0)  # the lowest is 223.6 rad/s
+    assert found.speed.size == 0 and found.to_dataset().sizes["critical"] == 0
