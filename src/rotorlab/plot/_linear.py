@@ -65,7 +65,10 @@ def unbalance_response_figure(ds: xarray.Dataset, *, nodes=None,
     ax.set_xlim(rpm[0], rpm[-1])
     ax.set_xlabel("spin speed (rev/min)")
     ax.set_ylabel("orbit semi-major axis (mm)")
-    ax.set_title("unbalance response" if title is None else title)
+    undamped = str(ds.attrs.get("note", "")).startswith("undamped")
+    ax.set_title(("unbalance response" if title is None else title)
+                 + ("\n(undamped: unbounded at the critical speeds; the peaks follow the grid)"
+                    if undamped else ""))
     ax.grid(True, which="both", lw=0.3)
     ax.legend(fontsize=8)
     return fig
