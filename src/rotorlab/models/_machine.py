@@ -209,12 +209,12 @@ class Machine:
     # ------------------------------------------------------------------ sizes and names
     @property
     def is_motor(self) -> bool:
-        """True when the drive is a :class:`Motor`."""
+        """True when the drive is a motor (spin angle and speed are states)."""
         return isinstance(self.drive, Motor)
 
     @property
     def layout(self) -> _cg.Layout:
-        """Sizes and offsets of states and parameters (:class:`~rotorlab._kernels.machine_codegen.Layout`)."""
+        """Sizes and offsets of the states and parameters (a machine_codegen Layout)."""
         if "layout" not in self._cache:
             d = self.drive
             self._cache["layout"] = _cg.Layout(
@@ -271,7 +271,9 @@ class Machine:
     # ------------------------------------------------------------------ structure reduction
     @property
     def basis(self) -> np.ndarray:
-        """Phi, shape (n_dof, n_z): the identity, or the kept mass-normalised modes.
+        """The basis Phi (shape n_dof by n_z) from structure coordinates to DOFs.
+
+        The identity, or the kept mass-normalised modes.
 
         For an isotropic structure the modes of the x plane are used for both planes, ordered as
         x/y pairs (so that the co-rotating frame rotates each pair).
