@@ -4,6 +4,7 @@ See :mod:`rotorlab.contact._theory` for the physics and references (Black 1968; 
 1987; Crandall 1990; Nordmark & Piiroinen 2009).
 """
 
+from rotorlab.contact._model import JeffcottRub
 from rotorlab.contact._theory import (
     RollingWhirl,
     RubBranch,
@@ -24,6 +25,7 @@ from rotorlab.contact._theory import (
 )
 
 __all__ = [
+    "JeffcottRub",
     "RubRotor",
     "RubBranch",
     "RollingWhirl",
