@@ -5,6 +5,7 @@ See :mod:`rotorlab.contact._theory` for the physics and references (Black 1968; 
 """
 
 from rotorlab.contact._model import JeffcottRub
+from rotorlab.contact._regimes import RubFeatures, RubRegime, RubRegimes, classify_rub, rub_features
 from rotorlab.contact._theory import (
     RollingWhirl,
     RubBranch,
@@ -26,6 +27,11 @@ from rotorlab.contact._theory import (
 
 __all__ = [
     "JeffcottRub",
+    "RubFeatures",
+    "RubRegime",
+    "RubRegimes",
+    "classify_rub",
+    "rub_features",
     "RubRotor",
     "RubBranch",
     "RollingWhirl",
