@@ -386,28 +386,46 @@ def impact_model(case_model: Any, **overrides: float) -> ImpactRotor:
     return model
 
 
+def _one_run(model: ImpactRotor, analysis: Any, progress: Callable[[int, int], None] | None) -> xarray.Dataset:
+    if progress is not None:
+        progress(0, 1)
+    ds = impact_run(model, analysis.t_end, seed=analysis.seed, n_save=analysis.n_save, rtol=analysis.rtol,
+                    atol=analysis.atol, sliding_fraction=analysis.sliding_fraction)  # fmt: skip
+    if progress is not None:
+        progress(1, 1)
+    return ds
+
+
+def _many_runs(model: ImpactRotor, analysis: Any, progress: Callable[[int, int], None] | None) -> xarray.Dataset:
+    from rotorlab.analyses._impact_sweep import impact_sweep
+
+    return impact_sweep(model, analysis.values, param=analysis.param, n_sequences=analysis.n_sequences,
+                        t_end=analysis.t_end, seed=analysis.seed, rtol=analysis.rtol, atol=analysis.atol,
+                        sliding_fraction=analysis.sliding_fraction, progress=progress)  # fmt: skip
+
+
+_RUNNERS = {"impacts": _one_run, "impacts-sweep": _many_runs}
+
+
 def run_impact_analysis(case_model: Any, analysis: Any,
                         progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
     """Run an ``impacts`` or ``impacts-sweep`` analysis of a case (see :func:`impact_run`,
     :func:`impact_sweep`); ``attrs["name"]`` is the analysis name."""
-    model = impact_model(case_model, **analysis.overrides())
-    if analysis.type == "impacts":
-        if progress is not None:
-            progress(0, 1)
-        ds = impact_run(model, analysis.t_end, seed=analysis.seed, n_save=analysis.n_save, rtol=analysis.rtol,
-                        atol=analysis.atol, sliding_fraction=analysis.sliding_fraction)  # fmt: skip
-        if progress is not None:
-            progress(1, 1)
-    elif analysis.type == "impacts-sweep":
-        from rotorlab.analyses._impact_sweep import impact_sweep
-
-        ds = impact_sweep(model, analysis.values, param=analysis.param, n_sequences=analysis.n_sequences,
-                          t_end=analysis.t_end, seed=analysis.seed, rtol=analysis.rtol, atol=analysis.atol,
-                          sliding_fraction=analysis.sliding_fraction, progress=progress)  # fmt: skip
-    else:
+    if analysis.type not in _RUNNERS:
         raise ValueError(f"not an impact analysis: {analysis.type!r}")
+    ds = _RUNNERS[analysis.type](impact_model(case_model, **analysis.overrides()), analysis, progress)
     ds.attrs["name"] = analysis.name
     return ds
+
+
+def impact_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """The summary rows of an ``impacts`` run: one row, :func:`impact_summary`."""
+    return [impact_summary(ds)]
+
+
+def sweep_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """The summary rows of an ``impacts-sweep``: one per swept value (:func:`sweep_summary`)."""
+    return sweep_summary(ds)["rows"]
 
 
 def paper_counts(ds: xarray.Dataset) -> list[int | None]:

@@ -278,8 +278,9 @@ def impacts_sweep_command(
                 files=() if store is None else (str(store),))  # fmt: skip
 
 
-def impact_tables(results: dict[str, Any]) -> list[Any]:
-    """Rich tables of impact results (``impacts`` and ``impacts-sweep`` Datasets), by name."""
+def impact_tables(results: dict[str, Any], rows: dict[str, Any] | None = None) -> list[Any]:
+    """Rich tables of impact results (``impacts`` and ``impacts-sweep`` Datasets), by name
+    (``rows``, the summary rows by name, is accepted for the presentation registry and unused)."""
     from rich.table import Table
 
     from rotorlab.analyses import impact_summary, paper_counts, sweep_summary

@@ -243,3 +243,14 @@ def summary_table(results: Mapping[str, Sequence[Mapping[str, Any]]]) -> Any:
 def finite_or_none(value: float | None) -> float | None:
     """Return ``value`` if it is a finite float, else None (for JSON)."""
     return value if value is not None and math.isfinite(value) else None
+
+
+def simulation_tables(results: Mapping[str, Any], rows: Mapping[str, Sequence[Mapping[str, Any]]]) -> list[Any]:
+    """The console tables of simulations in ``rotorlab run``: one :func:`summary_table` of all."""
+    return [summary_table({name: rows[name] for name in results})] if results else []
+
+
+def simulation_detail_tables(results: Mapping[str, Any],
+                             rows: Mapping[str, Sequence[Mapping[str, Any]]]) -> list[Any]:  # fmt: skip
+    """The ``-v`` tables of simulations: one :func:`outcome_table` per analysis."""
+    return [outcome_table(name, rows[name]) for name in results]

@@ -35,8 +35,8 @@ from rotorlab.io._schema import (
     MODEL_SPECS,
     SPEED_PROFILES,
     Case,
-    _AnalysisSpec,
-    _ModelSpec,
+    analysis_union,
+    model_union,
     duplicate_name_issues,
     exclusive_issues,
 )
@@ -481,7 +481,7 @@ def _field_description(owner: type[BaseModel] | None, key: Any) -> str:
 
 @lru_cache(maxsize=1)
 def _adapters() -> tuple[TypeAdapter[Any], TypeAdapter[Any]]:
-    return TypeAdapter(_ModelSpec), TypeAdapter(_AnalysisSpec)
+    return TypeAdapter(model_union()), TypeAdapter(analysis_union())
 
 
 def _cross_problems(doc: Mapping[str, Any]) -> list[str]:

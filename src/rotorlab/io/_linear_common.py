@@ -17,7 +17,7 @@ from typing import Annotated, Any
 from pydantic import BaseModel, Field, PlainValidator, WithJsonSchema
 
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean, format_path
-from rotorlab.io._fields import AbstractModelSpec, _error, _Spec, plain_data, quantity
+from rotorlab.io._fields import AbstractModelSpec, Unit, _error, _Spec, plain_data, quantity
 from rotorlab.io._units import DIMENSIONS, UnitError, convert
 
 __all__ = [
@@ -51,6 +51,7 @@ def label() -> Any:
 _PLANE_DIMENSIONS = {
     "compliance": ("compliance", "compliance_coupling", "rotational_compliance"),
     "stiffness": ("stiffness", "stiffness_coupling", "rotational_stiffness"),
+    "damping": ("damping", "damping_coupling", "torque_damping"),
 }
 
 
@@ -89,16 +90,17 @@ def plane_matrix(kind: str) -> Any:
 
     Parameters
     ----------
-    kind : {"compliance", "stiffness"}
-        Entries (2i, 2j) are m/N (N/m), entries (2i, 2j+1) and (2i+1, 2j) 1/N (N/rad), entries
-        (2i+1, 2j+1) rad/(N*m) (N*m/rad); a string with a unit is checked against the unit of
-        its place.
+    kind : {"compliance", "stiffness", "damping"}
+        Entries (2i, 2j) are m/N (N/m, N*s/m), entries (2i, 2j+1) and (2i+1, 2j) 1/N (N/rad,
+        N*s/rad), entries (2i+1, 2j+1) rad/(N*m) (N*m/rad, N*m*s/rad); a string with a unit is
+        checked against the unit of its place.
     """
     schema = {"type": "array", "items": {"type": "array",
                                          "items": {"anyOf": [{"type": "number"},
                                                              {"type": "string"}]}}}
+    unit = "; ".join(DIMENSIONS[d].si for d in _PLANE_DIMENSIONS[kind])  # per place, as in the docstring
     return Annotated[tuple[tuple[float, ...], ...], PlainValidator(_MatrixValidator(kind)),
-                     WithJsonSchema(schema)]
+                     WithJsonSchema(schema), Unit(unit)]
 
 
 def matrix_issues(key: str, a: tuple[tuple[float, ...], ...], size: int) -> list[Issue]:
