@@ -58,7 +58,7 @@ def test_rotorlab_run_writes_the_regime_and_the_closed_form_in_the_report(tmp_pa
 
 BAD = """
 [model]
-type = "jeffcott_rub"
+type = "rub_rotor"
 mass = "10 kg"
 stiffness = "1e6 N/m"
 clearance = "1 mm"
@@ -87,7 +87,7 @@ def test_bad_rub_case_names_every_problem(tmp_path):
 
 NO_CONTACT = """
 [model]
-type = "jeffcott_rub"
+type = "rub_rotor"
 mass = "10 kg"
 stiffness = "1e6 N/m"
 damping = "316.227766 N*s/m"

@@ -152,7 +152,7 @@ def _register_builtins() -> None:
         ("fe_rotor", build_linear_system, _builders.linear_quantities, None),
         ("toroidal_ball", _builders.toroidal_ball_model, _builders.reference_speed_quantities, _basin.torus_mapper),
         ("impact_rotor", _impacts.impact_model, _builders.reference_speed_quantities, None),
-        ("jeffcott_rub", _rub.rub_model, _rub.rub_quantities, None),
+        ("rub_rotor", _rub.rub_model, _rub.rub_quantities, None),
     ):
         register_model_type(ModelType(name, build, quantities, mapper))
 

@@ -1,6 +1,6 @@
 """Case-file specs of a Jeffcott rotor in a circular clearance (rub, impacts, backward whirl).
 
-The ``jeffcott_rub`` model (:class:`rotorlab.contact.JeffcottRub`: rotor, clearance, rigid or
+The ``rub_rotor`` model (:class:`rotorlab.contact.JeffcottRub`: rotor, clearance, rigid or
 elastic stator, restitution and friction in ``[model]``) and the analysis ``rub`` (simulate,
 classify the regime of the last window and put the closed-form predictions beside it),
 registered in :mod:`rotorlab.io._schema`.
@@ -10,7 +10,7 @@ Examples
 >>> from rotorlab.io import load_case
 >>> case = load_case("rub-jeffcott")
 >>> case.model.type, round(case.model.clearance, 6), [a.type for a in case.analyses]
-('jeffcott_rub', 0.001, ['rub'])
+('rub_rotor', 0.001, ['rub'])
 """
 
 from __future__ import annotations
@@ -29,7 +29,7 @@ __all__ = ["JeffcottRubSpec", "RubSpec"]
 class JeffcottRubSpec(AbstractModelSpec):
     """A Jeffcott rotor at constant spin in a circular clearance (see :class:`rotorlab.contact.RubRotor`)."""
 
-    type: Literal["jeffcott_rub"] = "jeffcott_rub"
+    type: Literal["rub_rotor"] = "rub_rotor"
     mass: quantity("mass", gt=0) = Field(description="rotor mass m (kg)")
     stiffness: quantity("stiffness", gt=0) = Field(description="shaft and support stiffness k (N/m)")
     damping: quantity("damping", ge=0) = Field(0.0, description="viscous damping c of the rotor (N*s/m)")
@@ -89,8 +89,8 @@ class RubSpec(AbstractAnalysisSpec):
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """A rigid stator's rotor must start inside the clearance."""
         clearance = getattr(model, "clearance", None)
-        if getattr(model, "type", None) != "jeffcott_rub":
-            return [Issue(("type",), "needs a jeffcott_rub model", self.type)]
+        if getattr(model, "type", None) != "rub_rotor":
+            return [Issue(("type",), "needs a rub_rotor model", self.type)]
         if model.stator_stiffness is None and self.initial_radius > clearance:
             return [Issue(("initial_radius",), f"must be <= the clearance ({clearance:g} m) with a rigid stator",
                           self.initial_radius)]  # fmt: skip
