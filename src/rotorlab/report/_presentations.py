@@ -160,5 +160,7 @@ for _entry in (
                  lazy("rotorlab.report._machine:machine_section"),
                  lazy("rotorlab.report._machine:machine_findings"),
                  lazy("rotorlab.cli._machine:machine_tables")),
+    Presentation("rub", lazy("rotorlab.plot._rub:rub_figures"), lazy("rotorlab.report._rub:rub_section"),
+                 lazy("rotorlab.report._rub:rub_findings"), lazy("rotorlab.cli._rub:rub_tables")),
 ):  # fmt: skip
     register_presentation(_entry)
