@@ -449,7 +449,8 @@ def solve_ensemble(
     array([[1., 0.],
            [0., 1.]])
     """
-    from rotorlab.integrate._specialize import drivers_for
+    from rotorlab.integrate._driver_args import EventTable, Inputs, Outputs, Settings
+    from rotorlab.integrate._drivers import check_lanes, driver
 
     kernels = _kernels_of(model)
     n = kernels.n_state
@@ -487,28 +488,34 @@ def solve_ensemble(
     RECK = np.full((N, max_rec), -1, dtype=np.int64)
     STATS = np.zeros((N, 4), dtype=np.int64)
     first_step = -1.0 if control.first_step is None else float(control.first_step)
-    if lanes is None:
-        ensemble_driver, serial_driver = drivers_for(kernels)
-        driver = serial_driver if threads == 1 else ensemble_driver
-    else:  # ---- lane driver hook (rotorlab.integrate._lanes): same call signature ----
-        from rotorlab.integrate._lanes_build import lane_driver
-
-        driver = lane_driver(kernels, lanes, n_ev, ev_act, serial=threads == 1)
+    if lanes is not None:
+        check_lanes(lanes, ev_act[:n_ev])
+    run = driver(kernels, lanes, serial=threads == 1)
+    settings = Settings(
+        t0, float(control.rtol), n_cont, first_step, float(control.max_step), int(control.max_steps)
+    )
+    event_table = EventTable(n_ev, ev_dir, ev_act)
     step = N if chunk_size is None else max(1, int(chunk_size))
 
     def sl(a: np.ndarray, lo: int, hi: int) -> np.ndarray:
         return a if a.shape[0] == 1 else a[lo:hi]
 
+    import numba
+
     with _threads(threads):
+        n_threads = numba.get_num_threads()
         for lo in range(0, N, step):
             hi = min(N, lo + step)
-            driver(
-                n_ev, sl(Y0, lo, hi), sl(P, lo, hi),
-                t0, sl(T1, lo, hi), sl(TS, lo, hi), float(control.rtol), atol, n_cont,
-                first_step, float(control.max_step), int(control.max_steps), ev_dir, ev_act,
-                YS[lo:hi], YF[lo:hi], STATUS[lo:hi], TEND[lo:hi], EVC[lo:hi], RECT[lo:hi],
-                RECK[lo:hi], STATS[lo:hi],
-            )  # fmt: skip
+            run(
+                Inputs(sl(Y0, lo, hi), sl(P, lo, hi), sl(T1, lo, hi), sl(TS, lo, hi), atol),
+                settings,
+                event_table,
+                Outputs(
+                    YS[lo:hi], YF[lo:hi], STATUS[lo:hi], TEND[lo:hi], EVC[lo:hi], RECT[lo:hi],
+                    RECK[lo:hi], STATS[lo:hi],
+                ),
+                n_threads,
+            )
             if progress is not None:
                 progress(hi, N)
     state_names = tuple(getattr(model, "state_names", tuple(f"y{i}" for i in range(n))))
