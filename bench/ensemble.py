@@ -42,6 +42,11 @@ REPO = HERE.parent
 SHARED = REPO.parent / "shared" / "bench"
 BUILD = HERE / "_build"
 
+if not (SHARED / "model.py").is_file():
+    sys.exit(
+        f"bench/ensemble.py compares rotorlab with the C references of {SHARED}, which is missing "
+        "here (it is not part of the repository). Nothing was measured."
+    )
 sys.path.insert(0, str(SHARED))
 sys.path.insert(0, str(HERE))
 import model  # noqa: E402  (shared/bench/model.py, not copied into the project)

@@ -230,6 +230,8 @@ class EnsembleSolution:
     event_index : ndarray of int, shape (N, max_events)
         Index into ``event_names`` (-1 where unused).
     event_names, state_names : tuple of str
+    driver : str
+        The compiled driver that ran: ``"scalar"`` or ``"lanes8"`` (lane width).
     """
 
     ts: np.ndarray
@@ -243,6 +245,7 @@ class EnsembleSolution:
     event_index: np.ndarray
     event_names: tuple[str, ...]
     state_names: tuple[str, ...]
+    driver: str = "scalar"
 
     def __len__(self) -> int:
         return int(self.status.shape[0])
@@ -401,7 +404,7 @@ def solve_ensemble(
     threads: int | None = None,
     chunk_size: int | None = None,
     progress: Callable[[int, int], None] | None = None,
-    lanes: int | None = None,
+    lanes: int | Literal["auto"] | None = "auto",
 ) -> EnsembleSolution:
     """Integrate many trajectories of one model in one compiled, parallel call.
 
@@ -426,12 +429,14 @@ def solve_ensemble(
     chunk_size : int, optional
         Integrate in chunks of this many trajectories (results do not depend on it); with
         ``progress`` the callback is called after each chunk as ``progress(done, total)``.
-    lanes : int, optional
+    lanes : int, "auto" or None
         Step this many trajectories together per thread in SIMD lanes (lane driver of
-        :mod:`rotorlab.integrate._lanes`; 8 suits AVX2 and AVX-512). Same numbers as the default
-        scalar driver, several times faster when the model's ``rhs`` vectorises (see that
-        module's "Lane-friendly kernels"). Needs all events off (``events=[]`` for a model that
-        has some).
+        :mod:`rotorlab.integrate._lanes`; 8 suits AVX2 and AVX-512). Same numbers as the scalar
+        driver, several times faster when the model's ``rhs`` vectorises (see that module's
+        "Lane-friendly kernels"). Needs all events off (``events=[]`` for a model that has
+        some). ``"auto"`` (default): 8 lanes when there are several trajectories, no active
+        event and the model declares a lane-friendly kernel (``Kernels.vectorises``), else the
+        scalar driver. ``None``: the scalar driver (the reference).
 
     Returns
     -------
@@ -450,7 +455,7 @@ def solve_ensemble(
            [0., 1.]])
     """
     from rotorlab.integrate._driver_args import EventTable, Inputs, Outputs, Settings
-    from rotorlab.integrate._drivers import check_lanes, driver
+    from rotorlab.integrate._drivers import check_lanes, default_lanes, driver
 
     kernels = _kernels_of(model)
     n = kernels.n_state
@@ -488,7 +493,9 @@ def solve_ensemble(
     RECK = np.full((N, max_rec), -1, dtype=np.int64)
     STATS = np.zeros((N, 4), dtype=np.int64)
     first_step = -1.0 if control.first_step is None else float(control.first_step)
-    if lanes is not None:
+    if isinstance(lanes, str) and lanes == "auto":
+        lanes = default_lanes(kernels, N, ev_act[:n_ev])
+    elif lanes is not None:
         check_lanes(lanes, ev_act[:n_ev])
     run = driver(kernels, lanes, serial=threads == 1)
     settings = Settings(
@@ -531,6 +538,7 @@ def solve_ensemble(
         event_index=RECK,
         event_names=names,
         state_names=state_names,
+        driver="scalar" if lanes is None else f"lanes{int(lanes)}",
     )
 
 

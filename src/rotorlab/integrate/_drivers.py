@@ -17,9 +17,19 @@ import numpy as np
 
 from rotorlab.integrate._codegen import build
 
-__all__ = ["driver", "check_lanes", "is_vectorised"]
+__all__ = ["driver", "check_lanes", "default_lanes", "is_vectorised"]
 
 _ACT_OFF = 3  # rotorlab.integrate._core.ACT_OFF
+DEFAULT_LANES = 8  # a multiple of the SIMD width in doubles: 4 (AVX2), 8 (AVX-512)
+
+
+def default_lanes(kernels, n_traj, ev_act):
+    """The lane width ``lanes="auto"`` chooses: :data:`DEFAULT_LANES` for an ensemble (more than
+    one trajectory) of a model whose kernel vectorises (``Kernels.vectorises``) with no active
+    event, else None (the scalar driver)."""
+    if n_traj > 1 and kernels.vectorises and not np.any(np.asarray(ev_act) != _ACT_OFF):
+        return DEFAULT_LANES
+    return None
 
 
 def check_lanes(lanes, ev_act):
