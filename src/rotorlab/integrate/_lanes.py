@@ -29,13 +29,17 @@ straight loop body. LLVM vectorises that loop when the kernel
    ``math.sqrt``, ``np.floor`` and comparisons (``math.exp``, ``math.pow`` ... are computed one
    lane at a time: correct, but slow);
 2. has no loop whose trip count is not a compile-time constant (LLVM vectorises innermost loops
-   only, so a ``for i in range(int(p[0]))`` becomes the vectorised loop instead of the lanes);
+   only, so a ``for i in range(int(p[0]))`` becomes the vectorised loop instead of the lanes).
+   Sizes derived from ``y.shape[0]`` are constants here (``N_STATE`` of the generated copy):
+   ``n = (y.shape[0] - 4) // 2`` balls gives loops that unroll, as in ``jeffcott_balls``;
 3. has no branch with an expensive or side-effecting arm (both arms of an ``if`` are executed
    for all lanes, then selected), no ``raise``, and calls only functions compiled with
    ``inline="always"`` (a call of another compiled function is opaque to LLVM).
 
 A kernel that breaks these rules still gives identical results on the lane path, only no faster
-than the scalar path. :func:`rotorlab.integrate._drivers.is_vectorised` reports whether it vectorised.
+than the scalar path. A model declares a kernel that follows them with ``Kernels(vectorises=True)``
+(``tests/unit/test_vectorise.py`` checks each); ``solve_ensemble`` then uses this driver by default
+for its event-free ensembles. :func:`rotorlab.integrate._drivers.is_vectorised` reports whether it vectorised.
 
 Why not a lane kernel ``rhs_lanes`` written by the model? It would be a second hand-written right
 side per model to keep in sync with the first; the loop above vectorises the existing one.
