@@ -83,8 +83,11 @@ def _multibody(spec: Any) -> LinearSystem:
             planes = [compliance_to_stiffness(np.array(a)) for a in elastic.matrices()]
         else:
             planes = [0.5 * (np.array(a) + np.array(a).T) for a in elastic.matrices()]
+        damping = [0.5 * (np.array(a) + np.array(a).T) for a in elastic.matrices("damping")]
         elements.append(ElasticConnection(nodes=nodes, stiffness_x=planes[0],
-                                          stiffness_y=planes[1] if len(planes) > 1 else None))
+                                          stiffness_y=planes[1] if len(planes) > 1 else None,
+                                          damping_x=damping[0] if damping else None,
+                                          damping_y=damping[1] if len(damping) > 1 else None))
     elements += [Bearing(node=index[b.body], **b.coefficients()) for b in spec.bearings]
     return assemble(elements, n_nodes=len(spec.bodies), node_position=spec.node_positions(),
                     node_label=spec.node_labels())

@@ -51,6 +51,7 @@ def label() -> Any:
 _PLANE_DIMENSIONS = {
     "compliance": ("compliance", "compliance_coupling", "rotational_compliance"),
     "stiffness": ("stiffness", "stiffness_coupling", "rotational_stiffness"),
+    "damping": ("damping", "damping_coupling", "torque_damping"),
 }
 
 
@@ -89,10 +90,10 @@ def plane_matrix(kind: str) -> Any:
 
     Parameters
     ----------
-    kind : {"compliance", "stiffness"}
-        Entries (2i, 2j) are m/N (N/m), entries (2i, 2j+1) and (2i+1, 2j) 1/N (N/rad), entries
-        (2i+1, 2j+1) rad/(N*m) (N*m/rad); a string with a unit is checked against the unit of
-        its place.
+    kind : {"compliance", "stiffness", "damping"}
+        Entries (2i, 2j) are m/N (N/m, N*s/m), entries (2i, 2j+1) and (2i+1, 2j) 1/N (N/rad,
+        N*s/rad), entries (2i+1, 2j+1) rad/(N*m) (N*m/rad, N*m*s/rad); a string with a unit is
+        checked against the unit of its place.
     """
     schema = {"type": "array", "items": {"type": "array",
                                          "items": {"anyOf": [{"type": "number"},

@@ -222,6 +222,11 @@ class ElasticSpec(_Spec):
         Factor applied to every matrix entry (as in a printed table "x 1e-5"), > 0.
     geometry : GeometrySpec, optional
         Compute the compliance from a shaft-in-housing geometry (isotropic).
+    damping, damping_y : tuple of tuple of float, optional
+        Viscous damping of the structure on the same coordinates (N*s/m; N*s/rad; N*m*s/rad),
+        symmetric positive semi-definite, scaled like the other matrices; ``damping_y``
+        omitted: the y-plane has ``damping``. E.g. dampers c_i at positions z_i of a rigid body
+        give ``sum_i c_i [[1, z_i], [z_i, z_i^2]]`` (Rodrigues et al. 2008, eq. (8)).
     """
 
     bodies: tuple[label(), ...] | None = Field(None, description="connected bodies, in order")
@@ -236,6 +241,10 @@ class ElasticSpec(_Spec):
     scale: quantity("dimensionless", gt=0) = Field(
         1.0, description="factor applied to every matrix entry (-)")
     geometry: GeometrySpec | None = Field(None, description="shaft-in-housing geometry")
+    damping: plane_matrix("damping") | None = Field(
+        None, description="damping matrix of the x-plane (N*s/m; N*s/rad; N*m*s/rad)")
+    damping_y: plane_matrix("damping") | None = Field(
+        None, description="damping matrix of the y-plane (N*s/m; N*s/rad; N*m*s/rad)")
 
     #: Pairs of keys that exclude each other (and whether one of them is required).
     exclusive: ClassVar[tuple[tuple[str, str, bool], ...]] = (
@@ -251,7 +260,8 @@ class ElasticSpec(_Spec):
         if not given:
             issues.append(Issue((), "give one of compliance, stiffness or geometry",
                                 show_value=False))
-        for y, x in (("compliance_y", "compliance"), ("stiffness_y", "stiffness")):
+        for y, x in (("compliance_y", "compliance"), ("stiffness_y", "stiffness"),
+                     ("damping_y", "damping")):
             if getattr(self, y) is not None and getattr(self, x) is None:
                 issues.append(Issue((y,), f"needs {x} (the x-plane)", show_value=False))
         if issues:
@@ -264,14 +274,44 @@ class ElasticSpec(_Spec):
         return next(k for k in ("compliance", "stiffness", "geometry")
                     if getattr(self, k) is not None)
 
-    def matrices(self) -> tuple[tuple[tuple[float, ...], ...], ...]:
-        """Return the given x- and y-plane matrices, scaled (y omitted when isotropic)."""
+    def matrices(self, kind: str | None = None) -> tuple[tuple[tuple[float, ...], ...], ...]:
+        """Return the given x- and y-plane matrices, scaled (y omitted when isotropic).
+
+        ``kind`` is ``"damping"`` for the damping matrices (empty without them); default: the
+        stiffness source (compliance or stiffness).
+        """
         out = []
-        for key in (self.source, f"{self.source}_y"):
+        kind = self.source if kind is None else kind
+        for key in (kind, f"{kind}_y"):
             a = getattr(self, key, None)
             if a is not None:
                 out.append(tuple(tuple(self.scale * v for v in row) for row in a))
         return tuple(out)
+
+
+def damping_issues(key: str, a: tuple[tuple[float, ...], ...], size: int) -> list[Issue]:
+    """Check a damping plane matrix: its size, symmetry and that it dissipates (eigenvalues >= 0).
+
+    Unlike a stiffness matrix it may be singular (dampers on only some coordinates).
+    """
+    import numpy as np
+
+    m = np.array(a, dtype=float)
+    if m.shape != (size, size):
+        return [Issue((key,), f"must be {size} x {size} (translation and tilt of each of the "
+                               f"{size // 2} connected bodies), got {m.shape[0]} x {m.shape[1]}",
+                      show_value=False)]
+    scale = float(np.abs(m).max())
+    diff = np.abs(m - m.T)
+    if diff.max() > 1e-8 * scale:
+        i, j = np.unravel_index(int(np.argmax(diff)), diff.shape)
+        return [Issue((key,), f"must be symmetric: [{i}][{j}] = {m[i, j]:.10g} but "
+                              f"[{j}][{i}] = {m[j, i]:.10g}", show_value=False)]
+    low = float(np.linalg.eigvalsh(0.5 * (m + m.T)).min())
+    if low < -1e-12 * scale:
+        return [Issue((key,), f"must be positive semi-definite (dampers dissipate energy): it "
+                              f"has the eigenvalue {low:.6g}", show_value=False)]
+    return []
 
 
 def elastic_issues(elastic: ElasticSpec, bodies: tuple[RigidBodySpec, ...]) -> list[Issue]:
@@ -299,6 +339,11 @@ def elastic_issues(elastic: ElasticSpec, bodies: tuple[RigidBodySpec, ...]) -> l
     if issues:
         return issues
     connected = [by_name[n] for n in names]
+    for key in ("damping", "damping_y"):
+        a = getattr(elastic, key)
+        if a is not None:
+            issues += damping_issues(key, tuple(tuple(elastic.scale * v for v in row) for row in a),
+                                     2 * len(connected))
     if elastic.geometry is None:
         for key in (elastic.source, f"{elastic.source}_y"):
             a = getattr(elastic, key)

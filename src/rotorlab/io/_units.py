@@ -97,6 +97,7 @@ _DIMENSION_LIST = (
     Dimension("density", "density", "kg/m^3", "kg/m^3"),
     Dimension("unbalance", "unbalance", "kg*m", "kg*m"),
     Dimension("stiffness_coupling", "translation-tilt stiffness", "N/rad", "N", (0, -1)),
+    Dimension("damping_coupling", "translation-tilt damping", "N*s/rad", "N*s", (0, -1)),
     Dimension("compliance_coupling", "translation-tilt compliance", "1/N", "1/N", (0, 1)),
     Dimension("rotational_compliance", "rotational compliance", "rad/(N*m)", "1/(N*m)", (0, 1)),
 )
