@@ -1,4 +1,4 @@
-"""The shared benchmark's RHS (shared/bench/model.py) written to rotorlab's kernel contract.
+"""The benchmark's RHS (rotorlab.models.BENCHMARK, the C references' model) written to rotorlab's kernel contract.
 
 y = [x, y, vx, vy, phi1, phi2, w1, w2]; p = [M, m, R, eps, k, c, beta, Omega].
 Used by ``bench/ensemble.py`` and to cross-check the ``jeffcott_balls`` model on the benchmark.

@@ -1,10 +1,11 @@
-"""Benchmark: overhead of the sweep machinery on the 256 x 256 autobalancer grid of ``shared/bench``.
+"""Benchmark: overhead of the sweep machinery on the 256 x 256 autobalancer grid of the benchmark
+(:data:`rotorlab.models.BENCHMARK`).
 
 Usage::
 
     python bench/sweep.py [--n 256] [--revolutions 2000] [--workers 2] [--chunk 1024] [--json]
 
-What it does (the problem of ``../shared/bench/README.md``: a nondimensional Jeffcott rotor with
+What it does (the benchmark problem, :data:`rotorlab.models.BENCHMARK`: a nondimensional Jeffcott rotor with
 two balls, M = 1, m = 0.02, R = 1, eps = 0.01, k = 1, c = 0.02, beta = 0.01, Omega = 2.5, the
 ball angles on an n x n grid over [0, 2 pi)^2, rtol 1e-8, atol 1e-10, 2000 revolutions):
 
@@ -43,7 +44,7 @@ SRC = HERE.parent / "src"
 CASE = """\
 schema_version = 1
 name = "bench-autobalancer"
-description = "shared/bench autobalancer (nondimensional), ball angles on a grid"
+description = "benchmark autobalancer (nondimensional), ball angles on a grid"
 
 [model]
 type = "jeffcott_balls"

@@ -23,7 +23,7 @@ sys.path.insert(0, str(BENCH))
 from _bench_kernel import bench_rhs, bench_rhs_libm  # noqa: E402
 
 BENCH_KERNELS = Kernels(rhs=bench_rhs, n_state=8)
-# shared/bench/model.py: M, m, R, eps, k, c, beta, Omega
+# rotorlab.models.BENCHMARK: M, m, R, eps, k, c, beta, Omega
 BENCH_P = np.array([1.0, 0.02, 1.0, 0.01, 1.0, 0.02, 0.01, 2.5])
 
 
@@ -38,7 +38,7 @@ def nan_rhs(t, y, p, out):
 
 
 def _bench_y0(idx):
-    """Initial states of grid points ``idx`` (as shared/bench/model.py: 256 x 256 grid)."""
+    """Initial states of grid points ``idx`` (as rotorlab.models.BENCHMARK: 256 x 256 grid)."""
     i, j = np.divmod(np.asarray(idx), 256)
     y0 = np.zeros((len(idx), 8))
     y0[:, 4] = 2.0 * np.pi * i / 256

@@ -3,6 +3,7 @@
 from __future__ import annotations
 
 import base64
+import html
 import os
 import re
 
@@ -54,10 +55,7 @@ def run():
 
 
 def _figures(results):
-    figures = {}
-    for name, ds in results.items():
-        figures.update(simulation_figures(ds, name))
-    return figures
+    return {name: simulation_figures(ds, name) for name, ds in results.items()}
 
 
 def test_report_is_one_self_contained_file(run, tmp_path):
@@ -69,9 +67,10 @@ def test_report_is_one_self_contained_file(run, tmp_path):
     text = report.read_text(encoding="utf-8")
     # every figure embedded as a PNG data URI, decodable, and identical to the PNG file next to it
     uris = re.findall(r'src="data:image/png;base64,([A-Za-z0-9+/=]+)"', text)
-    assert len(uris) == len(figures) == 6
+    stems = [k for by_stem in figures.values() for k in by_stem]
+    assert len(uris) == len(stems) == 6
     pngs = {p.name: p.read_bytes() for p in out.glob("*.png")}
-    assert sorted(pngs) == sorted(f"{k}.png" for k in figures)
+    assert sorted(pngs) == sorted(f"{k}.png" for k in stems)
     assert sorted(base64.b64decode(u) for u in uris) == sorted(pngs.values())
     assert all(b.startswith(b"\x89PNG") for b in pngs.values())
     # nothing is fetched from anywhere
@@ -118,7 +117,7 @@ def test_failure_leaves_nothing(run, tmp_path):
             raise RuntimeError("cannot render")
 
     with pytest.raises(RuntimeError, match="cannot render"):
-        write_report(tmp_path / "o", case, results, {"below_bad": Broken()}, tables)
+        write_report(tmp_path / "o", case, results, {"below": {"below_bad": Broken()}}, tables)
     assert os.listdir(tmp_path) == []
 
 
@@ -179,3 +178,35 @@ def test_figures_have_labelled_axes(run):
     np.testing.assert_allclose(ax.get_lines()[0].get_ydata(), ds.amplitude.values[0, 0] * 1e3)
     assert ball_angle_figure(ds).axes[0].get_ylabel() == "ball angle from unbalance (deg)"
     assert orbit_figure(ds).axes[0].get_xlabel() == "x (mm)"
+
+
+def test_report_opens_with_the_findings_of_each_analysis(run, tmp_path):
+    case, results, tables = run
+    text = write_report(tmp_path / "o", case, results, _figures(results), tables).read_text()
+    first_analysis = text.index('<h2 id="analysis-')
+    assert text.index("<h2>Findings</h2>") < first_analysis < text.index("<h2>Model parameters</h2>")
+    assert text.index("<h2>Case file</h2>") < text.index("<h2>Software</h2>")  # versions last
+    boxes = text[:first_analysis]
+    for name, rows in tables.items():
+        for rpm in {round(r["speed_rpm"]) for r in rows}:
+            here = [r for r in rows if round(r["speed_rpm"]) == rpm]
+            for outcome in {r["outcome"] for r in here}:
+                count = sum(r["outcome"] == outcome for r in here)
+                assert f"{html.escape(outcome)} from {count} of {len(here)} starts" in boxes
+    # the first figure of an analysis comes after the findings, inside its own section
+    assert boxes.count("<img") == 0
+
+
+def test_basin_findings_state_the_fraction_in_words():
+    import xarray as xr
+
+    from rotorlab.report import presentation_of
+
+    ds = xr.Dataset(coords={"horizon": [10.0, 20.0]}, attrs={"analysis": "basin"})
+    rows = [{"regime": "balanced", "fraction": 1290 / 1296, "count": 1290, "n": 1296, "ci_low": None,
+             "fraction_half": 1290 / 1296, "horizon_half_s": 10.0},
+            {"regime": "not settled", "fraction": 6 / 1296, "count": 6, "n": 1296, "ci_low": None,
+             "fraction_half": 6 / 1296, "horizon_half_s": 10.0}]
+    found = presentation_of("basin").findings(ds, rows)
+    assert found.verdict == "balanced from 1290 of 1296 starts (99.5 %) after 20 s"
+    assert found.numbers == ("not settled: 6 of 1296 starts (0.5 %)",)

@@ -1,5 +1,7 @@
 """Analyses: pure functions from models (or validated cases) to labelled xarray Datasets.
 
+Model types and analysis types are registered values (:data:`MODEL_TYPES`,
+:data:`ANALYSIS_TYPES`; see the "For implementers" list of :mod:`rotorlab.analyses._registry`).
 Nothing here plots or writes files; see :mod:`rotorlab.plot`, :mod:`rotorlab.report` and the
 command line (:mod:`rotorlab.cli`) for that.
 """
@@ -16,9 +18,18 @@ from rotorlab.analyses._basin import (
 from rotorlab.analyses._case import (
     RUNNABLE_ANALYSES,
     build_model,
+    model_quantities,
     run_analysis,
     run_case,
     summarize,
+)
+from rotorlab.analyses._registry import (
+    ANALYSIS_TYPES,
+    MODEL_TYPES,
+    AnalysisType,
+    ModelType,
+    register_analysis_type,
+    register_model_type,
 )
 from rotorlab.analyses import _impact_sweep, _impacts
 from rotorlab.analyses._impact_sweep import ImpactAnalysis, impact_sweep, impact_sweep_definition, summarize_impact_sweep
@@ -67,7 +78,14 @@ from rotorlab.analyses._steady import (
 __all__ = [
     *_impacts.__all__,
     *_impact_sweep.__all__,
+    "ANALYSIS_TYPES",
+    "AnalysisType",
     "BALANCED_FRACTION",
+    "MODEL_TYPES",
+    "ModelType",
+    "model_quantities",
+    "register_analysis_type",
+    "register_model_type",
     "BASIN_ANALYSES",
     "DATA_AUDITS",
     "LINEAR_ANALYSES",

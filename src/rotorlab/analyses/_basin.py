@@ -62,37 +62,53 @@ def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None) 
     ValueError
         The model cannot be mapped (see :meth:`rotorlab.io.BasinSpec.case_issues`).
     """
-    from rotorlab.explore import BalancerRegimes, TorusRegimes
-    from rotorlab.integrate import StepControl
+    from rotorlab.analyses._registry import MODEL_TYPES
 
     kw: dict[str, Any] = {"n_horizons": analysis.n_horizons}
     if t_end is not None or analysis.t_end is not None:
         kw["t_end"] = float(t_end if t_end is not None else analysis.t_end)
     if analysis.window_revolutions is not None:
         kw["window_revolutions"] = analysis.window_revolutions
-    from rotorlab.analyses._case import build_model
-
     kind = getattr(case_model, "type", None)
-    if kind == "toroidal_ball":
-        model = build_model(case_model)
-        if analysis.rtol is not None or analysis.atol is not None:
-            kw["control"] = StepControl(rtol=analysis.rtol or 1e-6, atol=analysis.atol or 1e-8)
-        if analysis.spare_turns is not None:
-            kw["spare_turns"] = analysis.spare_turns
-        return TorusRegimes(model, **kw)
-    if kind == "jeffcott_balls" and case_model.n_balls > 0:
-        from rotorlab.models import ConstantSpeed, JeffcottBalls
+    entry = MODEL_TYPES.get(kind)
+    mapper = None if entry is None or entry.mapper is None else entry.mapper(case_model, analysis, kw)
+    if mapper is None:
+        raise ValueError(f"analysis {analysis.name}: basins need a toroidal_ball model or a jeffcott_balls "
+                         f"model with balls, not {kind!r}")  # fmt: skip
+    return mapper
 
-        base = build_model(case_model)
-        omega = analysis.spin_speed(case_model)
-        if omega is None:  # spin_speed is a coordinate of every start: any base speed will do
-            omega = case_model.critical_speed()
-        model = JeffcottBalls(base.rotor, base.balls, speed=ConstantSpeed(omega), frame="rotating")
-        if analysis.rtol is not None or analysis.atol is not None:
-            kw["control"] = StepControl(rtol=analysis.rtol or 1e-8, atol=analysis.atol or 1e-10)
-        return BalancerRegimes(model, **kw)
-    raise ValueError(f"analysis {analysis.name}: basins need a toroidal_ball model or a jeffcott_balls "
-                     f"model with balls, not {kind!r}")  # fmt: skip
+
+def torus_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
+    """The regime mapper of a ``toroidal_ball`` model (the ``mapper`` of its model type)."""
+    from rotorlab.analyses._builders import toroidal_ball_model
+    from rotorlab.explore import TorusRegimes
+    from rotorlab.integrate import StepControl
+
+    if analysis.rtol is not None or analysis.atol is not None:
+        kw["control"] = StepControl(rtol=analysis.rtol or 1e-6, atol=analysis.atol or 1e-8)
+    if analysis.spare_turns is not None:
+        kw["spare_turns"] = analysis.spare_turns
+    return TorusRegimes(toroidal_ball_model(case_model), **kw)
+
+
+def balancer_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
+    """The regime mapper of a ``jeffcott_balls`` model (None without balls): its ball starts in
+    the rotating frame at the analysis' constant speed."""
+    from rotorlab.analyses._builders import jeffcott_balls_model
+    from rotorlab.explore import BalancerRegimes
+    from rotorlab.integrate import StepControl
+    from rotorlab.models import ConstantSpeed, JeffcottBalls
+
+    if case_model.n_balls == 0:
+        return None
+    base = jeffcott_balls_model(case_model)
+    omega = analysis.spin_speed(case_model)
+    if omega is None:  # spin_speed is a coordinate of every start: any base speed will do
+        omega = case_model.critical_speed()
+    model = JeffcottBalls(base.rotor, base.balls, speed=ConstantSpeed(omega), frame="rotating")
+    if analysis.rtol is not None or analysis.atol is not None:
+        kw["control"] = StepControl(rtol=analysis.rtol or 1e-8, atol=analysis.atol or 1e-10)
+    return BalancerRegimes(model, **kw)
 
 
 def run_basin(
@@ -222,6 +238,11 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
         for key, value in _effective_values(case_model, analysis).items():
             ds.attrs[f"value_{key}"] = value
     return ds
+
+
+def basin_task_size(case_model: Any, analysis: Any) -> int:
+    """Starts of a case's ``basin`` analysis (its progress-bar total)."""
+    return analysis.samples if analysis.samples is not None else analysis.x[3] * analysis.y[3]
 
 
 def _effective_values(case_model: Any, analysis: Any) -> dict[str, float]:

@@ -249,6 +249,10 @@ def impact_run(model: ImpactRotor, t_end: float = 10.0, *, seed: int | None = 0,
         raise ValueError(f"t_end must be a finite number > 0 (s), got {t_end!r}")
     if int(n_save) < 2:
         raise ValueError(f"n_save must be >= 2, got {n_save!r}")
+    from rotorlab._memory import check_memory
+
+    check_memory(8.0 * int(n_save) * (2 * _k.N_STATE + 8), f"n_save = {int(n_save)} saved states of {_k.N_STATE} entries",
+                 "save fewer states (n_save)")  # fmt: skip
     run = model.with_stones(t_end, seed)
     ts = np.linspace(0.0, t_end, int(n_save))
     sol = solve_ensemble(run, run.initial_state(), (0.0, t_end), save_at=SaveAt(ts=ts),
@@ -276,6 +280,8 @@ def impact_run(model: ImpactRotor, t_end: float = 10.0, *, seed: int | None = 0,
                                   "stone": ("stone", np.arange(len(seq)), {"units": "1"})})  # fmt: skip
     ds.attrs.update(_model_attrs(run, t_end, sliding_fraction))
     ds.attrs.update({"analysis": "impacts", "regime": _label(code), "seed": -1 if seed is None else int(seed)})
+    if sol.notes and sol.notes[0]:
+        ds.attrs["status_detail"] = sol.notes[0]
     return ds
 
 
@@ -386,28 +392,46 @@ def impact_model(case_model: Any, **overrides: float) -> ImpactRotor:
     return model
 
 
+def _one_run(model: ImpactRotor, analysis: Any, progress: Callable[[int, int], None] | None) -> xarray.Dataset:
+    if progress is not None:
+        progress(0, 1)
+    ds = impact_run(model, analysis.t_end, seed=analysis.seed, n_save=analysis.n_save, rtol=analysis.rtol,
+                    atol=analysis.atol, sliding_fraction=analysis.sliding_fraction)  # fmt: skip
+    if progress is not None:
+        progress(1, 1)
+    return ds
+
+
+def _many_runs(model: ImpactRotor, analysis: Any, progress: Callable[[int, int], None] | None) -> xarray.Dataset:
+    from rotorlab.analyses._impact_sweep import impact_sweep
+
+    return impact_sweep(model, analysis.values, param=analysis.param, n_sequences=analysis.n_sequences,
+                        t_end=analysis.t_end, seed=analysis.seed, rtol=analysis.rtol, atol=analysis.atol,
+                        sliding_fraction=analysis.sliding_fraction, progress=progress)  # fmt: skip
+
+
+_RUNNERS = {"impacts": _one_run, "impacts-sweep": _many_runs}
+
+
 def run_impact_analysis(case_model: Any, analysis: Any,
                         progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
     """Run an ``impacts`` or ``impacts-sweep`` analysis of a case (see :func:`impact_run`,
     :func:`impact_sweep`); ``attrs["name"]`` is the analysis name."""
-    model = impact_model(case_model, **analysis.overrides())
-    if analysis.type == "impacts":
-        if progress is not None:
-            progress(0, 1)
-        ds = impact_run(model, analysis.t_end, seed=analysis.seed, n_save=analysis.n_save, rtol=analysis.rtol,
-                        atol=analysis.atol, sliding_fraction=analysis.sliding_fraction)  # fmt: skip
-        if progress is not None:
-            progress(1, 1)
-    elif analysis.type == "impacts-sweep":
-        from rotorlab.analyses._impact_sweep import impact_sweep
-
-        ds = impact_sweep(model, analysis.values, param=analysis.param, n_sequences=analysis.n_sequences,
-                          t_end=analysis.t_end, seed=analysis.seed, rtol=analysis.rtol, atol=analysis.atol,
-                          sliding_fraction=analysis.sliding_fraction, progress=progress)  # fmt: skip
-    else:
+    if analysis.type not in _RUNNERS:
         raise ValueError(f"not an impact analysis: {analysis.type!r}")
+    ds = _RUNNERS[analysis.type](impact_model(case_model, **analysis.overrides()), analysis, progress)
     ds.attrs["name"] = analysis.name
     return ds
+
+
+def impact_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """The summary rows of an ``impacts`` run: one row, :func:`impact_summary`."""
+    return [impact_summary(ds)]
+
+
+def sweep_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """The summary rows of an ``impacts-sweep``: one per swept value (:func:`sweep_summary`)."""
+    return sweep_summary(ds)["rows"]
 
 
 def paper_counts(ds: xarray.Dataset) -> list[int | None]:

@@ -24,6 +24,7 @@ __all__ = [
     "LINEAR_ANALYSES",
     "DATA_AUDITS",
     "run_linear_analysis",
+    "run_linear_case_analysis",
     "summarize_linear",
     "campbell_summary",
     "modes_summary",
@@ -194,6 +195,18 @@ def run_linear_analysis(case_model: Any, analysis: Any) -> xarray.Dataset:
     return ds
 
 
+def run_linear_case_analysis(case_model: Any, analysis: Any,
+                             progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+    """:func:`run_linear_analysis` with progress (0 of 1, then 1 of 1) and ``attrs["name"]``."""
+    if progress is not None:
+        progress(0, 1)
+    ds = run_linear_analysis(case_model, analysis)
+    ds.attrs["name"] = analysis.name
+    if progress is not None:
+        progress(1, 1)
+    return ds
+
+
 def _num(value: Any, digits: int | None = None) -> float | None:
     v = float(value) + 0.0  # no negative zero
     if not math.isfinite(v):
@@ -243,36 +256,51 @@ def summarize_linear(ds: xarray.Dataset) -> list[dict[str, Any]]:
         (``finding``, ``printed``, ``resolved``, ``evidence``, ``measure``).
     """
     kind = ds.attrs.get("analysis")
-    if kind == "campbell":
-        return _crossing_rows(ds, mode=True)
-    if kind == "critical_speeds":
-        return _crossing_rows(ds, mode=False)
-    if kind == "modes":
-        return [{"mode": int(ds.mode.values[k]), "frequency_hz": _num(ds.frequency.values[k]),
-                 "whirl": _WHIRL[int(ds.whirl.values[k])],
-                 "damping_ratio": _num(ds.damping_ratio.values[k]),
-                 "log_decrement": _num(ds.log_decrement.values[k])}
-                for k in range(ds.sizes["mode"])]
-    if kind == "unbalance_response":
-        rows = []
-        for node in ds.attrs.get("output_nodes", []):
-            amp = ds.orbit_major.values[:, node]
-            k = int(np.nanargmax(amp)) if np.isfinite(amp).any() else 0
-            rows.append({"node": int(node), "label": str(ds.node_label.values[node]),
-                         "peak_amplitude": _num(amp[k]),
-                         "peak_speed_rpm": _grid(ds.speed_rpm.values[k])})
-        return rows
-    if kind == "identify":
-        return [{"parameter": str(ds.parameter.values[i]), "unit": str(ds.unit.values[i]),
-                 "initial": float(ds.initial.values[i]), "value": float(ds.value.values[i]),
-                 "relative_std": _num(ds.relative_std.values[i])}
-                for i in range(ds.sizes["parameter"])]
-    if kind == "data_audit":
-        return [{"finding": str(ds.finding.values[i]), "printed": str(ds.printed.values[i]),
-                 "resolved": str(ds.resolved.values[i]), "evidence": str(ds.evidence.values[i]),
-                 "measure": _num(ds.measure.values[i])}
-                for i in range(ds.sizes["finding"])]
-    raise ValueError(f"not a linear result: attrs['analysis'] = {kind!r}")
+    if kind not in _ROWS:
+        raise ValueError(f"not a linear result: attrs['analysis'] = {kind!r}")
+    return _ROWS[kind](ds)
+
+
+def _modes_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    return [{"mode": int(ds.mode.values[k]), "frequency_hz": _num(ds.frequency.values[k]),
+             "whirl": _WHIRL[int(ds.whirl.values[k])], "damping_ratio": _num(ds.damping_ratio.values[k]),
+             "log_decrement": _num(ds.log_decrement.values[k])}
+            for k in range(ds.sizes["mode"])]  # fmt: skip
+
+
+def _unbalance_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    rows = []
+    for node in ds.attrs.get("output_nodes", []):
+        amp = ds.orbit_major.values[:, node]
+        k = int(np.nanargmax(amp)) if np.isfinite(amp).any() else 0
+        rows.append({"node": int(node), "label": str(ds.node_label.values[node]), "peak_amplitude": _num(amp[k]),
+                     "peak_speed_rpm": _grid(ds.speed_rpm.values[k])})  # fmt: skip
+    return rows
+
+
+def _identify_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    return [{"parameter": str(ds.parameter.values[i]), "unit": str(ds.unit.values[i]),
+             "initial": float(ds.initial.values[i]), "value": float(ds.value.values[i]),
+             "relative_std": _num(ds.relative_std.values[i])}
+            for i in range(ds.sizes["parameter"])]  # fmt: skip
+
+
+def _audit_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    return [{"finding": str(ds.finding.values[i]), "printed": str(ds.printed.values[i]),
+             "resolved": str(ds.resolved.values[i]), "evidence": str(ds.evidence.values[i]),
+             "measure": _num(ds.measure.values[i])}
+            for i in range(ds.sizes["finding"])]  # fmt: skip
+
+
+_ROWS: Mapping[str, Callable[[xarray.Dataset], list[dict[str, Any]]]] = {
+    "campbell": lambda ds: _crossing_rows(ds, mode=True),
+    "critical_speeds": lambda ds: _crossing_rows(ds, mode=False),
+    "modes": _modes_rows,
+    "unbalance_response": _unbalance_rows,
+    "identify": _identify_rows,
+    "data_audit": _audit_rows,
+}
+
 
 
 def campbell_summary(ds: xarray.Dataset) -> dict[str, Any]:

@@ -22,7 +22,7 @@ if TYPE_CHECKING:
 
     from rotorlab.models import JeffcottBalls
 
-__all__ = ["simulate", "SETTLE_REVOLUTIONS"]
+__all__ = ["simulate", "SETTLE_REVOLUTIONS", "run_simulate_analysis", "simulation_rows", "simulation_task_size"]
 
 #: Length of the final window (revolutions at the final speed) over which the final amplitude is
 #: averaged and the balls must stay at rest relative to the rotor to count as settled.
@@ -144,6 +144,13 @@ def simulate(
     control = StepControl(rtol=float(rtol), atol=float(atol))
     n_ic, n = angles.shape
     t_end = float(t_end)
+    from rotorlab._memory import check_memory
+
+    n_speeds = 1 if om_list is None else len(om_list)
+    n_state = model.kernels.n_state
+    check_memory(8.0 * n_speeds * n_ic * int(n_save) * (2 * n_state + 3 * n + 3),
+                 f"{n_speeds} speed(s) x {n_ic} start(s) x n_save = {int(n_save)} saved states of {n_state} entries",
+                 "save fewer states (n_save) or simulate fewer starts")  # fmt: skip
     ts = np.linspace(0.0, t_end, int(n_save))
     models = (
         [model.with_frame("rotating")]
@@ -208,8 +215,9 @@ def simulate(
         )
         for i in range(n_ic):
             code = int(sol.status[i])
+            note = sol.notes[i] if sol.notes else ""
             out["outcome"][k, i] = classify(
-                code, Status(code).message, float(out["final_amplitude"][k, i]),
+                code, note or Status(code).message, float(out["final_amplitude"][k, i]),
                 float(reference[k]), out["final_ball_angle"][k, i],
                 float(out["max_final_rate"][k, i]), om_end,
             )  # fmt: skip
@@ -267,3 +275,66 @@ def simulate(
         },
     )
     return ds
+
+
+def run_simulate_analysis(case_model: Any, analysis: Any,
+                          progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+    """Run a case's ``simulate`` analysis (see :func:`simulate`); ``attrs["name"]`` is its name."""
+    from rotorlab.analyses._builders import jeffcott_balls_model
+
+    model = jeffcott_balls_model(case_model)
+    omega = analysis.spin_speed(case_model)
+    sets = analysis.ball_angle_sets(model.n_balls)
+    angles = np.array(sets, dtype=float).reshape(len(sets), model.n_balls)
+    ds = simulate(model, speeds=None if omega is None else [omega], initial_ball_angles=angles,
+                  t_end=analysis.duration(case_model), n_save=analysis.n_save, rtol=analysis.rtol,
+                  atol=analysis.atol, progress=progress)  # fmt: skip
+    ds.attrs["name"] = analysis.name
+    return ds
+
+
+def simulation_task_size(case_model: Any, analysis: Any) -> int:
+    """Trajectories of a case's ``simulate`` analysis (its progress-bar total)."""
+    return len(analysis.ball_angle_sets(case_model.n_balls))
+
+
+def _degrees(values: np.ndarray) -> list[float | None]:
+    return [None if not np.isfinite(v) else round(float(np.degrees(v)), 2) for v in values]
+
+
+def _number(value: float) -> float | None:
+    return float(value) if np.isfinite(value) else None
+
+
+def simulation_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """Tabulate a simulation: one row per (speed, initial configuration).
+
+    Returns
+    -------
+    list of dict
+        Keys ``speed`` (rad/s), ``speed_rpm``, ``speed_hz``, ``speed_ratio`` (omega / p), ``ic``,
+        ``initial_ball_angles_deg``, ``final_amplitude`` (m), ``reference_amplitude`` (m),
+        ``amplitude_ratio`` (final / reference), ``final_ball_angles_deg``, ``outcome``,
+        ``status``. Plain Python values (JSON-ready; NaN becomes None).
+    """
+    rows = []
+    for k in range(ds.sizes["speed"]):
+        om = float(ds.speed.values[k])
+        ref = float(ds.reference_amplitude.values[k])
+        for i in range(ds.sizes["ic"]):
+            amp = float(ds.final_amplitude.values[k, i])
+            rows.append({
+                "speed": om,
+                "speed_rpm": om * _RPM,
+                "speed_hz": om / (2.0 * math.pi),
+                "speed_ratio": float(ds.speed_ratio.values[k]),
+                "ic": int(ds.ic.values[i]),
+                "initial_ball_angles_deg": _degrees(ds.initial_ball_angle.values[i]),
+                "final_amplitude": _number(amp),
+                "reference_amplitude": ref,
+                "amplitude_ratio": _number(amp / ref) if ref > 0 else None,
+                "final_ball_angles_deg": _degrees(ds.final_ball_angle.values[k, i]),
+                "outcome": str(ds.outcome.values[k, i]),
+                "status": int(ds.status.values[k, i]),
+            })  # fmt: skip
+    return rows

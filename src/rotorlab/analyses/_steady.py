@@ -45,16 +45,6 @@ def _deg(values: Any) -> list[float | None]:
     return [_num(np.degrees(v)) for v in np.atleast_1d(np.asarray(values, dtype=float))]
 
 
-def _profile(spec: Any) -> Any:
-    from rotorlab.models import ConstantSpeed, HillRunUp, LinearRamp
-
-    if spec.profile == "constant":
-        return ConstantSpeed(spec.speed)
-    if spec.profile == "ramp":
-        return LinearRamp(spec.start, spec.stop, spec.duration)
-    return HillRunUp(spec.max_speed, spec.t_half, spec.exponent)
-
-
 def steady_model(case_model: Any, analysis: Any) -> JeffcottBalls:
     """Build the model of a case with an analysis' regime overrides applied.
 
@@ -93,6 +83,46 @@ def _annotate(ds: xarray.Dataset, analysis: Any) -> xarray.Dataset:
     return ds
 
 
+def _steady(model: Any, case_model: Any, analysis: Any) -> xarray.Dataset:
+    from rotorlab import steady
+
+    res = steady.analyze_steady(model, analysis.spin_speed(case_model), family_samples=analysis.family_samples)
+    return res.to_dataset()
+
+
+def _chart(model: Any, case_model: Any, analysis: Any) -> xarray.Dataset:
+    from rotorlab import steady
+
+    return steady.stability_chart(model, analysis.spin_speeds(case_model), param=analysis.param,
+                                  values=analysis.parameter_values(), family_samples=analysis.family_samples)
+
+
+def _verify(model: Any, case_model: Any, analysis: Any) -> xarray.Dataset:
+    from rotorlab import steady
+
+    ends = analysis.t_end if analysis.t_end is None or np.isscalar(analysis.t_end) else list(analysis.t_end)
+    return steady.verify(model, analysis.spin_speeds(case_model), points=analysis.ball_angle_points or 8,
+                         initial_ball_angles=analysis.initial_ball_angles, t_end=ends,
+                         settle_revolutions=analysis.settle_revolutions, rate_tol=analysis.rate_tol,
+                         angle_tol=analysis.angle_tol, rtol=analysis.rtol, atol=analysis.atol,
+                         family_samples=analysis.family_samples)  # fmt: skip
+
+
+def _run_up(model: Any, case_model: Any, analysis: Any) -> xarray.Dataset:
+    from rotorlab import steady
+    from rotorlab.analyses._builders import speed_profile
+
+    return steady.run_up(model, speed_profile(analysis.profile(case_model)), t_end=analysis.t_end,
+                         t_start=analysis.t_start, initial_ball_angles=analysis.initial_ball_angles,
+                         n_save=analysis.n_save, settle_revolutions=analysis.settle_revolutions,
+                         rate_tol=analysis.rate_tol, angle_tol=analysis.angle_tol, rtol=analysis.rtol,
+                         atol=analysis.atol)  # fmt: skip
+
+
+_RUNNERS: dict[str, Callable[[Any, Any, Any], xarray.Dataset]] = {
+    "steady": _steady, "stability-chart": _chart, "verify": _verify, "run-up": _run_up}
+
+
 def run_steady_analysis(case_model: Any, analysis: Any,
                         progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
     """Run one steady-motion analysis of a case.
@@ -119,31 +149,9 @@ def run_steady_analysis(case_model: Any, analysis: Any,
     ValueError
         The type is not one of :data:`STEADY_ANALYSES`.
     """
-    from rotorlab import steady
-
-    if analysis.type not in STEADY_ANALYSES:
+    if analysis.type not in _RUNNERS:
         raise ValueError(f"analysis {analysis.name}: {analysis.type!r} is not a steady-motion analysis")
-    model = steady_model(case_model, analysis)
-    if analysis.type == "steady":
-        res = steady.analyze_steady(model, analysis.spin_speed(case_model), family_samples=analysis.family_samples)
-        ds = res.to_dataset()
-    elif analysis.type == "stability-chart":
-        values = analysis.parameter_values()
-        ds = steady.stability_chart(model, analysis.spin_speeds(case_model), param=analysis.param, values=values,
-                                    family_samples=analysis.family_samples)  # fmt: skip
-    elif analysis.type == "verify":
-        ends = analysis.t_end if analysis.t_end is None or np.isscalar(analysis.t_end) else list(analysis.t_end)
-        ds = steady.verify(model, analysis.spin_speeds(case_model), points=analysis.ball_angle_points or 8,
-                           initial_ball_angles=analysis.initial_ball_angles, t_end=ends,
-                           settle_revolutions=analysis.settle_revolutions, rate_tol=analysis.rate_tol,
-                           angle_tol=analysis.angle_tol, rtol=analysis.rtol, atol=analysis.atol,
-                           family_samples=analysis.family_samples)  # fmt: skip
-    else:
-        profile = analysis.profile(case_model)
-        ds = steady.run_up(model, _profile(profile), t_end=analysis.t_end, t_start=analysis.t_start,
-                           initial_ball_angles=analysis.initial_ball_angles, n_save=analysis.n_save,
-                           settle_revolutions=analysis.settle_revolutions, rate_tol=analysis.rate_tol,
-                           angle_tol=analysis.angle_tol, rtol=analysis.rtol, atol=analysis.atol)  # fmt: skip
+    ds = _RUNNERS[analysis.type](steady_model(case_model, analysis), case_model, analysis)
     if progress is not None:
         progress(1, 1)
     return _annotate(ds, analysis)
@@ -283,12 +291,14 @@ def steady_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
         (amplitudes in m, speeds in rpm, ``synchronised``, ``final_motion``).
     """
     kind = ds.attrs.get("analysis")
-    if kind == "steady":
-        return _steady_rows(ds)
-    if kind == "stability-chart":
-        return [{"method": m, **r} for m, rows in chart_intervals(ds).items() for r in rows]
-    if kind == "verify":
-        return _verify_rows(ds)
-    if kind == "run-up":
-        return _run_up_rows(ds)
-    raise ValueError(f"not the result of a steady-motion analysis: attrs['analysis'] = {kind!r}")
+    if kind not in _ROWS:
+        raise ValueError(f"not the result of a steady-motion analysis: attrs['analysis'] = {kind!r}")
+    return _ROWS[kind](ds)
+
+
+def _chart_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    return [{"method": m, **r} for m, rows in chart_intervals(ds).items() for r in rows]
+
+
+_ROWS: dict[str, Callable[[xarray.Dataset], list[dict[str, Any]]]] = {
+    "steady": _steady_rows, "stability-chart": _chart_rows, "verify": _verify_rows, "run-up": _run_up_rows}

@@ -15,8 +15,13 @@ from typing import Any
 
 _RPM = 60.0 / (2.0 * math.pi)
 
-__all__ = ["build_sweep", "run_sweep_analysis", "stability_sweep", "stability_summary", "impact_store_summary",
+__all__ = ["build_sweep", "sweep_task_size", "run_sweep_analysis", "stability_sweep", "stability_summary", "impact_store_summary",
            "STABILITY_AXES", "SPEED_AXES", "STABILITY_CHUNK"]
+
+
+def sweep_task_size(case_model: Any, spec: Any) -> int:
+    """Points of a case's ``sweep`` analysis (its progress-bar total)."""
+    return build_sweep(case_model, spec).n_points
 
 
 def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None = None,

@@ -24,13 +24,13 @@ from rotorlab.cli._output import (
     BadInput,
     Settings,
     emit_json,
+    exit_if_failed,
     handled,
     info,
     outcome_table,
     progress_bar,
     status,
     stdout,
-    summary_table,
 )
 
 __all__ = ["app", "main"]
@@ -91,17 +91,6 @@ def _load(source: str) -> Any:
 
 def _trajectory_count(case_model: Any, analysis: Any) -> int:
     return len(analysis.ball_angle_sets(case_model.n_balls))
-
-
-def _task_size(case_model: Any, analysis: Any) -> int:
-    """Steps of an analysis for the progress bar: trajectories of a simulation or basin, else 1."""
-    if analysis.type == "basin":
-        return analysis.samples if analysis.samples is not None else analysis.x[3] * analysis.y[3]
-    if analysis.type == "sweep":
-        from rotorlab.analyses._sweep import build_sweep
-
-        return build_sweep(case_model, analysis).n_points
-    return _trajectory_count(case_model, analysis) if analysis.type == "simulate" else 1
 
 
 def _json_case(case: Any) -> dict[str, Any]:
@@ -223,99 +212,58 @@ def run_command(
             raise BadInput(str(exc)) from None
         if not loaded.analyses:
             raise BadInput(f"case {loaded.name}: lists no [[analysis]] to run")
-        from rotorlab.analyses import RUNNABLE_ANALYSES
+        from rotorlab.analyses import ANALYSIS_TYPES
 
         for i, a in enumerate(loaded.analyses):
-            if a.type not in RUNNABLE_ANALYSES:
+            if a.type not in ANALYSIS_TYPES:
                 raise BadInput(f'analysis[{i}].type = "{a.type}": rotorlab run cannot run this '
-                               f"analysis type yet (runnable: {', '.join(RUNNABLE_ANALYSES)})")  # fmt: skip
+                               f"analysis type yet (runnable: {', '.join(ANALYSIS_TYPES)})")  # fmt: skip
         count = len(loaded.analyses)
         info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
              json_mode=json_out)  # fmt: skip
         start = time.perf_counter()
         from rotorlab.analyses import run_case, summarize
 
-        tasks = {a.name: _task_size(loaded.model, a) for a in loaded.analyses}
-        units = {a.name: "trajectories" if a.type in ("simulate", "basin", "sweep") else "done"
-                 for a in loaded.analyses}
+        entries = {a.name: ANALYSIS_TYPES[a.type] for a in loaded.analyses}
+        tasks = {a.name: entries[a.name].task_size(loaded.model, a) for a in loaded.analyses}
+        units = {name: entry.progress_unit for name, entry in entries.items()}
         with progress_bar(settings, tasks, units) as update:
             results = run_case(loaded, progress=update)
         computed = time.perf_counter() - start
-        from rotorlab.report import write_report
+        from rotorlab.report import PRESENTATIONS, write_report
 
-        families = {name: analysis_family(ds.attrs.get("analysis", "")) for name, ds in results.items()}
+        shown = {name: PRESENTATIONS[entry.family] for name, entry in entries.items()}
         tables = {name: summarize(ds) for name, ds in results.items()}
         with status(settings, "Drawing figures and writing the report ..."):
-            figures = {}
-            for name, ds in results.items():
-                figures.update(_figure_function(families[name])(ds, name))
+            figures = {name: shown[name].figures(ds, name) for name, ds in results.items()}
             report = write_report(out, loaded, results, figures, tables)
-        files = sorted([report.name, *(f"{n}.nc" for n in results), *(f"{k}.png" for k in figures)])
+        files = sorted([report.name, *(f"{n}.nc" for n in results),
+                        *(f"{k}.png" for stems in figures.values() for k in stems)])
         total = time.perf_counter() - start
         if json_out:
             emit_json({**_json_case(loaded), "out_dir": str(report.parent), "report": str(report),
                        "files": files, "seconds": round(total, 3),
                        "analyses": {name: {"type": ds.attrs.get("analysis", ""), "rows": tables[name]}
                                     for name, ds in results.items()}})  # fmt: skip
+            exit_if_failed(results)
             return
         if settings.quiet:
+            exit_if_failed(results)
             return
         con = stdout()
-        simulated = {n: rows for n, rows in tables.items() if families[n] == "simulate"}
-        if simulated:
-            con.print(summary_table(simulated))
-        for family in ("steady", "basin", "impacts", "linear"):
-            chosen = {n: ds for n, ds in results.items() if families[n] == family}
-            for table in _table_function(family)(chosen, tables):
+        for family, presentation in PRESENTATIONS.items():
+            chosen = {n: ds for n, ds in results.items() if entries[n].family == family}
+            if not chosen:
+                continue
+            for table in presentation.console(chosen, tables):
                 con.print(table)
+            if settings.verbose:
+                for table in presentation.console_detail(chosen, tables):
+                    con.print(table)
         if settings.verbose:
-            for name, rows in simulated.items():
-                con.print(outcome_table(name, rows))
             con.print(f"computed in {computed:.1f} s, total {total:.1f} s", markup=False)
         con.print(f"Report: {report}", markup=False)
-
-
-def analysis_family(kind: str) -> str:
-    """How a result of analysis type ``kind`` is presented: ``simulate``, ``steady``, ``basin``,
-    ``impacts`` or ``linear`` (figures and console tables of ``rotorlab run``)."""
-    from rotorlab.analyses import BASIN_ANALYSES, IMPACT_ANALYSES, STEADY_ANALYSES
-
-    for family, kinds in (("simulate", ("simulate",)), ("steady", STEADY_ANALYSES),
-                          ("basin", (*BASIN_ANALYSES, "sweep")), ("impacts", IMPACT_ANALYSES)):  # fmt: skip
-        if kind in kinds:
-            return family
-    return "linear"
-
-
-def _figure_function(family: str) -> Any:
-    """``figures(ds, name) -> {stem: Figure}`` of a presentation family."""
-    import rotorlab.plot as plot
-
-    if family == "steady":
-        from rotorlab.report import steady_figures
-
-        return steady_figures
-    return getattr(plot, {"simulate": "simulation_figures", "basin": "basin_figures", "impacts": "impact_figures",
-                          "linear": "linear_figures"}[family])  # fmt: skip
-
-
-def _table_function(family: str) -> Any:
-    """``tables(results, rows) -> [rich tables]`` of a presentation family (not ``simulate``)."""
-    if family == "steady":
-        from rotorlab.cli._steady import steady_tables
-
-        return steady_tables
-    if family == "basin":
-        from rotorlab.cli._basin import basin_tables
-
-        return basin_tables
-    if family == "impacts":
-        from rotorlab.cli._impacts import impact_tables
-
-        return lambda results, rows: impact_tables(results)
-    from rotorlab.cli._linear import linear_tables
-
-    return linear_tables
+        exit_if_failed(results)
 
 
 # --------------------------------------------------------------------------- simulate
@@ -432,8 +380,10 @@ def simulate_command(
         if json_out:
             emit_json({**_json_case(loaded), "analysis": spec.name, "t_end": t_end,
                        "out": written, "rows": rows})  # fmt: skip
+            exit_if_failed({spec.name: ds})
             return
         if settings.quiet:
+            exit_if_failed({spec.name: ds})
             return
         con = stdout()
         title = f"{loaded.name}: {spec.name}" if not (rpm or ratio or t_end_given) else (
@@ -441,10 +391,13 @@ def simulate_command(
         con.print(outcome_table(title, rows))
         if written:
             con.print(f"Wrote {written}", markup=False)
+        exit_if_failed({spec.name: ds})
 
 
 def main() -> None:
-    """Run the ``rotorlab`` command line (the console-script entry point)."""
-    app(prog_name="rotorlab")
+    """Run the ``rotorlab`` command line (see :func:`rotorlab.cli.main`, the entry point)."""
+    from rotorlab.cli import main as guarded_main
+
+    guarded_main()
 
 

@@ -9,7 +9,8 @@ processes). The entry points take the argument groups of :mod:`rotorlab.integrat
 Step-size control is a line-by-line match of SciPy's ``RK45`` (RMS norm with scale
 ``atol + rtol * max(|y|, |y_new|)``, factor ``min(10, 0.9 err^-1/5)``, no growth right after a
 rejection, ``max(0.2, ...)`` on rejection, Hairer's initial-step heuristic), so step counts match
-``solve_ivp(method="RK45")`` and the C references in ``shared/bench`` to round-off.
+``solve_ivp(method="RK45")`` and the C references of the benchmark (``bench/README.md``) to
+round-off.
 
 Events (see :mod:`rotorlab.models._base`): after each accepted step every active event function
 is compared at both ends; a sign change in the allowed direction is located to round-off on the

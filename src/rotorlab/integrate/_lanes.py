@@ -13,7 +13,7 @@ decision and counters, with exactly the arithmetic of :func:`rotorlab.integrate.
 bit on either path. A lane whose trajectory ends is refilled at once with the next trajectory of
 the ensemble, taken from a counter shared by the worker threads (``atomicrmw add``): the threads
 pull work dynamically, so a few long trajectories never leave a thread idle while another has a
-queue. This is the scheme of ``shared/bench/dp5_simd.c``.
+queue. This is the scheme of the benchmark's C reference ``dp5_simd.c`` (see ``bench/README.md``).
 
 No events: a model whose active events need locating keeps the scalar driver (``_core``).
 Saving at given times uses the same quartic dense output as the scalar driver.

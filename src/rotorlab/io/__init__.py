@@ -25,6 +25,7 @@ from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, v
 from rotorlab.io._errors import CaseError, Issue
 from rotorlab.io._results import load_netcdf, missing_units, save_netcdf
 from rotorlab.io._linear_common import AbstractLinearModelSpec
+from rotorlab.io._fields import Unit, field_unit
 from rotorlab.io._schema import (
     ANALYSIS_SPECS,
     MODEL_SPECS,
@@ -48,8 +49,12 @@ from rotorlab.io._schema import (
     RampSpeed,
     SimulateSpec,
     UnbalanceResponseSpec,
+    analysis_union,
     integer,
+    model_union,
     quantity,
+    register_analysis_spec,
+    register_model_spec,
 )
 from rotorlab.io._impact_specs import (
     IMPACT_SWEEP_PARAMETERS,
@@ -79,6 +84,12 @@ __all__ = [
     "StonesSpec",
     "ACCEPTED_UNITS",
     "ANALYSIS_SPECS",
+    "Unit",
+    "analysis_union",
+    "field_unit",
+    "model_union",
+    "register_analysis_spec",
+    "register_model_spec",
     "BALANCER_COORDINATES",
     "DIMENSIONS",
     "MODEL_SPECS",

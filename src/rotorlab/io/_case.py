@@ -33,10 +33,11 @@ from rotorlab.io._errors import (
 from rotorlab.io._schema import (
     ANALYSIS_SPECS,
     MODEL_SPECS,
+    SCHEMA_VERSION,
     SPEED_PROFILES,
     Case,
-    _AnalysisSpec,
-    _ModelSpec,
+    analysis_union,
+    model_union,
     duplicate_name_issues,
     exclusive_issues,
 )
@@ -298,6 +299,12 @@ def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, defa
         raise CaseError(message, unique, origin) from None
     case._source = source
     case._text = text
+    if text and "schema_version" not in doc:
+        import warnings
+
+        warnings.warn(f"{origin}: no schema_version: read as schema_version = {SCHEMA_VERSION} (the only version "
+                      f"so far); write 'schema_version = {SCHEMA_VERSION}' at the top so that a later schema reads "
+                      "it the same", stacklevel=3)  # fmt: skip
     return case
 
 
@@ -481,7 +488,7 @@ def _field_description(owner: type[BaseModel] | None, key: Any) -> str:
 
 @lru_cache(maxsize=1)
 def _adapters() -> tuple[TypeAdapter[Any], TypeAdapter[Any]]:
-    return TypeAdapter(_ModelSpec), TypeAdapter(_AnalysisSpec)
+    return TypeAdapter(model_union()), TypeAdapter(analysis_union())
 
 
 def _cross_problems(doc: Mapping[str, Any]) -> list[str]:

@@ -11,7 +11,8 @@ from __future__ import annotations
 
 import math
 import re
-from typing import TYPE_CHECKING, Annotated, Any, ClassVar
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Annotated, Any, ClassVar, get_args
 
 from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
@@ -23,6 +24,8 @@ if TYPE_CHECKING:
     from rotorlab.io._jeffcott_specs import AbstractSpeedProfile
 
 __all__ = [
+    "Unit",
+    "field_unit",
     "quantity",
     "integer",
     "flag",
@@ -80,6 +83,54 @@ class _QuantityValidator:
         return x
 
 
+@dataclass(frozen=True)
+class Unit:
+    """The SI unit of a field's values, as metadata of its annotated type (``"1"``: dimensionless).
+
+    :func:`quantity` adds it; a field whose validator is its own declares it with
+    ``Annotated[..., Unit("rad/s")]``. :func:`field_unit` reads it back (the report's parameter
+    tables show it).
+    """
+
+    si: str
+
+
+def _units_in(tp: Any) -> list[str]:
+    found = [m.si for m in getattr(tp, "__metadata__", ()) if isinstance(m, Unit)]
+    for arg in get_args(tp):
+        found += [u for u in _units_in(arg) if u not in found]
+    return found
+
+
+def field_unit(info: Any) -> str:
+    """Return the SI unit of a pydantic field from its metadata ("" if it has none).
+
+    Parameters
+    ----------
+    info : pydantic.fields.FieldInfo
+
+    Returns
+    -------
+    str
+        The :class:`Unit` of the field's type, looked up through ``Optional``, tuples and
+        nested ``Annotated`` types; several distinct units are joined by ``", "`` (a tuple of an
+        angle and a speed gives ``"rad, rad/s"``).
+
+    Examples
+    --------
+    >>> from pydantic import BaseModel
+    >>> class Spec(BaseModel):
+    ...     speed: quantity("angular_speed") | None = None
+    ...     start: tuple[quantity("angle"), quantity("angular_speed")] = (0.0, 0.0)
+    ...     ratio: quantity("dimensionless") = 1.0
+    >>> [field_unit(f) for f in Spec.model_fields.values()]
+    ['rad/s', 'rad, rad/s', '1']
+    """
+    found = [m.si for m in info.metadata if isinstance(m, Unit)]
+    found += [u for u in _units_in(info.annotation) if u not in found]
+    return ", ".join(found)
+
+
 def quantity(
     dimension: str,
     *,
@@ -108,7 +159,8 @@ def quantity(
         "description": f"{dim.noun}: a number in {dim.si or 'SI'} or a string with a unit",
     }
     return Annotated[
-        float, PlainValidator(_QuantityValidator(dimension, gt, ge, lt, le)), WithJsonSchema(schema)
+        float, PlainValidator(_QuantityValidator(dimension, gt, ge, lt, le)), WithJsonSchema(schema),
+        Unit(dim.si or "1"),
     ]
 
 
@@ -172,7 +224,7 @@ _Name = Annotated[
     PlainValidator(
         _TextValidator(
             _NAME,
-            "1 to 64 letters, digits, '_', '-' or '.', starting with a letter or digit",
+            "1 to 64 ASCII letters (a-z, A-Z), digits, '_', '-' or '.', starting with a letter or digit",
         )
     ),
     WithJsonSchema({"type": "string", "pattern": _NAME.pattern}),

@@ -24,6 +24,7 @@ from pydantic import Field, ValidationInfo, WithJsonSchema, field_validator, mod
 
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import (
+    Unit,
     AbstractAnalysisSpec,
     AbstractModelSpec,
     _choice,
@@ -225,7 +226,7 @@ class ImpactsSweepSpec(_ImpactAnalysis):
 
     type: Literal["impacts-sweep"] = "impacts-sweep"
     param: _choice(*IMPACT_SWEEP_PARAMETERS) = Field("stone_mass", description="swept parameter")
-    values: Annotated[Any, WithJsonSchema({"type": "array"})] = Field(description="values of the parameter (SI)")
+    values: Annotated[Any, WithJsonSchema({"type": "array"}), Unit("SI")] = Field(description="values of the parameter (SI)")
     n_sequences: integer(ge=1) = Field(16, description="stone sequences per value (-)")
 
     @field_validator("values", mode="plain")

@@ -17,7 +17,7 @@ from typing import Annotated, Any
 from pydantic import BaseModel, Field, PlainValidator, WithJsonSchema
 
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean, format_path
-from rotorlab.io._fields import AbstractModelSpec, _error, _Spec, plain_data, quantity
+from rotorlab.io._fields import AbstractModelSpec, Unit, _error, _Spec, plain_data, quantity
 from rotorlab.io._units import DIMENSIONS, UnitError, convert
 
 __all__ = [
@@ -98,8 +98,9 @@ def plane_matrix(kind: str) -> Any:
     schema = {"type": "array", "items": {"type": "array",
                                          "items": {"anyOf": [{"type": "number"},
                                                              {"type": "string"}]}}}
+    unit = "; ".join(DIMENSIONS[d].si for d in _PLANE_DIMENSIONS[kind])  # per place, as in the docstring
     return Annotated[tuple[tuple[float, ...], ...], PlainValidator(_MatrixValidator(kind)),
-                     WithJsonSchema(schema)]
+                     WithJsonSchema(schema), Unit(unit)]
 
 
 def matrix_issues(key: str, a: tuple[tuple[float, ...], ...], size: int) -> list[Issue]:

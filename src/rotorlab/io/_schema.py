@@ -22,22 +22,26 @@ For implementers
 ----------------
 1. A new model type is one class deriving from :class:`AbstractModelSpec` (a linear rotor:
    from :class:`~rotorlab.io._linear_common.AbstractLinearModelSpec`) with a field
-   ``type: Literal["<name>"] = "<name>"``, plus one line in :data:`MODEL_SPECS`. Override
+   ``type: Literal["<name>"] = "<name>"``, registered with :func:`register_model_spec` (the
+   built-in ones are listed in ``_BUILTIN_MODELS``). Override
    :attr:`~AbstractModelSpec.n_balls`, :meth:`~AbstractModelSpec.critical_speed` and
    :meth:`~AbstractModelSpec.speed_profile` where the model has them.
 2. A new analysis type is one class deriving from :class:`AbstractAnalysisSpec` with a field
-   ``type: Literal["<name>"] = "<name>"``, plus one line in :data:`ANALYSIS_SPECS`. Declare
+   ``type: Literal["<name>"] = "<name>"``, registered with :func:`register_analysis_spec`
+   (built-in: ``_BUILTIN_ANALYSES``). Declare
    pairs of mutually exclusive keys in ``exclusive``; put checks that need the model in
    :meth:`~AbstractAnalysisSpec.case_issues`.
 3. Declare quantities with :func:`quantity` (dimension and bounds), integers with
    :func:`integer`, booleans with :func:`~rotorlab.io._fields.flag`; give every field a
-   ``description`` with its SI unit in parentheses, it is quoted when the key is missing.
+   ``description`` (quoted when the key is missing). The unit shown in reports is data: the
+   :class:`~rotorlab.io._fields.Unit` that :func:`quantity` puts in the field's type (a field
+   with its own validator adds ``Unit("...")`` to its ``Annotated`` type).
+4. Then give the type its behaviour: an entry in :data:`rotorlab.analyses.MODEL_TYPES` or
+   :data:`rotorlab.analyses.ANALYSIS_TYPES` (see :mod:`rotorlab.analyses._registry`).
 """
 
 from __future__ import annotations
 
-from collections.abc import Mapping
-from types import MappingProxyType
 from typing import Annotated, Any, Union
 
 from pydantic import (
@@ -51,6 +55,7 @@ from pydantic import (
     model_validator,
 )
 
+from rotorlab._registry import Registry
 from rotorlab.io._basin_specs import BasinSpec, ToroidalBallSpec, WorkingPointSpec
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
@@ -108,6 +113,8 @@ __all__ = [
     "ImpactsSpec",
     "ImpactsSweepSpec",
     "MODEL_SPECS",
+    "register_model_spec",
+    "model_union",
     "AbstractAnalysisSpec",
     "SimulateSpec",
     "CampbellSpec",
@@ -119,6 +126,8 @@ __all__ = [
     "BasinSpec",
     "WorkingPointSpec",
     "ANALYSIS_SPECS",
+    "register_analysis_spec",
+    "analysis_union",
     "Case",
     "exclusive_issues",
     "duplicate_name_issues",
@@ -127,49 +136,57 @@ __all__ = [
 #: The case-file schema version this module reads and writes.
 SCHEMA_VERSION = 1
 
-#: Model specifications by the value of their ``type`` key.
-MODEL_SPECS: Mapping[str, type[AbstractModelSpec]] = MappingProxyType(
-    {
-        "jeffcott_balls": JeffcottBallsSpec,
-        "multibody": MultibodySpec,
-        "fe_rotor": FeRotorSpec,
-        "toroidal_ball": ToroidalBallSpec,
-        "impact_rotor": ImpactRotorSpec,
-    }
-)
+#: Model specifications by the value of their ``type`` key (a read-only mapping; add one with
+#: :func:`register_model_spec`).
+MODEL_SPECS: Registry[type[AbstractModelSpec]] = Registry("model type", on_change=lambda: _rebuild_case())
 
-_ModelSpec = Annotated[
-    Union[tuple(MODEL_SPECS.values())],  # noqa: UP007 - built from the registry
-    Field(discriminator="type"),
-]
+#: Analysis specifications by the value of their ``type`` key (a read-only mapping; add one with
+#: :func:`register_analysis_spec`).
+ANALYSIS_SPECS: Registry[type[AbstractAnalysisSpec]] = Registry("analysis type", on_change=lambda: _rebuild_case())
+
+_BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSpec, ImpactRotorSpec)
+_BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
+                     DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
+                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec)  # fmt: skip
 
 
-#: Analysis specifications by the value of their ``type`` key.
-ANALYSIS_SPECS: Mapping[str, type[AbstractAnalysisSpec]] = MappingProxyType(
-    {
-        "simulate": SimulateSpec,
-        "campbell": CampbellSpec,
-        "modes": ModesSpec,
-        "critical_speeds": CriticalSpeedsSpec,
-        "unbalance_response": UnbalanceResponseSpec,
-        "identify": IdentifySpec,
-        "data_audit": DataAuditSpec,
-        "steady": SteadySpec,
-        "stability-chart": StabilityChartSpec,
-        "verify": VerifySpec,
-        "run-up": RunUpSpec,
-        "basin": BasinSpec,
-        "working-point": WorkingPointSpec,
-        "sweep": SweepSpec,
-        "impacts": ImpactsSpec,
-        "impacts-sweep": ImpactsSweepSpec,
-    }
-)
+def _type_key(spec: type[BaseModel]) -> str:
+    info = spec.model_fields.get("type")
+    if info is None or not isinstance(info.default, str):
+        raise TypeError(f"{spec.__name__} has no field type: Literal[\"<name>\"] = \"<name>\"")
+    return info.default
 
-_AnalysisSpec = Annotated[
-    Union[tuple(ANALYSIS_SPECS.values())],  # noqa: UP007 - built from the registry
-    Field(discriminator="type"),
-]
+
+def model_union() -> Any:
+    """The annotated union of every registered model spec, discriminated by ``type``."""
+    return Annotated[Union[tuple(MODEL_SPECS.values())], Field(discriminator="type")]  # noqa: UP007
+
+
+def analysis_union() -> Any:
+    """The annotated union of every registered analysis spec, discriminated by ``type``."""
+    return Annotated[Union[tuple(ANALYSIS_SPECS.values())], Field(discriminator="type")]  # noqa: UP007
+
+
+def register_model_spec(spec: type[AbstractModelSpec], *, replace: bool = False) -> None:
+    """Make a model type readable from case files (its key is its ``type`` field's default).
+
+    Parameters
+    ----------
+    spec : type
+        A subclass of :class:`AbstractModelSpec` with ``type: Literal["<name>"] = "<name>"``.
+    replace : bool
+        Replace a spec registered under the same name.
+    """
+    MODEL_SPECS.register(_type_key(spec), spec, replace=replace)
+
+
+def register_analysis_spec(spec: type[AbstractAnalysisSpec], *, replace: bool = False) -> None:
+    """Make an analysis type readable from case files (its key is its ``type`` field's default).
+
+    See :func:`register_model_spec`; ``ANALYSIS_SPECS.registered(key, spec)`` registers one
+    for the duration of a ``with`` block.
+    """
+    ANALYSIS_SPECS.register(_type_key(spec), spec, replace=replace)
 
 
 # --------------------------------------------------------------------------- the case
@@ -195,7 +212,7 @@ class Case(BaseModel):
     schema_version : int
         Always 1.
     name : str
-        Case name (letters, digits, '_', '-', '.').
+        Case name (ASCII letters, digits, '_', '-', '.').
     description : str
         One line shown by ``rotorlab cases``.
     model : JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSpec or ImpactRotorSpec
@@ -219,8 +236,8 @@ class Case(BaseModel):
     ] = Field(SCHEMA_VERSION, description="case-file schema version")
     name: _Name = Field(description="case name")
     description: _Text = Field("", description="one-line description")
-    model: _ModelSpec = Field(description="the model ([model] table)")
-    analyses: tuple[_AnalysisSpec, ...] = Field(
+    model: Any = Field(description="the model ([model] table)")  # the union is set by _rebuild_case
+    analyses: tuple[Any, ...] = Field(
         (), alias="analysis", description="analyses ([[analysis]] entries)"
     )
 
@@ -282,3 +299,21 @@ class Case(BaseModel):
         """
         return plain_data(self.model_dump(mode="python"))
 
+
+
+def _rebuild_case() -> None:
+    """Point ``Case.model`` and ``Case.analyses`` at the unions of the registered specs."""
+    if not _READY:
+        return  # still registering the built-in specs
+    Case.model_fields["model"].annotation = model_union()
+    Case.model_fields["analyses"].annotation = tuple[analysis_union(), ...]
+    Case.model_rebuild(force=True)
+
+
+_READY = False
+for _spec in _BUILTIN_MODELS:
+    register_model_spec(_spec)
+for _spec in _BUILTIN_ANALYSES:
+    register_analysis_spec(_spec)
+_READY = True
+_rebuild_case()

@@ -27,6 +27,7 @@ from pydantic_core import PydanticCustomError
 
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import (
+    Unit,
     AbstractAnalysisSpec,
     AbstractModelSpec,
     _choice,
@@ -37,6 +38,7 @@ from rotorlab.io._fields import (
     quantity,
 )
 from rotorlab.io._jeffcott_specs import _SpeedProfile
+from rotorlab.io._units import DIMENSIONS
 
 __all__ = [
     "STEADY_PARAMETERS",
@@ -93,8 +95,9 @@ class _GridValidator:
 def _grid(dimension: str, *, gt: float | None = None, ge: float | None = None) -> Any:
     schema = {"type": "array", "minItems": 3, "maxItems": 3,
               "description": "[start, stop, count]: numbers in SI or strings with a unit, then an integer"}  # fmt: skip
+    unit = (DIMENSIONS[dimension].si or "1") if dimension is not None else ""
     return Annotated[tuple[float, float, int], PlainValidator(_GridValidator(dimension, gt, ge)),
-                     WithJsonSchema(schema)]  # fmt: skip
+                     WithJsonSchema(schema), Unit(unit)]  # fmt: skip
 
 
 class _TimesValidator:
@@ -115,7 +118,7 @@ class _TimesValidator:
         return one(value)
 
 
-_Times = Annotated[Any, PlainValidator(_TimesValidator()),
+_Times = Annotated[Any, PlainValidator(_TimesValidator()), Unit("s"),
                    WithJsonSchema({"anyOf": [{"type": "number"}, {"type": "string"}, {"type": "array"}]})]  # fmt: skip
 _Angles = tuple[tuple[quantity("angle"), ...], ...]
 
@@ -257,7 +260,7 @@ class StabilityChartSpec(SteadyAnalysisSpec):
     )
     speeds: _grid("angular_speed", gt=0) | None = Field(None, description="[start, stop, count] of speeds (rad/s)")
     param: _choice(*STEADY_PARAMETERS) | None = Field(None, description="second parameter")
-    values: Annotated[Any, WithJsonSchema({"type": "array"})] = Field(
+    values: Annotated[Any, WithJsonSchema({"type": "array"}), Unit("SI")] = Field(
         None, description="[start, stop, count] of the parameter (SI)"
     )
     family_samples: integer(ge=1) = Field(8, description="samples per free angle of a family (-)")

@@ -22,7 +22,8 @@ from pydantic_core import PydanticCustomError
 
 from rotorlab.io._basin_specs import TORUS_COORDINATES, _any_dimension, coordinate_dimensions
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _error, _QuantityValidator, integer, quantity
+from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, Unit, _error, _QuantityValidator, integer,
+                                 quantity)  # fmt: skip
 
 __all__ = ["SWEEP_PARAMETERS", "TORUS_STATES", "SweepSpec", "coordinate_dimension", "sweep_coordinates"]
 
@@ -134,7 +135,8 @@ class _AxesValidator:
 
 def _axes(kind: str) -> Any:
     schema = {"type": "object", "additionalProperties": {"type": "array", "minItems": 2, "maxItems": 3}}
-    return Annotated[dict[str, tuple], PlainValidator(_AxesValidator(kind)), WithJsonSchema(schema)]
+    unit = {"param": "SI", "ic": "rad, rad/s"}[kind]
+    return Annotated[dict[str, tuple], PlainValidator(_AxesValidator(kind)), WithJsonSchema(schema), Unit(unit)]
 
 
 class SweepSpec(AbstractAnalysisSpec):

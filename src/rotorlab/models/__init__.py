@@ -1,6 +1,7 @@
 """Models: frozen parameter objects plus compiled kernels (see :mod:`rotorlab.models._base`)."""
 
 from rotorlab.models._base import AbstractModel, EventSpec, Kernels, no_events, no_reset
+from rotorlab.models._benchmark import BENCHMARK, BenchmarkProblem
 from rotorlab.models._impact_rotor import (
     CentrifugeRotor,
     Housing,
@@ -21,5 +22,6 @@ __all__ = ["AbstractModel", "EventSpec", "Kernels", "no_events", "no_reset"]
 __all__ += ["JeffcottBalls", "RotorParams", "BallParams", "Linearization", "fixed_to_rotating",
             "rotating_to_fixed", "ConstantSpeed", "LinearRamp", "HillRunUp", "speed_from_array"]
 __all__ += ["ToroidalBall", "WorkingPoint", "strautmanis_torus"]
+__all__ += ["BENCHMARK", "BenchmarkProblem"]
 __all__ += ["ImpactRotor", "CentrifugeRotor", "Housing", "StoneFeed", "StonePush", "StoneSequence",
             "krasnov_crusher", "stone_push"]

@@ -23,7 +23,7 @@ T_i is the Coulomb torque. For point masses (J_i = m_i l_i^2) these are Zhakash 
 eqs. (1)-(3) (beta_0 = b / (m R^2), beta = d, r = e, R = l) written in their mirrored axes:
 x_s = x, y_s = -y, phi_s = phi (their y axis and angle sense are both reversed, so the printed
 clockwise angle is numerically our counter-clockwise one); for n = 2 they are exactly
-``shared/bench/model.py`` with M1 e = eps, beta = b. The rotating frame uses
+the project's benchmark problem (:data:`rotorlab.models.BENCHMARK`) with M1 e = eps, beta = b. The rotating frame uses
 x + i y = e^{i theta}(u + i v), phi_i = theta + psi_i; steady motions at constant speed are its
 equilibria. The compiled kernels and the packed parameter order are documented in
 :mod:`rotorlab._kernels.jeffcott_balls`.

@@ -4,22 +4,22 @@ from __future__ import annotations
 
 import base64
 import datetime as _dt
-import html
+import json
 import math
 import platform
 import re
-from collections.abc import Iterable, Mapping, Sequence
+from collections.abc import Mapping, Sequence
 from typing import Any
 
-from rotorlab.report._basin import basin_comparison_section, basin_section
-from rotorlab.report._linear import linear_model_rows, linear_section
-from rotorlab.report._steady import STEADY_ANALYSES, seed_notes_section, steady_section
+from rotorlab.io import field_unit
+from rotorlab.report._presentations import PRESENTATIONS, presentation_of
+from rotorlab.report._table import escape as _e
+from rotorlab.report._table import table as _table
 
 __all__ = ["render_report", "parameter_rows", "versions"]
 
-_UNIT = re.compile(r"\(([^()]*)\)\s*$")
 _RPM = 60.0 / (2.0 * math.pi)
-_NUMBER = re.compile(r"^[±+-]?(\d|\.\d)")
+_MAX_NUMBERS = 5  # key numbers shown in a findings box
 
 _CSS = """
 body{font-family:system-ui,-apple-system,"Segoe UI",Roboto,Helvetica,Arial,sans-serif;
@@ -32,12 +32,11 @@ th{background:#f0f0f0}td.num{text-align:right;font-variant-numeric:tabular-nums}
 pre{background:#f7f7f7;border:1px solid #ddd;padding:.8em;overflow-x:auto;font-size:.85em}
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #eee}
 figcaption{font-size:.85em;color:#555}.muted{color:#666;font-size:.9em}
+.finding{border:1px solid #b8c7d9;background:#f4f8fc;border-radius:4px;padding:.3em 1em;margin:.6em 0}
+.finding h3{margin:.4em 0 .2em}.finding ul{margin:.2em 0 .5em;padding-left:1.4em}
+.verdict{font-weight:600;margin:.2em 0}
 .outcome-balanced{color:#1a7f37;font-weight:600}.outcome-bad{color:#b35900;font-weight:600}
 """
-
-
-def _e(value: Any) -> str:
-    return html.escape(str(value), quote=True)
 
 
 def versions() -> dict[str, str]:
@@ -59,14 +58,6 @@ def versions() -> dict[str, str]:
         except metadata.PackageNotFoundError:
             out[name] = "not installed"
     return out
-
-
-def _unit_of(description: str | None) -> str:
-    match = _UNIT.search(description or "")
-    if not match:
-        return ""
-    unit = match[1].strip()
-    return "1" if unit == "-" else unit
 
 
 def _fmt(value: Any) -> str:
@@ -128,75 +119,38 @@ def parameter_rows(spec: Any, prefix: str = "") -> list[tuple[str, str, str, str
             for i, item in enumerate(value):
                 rows += parameter_rows(item, f"{key}[{i}]")
         else:
-            unit = _unit_of(info.description)
+            unit = field_unit(info)
             rows.append((key, _fmt(value), unit, _other_units(value, unit)))
     return rows
 
 
-def _table(header: Sequence[str], rows: Iterable[Sequence[Any]], numeric: set[int] = frozenset(),
-           raw: set[int] = frozenset()) -> str:  # fmt: skip
-    head = "".join(f"<th>{_e(h)}</th>" for h in header)
-    body = []
-    for row in rows:
-        cells = []
-        for j, cell in enumerate(row):
-            css = ' class="num"' if j in numeric and _NUMBER.match(str(cell)) else ""
-            cells.append(f"<td{css}>{cell if j in raw else _e(cell)}</td>")
-        body.append("<tr>" + "".join(cells) + "</tr>")
-    return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>"
+def _quantity_row(q: Mapping[str, Any]) -> tuple[str, str, str, str]:
+    also = _other_units(q["value"], q["unit"])
+    return q["quantity"], q["sign"] + _fmt(q["value"]), q["unit"], q["sign"] + also if also else ""
 
 
-def _angles(values: Sequence[float | None]) -> str:
-    return "(" + ", ".join("–" if v is None else f"{v:.1f}°" for v in values) + ")"
+def _quantity_rows(results: Mapping[str, Any]) -> list[tuple[str, str, str, str]]:
+    """The model's derived quantities, as carried by its results (``attrs["model_quantities"]``)."""
+    for ds in results.values():
+        text = ds.attrs.get("model_quantities")
+        if text:
+            return [_quantity_row(q) for q in json.loads(text)]
+    return []
 
 
-def _outcome_cell(outcome: str) -> str:
-    css = "outcome-balanced" if outcome == "balanced" else "outcome-bad"
-    return f'<span class="{css}">{_e(outcome)}</span>'
+def _findings_box(analysis: Any, ds: Any, rows: Sequence[Mapping[str, Any]]) -> str:
+    found = presentation_of(analysis.type).findings(ds, rows)
+    shown = found.numbers[:_MAX_NUMBERS]
+    more = len(found.numbers) - len(shown)
+    numbers = "".join(f"<li>{_e(n)}</li>" for n in shown) + (
+        f'<li class="muted">{more} more in the section below</li>' if more > 0 else "")
+    return (f'<div class="finding"><h3><a href="#{_e(_anchor(analysis.name))}">{_e(analysis.name)}</a> '
+            f'<span class="muted">({_e(analysis.type)})</span></h3>'
+            f'<p class="verdict">{_e(found.verdict)}</p>' + (f"<ul>{numbers}</ul>" if numbers else "") + "</div>")
 
 
-def _summary_table(rows: Sequence[Mapping[str, Any]]) -> str:
-    def amp(v: float | None) -> str:
-        return "–" if v is None else f"{v * 1e3:.4g}"
-
-    def ratio(v: float | None) -> str:
-        return "–" if v is None else f"{v:.3g}"
-
-    header = ("speed (rpm)", "omega/p", "start angles", "final deflection (mm)",
-              "× unbalance alone", "final ball angles", "outcome")  # fmt: skip
-    body = [
-        (f"{r['speed_rpm']:.0f}", f"{r['speed_ratio']:.3g}", _angles(r["initial_ball_angles_deg"]),
-         amp(r["final_amplitude"]), ratio(r["amplitude_ratio"]),
-         _angles(r["final_ball_angles_deg"]), _outcome_cell(r["outcome"]))  # fmt: skip
-        for r in rows
-    ]
-    return _table(header, body, numeric={0, 1, 3, 4}, raw={6})
-
-
-def _derived_rows(case: Any) -> list[tuple[str, str, str, str]]:
-    model = case.model
-    rows = []
-    if hasattr(model, "node_labels"):
-        return linear_model_rows(model)
-    p = model.critical_speed()
-    if p is not None:
-        rows.append(("critical speed p = sqrt(c / M)", f"{p:.6g}", "rad/s", _other_units(p, "rad/s")))
-    balls = getattr(model, "balls", ())
-    if getattr(model, "type", "") == "jeffcott_balls":
-        rows.append(("total mass M = M1 + sum m_i", f"{model.total_mass:.6g}", "kg", ""))
-        imbalance = model.disc_mass * model.eccentricity
-        rows.append(("unbalance M1 e", f"{imbalance:.6g}", "kg*m", ""))
-        if balls:
-            capacity = sum(b.mass * b.radius for b in balls)
-            rows.append(("balancing capacity sum m_i R_i", f"{capacity:.6g}", "kg*m", ""))
-        if len(balls) == 2 and balls[0] == balls[1]:
-            eta = imbalance / (balls[0].mass * balls[0].radius)
-            rows.append(("eta = M1 e / (m R) (seed 002 eq. (10))", f"{eta:.6g}", "1", ""))
-            if eta < 2:
-                alpha = 180.0 - math.degrees(math.acos(eta / 2))
-                rows.append(("balanced ball angles ±(pi - arccos(eta/2))", f"±{math.radians(alpha):.6g}",
-                             "rad", f"±{alpha:.4g}°"))  # fmt: skip
-    return rows
+def _anchor(name: str) -> str:
+    return "analysis-" + re.sub(r"[^A-Za-z0-9_.-]", "-", name)
 
 
 def _figure(key: str, png: bytes) -> str:
@@ -205,22 +159,27 @@ def _figure(key: str, png: bytes) -> str:
             f"<figcaption>{_e(key)}.png</figcaption></figure>")  # fmt: skip
 
 
-def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, bytes],
+def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapping[str, bytes]],
                   summary_tables: Mapping[str, Sequence[Mapping[str, Any]]],
                   files: Sequence[str], case_text: str) -> str:  # fmt: skip
     """Return the HTML text of the report (see :func:`rotorlab.report.write_report`).
+
+    The page opens with the findings of every analysis (the verdict in words and the key numbers
+    with units), then one section per analysis (its figures, its result tables, its parameters),
+    the notes of the analysis families, the model's parameters and derived quantities, the files,
+    the case file and, last, the software versions. Each analysis is presented by the entry of
+    its family in :data:`rotorlab.report.PRESENTATIONS`.
 
     Parameters
     ----------
     case : rotorlab.io.Case
     results : mapping of str to xarray.Dataset
         By analysis name.
-    pngs : mapping of str to bytes
-        Rendered figures by file stem; a figure whose stem starts with ``<analysis name>_`` is
-        shown in that analysis' section, others under "Other figures".
+    pngs : mapping of str to mapping of str to bytes
+        Rendered figures by analysis name, then by file stem; an analysis shows its own figures
+        only (figures under a name that is no analysis of the case go to "Other figures").
     summary_tables : mapping of str to list of dict
-        Rows of :func:`rotorlab.analyses.summarize` by analysis name (outcomes of a simulation;
-        critical speeds, modes, fitted parameters or findings of a linear analysis).
+        Rows of :func:`rotorlab.analyses.summarize` by analysis name.
     files : sequence of str
         Names of the files written next to the report (linked relatively).
     case_text : str
@@ -231,6 +190,7 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
     str
     """
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+    ran = [a for a in case.analyses if a.name in results]
     parts = [
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
@@ -239,71 +199,45 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, byte
         f"<h1>rotorlab report: {_e(case.name)}</h1>",
         f"<p>{_e(case.description)}</p>" if case.description else "",
         f'<p class="muted">Case source: {_e(case.source)} · generated {now}</p>',
-        "<h2>Software</h2>",
-        _table(("package", "version"), versions().items()),
+    ]
+    if ran:
+        parts.append("<h2>Findings</h2>")
+        parts += [_findings_box(a, results[a.name], summary_tables.get(a.name, [])) for a in ran]
+    for analysis in case.analyses:
+        name = analysis.name
+        ds = results.get(name)
+        parts.append(f'<h2 id="{_e(_anchor(name))}">Analysis: {_e(name)} ({_e(analysis.type)})</h2>')
+        parts += [_figure(key, png) for key, png in pngs.get(name, {}).items()]
+        if ds is not None:
+            parts.append(presentation_of(analysis.type).section(ds, summary_tables.get(name, [])))
+        parts += ["<h3>Parameters</h3>", _table(("key", "value", "unit", "also"),
+                                                parameter_rows(analysis, f"analysis.{name}"), numeric={1})]  # fmt: skip
+    for family, presentation in PRESENTATIONS.items():
+        chosen = {a.name: results[a.name] for a in ran if presentation_of(a.type).family == family}
+        if chosen and presentation.notes is not None:
+            parts.append(presentation.notes(chosen))
+    known = {a.name for a in case.analyses}
+    rest = [(k, png) for name, stems in pngs.items() if name not in known for k, png in stems.items()]
+    if rest:
+        parts.append("<h2>Other figures</h2>")
+        parts += [_figure(k, png) for k, png in rest]
+    parts += [
         "<h2>Model parameters</h2>",
         '<p class="muted">All values in SI units as used in the computation; speeds also in rpm '
         "and Hz, angles also in degrees.</p>",
-        _table(("key", "value", "unit", "also"), parameter_rows(case.model, "model"),
-               numeric={1}),  # fmt: skip
+        _table(("key", "value", "unit", "also"), parameter_rows(case.model, "model"), numeric={1}),
     ]
-    derived = _derived_rows(case)
+    derived = _quantity_rows(results)
     if derived:
-        parts += ["<h3>Derived quantities</h3>", _table(("quantity", "value", "unit", "also"),
-                                                        derived, numeric={1})]  # fmt: skip
-    shown: set[str] = set()
-    for analysis in case.analyses:
-        name = analysis.name
-        parts.append(f"<h2>Analysis: {_e(name)} ({_e(analysis.type)})</h2>")
-        rows = parameter_rows(analysis, f"analysis.{name}")
-        ds = results.get(name)
-        if analysis.type in STEADY_ANALYSES and ds is not None:  # tables in rotorlab.report._steady
-            parts += [_table(("key", "value", "unit", "also"), rows, numeric={1}),
-                      steady_section(ds, summary_tables.get(name))]
-            parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
-            shown.update(key for key in pngs if key.startswith(f"{name}_"))
-            continue
-        if analysis.type in ("basin", "working-point", "sweep", "impacts", "impacts-sweep") and ds is not None:
-            if analysis.type in ("impacts", "impacts-sweep"):  # rotorlab.report._impacts
-                from rotorlab.report._impacts import impact_section
-
-                body = impact_section(ds)
-            else:  # rotorlab.report._basin
-                body = basin_section(ds, summary_tables.get(name), _table)
-            parts += [_table(("key", "value", "unit", "also"), rows, numeric={1}), body]
-            parts += [_figure(key, png) for key, png in pngs.items() if key.startswith(f"{name}_")]
-            shown.update(key for key in pngs if key.startswith(f"{name}_"))
-            continue
-        if ds is not None and "speed_ratio" in ds.coords:
-            for k, om in enumerate(ds.speed.values):
-                rows.append(("spin speed used", f"{float(om):.6g}", "rad/s",
-                             f"{_other_units(float(om), 'rad/s')}; "
-                             f"omega/p = {float(ds.speed_ratio.values[k]):.4g}"))  # fmt: skip
-        parts.append(_table(("key", "value", "unit", "also"), rows, numeric={1}))
-        if name in summary_tables and analysis.type == "simulate":
-            parts += ["<h3>Outcomes</h3>", _summary_table(summary_tables[name])]
-        elif name in summary_tables and ds is not None:
-            parts.append(linear_section(analysis.type, ds, summary_tables[name], _table))
-        for key, png in pngs.items():
-            if key.startswith(f"{name}_"):
-                parts.append(_figure(key, png))
-                shown.add(key)
-    parts.append(basin_comparison_section(results, _table))
-    if any(a.type in STEADY_ANALYSES for a in case.analyses):
-        parts.append(seed_notes_section())
-    if any(a.type in ("impacts", "impacts-sweep") for a in case.analyses):
-        from rotorlab.report._impacts import reconstructions_section
-
-        parts.append(reconstructions_section())
-    rest = [k for k in pngs if k not in shown]
-    if rest:
-        parts.append("<h2>Other figures</h2>")
-        parts += [_figure(k, pngs[k]) for k in rest]
+        parts += ["<h3>Derived quantities</h3>", _table(("quantity", "value", "unit", "also"), derived,
+                                                        numeric={1})]  # fmt: skip
     parts += [
         "<h2>Files</h2>",
         "<ul>" + "".join(f'<li><a href="{_e(f)}">{_e(f)}</a></li>' for f in files) + "</ul>",
         "<h2>Case file</h2>",
         f"<pre>{_e(case_text)}</pre>",
+        "<h2>Software</h2>",
+        _table(("package", "version"), versions().items()),
         "</body></html>",
     ]
     return "\n".join(p for p in parts if p) + "\n"

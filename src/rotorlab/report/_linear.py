@@ -8,7 +8,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["linear_section", "linear_model_rows"]
+__all__ = ["linear_section"]
 
 _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
 _WHIRL_CODE = {1: "forward", -1: "backward", 0: "mixed"}
@@ -125,25 +125,19 @@ def linear_section(kind: str, ds: Any, rows: Sequence[dict[str, Any]],
     str
         "" for an analysis type without tables.
     """
-    if kind == "campbell":
-        return _campbell(ds, rows, table)
-    if kind == "critical_speeds":
-        return "<h3>Critical speeds of the undamped rotor</h3>\n" + _crossings(rows, table)
-    if kind == "modes":
-        return _modes(rows, table)
-    if kind == "unbalance_response":
-        return _unbalance(ds, rows, table)
-    if kind == "identify":
-        return _identify(ds, rows, table)
-    if kind == "data_audit":
-        return _audit(rows, table)
-    return ""
+    render = _SECTIONS.get(kind)
+    return "" if render is None else render(ds, rows, table)
 
 
-def linear_model_rows(model: Any) -> list[tuple[str, str, str, str]]:
-    """Return derived rows of a linear model: degrees of freedom and nodes (name at position)."""
-    z = model.node_positions()
-    nodes = ", ".join(f"{lab}" + ("" if not np.isfinite(p) else f" ({p * 1e3:.6g} mm)")
-                      for lab, p in zip(model.node_labels(), z))
-    return [("degrees of freedom (x, y, phi_x, phi_y per node)", str(model.n_dof), "1", ""),
-            ("nodes", nodes, "", "")]
+def _critical(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    return "<h3>Critical speeds of the undamped rotor</h3>\n" + _crossings(rows, table)
+
+
+_SECTIONS: dict[str, Callable[[Any, Sequence[dict[str, Any]], Callable[..., str]], str]] = {
+    "campbell": _campbell,
+    "critical_speeds": _critical,
+    "modes": lambda ds, rows, table: _modes(rows, table),
+    "unbalance_response": _unbalance,
+    "identify": _identify,
+    "data_audit": lambda ds, rows, table: _audit(rows, table),
+}

@@ -87,7 +87,7 @@ def write_report(
     out_dir: str | os.PathLike[str],
     case: Case,
     results: Mapping[str, xarray.Dataset],
-    figures: Mapping[str, Figure],
+    figures: Mapping[str, Mapping[str, Figure]],
     summary_tables: Mapping[str, Sequence[Mapping[str, Any]]],
     *,
     dpi: int = 100,
@@ -108,8 +108,9 @@ def write_report(
         The case that was run.
     results : mapping of str to xarray.Dataset
         By analysis name; each is saved as ``<name>.nc`` (:func:`rotorlab.io.save_netcdf`).
-    figures : mapping of str to matplotlib.figure.Figure
-        By file stem; each is saved as ``<stem>.png`` and embedded in the report.
+    figures : mapping of str to mapping of str to matplotlib.figure.Figure
+        By analysis name, then by file stem (what the presentation's ``figures(ds, name)``
+        returns); each is saved as ``<stem>.png`` and embedded in that analysis' section.
     summary_tables : mapping of str to list of dict
         By analysis name, rows of :func:`rotorlab.analyses.summarize`.
     dpi : int
@@ -129,7 +130,8 @@ def write_report(
     from rotorlab.io import dump_case, save_netcdf
 
     target = check_output_dir(out_dir)
-    names = [f"{n}.nc" for n in results] + [f"{k}.png" for k in figures] + [REPORT_NAME]
+    stems = [k for by_stem in figures.values() for k in by_stem]
+    names = [f"{n}.nc" for n in results] + [f"{k}.png" for k in stems] + [REPORT_NAME]
     for name in names:
         if Path(name).name != name or name.startswith("."):
             raise ValueError(f"cannot write {name!r}: result and figure names must be plain file names")
@@ -141,10 +143,11 @@ def write_report(
     try:
         for name, ds in results.items():
             save_netcdf(ds, staging / f"{name}.nc")
-        pngs = {}
-        for key, fig in figures.items():
-            pngs[key] = _png(fig, dpi)
-            (staging / f"{key}.png").write_bytes(pngs[key])
+        pngs: dict[str, dict[str, bytes]] = {}
+        for name, by_stem in figures.items():
+            for key, fig in by_stem.items():
+                pngs.setdefault(name, {})[key] = _png(fig, dpi)
+                (staging / f"{key}.png").write_bytes(pngs[name][key])
         text = case.text or dump_case(case)
         page = render_report(case, results, pngs, summary_tables, names[:-1], text)
         (staging / REPORT_NAME).write_text(page, encoding="utf-8")

@@ -1,0 +1,176 @@
+"""The registries of model types and analysis types: one value per type, looked up, never branched on.
+
+A case names its model and analyses by ``type`` strings. Everything that handles "any model" or
+"any analysis" (:func:`rotorlab.analyses.build_model`, :func:`~rotorlab.analyses.run_analysis`,
+:func:`~rotorlab.analyses.summarize`, ``rotorlab run``, the report, the sweep engine) looks the
+type up here (and its presentation in :data:`rotorlab.report.PRESENTATIONS`) instead of testing
+the string.
+
+For implementers
+----------------
+A new model type or analysis type touches its spec, one entry here and (for a new family) one
+presentation; no other module changes.
+
+1. Write the case-file spec (:mod:`rotorlab.io`, see the "For implementers" list of
+   :mod:`rotorlab.io._schema`) and register it: ``rotorlab.io.register_model_spec(MySpec)`` or
+   ``rotorlab.io.register_analysis_spec(MySpec)``.
+2. A model type: register a :class:`ModelType` whose ``build(spec)`` returns the model object
+   the analyses use, whose ``quantities(spec)`` returns the derived quantities shown with the
+   model's parameters (physics belongs here, not in the report) and, if its start-ups can be
+   classified into regimes, whose ``mapper`` builds the regime mapper of basins and sweeps:
+   ``register_model_type(ModelType("my_model", build=..., quantities=..., mapper=...))``.
+3. An analysis type: register an :class:`AnalysisType` with
+
+   - ``run(case_model, analysis, progress)``: a Dataset with ``attrs["name"]`` (the analysis
+     name); ``attrs["analysis"]`` is set to the type by :func:`rotorlab.analyses.run_analysis`;
+     call ``progress(done, total)`` as work finishes (``None`` allowed);
+   - ``rows(ds)``: its summary rows, plain JSON-ready values, SI (or labelled ``_rpm``,
+     ``_deg`` keys);
+   - ``family``: the key of its presentation in :data:`rotorlab.report.PRESENTATIONS` (reuse one
+     or register a new :class:`rotorlab.report.Presentation`: figures, report section, findings,
+     console tables);
+   - ``task_size(case_model, analysis)`` and ``progress_unit``: the total the progress bar of
+     ``rotorlab run`` counts to and what it counts (default: one task, "done").
+
+4. ``tests/unit/test_registries.py`` checks that every registered spec has an entry, every
+   entry a presentation, and runs a toy analysis through :func:`~rotorlab.analyses.run_case`,
+   ``rotorlab run`` and the report: copy it for yours.
+"""
+
+from __future__ import annotations
+
+from collections.abc import Callable
+from dataclasses import dataclass
+from typing import TYPE_CHECKING, Any
+
+from rotorlab._registry import Registry
+
+if TYPE_CHECKING:
+    import xarray
+
+__all__ = ["ModelType", "AnalysisType", "MODEL_TYPES", "ANALYSIS_TYPES", "register_model_type",
+           "register_analysis_type"]  # fmt: skip
+
+Progress = Callable[[int, int], None]
+
+
+def one_task(case_model: Any, analysis: Any) -> int:
+    """The task size of an analysis that reports only "started" and "done"."""
+    return 1
+
+
+def no_quantities(case_model: Any) -> list[dict[str, Any]]:
+    """A model type without derived quantities."""
+    return []
+
+
+@dataclass(frozen=True)
+class ModelType:
+    """How a model spec becomes a model.
+
+    Parameters
+    ----------
+    name : str
+        The ``type`` of ``[model]`` in a case file (the key of its spec in
+        :data:`rotorlab.io.MODEL_SPECS`).
+    build : callable
+        ``build(spec) -> model``: the model object the analyses use.
+    quantities : callable
+        ``quantities(spec) -> list of dict``: derived quantities (keys ``quantity``, ``value``
+        (SI), ``unit``, ``sign`` ("" or "±")), carried in ``attrs["model_quantities"]`` of
+        every result.
+    mapper : callable, optional
+        ``mapper(spec, analysis, options) -> rotorlab.explore.AbstractMapper or None``: the
+        regime mapper of ``basin`` and ``sweep`` analyses (``options``: keyword arguments of
+        the mapper from the analysis, to complete); None (or a mapper returning None): the model
+        has no basins.
+    """
+
+    name: str
+    build: Callable[[Any], Any]
+    quantities: Callable[[Any], list[dict[str, Any]]] = no_quantities
+    mapper: Callable[[Any, Any, dict[str, Any]], Any] | None = None
+
+
+@dataclass(frozen=True)
+class AnalysisType:
+    """How an analysis runs, what it reports and how its progress is counted.
+
+    Parameters
+    ----------
+    name : str
+        The ``type`` of an ``[[analysis]]`` (the key of its spec in
+        :data:`rotorlab.io.ANALYSIS_SPECS`).
+    run : callable
+        ``run(case_model, analysis, progress=None) -> xarray.Dataset`` (``progress`` is passed
+        by keyword).
+    rows : callable
+        ``rows(ds) -> list of dict``: summary rows (:func:`rotorlab.analyses.summarize`).
+    family : str
+        Its presentation (a key of :data:`rotorlab.report.PRESENTATIONS`).
+    task_size : callable
+        ``task_size(case_model, analysis) -> int``: the total of its progress.
+    progress_unit : str
+        What the progress counts ("trajectories", "done").
+    """
+
+    name: str
+    run: Callable[..., xarray.Dataset]
+    rows: Callable[[xarray.Dataset], list[dict[str, Any]]]
+    family: str
+    task_size: Callable[[Any, Any], int] = one_task
+    progress_unit: str = "done"
+
+
+#: Model types by the ``type`` of ``[model]``.
+MODEL_TYPES: Registry[ModelType] = Registry("model type")
+
+#: Analysis types by the ``type`` of ``[[analysis]]``.
+ANALYSIS_TYPES: Registry[AnalysisType] = Registry("analysis type")
+
+
+def register_model_type(entry: ModelType, *, replace: bool = False) -> None:
+    """Add a :class:`ModelType` to :data:`MODEL_TYPES` (ValueError if its name is taken)."""
+    MODEL_TYPES.register(entry.name, entry, replace=replace)
+
+
+def register_analysis_type(entry: AnalysisType, *, replace: bool = False) -> None:
+    """Add an :class:`AnalysisType` to :data:`ANALYSIS_TYPES` (ValueError if its name is taken)."""
+    ANALYSIS_TYPES.register(entry.name, entry, replace=replace)
+
+
+# --------------------------------------------------------------------------- the built-in types
+
+
+def _register_builtins() -> None:
+    from rotorlab.analyses import _basin, _builders, _impacts, _linear, _simulate, _steady, _sweep
+    from rotorlab.analyses._linear_build import build_linear_system
+
+    for name, build, quantities, mapper in (
+        ("jeffcott_balls", _builders.jeffcott_balls_model, _builders.jeffcott_quantities, _basin.balancer_mapper),
+        ("multibody", build_linear_system, _builders.linear_quantities, None),
+        ("fe_rotor", build_linear_system, _builders.linear_quantities, None),
+        ("toroidal_ball", _builders.toroidal_ball_model, _builders.reference_speed_quantities, _basin.torus_mapper),
+        ("impact_rotor", _impacts.impact_model, _builders.reference_speed_quantities, None),
+    ):
+        register_model_type(ModelType(name, build, quantities, mapper))
+
+    trajectories = {"progress_unit": "trajectories"}
+    register_analysis_type(AnalysisType("simulate", _simulate.run_simulate_analysis, _simulate.simulation_rows,
+                                        "simulate", _simulate.simulation_task_size, **trajectories))  # fmt: skip
+    for name in _linear.LINEAR_ANALYSES:
+        register_analysis_type(AnalysisType(name, _linear.run_linear_case_analysis, _linear.summarize_linear,
+                                            "linear"))  # fmt: skip
+    for name in _steady.STEADY_ANALYSES:
+        register_analysis_type(AnalysisType(name, _steady.run_steady_analysis, _steady.steady_rows, "steady"))
+    register_analysis_type(AnalysisType("basin", _basin.run_basin_analysis, _basin.basin_rows, "basin",
+                                        _basin.basin_task_size, **trajectories))  # fmt: skip
+    register_analysis_type(AnalysisType("working-point", _basin.run_basin_analysis, _basin.basin_rows, "basin"))
+    register_analysis_type(AnalysisType("sweep", _sweep.run_sweep_analysis, _basin.basin_rows, "basin",
+                                        _sweep.sweep_task_size, **trajectories))  # fmt: skip
+    register_analysis_type(AnalysisType("impacts", _impacts.run_impact_analysis, _impacts.impact_rows, "impacts"))
+    register_analysis_type(AnalysisType("impacts-sweep", _impacts.run_impact_analysis, _impacts.sweep_rows,
+                                        "impacts"))  # fmt: skip
+
+
+_register_builtins()
