@@ -40,7 +40,7 @@ def test_declared_kernel_vectorises(name, kernels):
 
 def test_models_choose_the_lane_friendly_kernel():
     rotor = RotorParams(disc_mass=10.0, eccentricity=1e-4, stiffness=1e5, damping=20.0)
-    ball = BallParams(mass=0.05, radius=0.1, inertia=1e-5, damping=1e-4)
+    ball = BallParams(mass=0.05, radius=0.1, damping=1e-4)
     for speed in (ConstantSpeed(200.0), LinearRamp(0.0, 200.0, 1.0)):
         for frame in ("fixed", "rotating"):
             model = JeffcottBalls(rotor, (ball, ball), speed=speed, frame=frame)
