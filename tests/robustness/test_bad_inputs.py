@@ -113,6 +113,17 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
      ["analysis[0].seed", "integer"]),
     ("ir-sequences-zero", ["validate", FILE], ("krasnov-crusher", "n_sequences = 16", "n_sequences = 0"),
      ["analysis[1].n_sequences", ">= 1"]),
+    ("rb-negative-clearance", ["validate", FILE], ("rub-jeffcott", 'clearance = "1 mm"', 'clearance = "-1 mm"'),
+     ["model.clearance", "> 0"]),
+    ("rb-friction-text", ["run", FILE, "--out", "{d}/o"], ("rub-jeffcott", "friction = 0.02", 'friction = "high"'),
+     ["model.friction"]),
+    ("rb-window-wrong-unit", ["validate", FILE], ("rub-jeffcott", 'window = "0.1 s"', 'window = "0.1 m"'),
+     ["analysis[0].window", "wrong dimension"]),
+    ("rb-unknown-key", ["validate", FILE], ("rub-jeffcott", 'rotor_radius = "50 mm"',
+                                            'rotor_radius = "50 mm"\nrotor_radus = 1'),
+     ["model.rotor_radus", "unknown key"]),
+    ("rb-zero-t-end", ["run", FILE, "--out", "{d}/o"], ("rub-jeffcott", 't_end = "2 s"', 't_end = "0 s"'),
+     ["analysis[0].t_end", "> 0"]),
     # ---- validate / cases / global options -------------------------------------------------
     ("validate-toml-syntax", ["validate", FILE], ("autobalancer", 'disc_mass = "1 kg"', 'disc_mass = "1 kg'),
      ["line", "column"]),
@@ -192,7 +203,41 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
      ["--param", "bogus"]),
     ("isweep-zero-sequences", ["impacts-sweep", "krasnov-crusher", "--sequences", "0"], None, ["--sequences"]),
     ("isweep-resume-without-out", ["impacts-sweep", "krasnov-crusher", "--resume"], None, ["--resume"]),
+    ("isweep-negative-workers", ["impacts-sweep", "krasnov-crusher", "--workers", "-1"], None, ["--workers"]),
+    # ---- edge numbers ------------------------------------------------------------------------------
+    ("simulate-infinite-t-end", ["simulate", "autobalancer", "--t-end", "inf"], None, ["--t-end", "finite"]),
+    ("simulate-overflowing-speed", ["simulate", "autobalancer", "--speed-rpm", "1e400"], None,
+     ["--speed-rpm", "finite"]),
+    ("impacts-nan-stone", ["impacts", "krasnov-crusher", "--stone-mass", "nan"], None, ["--stone-mass"]),
+    ("sweep-negative-chunk", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--ic", "psi_1=0:6:4", "--chunk", "-1"],
+     None, ["--chunk"]),
+    ("jb-huge-exponent", ["validate", FILE], ("autobalancer", 'eccentricity = "1.5 mm"', 'eccentricity = "1e400 mm"'),
+     ["model.eccentricity", "finite"]),
+    ("ir-n-save-absurd", ["impacts", FILE, "--t-end", "0.01"], ("krasnov-crusher", "seed = 0", "seed = 0\nn_save = 1e12"),
+     ["n_save = 1000000000000", "memory"]),
 ]
+
+# ---- machine (a rotor of any structure with races, drive, gravity) -----------------------------
+MACHINE = [
+    ("mc-negative-race-radius", ["validate", FILE], ("washer-horizontal", 'radius = "0.27 m"', 'radius = "-0.27 m"'),
+     ["model.races[0].radius", "> 0"]),
+    ("mc-drive-profile-typo", ["validate", FILE], ("washer-horizontal", 'profile = "motor"', 'profile = "motorr"'),
+     ["model.drive.profile", "motor"]),
+    ("mc-gravity-wrong-unit", ["validate", FILE], ("washer-horizontal", '"-9.81 m/s^2"', '"-9.81 m/s"'),
+     ["model.gravity.vector[1]", "wrong dimension"]),
+    ("mc-unknown-body", ["run", FILE, "--out", "{d}/o"], ("washer-horizontal", 'at = "drum"', 'at = "drun"'),
+     ["model.races[0].at", "drun"]),
+    ("mc-zero-speeds", ["validate", FILE], ("washer-horizontal", "n_speeds = 2", "n_speeds = 0"),
+     ["analysis[0].n_speeds", ">= 1"]),
+    ("mc-negative-t-end", ["validate", FILE], ("washer-horizontal", 't_end = "40 s"', 't_end = "-40 s"'),
+     ["analysis[1].t_end", "> 0"]),
+    ("mc-unknown-key", ["validate", FILE], ("washer-horizontal", 'stall_torque = "10 N*m"',
+                                             'stall_torque = "10 N*m"\nstall_torq = 3'),
+     ["model.drive.stall_torq", "unknown key"]),
+]
+
+if resources.files("rotorlab.cases").joinpath("washer-horizontal.toml").is_file():  # once the machine model landed
+    CORPUS += MACHINE
 
 
 def _tree(folder: Path) -> set[str]:
@@ -206,7 +251,7 @@ def test_the_corpus_is_large_and_covers_every_command_and_model_type():
     assert commands >= {"run", "simulate", "campbell", "modes", "steady", "stability-chart", "basin", "sweep",
                         "show", "impacts", "impacts-sweep", "validate", "cases"}  # fmt: skip
     bases = {entry[2][0] for entry in CORPUS if entry[2]}
-    assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher"}
+    assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher", "rub-jeffcott"}
 
 
 @pytest.mark.parametrize("name, argv, case, words", CORPUS, ids=[entry[0] for entry in CORPUS])

@@ -101,3 +101,26 @@ def test_ctrl_c_in_the_first_second_prints_no_traceback(tmp_path):
         assert "Traceback" not in err and "interrupted" in err, (delay, err)
         assert not out.exists()
     assert sorted(p.name for p in tmp_path.iterdir()) == ["tiny.toml"]
+
+
+def test_a_full_disk_while_run_writes_names_the_path_and_leaves_nothing(tmp_path, monkeypatch):
+    """ENOSPC from the NetCDF writer (fault injected): exit 1 with the path and the reason, not an
+    internal error; no output folder and no ``.OUT.tmp-*``."""
+    import errno
+
+    from typer.testing import CliRunner
+
+    import rotorlab.io
+    from rotorlab.cli import app
+
+    (tmp_path / "tiny.toml").write_text(TINY)
+
+    def full(ds, path):
+        raise OSError(errno.ENOSPC, "No space left on device", str(path))
+
+    monkeypatch.setattr(rotorlab.io, "save_netcdf", full)  # the report writer imports it when called
+    res = CliRunner().invoke(app, ["run", str(tmp_path / "tiny.toml"), "--out", str(tmp_path / "out")])
+    assert res.exit_code == 1, res.output
+    assert "internal error" not in res.stderr and "Traceback" not in res.output
+    assert "cannot write " in res.stderr and "short.nc: No space left on device" in res.stderr
+    assert sorted(p.name for p in tmp_path.iterdir()) == ["tiny.toml"]

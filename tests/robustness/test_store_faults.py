@@ -195,7 +195,8 @@ def test_resume_of_a_damaged_store_in_the_cli_exits_2(tmp_path):
 # ------------------------------------------------------------------------------ item 6: hostile attributes
 def test_show_strips_terminal_escapes_and_truncates_huge_attributes(tmp_path):
     store = tmp_path / "h.zarr"
-    run_sweep(SWEEP, store=store, chunk_size=2)
+    with pytest.raises(KeyboardInterrupt):  # unfinished: show prints, draws no figures (fast)
+        run_sweep(SWEEP, store=store, chunk_size=2, progress=lambda p: _stop_after(p, 2))
     hostile = "torus\x1b[2J\x1b]0;pwned\x07\x1b[31m"
 
     def change(doc):

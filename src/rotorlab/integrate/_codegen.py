@@ -44,7 +44,7 @@ import types
 from pathlib import Path
 from typing import Any
 
-__all__ = ["build", "dependencies", "source_digest", "cache_dir"]
+__all__ = ["build", "dependencies", "source_digest", "cache_dir", "announce_compile"]
 
 # third-party packages whose versions (not sources) enter the key
 _VERSIONED = ("numba", "numpy", "llvmlite")
@@ -245,12 +245,23 @@ def _cached(template: str, names: dict[str, tuple[str, str]], consts: dict[str, 
     mod_name = f"_rotorlab_gen_{stem}"
     if mod_name in sys.modules:
         return vars(sys.modules[mod_name])
+    lanes = f"{consts['LANES']}-lane integrator" if "LANES" in consts else "integrator"
+    announce_compile(directory, stem, f"{lanes} for {mod.rsplit('.', 1)[-1]}")
     spec = importlib.util.spec_from_file_location(mod_name, path)
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     sys.modules[mod_name] = module
     spec.loader.exec_module(module)
     return vars(module)
+
+
+def announce_compile(directory: Path, stem: str, what: str) -> None:
+    """Log (logger ``rotorlab.compile``, INFO) that ``stem`` has no numba cache yet: the first
+    call compiles it (tens of seconds). The command line shows this on stderr."""
+    if not any((directory / "__pycache__").glob(f"{stem}.*.nbi")):
+        import logging
+
+        logging.getLogger("rotorlab.compile").info("compiling the %s (first run only, ~30 s) ...", what)
 
 
 def _drop_numba_cache(directory: Path, stem: str) -> None:

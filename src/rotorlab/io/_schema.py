@@ -91,6 +91,7 @@ from rotorlab.io._linear_analyses import (
     UnbalanceResponseSpec,
 )
 from rotorlab.io._multibody_spec import MultibodySpec
+from rotorlab.io._rub_specs import JeffcottRubSpec, RubSpec
 from rotorlab.io._steady_specs import RunUpSpec, StabilityChartSpec, SteadySpec, VerifySpec
 from rotorlab.io._sweep_specs import SweepSpec
 
@@ -144,10 +145,10 @@ MODEL_SPECS: Registry[type[AbstractModelSpec]] = Registry("model type", on_chang
 #: :func:`register_analysis_spec`).
 ANALYSIS_SPECS: Registry[type[AbstractAnalysisSpec]] = Registry("analysis type", on_change=lambda: _rebuild_case())
 
-_BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSpec, ImpactRotorSpec)
+_BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSpec, ImpactRotorSpec, JeffcottRubSpec)
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
-                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec)  # fmt: skip
+                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:
