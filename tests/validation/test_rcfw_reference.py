@@ -234,6 +234,7 @@ def _stable_intervals(sys_, omegas):
 #: 0 <= m <= 0.04; the line m = m_c = 0.0025 lands at 0.0025): the speeds where a horizontal
 #: line m = const enters (+1) or leaves (-1) the shaded region, each bracketed by the 0.01 grid
 #: it was sampled on. Above the last entry B stays stable up to the chart's end, Omega = 6.
+#: Regenerate with ``python dev/digitize_rcfw_fig5a.py abbspecialissue.pdf`` (the preprint).
 #: (m = 0.015 is left out: there the secondary region ends in a sliver 0.01 wide at 2.03.)
 FIG5A_BOUNDARIES = {
     0.005: [(2.94, 2.95, +1)],
