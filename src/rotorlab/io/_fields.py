@@ -158,6 +158,7 @@ def quantity(
     schema = {
         "anyOf": [{"type": "number"}, {"type": "string"}],
         "description": f"{dim.noun}: a number in {dim.si or 'SI'} or a string with a unit",
+        "unit": dim.si or "1",  # the SI unit of the value after reading (as Unit below)
     }
     return Annotated[
         float, PlainValidator(_QuantityValidator(dimension, gt, ge, lt, le)), WithJsonSchema(schema),
