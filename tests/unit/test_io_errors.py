@@ -188,7 +188,7 @@ def test_frame_choice():
         ('t_end = "20 s"', 't_end = "20 m"', 'analysis[0].t_end = "20 m": wrong dimension'),
         ('name = "sub"', 'name = "has space"', 'analysis[0].name = "has space": must be'),
         ('name = "sub"', "name = 3", "analysis[0].name = 3: must be a string"),
-        ('name = "t"', 'name = ""', 'name = "": must be 1 to 64 letters'),
+        ('name = "t"', 'name = ""', 'name = "": must be 1 to 64 ASCII letters'),
         ('description = "test case"', "description = 1", "description = 1: must be a string"),
         ('name = "t"', 'schema_version = 2\nname = "t"', "schema_version = 2: unsupported"),
         ("damping = 1e-4", "damping = -1e-4", "model.balls[0].damping = -0.0001: must be >= 0"),

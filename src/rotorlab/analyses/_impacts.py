@@ -249,6 +249,10 @@ def impact_run(model: ImpactRotor, t_end: float = 10.0, *, seed: int | None = 0,
         raise ValueError(f"t_end must be a finite number > 0 (s), got {t_end!r}")
     if int(n_save) < 2:
         raise ValueError(f"n_save must be >= 2, got {n_save!r}")
+    from rotorlab._memory import check_memory
+
+    check_memory(8.0 * int(n_save) * (2 * _k.N_STATE + 8), f"n_save = {int(n_save)} saved states of {_k.N_STATE} entries",
+                 "save fewer states (n_save)")  # fmt: skip
     run = model.with_stones(t_end, seed)
     ts = np.linspace(0.0, t_end, int(n_save))
     sol = solve_ensemble(run, run.initial_state(), (0.0, t_end), save_at=SaveAt(ts=ts),
@@ -276,6 +280,8 @@ def impact_run(model: ImpactRotor, t_end: float = 10.0, *, seed: int | None = 0,
                                   "stone": ("stone", np.arange(len(seq)), {"units": "1"})})  # fmt: skip
     ds.attrs.update(_model_attrs(run, t_end, sliding_fraction))
     ds.attrs.update({"analysis": "impacts", "regime": _label(code), "seed": -1 if seed is None else int(seed)})
+    if sol.notes and sol.notes[0]:
+        ds.attrs["status_detail"] = sol.notes[0]
     return ds
 
 

@@ -144,6 +144,13 @@ def simulate(
     control = StepControl(rtol=float(rtol), atol=float(atol))
     n_ic, n = angles.shape
     t_end = float(t_end)
+    from rotorlab._memory import check_memory
+
+    n_speeds = 1 if om_list is None else len(om_list)
+    n_state = model.kernels.n_state
+    check_memory(8.0 * n_speeds * n_ic * int(n_save) * (2 * n_state + 3 * n + 3),
+                 f"{n_speeds} speed(s) x {n_ic} start(s) x n_save = {int(n_save)} saved states of {n_state} entries",
+                 "save fewer states (n_save) or simulate fewer starts")  # fmt: skip
     ts = np.linspace(0.0, t_end, int(n_save))
     models = (
         [model.with_frame("rotating")]
@@ -208,8 +215,9 @@ def simulate(
         )
         for i in range(n_ic):
             code = int(sol.status[i])
+            note = sol.notes[i] if sol.notes else ""
             out["outcome"][k, i] = classify(
-                code, Status(code).message, float(out["final_amplitude"][k, i]),
+                code, note or Status(code).message, float(out["final_amplitude"][k, i]),
                 float(reference[k]), out["final_ball_angle"][k, i],
                 float(out["max_final_rate"][k, i]), om_end,
             )  # fmt: skip

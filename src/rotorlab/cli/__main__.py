@@ -1,6 +1,6 @@
 """``python -m rotorlab.cli``: the same as the ``rotorlab`` command."""
 
-from rotorlab.cli._app import main
+from rotorlab.cli import main
 
 if __name__ == "__main__":
     main()

@@ -24,6 +24,7 @@ from rotorlab.cli._output import (
     BadInput,
     Settings,
     emit_json,
+    exit_if_failed,
     handled,
     info,
     outcome_table,
@@ -210,8 +211,10 @@ def run_command(
                        "files": files, "seconds": round(total, 3),
                        "analyses": {name: {"type": ds.attrs.get("analysis", ""), "rows": tables[name]}
                                     for name, ds in results.items()}})  # fmt: skip
+            exit_if_failed(results)
             return
         if settings.quiet:
+            exit_if_failed(results)
             return
         con = stdout()
         for family, presentation in PRESENTATIONS.items():
@@ -226,6 +229,7 @@ def run_command(
         if settings.verbose:
             con.print(f"computed in {computed:.1f} s, total {total:.1f} s", markup=False)
         con.print(f"Report: {report}", markup=False)
+        exit_if_failed(results)
 
 
 # --------------------------------------------------------------------------- simulate
@@ -342,8 +346,10 @@ def simulate_command(
         if json_out:
             emit_json({**_json_case(loaded), "analysis": spec.name, "t_end": t_end,
                        "out": written, "rows": rows})  # fmt: skip
+            exit_if_failed({spec.name: ds})
             return
         if settings.quiet:
+            exit_if_failed({spec.name: ds})
             return
         con = stdout()
         title = f"{loaded.name}: {spec.name}" if not (rpm or ratio or t_end_given) else (
@@ -351,10 +357,13 @@ def simulate_command(
         con.print(outcome_table(title, rows))
         if written:
             con.print(f"Wrote {written}", markup=False)
+        exit_if_failed({spec.name: ds})
 
 
 def main() -> None:
-    """Run the ``rotorlab`` command line (the console-script entry point)."""
-    app(prog_name="rotorlab")
+    """Run the ``rotorlab`` command line (see :func:`rotorlab.cli.main`, the entry point)."""
+    from rotorlab.cli import main as guarded_main
+
+    guarded_main()
 
 

@@ -14,7 +14,7 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
-from rotorlab.cli._output import BadInput, emit_json, handled, info, progress_bar, stdout
+from rotorlab.cli._output import BadInput, emit_json, exit_if_failed, handled, info, progress_bar, stdout
 from rotorlab.cli._steady import _check_plot, parse_range
 from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
 
@@ -197,8 +197,10 @@ def basin_command(
         if json_out:
             emit_json({"case": loaded.name, "source": loaded.source, "analysis": spec.name, **doc,
                        "files": written})  # fmt: skip
+            exit_if_failed({spec.name: ds})
             return
         if settings.quiet:
+            exit_if_failed({spec.name: ds})
             return
         from rotorlab.analyses._basin import basin_rows
 
@@ -206,6 +208,7 @@ def basin_command(
             stdout().print(table)
         for path in written:
             stdout().print(f"Wrote {path}", markup=False)
+        exit_if_failed({spec.name: ds})
 
 
 def basin_tables(results: dict[str, Any], tables: dict[str, list[dict[str, Any]]]) -> list[Any]:

@@ -15,7 +15,7 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
-from rotorlab.cli._output import BadInput, console_or_json, handled, info, status
+from rotorlab.cli._output import BadInput, console_or_json, exit_if_failed, handled, info, status
 from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
 
 __all__ = ["impacts_command", "impacts_sweep_command", "impact_tables"]
@@ -86,12 +86,12 @@ def _finish(settings: Any, loaded: Any, spec: Any, ds: Any, summary: dict[str, A
         for row, p in zip(doc["rows"], paper_counts(ds)):
             row["paper_impacts"] = p
     con = console_or_json(settings, json_out, doc)
-    if con is None:
-        return
-    for table in impact_tables({spec.name: ds}):
-        con.print(table)
-    for path in written:
-        con.print(f"Wrote {path}", markup=False)
+    if con is not None:
+        for table in impact_tables({spec.name: ds}):
+            con.print(table)
+        for path in written:
+            con.print(f"Wrote {path}", markup=False)
+    exit_if_failed({spec.name: ds})
 
 
 @app.command("impacts")

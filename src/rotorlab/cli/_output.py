@@ -9,6 +9,7 @@ functions to keep ``rotorlab --version`` fast.
 from __future__ import annotations
 
 import contextlib
+import errno
 import json
 import math
 import sys
@@ -24,6 +25,8 @@ __all__ = [
     "BadInput",
     "EXIT_BAD_INPUT",
     "EXIT_INTERNAL",
+    "EXIT_FAILED_RESULTS",
+    "exit_if_failed",
     "handled",
     "stdout",
     "stderr",
@@ -37,6 +40,13 @@ __all__ = [
 
 EXIT_INTERNAL = 1
 EXIT_BAD_INPUT = 2
+#: The command ran and wrote its results, but some of them failed (an integrator gave up, or a
+#: sanity check found a physically impossible state): never reported as a success.
+EXIT_FAILED_RESULTS = 3
+
+#: errno codes of a system that refuses a write (not a bug of rotorlab): the message names the path
+_SYSTEM_REFUSALS = frozenset(getattr(errno, n) for n in ("ENOSPC", "EDQUOT", "EACCES", "EPERM", "EROFS", "EIO",
+                                                         "EFBIG", "EMFILE", "ENFILE") if hasattr(errno, n))
 
 
 class BadInput(ValueError):
@@ -104,28 +114,95 @@ def console_or_json(settings: Settings, json_out: bool, document: Any) -> Any:
 def handled(settings: Settings) -> Iterator[None]:
     """Turn exceptions into one clear message on stderr and the documented exit code.
 
-    Bad input (:class:`rotorlab.io.CaseError`, :class:`BadInput`): the message, exit code 2.
+    Bad input (:class:`rotorlab.io.CaseError`, :class:`BadInput`, a size that would not fit in
+    memory, :class:`rotorlab._memory.TooLarge`): the message, exit code 2. A write the system
+    refuses (disk full, permissions): the message with the path, exit code 1.
     Anything unexpected: a short message (traceback with ``-v``), exit code 1.
     """
-    from rotorlab.io import CaseError
+    import warnings
 
+    global _interrupt_reported
     try:
-        yield
+        with warnings.catch_warnings():
+            # rotorlab's own warnings (a case without schema_version, lost chunks recomputed) as
+            # one line each on stderr, every time
+            warnings.filterwarnings("always", category=UserWarning, module="rotorlab")
+            warnings.showwarning = _warning_line
+            yield
     except (typer.Exit, typer.Abort):
         raise
-    except (CaseError, BadInput) as exc:
-        sys.stderr.write(f"error: {exc}\n")
-        raise typer.Exit(EXIT_BAD_INPUT) from None
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")
+        _interrupt_reported = True
         raise typer.Exit(130) from None
     except Exception as exc:  # noqa: BLE001 - the last line of defence of the CLI
-        if settings.verbose:
-            sys.stderr.write("".join(traceback.format_exception(exc)))
-        sys.stderr.write(f"internal error: {type(exc).__name__}: {exc}\n")
-        if not settings.verbose:
-            sys.stderr.write("(run with -v for the traceback)\n")
-        raise typer.Exit(EXIT_INTERNAL) from None
+        # imported here, not before the try: a Ctrl-C during these (heavy) imports is handled too
+        from rotorlab._memory import TooLarge
+        from rotorlab.io import CaseError
+
+        if isinstance(exc, (CaseError, BadInput, TooLarge)):
+            sys.stderr.write(f"error: {exc}\n")
+            raise typer.Exit(EXIT_BAD_INPUT) from None
+        if isinstance(exc, OSError) and exc.errno in _SYSTEM_REFUSALS:
+            text = str(exc) if type(exc).__str__ is not OSError.__str__ else (
+                f"cannot write {exc.filename}: {exc.strerror}" if exc.filename else f"{exc.strerror or exc}")
+            sys.stderr.write(f"error: {text}\n")
+            raise typer.Exit(EXIT_INTERNAL) from None
+        _internal(settings, exc)
+
+
+#: Set when :func:`handled` has said "interrupted" (the entry point says it otherwise).
+_interrupt_reported = False
+
+
+def _warning_line(message: Any, category: Any, filename: str, lineno: int, file: Any = None,
+                  line: Any = None) -> None:  # fmt: skip
+    sys.stderr.write(f"warning: {message}\n")
+
+
+def _internal(settings: Settings, exc: BaseException) -> None:
+    """Report an unexpected exception (traceback with ``-v``) and exit 1."""
+    if settings.verbose:
+        sys.stderr.write("".join(traceback.format_exception(exc)))
+    sys.stderr.write(f"internal error: {type(exc).__name__}: {exc}\n")
+    if not settings.verbose:
+        sys.stderr.write("(run with -v for the traceback)\n")
+    raise typer.Exit(EXIT_INTERNAL) from None
+
+
+def exit_if_failed(datasets: Mapping[str, Any]) -> None:
+    """Exit with :data:`EXIT_FAILED_RESULTS` (3) after the results are out when any trajectory or
+    run of ``datasets`` (name -> Dataset with an integer ``status``) failed, naming how many and
+    why; nothing happens when every status is usable (>= 0).
+
+    Every command that integrates calls this last, so that no command exits 0 with a result it
+    knows is impossible.
+    """
+    import numpy as np
+
+    from rotorlab.integrate import Status
+
+    lines = []
+    for name, ds in datasets.items():
+        if ds is None or "status" not in ds:
+            continue
+        codes = np.asarray(ds["status"].values).ravel()
+        bad = codes[codes < 0]
+        if bad.size == 0:
+            continue
+        kinds = []
+        for code in np.unique(bad):
+            try:
+                text = Status(int(code)).message
+            except ValueError:
+                text = f"status {int(code)}"
+            kinds.append(f"{int(np.count_nonzero(bad == code))} {text}")
+        detail = ds.attrs.get("status_detail", "")
+        lines.append(f"{name}: {bad.size} of {codes.size} failed ({'; '.join(kinds)})"
+                     + (f"; first: {detail}" if detail else ""))  # fmt: skip
+    if lines:
+        sys.stderr.write("failed results: " + "\n  ".join(["", *lines]).lstrip("\n ") + "\n")
+        raise typer.Exit(EXIT_FAILED_RESULTS)
 
 
 @contextlib.contextmanager

@@ -12,7 +12,42 @@ from rotorlab.cli._app import JsonOpt, _settings, app
 from rotorlab.cli._output import BadInput, console_or_json, handled
 from rotorlab.cli._sweep_common import regime_fractions, stability_line
 
-__all__ = ["show_command"]
+__all__ = ["show_command", "clean_text"]
+
+#: Longest attribute text ``show`` prints (a store's attributes are data, possibly hostile).
+TEXT_LIMIT = 200
+
+
+def clean_text(value: Any, limit: int = TEXT_LIMIT) -> str:
+    """``value`` as text safe for a terminal: escape sequences removed, other control characters
+    shown as ``?``, cut to ``limit`` characters (the length of the rest said)."""
+    import re
+    import unicodedata
+
+    text = str(value)
+    if len(text) > 4 * limit:  # never scan megabytes of a hostile attribute
+        text, cut = text[: 4 * limit], len(text)
+    else:
+        cut = 0
+    # ANSI/VT escape sequences: CSI (ESC [ ... final), OSC (ESC ] ... BEL or ESC \), two-byte ESC x
+    text = re.sub(r"\x1b\[[0-?]*[ -/]*[@-~]|\x1b\][^\x07\x1b]*(?:\x07|\x1b\\)?|\x1b[@-_]?|\x9b[0-?]*[ -/]*[@-~]",
+                  "", text)  # fmt: skip
+    text = "".join(c if unicodedata.category(c) not in ("Cc", "Cf", "Co", "Cs") or c == " " else "?" for c in text)
+    total = cut or len(text)
+    if len(text) > limit:
+        return text[:limit] + f"... ({total} characters)"
+    return text if not cut else text + f"... ({total} characters)"
+
+
+def _clean_tree(value: Any) -> Any:
+    """Every string in a JSON document cleaned (:func:`clean_text`)."""
+    if isinstance(value, str):
+        return clean_text(value)
+    if isinstance(value, dict):
+        return {clean_text(k): _clean_tree(v) for k, v in value.items()}
+    if isinstance(value, (list, tuple)):
+        return [_clean_tree(v) for v in value]
+    return value
 
 
 def _analysis_name(meta: dict[str, Any]) -> str:
@@ -86,22 +121,28 @@ def show_command(
                "complete": meta["complete"], "runs": meta["runs"], "versions": meta["versions"],
                "fixed": meta["fixed"], "result": dict(meta["result_attrs"]), "variables": sorted(ds.data_vars),
                "fractions": fractions, "stability": stability, "impacts": impacts, "n": n,
-               "figures": written}  # fmt: skip
-        con = console_or_json(settings, json_out, doc)
+               "figures": written, "lost_chunks": meta["lost"]}  # fmt: skip
+        con = console_or_json(settings, json_out, _clean_tree(doc))
         if con is None:
             return
-        shape = " x ".join(f"{d} {s}" for d, s in zip(meta["dims"], meta["shape"]))
-        con.print(f"{store}: {meta['n_points']} points ({shape}); {meta['chunks_done']} of {meta['n_chunks']} "
+        shape = " x ".join(f"{clean_text(d)} {s}" for d, s in zip(meta["dims"], meta["shape"]))
+        con.print(f"{clean_text(store)}: {meta['n_points']} points ({shape}); {meta['chunks_done']} of {meta['n_chunks']} "
                   f"chunks done" + ("" if meta["complete"] else " (unfinished: continue with rotorlab sweep "
                                     "... --resume)"), markup=False)  # fmt: skip
+        if meta["lost"]:
+            con.print(f"chunk(s) {', '.join(map(str, meta['lost']))} are marked done but their data files are "
+                      "missing: --resume computes them again", markup=False)  # fmt: skip
         res = meta["result_attrs"]
-        per = f", {float(res['t_end']):.6g} s per point" if "t_end" in res else ""
-        con.print(f"analysis: {name}{per}; written in {meta['runs']} run(s) by rotorlab "
-                  f"{meta['versions'].get('rotorlab')}", markup=False)  # fmt: skip
+        try:
+            per = f", {float(res['t_end']):.6g} s per point" if "t_end" in res else ""
+        except (TypeError, ValueError):
+            per = f", t_end {clean_text(res['t_end'])}"
+        con.print(f"analysis: {clean_text(name)}{per}; written in {meta['runs']} run(s) by rotorlab "
+                  f"{clean_text(meta['versions'].get('rotorlab'))}", markup=False)  # fmt: skip
         for name in meta["dims"]:
             c = ds[name]
-            con.print(f"  {name}: {float(c.min()):.6g} .. {float(c.max()):.6g} {c.attrs.get('units', '')}",
-                      markup=False)  # fmt: skip
+            con.print(f"  {clean_text(name)}: {float(c.min()):.6g} .. {float(c.max()):.6g} "
+                      f"{clean_text(c.attrs.get('units', ''))}", markup=False)  # fmt: skip
         if fractions is not None:
             con.print(f"fractions of {n} finished points: " + ", ".join(
                 f"{k} {100 * v:.1f}%" for k, v in fractions.items() if v > 0), markup=False)  # fmt: skip

@@ -17,7 +17,7 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
-from rotorlab.cli._output import BadInput, console_or_json, handled, info
+from rotorlab.cli._output import BadInput, console_or_json, exit_if_failed, handled, info
 from rotorlab.cli._sweep_common import (
     SchedulerOpt,
     WorkersOpt,
@@ -107,8 +107,15 @@ def parse_axis(option: str, text: str, kind: str, sample: bool,
 
 
 def _report(settings: Any, json_out: bool, loaded: Any, out: Path, sweep: Any, where: str, p: Any, seconds: float,
-            extra: dict[str, Any], lines: list[str]) -> None:  # fmt: skip
-    """Print what ``rotorlab sweep`` did (or its JSON document, with ``extra``)."""
+            extra: dict[str, Any], lines: list[str], ds: Any = None) -> None:  # fmt: skip
+    """Print what ``rotorlab sweep`` did (or its JSON document, with ``extra``); exit 3 if points
+    of ``ds`` failed."""
+    _print_report(settings, json_out, loaded, out, sweep, where, p, seconds, extra, lines)
+    exit_if_failed({str(out): ds})
+
+
+def _print_report(settings: Any, json_out: bool, loaded: Any, out: Path, sweep: Any, where: str, p: Any,
+                  seconds: float, extra: dict[str, Any], lines: list[str]) -> None:  # fmt: skip
     doc = {"case": loaded.name, "source": loaded.source, "store": str(out), "dims": list(sweep.dims),
            "shape": list(sweep.shape), "n_points": sweep.n_points, "executor": where,
            "chunks": {"total": p.n_chunks, "computed": p.computed, "skipped": p.skipped}, **extra,
@@ -257,7 +264,7 @@ def sweep_command(
         _report(settings, json_out, loaded, out, sweep, where, p, seconds,
                 {"fractions": fractions, "n": n, "t_end": float(ds.attrs["t_end"])},
                 ["fractions after {:g} s: {}".format(float(ds.attrs["t_end"]), ", ".join(
-                    f"{k} {100 * v:.1f}%" for k, v in fractions.items() if v > 0))])  # fmt: skip
+                    f"{k} {100 * v:.1f}%" for k, v in fractions.items() if v > 0))], ds)  # fmt: skip
 
 
 def _stability_sweep(settings: Any, case: str, out: Path, texts: list[str], sample: int | None, seed: int | None,

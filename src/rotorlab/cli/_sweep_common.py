@@ -15,7 +15,7 @@ import typer
 
 from rotorlab.cli._output import BadInput, stderr
 
-__all__ = ["SchedulerOpt", "WorkersOpt", "check_store_path", "executor_from_options", "run_into_store",
+__all__ = ["SchedulerOpt", "WorkersOpt", "scheduler_is_safe", "check_store_path", "executor_from_options", "run_into_store",
            "SweepBar", "run_with_bar", "stability_line", "regime_fractions"]
 
 # options shared by the commands that run on the sweep engine (sweep, basin)
@@ -49,10 +49,35 @@ def executor_from_options(scheduler: str | None, workers: int | None) -> Any:
         raise BadInput(f"--scheduler = {scheduler}: must be an address like tcp://HOST:PORT")
     if workers is not None and workers < 1:
         raise BadInput(f"--workers = {workers}: must be an integer >= 1")
+    if scheduler is not None and not scheduler_is_safe(scheduler):
+        stderr().print(f"warning: --scheduler = {scheduler}: not a local address and not TLS (tls://). Dask moves "
+                       "work and results as pickles: whoever runs or intercepts that cluster can run code in this "
+                       "process. Use tls:// with certificates, or only a cluster you trust on a private network.",
+                       markup=False)  # fmt: skip
     from rotorlab.sweep import DaskExecutor, InProcess
 
     return (DaskExecutor(scheduler=scheduler) if scheduler else DaskExecutor(workers=workers) if workers
             else InProcess())  # fmt: skip
+
+
+def scheduler_is_safe(address: str) -> bool:
+    """True for a TLS address or one on this machine (loopback, a local socket, in-process)."""
+    import ipaddress
+    from urllib.parse import urlsplit
+
+    parts = urlsplit(address)
+    if parts.scheme in ("tls", "inproc", "ucx+tls"):
+        return True
+    try:
+        host = parts.hostname or ""
+    except ValueError:
+        return False
+    if host == "localhost":
+        return True
+    try:
+        return ipaddress.ip_address(host).is_loopback
+    except ValueError:
+        return False
 
 
 def run_into_store(run: Callable[[], Any], store: Path | None, option: str = "--out") -> Any:

@@ -40,6 +40,7 @@ class Status(enum.IntEnum):
     STEP_UNDERFLOW = -2
     NONFINITE = -3
     EVENT_LOOP = -4
+    IMPOSSIBLE = -5
 
     @property
     def message(self) -> str:
@@ -54,7 +55,13 @@ _STATUS_MESSAGES = {
     Status.STEP_UNDERFLOW: "step size fell below the round-off limit of the time",
     Status.NONFINITE: "state or derivative became non-finite (NaN or inf)",
     Status.EVENT_LOOP: "events kept firing without time advancing (unresolved accumulation)",
+    Status.IMPOSSIBLE: "the trajectory reached a physically impossible state (sanity check; see the note)",
 }
+
+#: Largest magnitude of any state entry that :func:`solve_ensemble` accepts as physical (SI). Far
+#: beyond anything a machine reaches (1e30 m, m/s, rad/s): a state this large is a numerical
+#: blow-up even if it is still finite.
+ABSURD_MAGNITUDE = 1e30
 
 
 @dataclass(frozen=True, slots=True)
@@ -177,6 +184,9 @@ class Solution:
         Times of the first recorded events (s), with ``event_names`` alongside.
     event_names : tuple of str
     state_names : tuple of str
+    note : str
+        Why the status is :attr:`Status.IMPOSSIBLE` (which sanity check failed, with numbers);
+        empty otherwise.
     """
 
     ts: np.ndarray
@@ -189,6 +199,7 @@ class Solution:
     event_times: np.ndarray
     event_names: tuple[str, ...]
     state_names: tuple[str, ...]
+    note: str = ""
 
     @property
     def success(self) -> bool:
@@ -230,6 +241,8 @@ class EnsembleSolution:
     event_index : ndarray of int, shape (N, max_events)
         Index into ``event_names`` (-1 where unused).
     event_names, state_names : tuple of str
+    notes : tuple of str, shape (N,)
+        Per trajectory, why its status is :attr:`Status.IMPOSSIBLE` (empty string otherwise).
     """
 
     ts: np.ndarray
@@ -243,6 +256,7 @@ class EnsembleSolution:
     event_index: np.ndarray
     event_names: tuple[str, ...]
     state_names: tuple[str, ...]
+    notes: tuple[str, ...] = ()
 
     def __len__(self) -> int:
         return int(self.status.shape[0])
@@ -267,6 +281,7 @@ class EnsembleSolution:
             event_times=self.event_times[i][rec],
             event_names=tuple(self.event_names[k] for k in self.event_index[i][rec]),
             state_names=self.state_names,
+            note=self.notes[i] if self.notes else "",
         )
 
     def to_dataset(self):
@@ -478,6 +493,10 @@ def solve_ensemble(
     n_save = TS.shape[1]
     max_rec = max(0, int(max_events_recorded))
 
+    from rotorlab._memory import check_memory
+
+    check_memory(8.0 * N * n * (n_save + 4), f"{N} trajectories x {n_save} saved states x {n} state entries",
+                 "save fewer states (n_save) or integrate fewer trajectories")  # fmt: skip
     YS = np.full((N, n_save, n), np.nan)
     YF = np.empty((N, n))
     STATUS = np.empty(N, dtype=np.int64)
@@ -511,6 +530,7 @@ def solve_ensemble(
             )  # fmt: skip
             if progress is not None:
                 progress(hi, N)
+    notes = sanity_check(model, n_cont, YS, YF, TEND, STATUS, P)
     state_names = tuple(getattr(model, "state_names", tuple(f"y{i}" for i in range(n))))
     return EnsembleSolution(
         ts=TS[0] if TS.shape[0] == 1 else TS,
@@ -524,7 +544,54 @@ def solve_ensemble(
         event_index=RECK,
         event_names=names,
         state_names=state_names,
+        notes=notes,
     )
+
+
+def sanity_check(model: Any, n_cont: int, ys: np.ndarray, y_final: np.ndarray, t_final: np.ndarray,
+                 status: np.ndarray, params: np.ndarray) -> tuple[str, ...]:  # fmt: skip
+    """Mark trajectories that reached a physically impossible state (in place) and say why.
+
+    Runs in Python after the compiled call, on every usable trajectory (``status >= 0``):
+
+    - generic, for every model: saved and final continuous states finite and below
+      :data:`ABSURD_MAGNITUDE`;
+    - the model's own check, when it defines ``impossible_states`` (see the kernel contract,
+      :mod:`rotorlab.models._base`, "For implementers" item 6): e.g. penetration beyond the
+      clearance, energy above what the sources can supply.
+
+    Such trajectories get :attr:`Status.IMPOSSIBLE`; the returned notes (one per trajectory,
+    empty where nothing failed) name the check and its numbers.
+    """
+    N = status.shape[0]
+    notes = [""] * N
+    usable = status >= 0
+    if not usable.any():
+        return tuple(notes)
+    cont_f = y_final[:, :n_cont]
+    with np.errstate(invalid="ignore"):
+        big_f = ~np.all(np.isfinite(cont_f) & (np.abs(cont_f) <= ABSURD_MAGNITUDE), axis=1)
+        saved = ys[:, :, :n_cont]
+        big_s = np.any(np.isinf(saved) | (np.abs(np.nan_to_num(saved, nan=0.0)) > ABSURD_MAGNITUDE), axis=(1, 2)) \
+            if saved.size else np.zeros(N, dtype=bool)  # fmt: skip
+    for i in np.flatnonzero(usable & (big_f | big_s)):
+        row = y_final[i, :n_cont] if big_f[i] else ys[i][np.any(np.abs(np.nan_to_num(ys[i, :, :n_cont], nan=0.0))
+                                                               > ABSURD_MAGNITUDE, axis=1)][0, :n_cont]  # fmt: skip
+        bad = int(np.argmax(~np.isfinite(row) | (np.abs(np.nan_to_num(row, nan=np.inf)) > ABSURD_MAGNITUDE)))
+        notes[i] = (f"state entry {bad} reached {row[bad]:.3g} (SI) by t = {t_final[i]:.6g} s, beyond any physical "
+                    f"magnitude ({ABSURD_MAGNITUDE:.0e})")  # fmt: skip
+    check = getattr(model, "impossible_states", None)
+    rows = np.flatnonzero(usable & ~(big_f | big_s))
+    if check is not None and rows.size:
+        p = params if params.shape[0] == 1 else params[rows]
+        found = check(ys[rows], y_final[rows], t_final[rows], p)
+        for i, text in zip(rows, found):
+            if text:
+                notes[i] = str(text)
+    for i, text in enumerate(notes):
+        if text:
+            status[i] = Status.IMPOSSIBLE
+    return tuple(notes)
 
 
 def solve(

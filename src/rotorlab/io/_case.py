@@ -33,6 +33,7 @@ from rotorlab.io._errors import (
 from rotorlab.io._schema import (
     ANALYSIS_SPECS,
     MODEL_SPECS,
+    SCHEMA_VERSION,
     SPEED_PROFILES,
     Case,
     analysis_union,
@@ -298,6 +299,12 @@ def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, defa
         raise CaseError(message, unique, origin) from None
     case._source = source
     case._text = text
+    if text and "schema_version" not in doc:
+        import warnings
+
+        warnings.warn(f"{origin}: no schema_version: read as schema_version = {SCHEMA_VERSION} (the only version "
+                      f"so far); write 'schema_version = {SCHEMA_VERSION}' at the top so that a later schema reads "
+                      "it the same", stacklevel=3)  # fmt: skip
     return case
 
 

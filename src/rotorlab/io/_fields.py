@@ -226,7 +226,7 @@ _Name = Annotated[
     PlainValidator(
         _TextValidator(
             _NAME,
-            "1 to 64 letters, digits, '_', '-' or '.', starting with a letter or digit",
+            "1 to 64 ASCII letters (a-z, A-Z), digits, '_', '-' or '.', starting with a letter or digit",
         )
     ),
     WithJsonSchema({"type": "string", "pattern": _NAME.pattern}),

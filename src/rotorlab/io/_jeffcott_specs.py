@@ -205,6 +205,8 @@ class Ball(_Spec):
 
     @model_validator(mode="after")
     def _check_inertia(self) -> Ball:
+        if self.count > MAX_BALLS:
+            raise IssueGroup([Issue(("count",), _too_many_balls(self.count), self.count)])
         point = self.mass * self.radius**2
         if self.inertia is not None and self.inertia < point * (1.0 - 1e-12):
             raise IssueGroup(
@@ -218,6 +220,18 @@ class Ball(_Spec):
             )
         return self
 
+
+
+#: Most balls a model may have: far beyond any balancer, and small enough that a simulation's
+#: state (2 n + 4 entries) and saved trajectories stay in memory.
+MAX_BALLS = 1000
+
+
+def _too_many_balls(n: int) -> str:
+    from rotorlab._memory import format_bytes
+
+    return (f"{n} balls: the state would have {2 * n + 4} entries and one start saved at 2000 times alone "
+            f"{format_bytes(8.0 * 2000 * (2 * n + 4))}; at most {MAX_BALLS} balls")
 
 
 class JeffcottBallsSpec(AbstractModelSpec):
@@ -260,6 +274,9 @@ class JeffcottBallsSpec(AbstractModelSpec):
     @field_validator("balls", mode="after")
     @classmethod
     def _expand_balls(cls, balls: tuple[Ball, ...]) -> tuple[Ball, ...]:
+        total = sum(ball.count for ball in balls)
+        if total > MAX_BALLS:
+            raise IssueGroup([Issue((), _too_many_balls(total), total)])
         out = []
         for ball in balls:
             inertia = ball.inertia if ball.inertia is not None else ball.mass * ball.radius**2
@@ -408,6 +425,9 @@ class SimulateSpec(AbstractAnalysisSpec):
         """Check ball-angle rows against the number of balls and that a spin speed exists."""
         issues = []
         n = model.n_balls
+        if self.initial_ball_angles is not None and len(self.initial_ball_angles) == 0:
+            issues.append(Issue(("initial_ball_angles",), "is empty: give at least one configuration (one angle "
+                                "per ball), or leave it out and give ball_angle_grid", []))  # fmt: skip
         for k, row in enumerate(self.initial_ball_angles or ()):
             if len(row) != n:
                 issues.append(

@@ -212,7 +212,7 @@ class Case(BaseModel):
     schema_version : int
         Always 1.
     name : str
-        Case name (letters, digits, '_', '-', '.').
+        Case name (ASCII letters, digits, '_', '-', '.').
     description : str
         One line shown by ``rotorlab cases``.
     model : JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSpec or ImpactRotorSpec

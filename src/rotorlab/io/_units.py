@@ -189,8 +189,9 @@ def _parse(text: str) -> tuple[float, Any, str]:
             raise UnitError(f"unknown unit '{token}'" + (f" ({hint})" if hint else ""))
     try:
         unit = ureg.parse_units(unit_text)
-    except Exception as exc:  # pint raises assorted types for malformed expressions
-        raise UnitError(f"cannot read the unit '{unit_text}' ({exc})") from None
+    except Exception:  # pint raises assorted types (tokenizer, parser) for malformed expressions
+        raise UnitError(f"cannot read the unit '{unit_text}': write units joined by '*', '/' and '^' with "
+                        "matched parentheses, e.g. \"kg*m/s^2\" or \"N/(m/s)\"") from None
     for name, _power in ureg.Quantity(1.0, unit).unit_items():
         if not (_base_names(ureg, name) & ACCEPTED_UNITS.keys()):
             raise UnitError(f"unknown unit '{name}' in '{unit_text}'")

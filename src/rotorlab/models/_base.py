@@ -23,6 +23,16 @@ For implementers
    selects or changes them through :class:`rotorlab.integrate.Event` objects.
 5. Provide ``to_array()`` (the packed parameter vector, order documented and tested),
    ``state_names`` and, where it has a meaning, ``energy`` and ``linearize``.
+6. Optionally, a sanity monitor: a method ``impossible_states(ys, y_final, t_final, params) ->
+   sequence of str`` that receives the saved states (shape (N, n_save, n_state), NaN after a
+   trajectory ended), the final states (N, n_state), the end times (N,) and the packed
+   parameters (N or 1 rows; read the model's numbers from them, not from ``self``, because an
+   ensemble may stack the parameters of several variants) and returns, per trajectory, an empty
+   string or a message naming a physically impossible state with its numbers (a penetration
+   beyond the clearance, an energy above what the sources can supply). The integrator calls it
+   in Python after every compiled call and marks those trajectories
+   :attr:`rotorlab.integrate.Status.IMPOSSIBLE` (a failure, never a success); non-finite and
+   absurdly large states are checked for every model without it.
 """
 
 from __future__ import annotations

@@ -24,7 +24,7 @@ _NAME = re.compile(r"^[A-Za-z_][A-Za-z0-9_]*$")
 
 def _check_name(owner: str, name: Any) -> None:
     if not isinstance(name, str) or not _NAME.match(name):
-        raise ValueError(f"{owner}.name must be an identifier (letters, digits, '_'), got {name!r}")
+        raise ValueError(f"{owner}.name must be an identifier (ASCII letters, digits, '_'), got {name!r}")
 
 
 @dataclass(frozen=True, slots=True)

@@ -179,6 +179,13 @@ class Sweep:
         for name in (*varied, *fixed):
             if name not in known:
                 raise ValueError(f"unknown coordinate {name!r}; this analysis accepts: {', '.join(known)}")
+        from rotorlab._memory import check_memory
+
+        shape = " x ".join(str(s) for s in self.shape)
+        n = float(np.prod([float(s) for s in self.shape]))  # a float: absurd grids overflow int64
+        check_memory(n * 8.0 * (len(varied) + len(fixed) + len(axes)),
+                     f"the coordinates of a sweep of {n:.4g} points ({' x '.join(self.dims)} = {shape})",
+                     "sweep fewer points")  # fmt: skip
 
     @property
     def varied(self) -> tuple[str, ...]:

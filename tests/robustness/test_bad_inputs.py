@@ -1,0 +1,241 @@
+"""The bad-input corpus (issue 14): malformed and edge inputs of every command and case type.
+
+Each entry is a command line, optionally with a case file made by one text change of a built-in
+case (each model type: jeffcott_balls, multibody, fe_rotor, toroidal_ball, impact_rotor). For
+every one: exit code 2, a message on stderr that names the key path or option (and what is
+wrong), no traceback, and nothing written (the folder the command runs in holds exactly what it
+held before). Every entry fails at validation or at a size check before any long computation,
+so the corpus runs in seconds.
+
+A bad input that is not refused cleanly is a bug: add it here.
+"""
+
+from __future__ import annotations
+
+from importlib import resources
+from pathlib import Path
+
+import pytest
+from typer.testing import CliRunner
+
+from rotorlab.cli import app
+
+runner = CliRunner()
+
+
+def builtin(name: str) -> str:
+    return resources.files("rotorlab.cases").joinpath(f"{name}.toml").read_text(encoding="utf-8")
+
+
+def mutate(case: str, old: str, new: str, count: int = 1) -> str:
+    text = builtin(case)
+    assert old in text, f"{old!r} not in {case}"
+    return text.replace(old, new, count)
+
+
+# (id, argv with {d} for the working folder, {case: (base, old, new)} or None, words of the message)
+FILE = "{d}/case.toml"
+CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
+    # ---- run, with case files of every model type ------------------------------------------
+    ("run-unknown-case", ["run", "no-such-case", "--out", "{d}/o"], None, ["no-such-case"]),
+    ("run-missing-file", ["run", "{d}/missing.toml", "--out", "{d}/o"], None, ["missing.toml"]),
+    ("run-out-is-a-file", ["run", "autobalancer", "--out", "{d}/notes.txt"], None, ["notes.txt"]),
+    ("jb-wrong-unit", ["run", FILE, "--out", "{d}/o"], ("autobalancer", 'disc_mass = "1 kg"', 'disc_mass = "1 m"'),
+     ["model.disc_mass", "wrong dimension", "mass"]),
+    ("jb-garbled-unit", ["validate", FILE], ("autobalancer", 'disc_mass = "1 kg"', 'disc_mass = "1 kg kg / / ("'),
+     ["model.disc_mass", "cannot read the unit", "matched parentheses"]),
+    ("jb-wrong-type", ["validate", FILE], ("autobalancer", 'disc_mass = "1 kg"', "disc_mass = true"),
+     ["model.disc_mass"]),
+    ("jb-absurd-ball-count", ["run", FILE, "--out", "{d}/o"], ("autobalancer", "count = 2", "count = 1e8"),
+     ["model.balls[0].count", "at most 1000 balls", "TiB"]),
+    ("jb-zero-ball-count", ["validate", FILE], ("autobalancer", "count = 2", "count = 0"),
+     ["model.balls[0].count", ">= 1"]),
+    ("jb-empty-ball-angles", ["simulate", FILE], ("autobalancer", "initial_ball_angles = [\n    [\"0 deg\", \"90 deg\"],\n    [\"45 deg\", \"200 deg\"],\n    [\"120 deg\", \"240 deg\"],\n    [\"170 deg\", \"190 deg\"],\n    [\"300 deg\", \"30 deg\"],\n    [\"10 deg\", \"350 deg\"],\n]", "initial_ball_angles = []"),
+     ["analysis[0].initial_ball_angles", "empty"]),
+    ("jb-non-ascii-name", ["validate", FILE], ("autobalancer", 'name = "autobalancer"', 'name = "ротор"'),
+     ["name", "ASCII letters"]),
+    ("jb-unknown-key", ["validate", FILE], ("autobalancer", 'frame = "fixed"', 'frame = "fixed"\nframe_rate = 3'),
+     ["model.frame_rate", "unknown key"]),
+    ("jb-schema-version", ["validate", FILE], ("autobalancer", "schema_version = 1", "schema_version = 2"),
+     ["schema_version", "1"]),
+    ("jb-negative-eccentricity", ["validate", FILE], ("autobalancer", 'eccentricity = "1.5 mm"', 'eccentricity = "-1.5 mm"'),
+     ["model.eccentricity", ">= 0"]),
+    ("jb-nan-stiffness", ["validate", FILE], ("autobalancer", 'stiffness = "16.74 kN/m"', "stiffness = nan"),
+     ["model.stiffness", "finite"]),
+    ("jb-inf-damping", ["validate", FILE], ("autobalancer", 'damping = "13.32 N*s/m"', "damping = inf"),
+     ["model.damping", "finite"]),
+    ("jb-speed-in-kg", ["validate", FILE], ("autobalancer", 'speed = "2400 rpm"', 'speed = "2400 kg"'),
+     ["model.speed.speed", "wrong dimension"]),
+    ("jb-negative-t-end", ["validate", FILE], ("autobalancer", 't_end = "20 s"', 't_end = "-20 s"'),
+     ["analysis[0].t_end", "> 0"]),
+    ("jb-ratio-with-unit", ["validate", FILE], ("autobalancer", "speed_ratio = 0.6", 'speed_ratio = "0.6 rpm"'),
+     ["analysis[0].speed_ratio"]),
+    ("jb-rtol-too-big", ["validate", FILE], ("autobalancer", "rtol = 1e-8", "rtol = 2"),
+     ["analysis[0].rtol", "< 1"]),
+    ("jb-typo-analysis-type", ["validate", FILE], ("autobalancer", 'type = "simulate"', 'type = "simulat"'),
+     ["analysis[0].type", "simulate"]),
+    ("jb-typo-model-type", ["validate", FILE], ("autobalancer", 'type = "jeffcott_balls"', 'type = "jeffcott_ball"'),
+     ["model.type", "jeffcott_balls"]),
+    ("jb-unknown-basin-coordinate", ["validate", FILE], ("autobalancer", 'x = ["psi_1"', 'x = ["psi_9"'),
+     ["analysis[2].x", "psi_9"]),
+    ("jb-n-save-absurd", ["simulate", FILE, "--analysis", "subcritical", "--t-end", "0.1"],
+     ("autobalancer", "n_save = 2000", "n_save = 1e10"), ["n_save = 10000000000", "memory", "TiB"]),
+    ("jb-n-save-one", ["validate", FILE], ("autobalancer", "n_save = 2000", "n_save = 1"),
+     ["analysis[0].n_save", ">= 2"]),
+    ("jb-basin-grid-absurd", ["basin", FILE, "--t-end", "0.1"],
+     ("autobalancer", '"350 deg", 36]', '"350 deg", 100000]', 2), ["1e+10 points", "psi_1", "memory"]),
+    ("mb-negative-mass", ["validate", FILE], ("pico21", 'mass = "2.4 kg"', 'mass = "-2.4 kg"'),
+     ["model.bodies[0].mass", "> 0"]),
+    ("mb-inertia-wrong-unit", ["run", FILE, "--out", "{d}/o"], ("pico21", 'diametral_inertia = "0.018 kg*m^2"',
+                                                                'diametral_inertia = "0.018 kg*m"'),
+     ["model.bodies[0].diametral_inertia", "wrong dimension"]),
+    ("mb-campbell-stop-wrong-unit", ["campbell", FILE], ("pico21", 'stop = "15000 rpm"', 'stop = "15000 m"'),
+     ["stop", "wrong dimension"]),
+    ("fe-zero-elements", ["campbell", FILE], ("friswell-rotor", "elements = 6", "elements = 0"),
+     ["model.shaft", "elements"]),
+    ("fe-density-wrong-unit", ["modes", FILE], ("friswell-rotor", 'density = "7810 kg/m^3"', 'density = "7810 kg/m^2"'),
+     ["density", "wrong dimension"]),
+    ("fe-unknown-key", ["validate", FILE], ("friswell-rotor", "gyroscopic = true", "gyroscopic = true\ngyro = 1"),
+     ["model.gyro", "unknown key"]),
+    ("tb-negative-ring", ["validate", FILE], ("strautmanis-torus", 'ring_radius = "0.2 m"', 'ring_radius = "-0.2 m"'),
+     ["model.ring_radius", "> 0"]),
+    ("tb-basin-count-fraction", ["basin", FILE], ("strautmanis-torus", '"360 deg", 48]', '"360 deg", 4.5]'),
+     ["analysis[1].x", "integer"]),
+    ("tb-form-typo", ["sweep", FILE, "--out", "{d}/s.zarr"], ("strautmanis-torus", 'form = "rolling"', 'form = "roling"'),
+     ["model.form", "rolling"]),
+    ("ir-restitution-above-one", ["impacts", FILE], ("krasnov-crusher", "restitution = 0.5", "restitution = 1.5"),
+     ["model.housing.restitution", "<= 1"]),
+    ("ir-negative-gap", ["impacts", FILE, "--out", "{d}/o.nc"], ("krasnov-crusher", 'gap = "4.5 mm"', 'gap = "-4.5 mm"'),
+     ["model.housing.gap", "> 0"]),
+    ("ir-interval-wrong-unit", ["impacts-sweep", FILE], ("krasnov-crusher", 'interval = "0.035 s"', 'interval = "0.035 m"'),
+     ["model.stones.interval", "wrong dimension"]),
+    ("ir-seed-text", ["validate", FILE], ("krasnov-crusher", "seed = 0", 'seed = "zero"'),
+     ["analysis[0].seed", "integer"]),
+    ("ir-sequences-zero", ["validate", FILE], ("krasnov-crusher", "n_sequences = 16", "n_sequences = 0"),
+     ["analysis[1].n_sequences", ">= 1"]),
+    # ---- validate / cases / global options -------------------------------------------------
+    ("validate-toml-syntax", ["validate", FILE], ("autobalancer", 'disc_mass = "1 kg"', 'disc_mass = "1 kg'),
+     ["line", "column"]),
+    ("validate-empty-file", ["validate", FILE], ("autobalancer", builtin("autobalancer"), ""), ["model"]),
+    ("cases-bad-option", ["cases", "--bogus"], None, ["--bogus"]),
+    ("quiet-and-verbose", ["-q", "-v", "cases"], None, ["-q/--quiet", "-v/--verbose"]),
+    # ---- simulate ----------------------------------------------------------------------------
+    ("simulate-negative-speed", ["simulate", "autobalancer", "--speed-rpm", "-5"], None, ["--speed-rpm", "> 0"]),
+    ("simulate-nan-speed", ["simulate", "autobalancer", "--speed-rpm", "nan"], None, ["--speed-rpm"]),
+    ("simulate-text-speed", ["simulate", "autobalancer", "--speed-rpm", "fast"], None, ["--speed-rpm"]),
+    ("simulate-zero-t-end", ["simulate", "autobalancer", "--t-end", "0"], None, ["--t-end", "> 0"]),
+    ("simulate-rpm-and-ratio", ["simulate", "autobalancer", "--speed-rpm", "100", "--speed-ratio", "2"], None,
+     ["--speed-rpm", "--speed-ratio"]),
+    ("simulate-unknown-analysis", ["simulate", "autobalancer", "--analysis", "nope"], None, ["--analysis", "nope"]),
+    ("simulate-out-missing-folder", ["simulate", "autobalancer", "--out", "{d}/no/x.nc"], None, ["--out"]),
+    ("simulate-linear-model", ["simulate", "pico21"], None, ["jeffcott_balls", "pico21"]),
+    # ---- campbell / modes ----------------------------------------------------------------------
+    ("campbell-range-two-parts", ["campbell", "pico21", "--speeds-rpm", "0:100"], None, ["--speeds-rpm"]),
+    ("campbell-zero-modes", ["campbell", "pico21", "--modes", "0"], None, ["--modes"]),
+    ("campbell-plot-format", ["campbell", "pico21", "--plot", "{d}/x.txt"], None, ["--plot"]),
+    ("campbell-ball-model", ["campbell", "autobalancer"], None, ["autobalancer"]),
+    ("modes-negative-speed", ["modes", "pico21", "--speed-rpm", "-1"], None, ["--speed-rpm"]),
+    ("modes-negative-count", ["modes", "pico21", "--modes", "-3"], None, ["--modes"]),
+    # ---- steady / stability-chart --------------------------------------------------------------
+    ("steady-zero-speed", ["steady", "zhakash-k2", "--speed-rpm", "0"], None, ["--speed-rpm"]),
+    ("steady-unknown-regime", ["steady", "zhakash-k2", "--regime", "nope"], None, ["--regime", "nope"]),
+    ("steady-linear-model", ["steady", "pico21"], None, ["pico21"]),
+    ("chart-zero-points", ["stability-chart", "zhakash-k2", "--speeds-rpm", "1:2:0"], None, ["--speeds-rpm"]),
+    ("chart-unknown-param", ["stability-chart", "zhakash-k2", "--param", "bogus=1:2:3"], None, ["--param", "bogus"]),
+    ("chart-mixed-units", ["stability-chart", "zhakash-k2", "--param", "eccentricity=1mm:2kg:3"], None, ["--param"]),
+    # ---- basin ------------------------------------------------------------------------------------
+    ("basin-absurd-grid", ["basin", "autobalancer", "--x", "psi_1=0:350deg:100000", "--y", "psi_2=0:350deg:100000"],
+     None, ["1e+10 points", "memory"]),
+    ("basin-unknown-coordinate", ["basin", "autobalancer", "--x", "nope=0:1:3"], None, ["--x", "nope"]),
+    ("basin-axis-two-parts", ["basin", "autobalancer", "--x", "psi_1=0:350deg"], None, ["--x"]),
+    ("basin-zero-random", ["basin", "autobalancer", "--random", "0"], None, ["--random"]),
+    ("basin-zero-workers", ["basin", "autobalancer", "--workers", "0"], None, ["--workers"]),
+    ("basin-scheduler-no-scheme", ["basin", "autobalancer", "--scheduler", "localhost"], None, ["--scheduler"]),
+    ("basin-zero-chunk", ["basin", "autobalancer", "--chunk", "0"], None, ["--chunk"]),
+    ("basin-resume-without-store", ["basin", "autobalancer", "--resume"], None, ["--resume"]),
+    ("basin-negative-t-end", ["basin", "autobalancer", "--t-end", "-1"], None, ["--t-end"]),
+    ("basin-store-not-a-store", ["basin", "autobalancer", "--store", "{d}/plain", "--resume"], None,
+     ["--store", "not a rotorlab sweep store"]),
+    # ---- sweep -------------------------------------------------------------------------------------
+    ("sweep-missing-out", ["sweep", "autobalancer"], None, ["--out"]),
+    ("sweep-ic-two-parts", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--ic", "psi_1=0:6"], None, ["--ic"]),
+    ("sweep-unknown-param", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--param", "nope=1:2:3"], None,
+     ["--param", "nope"]),
+    ("sweep-absurd-grid", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--speed-ratio", "2", "--ic",
+                           "psi_1=0:6:100000", "--ic", "psi_2=0:6:100000"], None, ["1e+10 points", "memory"]),
+    ("sweep-zero-sample", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--sample", "0", "--ic", "psi_1=0:6"],
+     None, ["--sample"]),
+    ("sweep-seed-without-sample", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--seed", "3", "--ic",
+                                   "psi_1=0:6:4"], None, ["--seed"]),
+    ("sweep-out-missing-folder", ["sweep", "autobalancer", "--out", "{d}/no/s.zarr", "--ic", "psi_1=0:6:4"], None,
+     ["--out"]),
+    ("sweep-bad-per-point", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--per-point", "bogus"], None,
+     ["--per-point"]),
+    ("sweep-torus-zero-count", ["sweep", "strautmanis-torus", "--out", "{d}/s.zarr", "--ic", "psi=0:6:0"], None,
+     ["--ic"]),
+    ("sweep-linear-model", ["sweep", "pico21", "--out", "{d}/s.zarr", "--ic", "psi_1=0:1:2"], None, ["pico21"]),
+    # ---- show -------------------------------------------------------------------------------------
+    ("show-missing-store", ["show", "{d}/missing.zarr"], None, ["STORE", "missing.zarr"]),
+    ("show-plain-folder", ["show", "{d}/plain"], None, ["plain", "not a rotorlab sweep store"]),
+    ("show-figures-is-file", ["show", "{d}/plain", "--figures", "{d}/notes.txt"], None, ["plain"]),
+    # ---- impacts / impacts-sweep ----------------------------------------------------------------
+    ("impacts-negative-stone", ["impacts", "krasnov-crusher", "--stone-mass", "-1"], None, ["--stone-mass"]),
+    ("impacts-zero-t-end", ["impacts", "krasnov-crusher", "--t-end", "0"], None, ["--t-end"]),
+    ("impacts-ball-model", ["impacts", "autobalancer"], None, ["autobalancer", "impact_rotor"]),
+    ("impacts-negative-seed", ["impacts", "krasnov-crusher", "--seed", "-1"], None, ["--seed"]),
+    ("impacts-unknown-analysis", ["impacts", "krasnov-crusher", "--analysis", "nope"], None, ["--analysis", "nope"]),
+    ("isweep-decreasing-range", ["impacts-sweep", "krasnov-crusher", "--stone-mass", "1:0.5:3"], None,
+     ["--stone-mass"]),
+    ("isweep-restitution-range", ["impacts-sweep", "krasnov-crusher", "--param", "restitution=0:2:3"], None,
+     ["--param", "restitution"]),
+    ("isweep-unknown-param", ["impacts-sweep", "krasnov-crusher", "--param", "bogus=1:2:3"], None,
+     ["--param", "bogus"]),
+    ("isweep-zero-sequences", ["impacts-sweep", "krasnov-crusher", "--sequences", "0"], None, ["--sequences"]),
+    ("isweep-resume-without-out", ["impacts-sweep", "krasnov-crusher", "--resume"], None, ["--resume"]),
+    ("isweep-negative-workers", ["impacts-sweep", "krasnov-crusher", "--workers", "-1"], None, ["--workers"]),
+    # ---- edge numbers ------------------------------------------------------------------------------
+    ("simulate-infinite-t-end", ["simulate", "autobalancer", "--t-end", "inf"], None, ["--t-end", "finite"]),
+    ("simulate-overflowing-speed", ["simulate", "autobalancer", "--speed-rpm", "1e400"], None,
+     ["--speed-rpm", "finite"]),
+    ("impacts-nan-stone", ["impacts", "krasnov-crusher", "--stone-mass", "nan"], None, ["--stone-mass"]),
+    ("sweep-negative-chunk", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--ic", "psi_1=0:6:4", "--chunk", "-1"],
+     None, ["--chunk"]),
+    ("jb-huge-exponent", ["validate", FILE], ("autobalancer", 'eccentricity = "1.5 mm"', 'eccentricity = "1e400 mm"'),
+     ["model.eccentricity", "finite"]),
+    ("ir-n-save-absurd", ["impacts", FILE, "--t-end", "0.01"], ("krasnov-crusher", "seed = 0", "seed = 0\nn_save = 1e12"),
+     ["n_save = 1000000000000", "memory"]),
+]
+
+
+def _tree(folder: Path) -> set[str]:
+    return {str(p.relative_to(folder)) for p in folder.rglob("*")}
+
+
+def test_the_corpus_is_large_and_covers_every_command_and_model_type():
+    assert len(CORPUS) >= 60
+    assert len({entry[0] for entry in CORPUS}) == len(CORPUS)
+    commands = {entry[1][0] for entry in CORPUS} | {entry[1][2] for entry in CORPUS if entry[1][0] == "-q"}
+    assert commands >= {"run", "simulate", "campbell", "modes", "steady", "stability-chart", "basin", "sweep",
+                        "show", "impacts", "impacts-sweep", "validate", "cases"}  # fmt: skip
+    bases = {entry[2][0] for entry in CORPUS if entry[2]}
+    assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher"}
+
+
+@pytest.mark.parametrize("name, argv, case, words", CORPUS, ids=[entry[0] for entry in CORPUS])
+def test_bad_input_is_refused_cleanly(name, argv, case, words, tmp_path, monkeypatch):
+    monkeypatch.chdir(tmp_path)  # a default output folder would land here
+    (tmp_path / "plain").mkdir()
+    (tmp_path / "plain" / "notes.txt").write_text("not a store")
+    (tmp_path / "notes.txt").write_text("a file")
+    if case is not None:
+        base, old, new = case[:3]
+        text = builtin(base)
+        (tmp_path / "case.toml").write_text(text.replace(old, new) if old else new, encoding="utf-8")
+    before = _tree(tmp_path)
+    result = runner.invoke(app, [a.replace("{d}", str(tmp_path)) for a in argv])
+    message = result.stderr
+    assert result.exit_code == 2, (result.exit_code, result.output)
+    assert "Traceback" not in result.output and "internal error" not in result.output, result.output
+    for word in words:
+        assert word in message, (word, message)
+    assert _tree(tmp_path) == before, "something was written"
