@@ -206,6 +206,28 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
      ["n_save = 1000000000000", "memory"]),
 ]
 
+# ---- machine (a rotor of any structure with races, drive, gravity) -----------------------------
+MACHINE = [
+    ("mc-negative-race-radius", ["validate", FILE], ("washer-horizontal", 'radius = "0.27 m"', 'radius = "-0.27 m"'),
+     ["model.races[0].radius", "> 0"]),
+    ("mc-drive-profile-typo", ["validate", FILE], ("washer-horizontal", 'profile = "motor"', 'profile = "motorr"'),
+     ["model.drive.profile", "motor"]),
+    ("mc-gravity-wrong-unit", ["validate", FILE], ("washer-horizontal", '"-9.81 m/s^2"', '"-9.81 m/s"'),
+     ["model.gravity.vector[1]", "wrong dimension"]),
+    ("mc-unknown-body", ["run", FILE, "--out", "{d}/o"], ("washer-horizontal", 'at = "drum"', 'at = "drun"'),
+     ["model.races[0].at", "drun"]),
+    ("mc-zero-speeds", ["validate", FILE], ("washer-horizontal", "n_speeds = 2", "n_speeds = 0"),
+     ["analysis[0].n_speeds", ">= 1"]),
+    ("mc-negative-t-end", ["validate", FILE], ("washer-horizontal", 't_end = "40 s"', 't_end = "-40 s"'),
+     ["analysis[1].t_end", "> 0"]),
+    ("mc-unknown-key", ["validate", FILE], ("washer-horizontal", 'stall_torque = "10 N*m"',
+                                             'stall_torque = "10 N*m"\nstall_torq = 3'),
+     ["model.drive.stall_torq", "unknown key"]),
+]
+
+if resources.files("rotorlab.cases").joinpath("washer-horizontal.toml").is_file():  # once the machine model landed
+    CORPUS += MACHINE
+
 
 def _tree(folder: Path) -> set[str]:
     return {str(p.relative_to(folder)) for p in folder.rglob("*")}

@@ -256,7 +256,9 @@ def test_run_default_case_into_default_folder(tmp_path, monkeypatch):
     monkeypatch.chdir(tmp_path)
     result = invoke("-q", "run")
     assert result.exit_code == 0, result.output
-    assert result.stdout == ""
+    # -q hides progress and messages, not results (issue 13)
+    assert "Running autobalancer" not in result.stdout and result.stderr == ""
+    assert "balanced" in result.stdout and "Report:" in result.stdout
     out = tmp_path / "rotorlab-out"
     assert (out / "report.html").is_file()
     assert (out / "subcritical.nc").is_file() and (out / "supercritical.nc").is_file()
@@ -360,3 +362,32 @@ def test_simulate_out_must_be_a_file_in_an_existing_folder(small, tmp_path):
     result = invoke("simulate", str(small), "--out", str(tmp_path / "no" / "x.nc"))
     assert result.exit_code == 2 and "does not exist" in result.stderr
     assert sorted(os.listdir(tmp_path)) == ["small.toml"]
+
+
+def test_progress_is_plain_lines_when_piped():
+    # issue 13: under a pipe (CliRunner's stderr is not a terminal) progress is printed as
+    # plain lines, first and last at least; -q hides it but not the results.
+    result = invoke("simulate", "autobalancer", "--speed-ratio", "2", "--t-end", "0.2")
+    assert result.exit_code == 0, result.output
+    lines = result.stderr.splitlines()
+    assert any(line.endswith("/6 trajectories") and ": 0/" in line for line in lines)
+    assert any(line.endswith(": 6/6 trajectories") for line in lines)
+    quiet = invoke("-q", "simulate", "autobalancer", "--speed-ratio", "2", "--t-end", "0.2")
+    assert quiet.exit_code == 0 and quiet.stderr == ""
+    assert "balanced" in quiet.stdout or "non-synchronous" in quiet.stdout
+
+
+def test_compile_notice_only_without_a_numba_cache(tmp_path, caplog):
+    import logging
+
+    from rotorlab.integrate._specialize import announce_compile
+
+    with caplog.at_level(logging.INFO, logger="rotorlab.compile"):
+        announce_compile(tmp_path, "drv_x_rhs_abc", "integrator for x")
+    assert caplog.messages == ["compiling the integrator for x (first run only, ~30 s) ..."]
+    caplog.clear()
+    (tmp_path / "__pycache__").mkdir()
+    (tmp_path / "__pycache__" / "drv_x_rhs_abc.integrate_ensemble-12.py311.nbi").write_bytes(b"")
+    with caplog.at_level(logging.INFO, logger="rotorlab.compile"):
+        announce_compile(tmp_path, "drv_x_rhs_abc", "integrator for x")
+    assert caplog.messages == []

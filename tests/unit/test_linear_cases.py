@@ -271,9 +271,8 @@ BAD = [
      ['analysis[0].stop = "3000 m": wrong dimension: expected an angular speed (rad/s)']),
     (MULTIBODY, ("n_modes = 4", "n_modes = 4\nharmonics = [0]"),
      ["analysis[0].harmonics[0] = 0: must be an integer >= 1"]),
-    (FE, ('position = "0.5 m"', 'position = "0.6 m"'),
-     ['model.discs[0].position = "0.6 m": is not at a node (nodes at 0, 0.25, 0.5, 0.75, 1, 1.25, '
-      "1.5 m)"]),
+    (FE, ('position = "0.5 m"', 'position = "1.6 m"'),
+     ['model.discs[0].position = "1.6 m": must be on the shaft, from 0 to 1.5 m']),
     (FE, ('shear_modulus = "81.2 GPa"', 'shear_modulus = "50 GPa"'),
      ['model.material.shear_modulus = "50 GPa": gives Poisson\'s ratio', "need -1 < nu < 0.5"]),
     (FE, ('density = "7810 kg/m^3"', 'density = "7810 kg/m^2"'),

@@ -78,6 +78,18 @@ def test_campbell_table_and_harmonics():
     assert "825.134" in out and "2x" in out and "backward" in out and "forward" in out
 
 
+def test_campbell_harmonic_adds_a_line():
+    # README: critical speeds "on the 1x (and H x) lines": --harmonic 2 adds the 2x line to the
+    # case's 1x line. Both sets are checked against the exact critical speeds (no speed grid).
+    base = _json(invoke("campbell", "friswell-rotor", "--json"))["critical_speeds_rpm"]
+    both = _json(invoke("campbell", "friswell-rotor", "--harmonic", "2", "--json"))
+    exact = critical_speeds(friswell_rotor(), harmonics=(1, 2), max_speed=4000 * RPM)
+    one = exact.speed_rpm[exact.harmonic == 1]
+    assert base == pytest.approx(sorted(one), rel=1e-6)
+    assert len(both["critical_speeds_rpm"]) > len(base)
+    assert sorted(both["critical_speeds_rpm"]) == pytest.approx(sorted(exact.speed_rpm), rel=1e-6)
+
+
 @pytest.mark.parametrize(
     ("args", "message"),
     [
@@ -240,12 +252,12 @@ def test_run_bad_linear_case_writes_nothing(tmp_path):
     text = Path(__file__).parent.joinpath("test_linear_cases.py").read_text()
     fe = re.search(r'FE = """\n(.*?)"""', text, re.S)[1]
     case = tmp_path / "bad.toml"
-    case.write_text(fe.replace('position = "0.5 m"', 'position = "0.6 m"'))
+    case.write_text(fe.replace('position = "0.5 m"', 'position = "1.6 m"'))
     out = tmp_path / "out"
     for command in (["run", str(case), "--out", str(out)], ["validate", str(case)],
                     ["campbell", str(case), "--speeds-rpm", "0:100:3"]):
         result = invoke(*command)
         assert result.exit_code == 2
         assert result.stderr.startswith("error: invalid case")
-        assert 'model.discs[0].position = "0.6 m": is not at a node' in result.stderr
+        assert 'model.discs[0].position = "1.6 m": must be on the shaft' in result.stderr
     assert sorted(p.name for p in tmp_path.iterdir()) == ["bad.toml"]

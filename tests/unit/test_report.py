@@ -205,11 +205,11 @@ def test_basin_findings_state_the_fraction_in_words():
     ds = xr.Dataset(coords={"horizon": [10.0, 20.0]}, attrs={"analysis": "basin"})
     rows = [{"regime": "balanced", "fraction": 1290 / 1296, "count": 1290, "n": 1296, "ci_low": None,
              "fraction_half": 1290 / 1296, "horizon_half_s": 10.0},
-            {"regime": "not settled", "fraction": 6 / 1296, "count": 6, "n": 1296, "ci_low": None,
+            {"regime": "non-synchronous", "fraction": 6 / 1296, "count": 6, "n": 1296, "ci_low": None,
              "fraction_half": 6 / 1296, "horizon_half_s": 10.0}]
     found = presentation_of("basin").findings(ds, rows)
     assert found.verdict == "balanced from 1290 of 1296 starts (99.5 %) after 20 s"
-    assert found.numbers == ("not settled: 6 of 1296 starts (0.5 %)",)
+    assert found.numbers == ("non-synchronous: 6 of 1296 starts (0.5 %)",)
 
 
 def test_working_point_findings_name_the_point_and_its_band():

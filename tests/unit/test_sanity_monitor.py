@@ -32,6 +32,12 @@ def test_absurd_magnitudes_fail_for_every_model():
     assert sol.notes[0] == "" and "beyond any physical magnitude" in sol.notes[1]
     assert sol.trajectory(1).note == sol.notes[1] and not sol.trajectory(1).success
     assert abs(sol.y_final[1, 0] - 1e32) < 1e26  # the state itself is kept, only flagged
+    # seen only in a saved state: with v0 = 2e29, x(T/4) = 2e31 is saved, the final state at T/2
+    # (x = -1, v = -2e29) is within the bound
+    sol = solve_ensemble(osc, [1.0, 2e29], (0.0, 2 * t_quarter), save_at=SaveAt(ts=[t_quarter]),
+                         control=StepControl(rtol=1e-8, atol=1e-8))  # fmt: skip
+    assert abs(sol.y_final[0, 1] + 2e29) < 1e23 and sol.status[0] == Status.IMPOSSIBLE
+    assert "state entry 0 reached 2e+31" in sol.notes[0]
 
 
 @dataclass(frozen=True)

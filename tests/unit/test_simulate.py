@@ -147,8 +147,8 @@ def test_wrap_angle():
         (2e-3, [175.0, 5.0], 0.0, "side (0°, 180°)"),
         (2e-3, [-25.0, 20.0], 0.0, "side (0°, 0°)"),
         (2e-3, [60.0, -40.0], 0.0, "steady (-40°, 60°)"),
-        (2e-3, [60.0, -40.0], 0.03, "not settled"),
-        (2e-3, [60.0, -40.0], float("nan"), "not settled"),
+        (2e-3, [60.0, -40.0], 0.03, "non-synchronous"),
+        (2e-3, [60.0, -40.0], float("nan"), "non-synchronous"),
     ],
 )
 def test_classify(amplitude, angles_deg, rate, expected):

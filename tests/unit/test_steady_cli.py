@@ -370,3 +370,12 @@ def test_cli_run_writes_the_steady_report(tmp_path, name):
                   f"Seed {SEEDS[name]}", "test_"):  # fmt: skip
         assert words in page, words
     assert page.count("<img") == 4
+
+
+def test_stability_chart_names_the_charts_of_other_regimes():
+    # issue 13: the case has three stability charts, none for regime "short"
+    result = invoke("stability-chart", "filimonikhin-n2", "--regime", "short")
+    assert result.exit_code == 2
+    assert ("case filimonikhin-n2 has no stability-chart analysis for regime short; it has "
+            "chart (regime enough), chart-support-damping (the model's parameters), "
+            "chart-eccentricity (the model's parameters)") in result.stderr

@@ -130,7 +130,7 @@ def test_window_above_critical_speed_exact_and_simulated():
     assert res.stable("exact") == () and res.stable("averaged") == ("main+", "main-")
     assert {(d.label, d.method, d.exact) for d in res.disagreements} >= {("main+", "averaged", "unstable")}
     ds = verify(model, [1.2 * P], points=3, t_end=12.0)
-    assert set(ds.reached.values.ravel()) == {"not settled"}
+    assert set(ds.reached.values.ravel()) == {"non-synchronous"}
     assert np.all(np.abs(ds.mean_ball_speed.values / P - 0.95) < 0.03)
     assert bool(ds.agrees_exact.values[0]) and not bool(ds.agrees_averaged.values[0])
     short = CASE.model("short")  # the third solution (eta > 2) has its own window
@@ -147,7 +147,7 @@ def test_coexisting_whirl_above_the_window():
     assert res.stable("exact") == ("main+", "main-") and res.disagreements == ()
     starts = np.radians([[-30.0, -15.0], [120.0, -120.0]])
     ds = verify(model, [1.6 * P], initial_ball_angles=starts, t_end=60.0)
-    assert ds.reached.values[0].tolist() == ["not settled", "main+"]
+    assert ds.reached.values[0].tolist() == ["non-synchronous", "main+"]
     assert np.abs(ds.mean_ball_speed.values[0, 0] / P - 0.96).max() < 0.02
     assert 0.015 < ds.final_amplitude.values[0, 0] < 0.025
     assert not bool(ds.agrees_exact.values[0])
@@ -217,7 +217,7 @@ def test_verify_both_regimes():
             round(float(r), 1): {str(o): float(f) for o, f in zip(ds.outcome.values, row) if f > 0}
             for r, row in zip(ds.speed_ratio.values, ds.fraction.values)
         }
-    assert fractions["enough"][0.6] == {"side 00": 1.0} and fractions["enough"][1.2] == {"not settled": 1.0}
+    assert fractions["enough"][0.6] == {"side 00": 1.0} and fractions["enough"][1.2] == {"non-synchronous": 1.0}
     for ratio in (2.0, 3.0):
         assert sum(v for k, v in fractions["enough"][ratio].items() if k.startswith("main")) == pytest.approx(1.0)
         assert fractions["short"][ratio] == {"side 11": 1.0}

@@ -153,7 +153,7 @@ def test_supercritical_main_motions_need_support_damping():
     edge = brentq(growth, 1.2, 1.8, xtol=1e-5)
     assert edge == pytest.approx(1.459, abs=2e-3)
     ds = verify(undamped, [2.0 * P], points=2, t_end=60.0)
-    assert set(ds.reached.values.ravel()) == {"not settled"}
+    assert set(ds.reached.values.ravel()) == {"non-synchronous"}
     assert bool(ds.agrees_exact.values[0]) and not bool(ds.agrees_hamilton.values[0])
 
 
@@ -170,7 +170,7 @@ def test_damping_removes_side_motions_below_p():
     assert res.stable("hamilton") == ("side 00",) and res.stable("exact") == ()
     assert ("side 00", "hamilton", "absent") in {(d.label, d.method, d.exact) for d in res.disagreements}
     ds = verify(model, [0.9 * P], points=3, t_end=15.0)
-    assert set(ds.reached.values.ravel()) == {"not settled"} and bool(ds.agrees_exact.values[0])
+    assert set(ds.reached.values.ravel()) == {"non-synchronous"} and bool(ds.agrees_exact.values[0])
 
 
 def test_three_pendulums_family_of_main_motions():
@@ -194,9 +194,9 @@ def test_three_pendulums_family_of_main_motions():
 def test_verify_all_regimes():
     """Done-when: from every start of the grid the simulation ends as the exact eigenvalues predict."""
     expected = {
-        "enough": [{"side 00"}, {"not settled"}, {"main+", "main-"}, {"main+", "main-"}],
-        "short": [{"side 00"}, {"not settled"}, {"side 11"}, {"side 11"}],
-        "dominant": [{"side 00"}, {"not settled"}, {"side 01"}, {"side 01"}],
+        "enough": [{"side 00"}, {"non-synchronous"}, {"main+", "main-"}, {"main+", "main-"}],
+        "short": [{"side 00"}, {"non-synchronous"}, {"side 11"}, {"side 11"}],
+        "dominant": [{"side 00"}, {"non-synchronous"}, {"side 01"}, {"side 01"}],
     }
     for regime, ends in expected.items():
         ds = verify(CASE.model(regime), CASE.speeds(), points=3)

@@ -235,7 +235,7 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
     ds.attrs["name"] = analysis.name
     ds.attrs["model"] = str(case_model.type)
     if analysis.type == "basin":
-        for key, value in _effective_values(case_model, analysis).items():
+        for key, value in _effective_values(case_model, analysis, mapper).items():
             ds.attrs[f"value_{key}"] = value
     return ds
 
@@ -245,7 +245,7 @@ def basin_task_size(case_model: Any, analysis: Any) -> int:
     return analysis.samples if analysis.samples is not None else analysis.x[3] * analysis.y[3]
 
 
-def _effective_values(case_model: Any, analysis: Any) -> dict[str, float]:
+def _effective_values(case_model: Any, analysis: Any, mapper: Any) -> dict[str, float]:
     """Every start coordinate that is not varied, with the value the starts use (SI)."""
     from rotorlab.io import coordinate_dimensions
 
@@ -258,6 +258,10 @@ def _effective_values(case_model: Any, analysis: Any) -> dict[str, float]:
             out[name] = float(analysis.fixed[name])
         elif case_model.type == "toroidal_ball":
             out[name] = float(getattr(case_model, name, 0.0))  # state coordinates start at 0
+        elif name.startswith("psi_") and hasattr(mapper, "base_angles"):
+            out[name] = float(mapper.base_angles[int(name[4:]) - 1])  # where that ball starts
+        elif name.startswith("dpsi_"):
+            out[name] = 0.0  # balls start at rest relative to the rotor
         elif name == "spin_speed":
             omega = analysis.spin_speed(case_model)
             if omega is not None:

@@ -173,7 +173,8 @@ def run_linear_analysis(case_model: Any, analysis: Any) -> xarray.Dataset:
         :func:`rotorlab.linear.unbalance_response` or
         :meth:`rotorlab.linear.Identification.to_dataset`, with node labels added; or the
         findings of a data audit (dim ``finding``). ``attrs["analysis"]`` is the analysis
-        type and ``attrs["model"]`` the model type.
+        type and ``attrs["model"]`` the model type; ``attrs["mesh"]`` says how an ``fe_rotor``
+        mesh was refined, when it was.
 
     Examples
     --------
@@ -192,6 +193,9 @@ def run_linear_analysis(case_model: Any, analysis: Any) -> xarray.Dataset:
     ds = runner(case_model, analysis)
     ds.attrs["analysis"] = analysis.type
     ds.attrs["model"] = case_model.type
+    note = getattr(case_model, "mesh_note", lambda: "")()
+    if note:
+        ds.attrs["mesh"] = note  # the nodes added so that discs and bearings sit on nodes
     return ds
 
 
@@ -251,7 +255,8 @@ def summarize_linear(ds: xarray.Dataset) -> list[dict[str, Any]]:
         Campbell diagram the branch ``mode``). ``modes``: one row per mode (``mode``,
         ``frequency_hz``, ``whirl``, ``damping_ratio``, ``log_decrement``). ``unbalance_response``:
         one row per shown node (``node``, ``label``, ``peak_amplitude`` (m, largest semi-axis of
-        the orbit), ``peak_speed_rpm``). ``identify``: one row per parameter (``parameter``,
+        the orbit, refined between grid speeds; None when undamped: unbounded),
+        ``peak_speed_rpm``, ``note``: why there is no peak, or ""). ``identify``: one row per parameter (``parameter``,
         ``unit``, ``initial``, ``value``, ``relative_std``). ``data_audit``: one row per finding
         (``finding``, ``printed``, ``resolved``, ``evidence``, ``measure``).
     """
@@ -269,13 +274,11 @@ def _modes_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
 
 
 def _unbalance_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
-    rows = []
-    for node in ds.attrs.get("output_nodes", []):
-        amp = ds.orbit_major.values[:, node]
-        k = int(np.nanargmax(amp)) if np.isfinite(amp).any() else 0
-        rows.append({"node": int(node), "label": str(ds.node_label.values[node]), "peak_amplitude": _num(amp[k]),
-                     "peak_speed_rpm": _grid(ds.speed_rpm.values[k])})  # fmt: skip
-    return rows
+    return [{"node": int(node), "label": str(ds.node_label.values[node]),
+             "peak_amplitude": _num(ds.peak_orbit.values[node]),
+             "peak_speed_rpm": _num(ds.peak_speed.values[node] * 30.0 / np.pi),
+             "note": str(ds.attrs.get("note", ""))}
+            for node in ds.attrs.get("output_nodes", [])]
 
 
 def _identify_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:

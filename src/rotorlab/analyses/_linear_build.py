@@ -101,15 +101,24 @@ def _fe_rotor(spec: Any) -> LinearSystem:
                         density=m.density)
 
     elements: list[Any] = []
-    node = 0
+    added = spec.refinement()  # nodes inserted so that discs and bearings sit on nodes
+    node, start = 0, 0.0
     for section in spec.shaft:
-        elements += uniform_shaft(section.elements, section.length, section.outer_diameter,
-                                  inner_diameter=section.inner_diameter,
-                                  material=material(section.material or spec.material),
-                                  first_node=node, shear=spec.shear,
-                                  rotary_inertia=spec.rotary_inertia,
-                                  gyroscopic=spec.gyroscopic)
-        node += section.elements
+        kw = {"inner_diameter": section.inner_diameter,
+              "material": material(section.material or spec.material), "shear": spec.shear,
+              "rotary_inertia": spec.rotary_inertia, "gyroscopic": spec.gyroscopic}
+        le = section.length / section.elements
+        inside = [z - start for z in added if start < z < start + section.length]
+        if not inside:  # the section as written: equal elements
+            elements += uniform_shaft(section.elements, section.length, section.outer_diameter,
+                                      first_node=node, **kw)
+            node += section.elements
+        else:  # the written nodes and the inserted ones, in order
+            cuts = sorted({*(le * k for k in range(section.elements + 1)), *inside})
+            for a, b in zip(cuts[:-1], cuts[1:], strict=True):
+                elements += uniform_shaft(1, b - a, section.outer_diameter, first_node=node, **kw)
+                node += 1
+        start += section.length
     for d in spec.discs:
         at = spec.node_of(d)
         if d.mass is not None:

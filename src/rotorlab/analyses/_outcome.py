@@ -1,4 +1,4 @@
-"""Classify where a trajectory of a ball balancer ended: balanced, a side motion, or not settled.
+"""Classify where a trajectory of a ball balancer ended: balanced, a side motion, or non-synchronous.
 
 At constant spin speed the steady motions of the ``jeffcott_balls`` model are equilibria of its
 co-rotating frame (seed 002, eq. (9)): the rotor stands still at ``u + i v`` and every ball at a
@@ -115,7 +115,7 @@ def classify(status: int, status_message: str, final_amplitude: float, reference
     final_angles : array_like, shape (n,)
         Ball angles from the unbalance at the end (rad).
     max_rate : float
-        Largest |psi_i'| over the final window (rad/s); NaN counts as moving.
+        Largest ``|psi_i'|`` over the final window (rad/s); NaN counts as moving.
     spin_speed : float
         omega (rad/s) at the end.
     balanced_fraction, settle_rate, side_tolerance : float
@@ -124,7 +124,7 @@ def classify(status: int, status_message: str, final_amplitude: float, reference
     Returns
     -------
     str
-        ``"failed: ..."``, ``"not settled"``, ``"balanced"``, ``"side (0°, 180°)"`` (balls on the
+        ``"failed: ..."``, ``"non-synchronous"``, ``"balanced"``, ``"side (0°, 180°)"`` (balls on the
         line through the unbalance; nominal angles, sorted), ``"steady (a°, b°)"`` (settled
         elsewhere, e.g. held by friction; measured angles, sorted) or, for a rotor without
         balls, ``"unbalanced"``.
@@ -137,13 +137,13 @@ def classify(status: int, status_message: str, final_amplitude: float, reference
     >>> classify(0, "", 3e-3, 1e-3, np.radians([-16.0, -16.0]), 1e-8, 75.0)
     'side (0°, 0°)'
     >>> classify(0, "", 2e-3, 1e-3, np.radians([-16.0, 170.0]), 50.0, 250.0)
-    'not settled'
+    'non-synchronous'
     """
     if status < 0:
         return f"failed: {status_message}"
     angles = wrap_angle(np.asarray(final_angles, dtype=float).reshape(-1))
     if not (max_rate <= settle_rate * abs(spin_speed)) or not np.all(np.isfinite(angles)):
-        return "not settled"
+        return "non-synchronous"
     if final_amplitude <= balanced_fraction * reference + 1e-15:
         return "balanced"
     if angles.size == 0:

@@ -107,7 +107,7 @@ def simulate(
         ``ball_rate`` (relative to the rotor, rad/s), ``status``, ``n_steps``,
         ``initial_ball_angle`` (ic, ball), ``final_amplitude`` (m, mean over the last
         :data:`SETTLE_REVOLUTIONS` revolutions), ``final_ball_angle`` (rad),
-        ``max_final_rate`` (largest |relative rate| over that window, rad/s), ``outcome`` (str,
+        ``max_final_rate`` (largest ``|relative rate|`` over that window, rad/s), ``outcome`` (str,
         see :func:`rotorlab.analyses.classify`), ``reference_amplitude`` (speed; deflection
         caused by the unbalance alone, m) and ``critical_speed`` (p, rad/s).
 

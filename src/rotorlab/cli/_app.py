@@ -65,7 +65,7 @@ def _root(
     ctx: typer.Context,
     version: Annotated[bool, typer.Option("--version", callback=_version, is_eager=True,
                                           help="Show the version and exit.")] = False,  # fmt: skip
-    quiet: Annotated[bool, typer.Option("-q", "--quiet", help="Print only errors (and --json output).")] = False,
+    quiet: Annotated[bool, typer.Option("-q", "--quiet", help="No progress or messages: print only results (or --json) and errors.")] = False,
     verbose: Annotated[bool, typer.Option("-v", "--verbose", help="Print more; tracebacks of internal errors.")] = False,
 ) -> None:
     """Dynamics of centrifuge rotors and automatic ball balancers.
@@ -107,8 +107,6 @@ def cases_command(ctx: typer.Context, json_out: JsonOpt = False) -> None:
         if json_out:
             emit_json({"cases": found})
             return
-        if settings.quiet:
-            return
         from rich.table import Table
 
         table = Table(title="Built-in cases (use the name as CASE)", title_justify="left")
@@ -143,8 +141,6 @@ def validate_command(ctx: typer.Context, case: CaseArg, json_out: JsonOpt = Fals
             emit_json({"ok": True, **_json_case(loaded), "description": loaded.description,
                        "critical_speed": p, "n_balls": loaded.model.n_balls, **extra,
                        "model": loaded.model_dump_si()["model"], "analyses": analyses})  # fmt: skip
-            return
-        if settings.quiet:
             return
         con = stdout()
         con.print(f"OK: {loaded.name} ({loaded.source})", markup=False)
@@ -211,9 +207,6 @@ def run_command(
                        "files": files, "seconds": round(total, 3),
                        "analyses": {name: {"type": ds.attrs.get("analysis", ""), "rows": tables[name]}
                                     for name, ds in results.items()}})  # fmt: skip
-            exit_if_failed(results)
-            return
-        if settings.quiet:
             exit_if_failed(results)
             return
         con = stdout()
@@ -346,9 +339,6 @@ def simulate_command(
         if json_out:
             emit_json({**_json_case(loaded), "analysis": spec.name, "t_end": t_end,
                        "out": written, "rows": rows})  # fmt: skip
-            exit_if_failed({spec.name: ds})
-            return
-        if settings.quiet:
             exit_if_failed({spec.name: ds})
             return
         con = stdout()

@@ -199,9 +199,6 @@ def basin_command(
                        "files": written})  # fmt: skip
             exit_if_failed({spec.name: ds})
             return
-        if settings.quiet:
-            exit_if_failed({spec.name: ds})
-            return
         from rotorlab.analyses._basin import basin_rows
 
         for table in basin_tables({spec.name: ds}, {spec.name: basin_rows(ds)}):

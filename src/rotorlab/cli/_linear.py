@@ -110,6 +110,10 @@ def linear_tables(results: Mapping[str, Any], tables: Mapping[str, Sequence[Mapp
                     for r in rows]
             out.append(_table(f"{name}: largest orbit", ("node", "semi-major axis (mm)",
                                                          "at speed (rpm)"), body, {1, 2}))
+            if ds.attrs.get("note"):
+                from rich.text import Text
+
+                out.append(Text(f"{name}: {ds.attrs['note']}"))
         elif kind == "identify":
             body = [(r["parameter"], _g(r["initial"]), _g(r["value"]), r["unit"],
                      "-" if r["relative_std"] is None else f"{100 * r['relative_std']:.3g} %")
@@ -136,8 +140,8 @@ def campbell_command(
         "--modes", metavar="K",
         help="Number of mode branches (default: the case's, or 6).")] = None,
     harmonic: Annotated[Optional[list[int]], typer.Option(  # noqa: UP007
-        "--harmonic", metavar="H", help="Excitation line H x for critical speeds; repeatable "
-                                        "(default: the case's, or 1).")] = None,
+        "--harmonic", metavar="H", help="Excitation line H x for critical speeds, added to the "
+                                        "case's lines (or 1x); repeatable.")] = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--plot", metavar="FILE", help="Write the Campbell diagram (.png, .pdf or .svg).")] = None,
     json_out: JsonOpt = False,
@@ -172,8 +176,8 @@ def campbell_command(
         analysis = CampbellSpec(
             name=spec.name if spec is not None else "campbell", start=start, stop=stop,
             n_speeds=n, n_modes=min(n_modes, n_dof),
-            harmonics=tuple(dict.fromkeys(harmonic)) if harmonic else (
-                spec.harmonics if spec is not None else (1,)))
+            harmonics=tuple(dict.fromkeys((*(spec.harmonics if spec is not None else (1,)),
+                                           *(harmonic or ())))))
         info(settings, f"{loaded.name}: {analysis.describe(loaded.model)} ...",
              json_mode=json_out)
         from rotorlab.analyses import campbell_summary, run_linear_analysis, summarize_linear
@@ -186,8 +190,6 @@ def campbell_command(
             write_figure(campbell_figure(ds, title=f"Campbell diagram: {loaded.name}"), plot)
         if json_out:
             emit_json(campbell_summary(ds))
-            return
-        if settings.quiet:
             return
         con = stdout()
         con.print(_crossing_table(f"{loaded.name}: critical speeds", summarize_linear(ds)))
@@ -240,8 +242,6 @@ def modes_command(
         ds = run_linear_analysis(loaded.model, analysis)
         if json_out:
             emit_json(modes_summary(ds))
-            return
-        if settings.quiet:
             return
         stdout().print(_modes_table(f"{loaded.name}: modes at {speed / _RPM_TO_RAD:.6g} rpm",
                                     summarize_linear(ds)))

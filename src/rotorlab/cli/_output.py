@@ -11,6 +11,7 @@ from __future__ import annotations
 import contextlib
 import errno
 import json
+import logging
 import math
 import sys
 import traceback
@@ -60,7 +61,7 @@ class Settings:
     Parameters
     ----------
     quiet : bool
-        Print nothing but errors and requested JSON.
+        No progress and no messages: only the results (or the requested JSON) and errors.
     verbose : bool
         Print more detail, and tracebacks of internal errors.
     """
@@ -100,12 +101,11 @@ def emit_json(document: Any) -> None:
 
 
 def console_or_json(settings: Settings, json_out: bool, document: Any) -> Any:
-    """Finish a command's output: in ``--json`` mode write ``document`` and return None; when
-    quiet return None; else return the stdout console for the human-readable output."""
+    """Finish a command's output: in ``--json`` mode write ``document`` and return None; else
+    return the stdout console for the human-readable results (printed also when quiet: ``-q``
+    hides progress and messages, not results)."""
     if json_out:
         emit_json(document)
-        return None
-    if settings.quiet:
         return None
     return stdout()
 
@@ -231,6 +231,10 @@ def progress_bar(settings: Settings, tasks: Mapping[str, int],
     )
 
     console = stderr()
+    if not settings.quiet and not console.is_terminal:  # piped: plain lines, not a bar
+        with compile_notices(settings), _plain_progress(tasks, units) as update:
+            yield update
+        return
     bar = Progress(
         SpinnerColumn(),
         TextColumn("{task.description}"),
@@ -251,18 +255,79 @@ def progress_bar(settings: Settings, tasks: Mapping[str, int],
             ids[name] = bar.add_task(name, total=total, unit=words.get(name, "trajectories"))
         bar.update(ids[name], completed=done, total=total)
 
-    with bar:
+    with bar, compile_notices(settings):
         yield update
 
 
 @contextlib.contextmanager
-def status(settings: Settings, text: str) -> Iterator[None]:
-    """Show a spinner with ``text`` on stderr while the block runs (terminals only, not quiet)."""
-    console = stderr()
-    if settings.quiet or not console.is_terminal:
+def _plain_progress(tasks: Mapping[str, int],
+                    units: Mapping[str, str] | None) -> Iterator[Any]:
+    """Progress as plain lines on stderr (for a pipe or a log file): ``name: done/total unit``
+    at the start, then every 10 % or 10 s, and at the end of each task."""
+    import time
+
+    words = dict(units or {})
+    last: dict[str, tuple[float, float]] = {}  # name -> (time, fraction) of the last line
+
+    def line(name: str, done: int, total: int) -> None:
+        sys.stderr.write(f"{name}: {done}/{total} {words.get(name, 'trajectories')}\n")
+        sys.stderr.flush()
+
+    def update(name: str, done: int, total: int) -> None:
+        now, fraction = time.monotonic(), done / total if total else 1.0
+        then, shown = last.get(name, (-1e9, -1.0))
+        if done >= total or fraction - shown >= 0.1 or now - then >= 10.0:
+            if (then, shown) != (now, fraction):
+                line(name, done, total)
+            last[name] = (now, fraction)
+
+    for name, total in tasks.items():
+        update(name, 0, total)
+    yield update
+
+
+class _StderrHandler(logging.Handler):
+    """logging handler writing each record as one line on the current ``sys.stderr`` (looked
+    up at each record: test runners swap it)."""
+
+    def emit(self, record: logging.LogRecord) -> None:
+        sys.stderr.write(self.format(record) + "\n")
+        sys.stderr.flush()
+
+
+@contextlib.contextmanager
+def compile_notices(settings: Settings) -> Iterator[None]:
+    """Show on stderr, unless quiet, that the integrator is being compiled (first run only)."""
+    if settings.quiet:
         yield
         return
-    with console.status(text):
+    logger = logging.getLogger("rotorlab.compile")
+    handler = _StderrHandler(logging.INFO)
+    logger.addHandler(handler)
+    level = logger.level
+    logger.setLevel(logging.INFO)
+    try:
+        yield
+    finally:
+        logger.removeHandler(handler)
+        logger.setLevel(level)
+
+
+@contextlib.contextmanager
+def status(settings: Settings, text: str) -> Iterator[None]:
+    """Show ``text`` on stderr while the block runs: a spinner on a terminal, one plain line
+    otherwise (nothing when quiet)."""
+    console = stderr()
+    if settings.quiet:
+        yield
+        return
+    if not console.is_terminal:
+        sys.stderr.write(text + "\n")
+        sys.stderr.flush()
+        with compile_notices(settings):
+            yield
+        return
+    with console.status(text), compile_notices(settings):
         yield
 
 

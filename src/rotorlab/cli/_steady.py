@@ -211,8 +211,6 @@ def steady_command(
         if json_out:
             emit_json(doc)
             return
-        if settings.quiet:
-            return
         _print_steady(doc)
 
 
@@ -280,8 +278,14 @@ def stability_chart_command(
         spec = _first(loaded, "stability-chart", regime)
         if rpm is None and ratios is None:
             if spec is None:
-                raise BadInput(f"case {loaded.name} has no stability-chart analysis: give --speeds-rpm or "
-                               "--speed-ratios")  # fmt: skip
+                charts = [f"{a.name} (" + (f"regime {a.regime}" if getattr(a, "regime", None)
+                                            else "the model's parameters") + ")"
+                          for a in loaded.analyses if a.type == "stability-chart"]
+                what = (f"no stability-chart analysis for regime {regime}; it has "
+                        + ", ".join(charts)) if charts and regime is not None else (
+                    "no stability-chart analysis")
+                raise BadInput(f"case {loaded.name} has {what}: give --speeds-rpm or --speed-ratios"
+                               + (", or one of those regimes" if charts and regime is not None else ""))
             overrides = overrides or spec.overrides()
             if name is None and spec.param is not None:
                 name, values = spec.param, spec.parameter_values()
@@ -313,8 +317,6 @@ def stability_chart_command(
                        "speeds_rpm": [float(w * _RPM) for w in speeds],
                        "critical_speed": float(crit) if crit.ndim == 0 else [float(c) for c in crit],
                        "intervals": intervals, "files": written})  # fmt: skip
-            return
-        if settings.quiet:
             return
         _print_intervals(loaded.name, ds, intervals, name)
         for path in written:

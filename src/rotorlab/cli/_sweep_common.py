@@ -6,6 +6,7 @@ finished chunks) and the progress bar of a sweep.
 
 from __future__ import annotations
 
+import sys
 import time
 from collections.abc import Callable
 from pathlib import Path
@@ -123,21 +124,35 @@ class SweepBar:
         self.start = time.perf_counter()
         self.first = 0
 
+        # not a terminal (a pipe, a log file): plain lines every 10 % or 10 s instead of a bar
+        self.plain = not settings.quiet and not console.is_terminal
+        self.shown = (-1e9, -1.0)
+        from rotorlab.cli._output import compile_notices
+
+        self.notices = compile_notices(settings)
+
     def __enter__(self) -> SweepBar:
         self.progress.__enter__()
+        self.notices.__enter__()
         return self
 
     def __exit__(self, *exc: Any) -> None:
+        self.notices.__exit__(*exc)
         self.progress.__exit__(*exc)
 
     def __call__(self, p: Any) -> None:
+        elapsed = time.perf_counter() - self.start
         if self.task is None:
             self.first = p.done
             self.task = self.progress.add_task(self.title, total=p.total, completed=p.done, rate="")
-            return
-        elapsed = time.perf_counter() - self.start
         rate = (p.done - self.first) / elapsed if elapsed > 0 else 0.0
         self.progress.update(self.task, completed=p.done, rate=f"{rate:.3g}/s")
+        if self.plain:
+            fraction = p.done / p.total if p.total else 1.0
+            if p.done >= p.total or fraction - self.shown[1] >= 0.1 or elapsed - self.shown[0] >= 10.0:
+                sys.stderr.write(f"{self.title}: {p.done}/{p.total} points\n")
+                sys.stderr.flush()
+                self.shown = (elapsed, fraction)
 
 
 def run_with_bar(settings: Any, title: str, sweep: Any, out: Path, resume: bool, size: int | None,

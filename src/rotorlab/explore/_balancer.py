@@ -6,7 +6,7 @@ Features at each horizon T, over a window of ``window_revolutions`` turns before
 of any ball, and the ball angles at T. The labels are those of
 :func:`rotorlab.analyses.classify` (seed 002 eqs. (15)-(16)): *balanced*; each *side* motion
 (balls on the line through the unbalance, e.g. ``side (0°, 180°)``); *non-synchronous* (balls
-still moving relative to the rotor, the classifier's "not settled"); *other* (held elsewhere by
+still moving relative to the rotor); *other* (held elsewhere by
 friction, or a failed integration).
 """
 
@@ -233,7 +233,5 @@ class BalancerRegimes:
                             float(features["reference_amplitude"][i]),
                             [features[f"ball_angle_{b + 1}"][i, j] for b in range(nb)],
                             float(features["max_rate"][i, j]), float(features["rotor_speed"][i]))  # fmt: skip
-            if text == "not settled":
-                text = "non-synchronous"
             out[i, j] = index.get(text, index["other"])
         return out

@@ -137,26 +137,25 @@ def wilson_interval(count, n: int, confidence: float = 0.95):
     Returns
     -------
     (low, high) : ndarrays
+        Of the shape of ``count``: SciPy's interval,
+        ``scipy.stats.binomtest(k, n).proportion_ci(confidence, method="wilson")``.
 
     Examples
     --------
     >>> [round(float(v), 4) for v in wilson_interval(50, 100)]
     [0.4038, 0.5962]
     """
-    from scipy.special import ndtri
+    from scipy.stats import binomtest
 
     if not 0.0 < confidence < 1.0:
         raise ValueError(f"confidence must be in (0, 1), got {confidence!r}")
     if int(n) < 1:
         raise ValueError(f"n must be >= 1, got {n!r}")
-    z = float(ndtri(0.5 + confidence / 2.0))
-    p = np.asarray(count, dtype=float) / n
-    denom = 1.0 + z * z / n
-    centre = (p + z * z / (2.0 * n)) / denom
-    half = z * np.sqrt(p * (1.0 - p) / n + z * z / (4.0 * n * n)) / denom
-    # exact ends for 0 and n successes (the formula gives them only up to round-off)
-    low = np.where(p <= 0.0, 0.0, np.clip(centre - half, 0.0, 1.0))
-    high = np.where(p >= 1.0, 1.0, np.clip(centre + half, 0.0, 1.0))
+    counts = np.asarray(count)
+    ends = [binomtest(int(k), int(n)).proportion_ci(confidence_level=confidence, method="wilson")
+            for k in counts.ravel()]
+    low = np.array([ci.low for ci in ends], dtype=float).reshape(counts.shape)
+    high = np.array([ci.high for ci in ends], dtype=float).reshape(counts.shape)
     return low, high
 
 

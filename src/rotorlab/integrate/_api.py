@@ -569,15 +569,17 @@ def sanity_check(model: Any, n_cont: int, ys: np.ndarray, y_final: np.ndarray, t
     if not usable.any():
         return tuple(notes)
     cont_f = y_final[:, :n_cont]
-    with np.errstate(invalid="ignore"):
-        big_f = ~np.all(np.isfinite(cont_f) & (np.abs(cont_f) <= ABSURD_MAGNITUDE), axis=1)
-        saved = ys[:, :, :n_cont]
-        big_s = np.any(np.isinf(saved) | (np.abs(np.nan_to_num(saved, nan=0.0)) > ABSURD_MAGNITUDE), axis=(1, 2)) \
-            if saved.size else np.zeros(N, dtype=bool)  # fmt: skip
+    big_f = ~np.all(np.isfinite(cont_f) & (np.abs(cont_f) <= ABSURD_MAGNITUDE), axis=1)
+    saved = ys[:, :, :n_cont]  # NaN after a trajectory ended: NaN compares False (not flagged)
+    beyond = (saved > ABSURD_MAGNITUDE) | (saved < -ABSURD_MAGNITUDE)  # inf included; no copy of ys
+    big_s = beyond.any(axis=(1, 2)) if saved.size else np.zeros(N, dtype=bool)
     for i in np.flatnonzero(usable & (big_f | big_s)):
-        row = y_final[i, :n_cont] if big_f[i] else ys[i][np.any(np.abs(np.nan_to_num(ys[i, :, :n_cont], nan=0.0))
-                                                               > ABSURD_MAGNITUDE, axis=1)][0, :n_cont]  # fmt: skip
-        bad = int(np.argmax(~np.isfinite(row) | (np.abs(np.nan_to_num(row, nan=np.inf)) > ABSURD_MAGNITUDE)))
+        if big_f[i]:
+            row = cont_f[i]
+            bad = int(np.argmax(~np.isfinite(row) | (np.abs(row) > ABSURD_MAGNITUDE)))
+        else:
+            k, bad = (int(j) for j in np.argwhere(beyond[i])[0])
+            row = saved[i, k]
         notes[i] = (f"state entry {bad} reached {row[bad]:.3g} (SI) by t = {t_final[i]:.6g} s, beyond any physical "
                     f"magnitude ({ABSURD_MAGNITUDE:.0e})")  # fmt: skip
     check = getattr(model, "impossible_states", None)

@@ -173,6 +173,7 @@ def lane_drivers_for(kernels, width=8):
         with os.fdopen(fd, "w") as fh:
             fh.write(header + "\n".join(lines) + "\n")
         os.replace(tmp, path)
+    spec.announce_compile(directory, stem, f"{width}-lane integrator for {mod.rsplit('.', 1)[-1]}")
     mod_name = f"_rotorlab_lanes_{stem}"
     module_spec = importlib.util.spec_from_file_location(mod_name, path)
     module = importlib.util.module_from_spec(module_spec)

@@ -71,6 +71,16 @@ def _cache_dir() -> Path | None:
     return None
 
 
+def announce_compile(directory: Path, stem: str, what: str) -> None:
+    """Log (logger ``rotorlab.compile``, INFO) that ``stem`` has no numba cache yet: the first
+    call compiles it (tens of seconds). The command line shows this on stderr."""
+    if not any((directory / "__pycache__").glob(f"{stem}.*.nbi")):
+        import logging
+
+        logging.getLogger("rotorlab.compile").info(
+            "compiling the %s (first run only, ~30 s) ...", what)
+
+
 def _source_hash(modules: list[str]) -> str:
     import numba
 
@@ -130,6 +140,7 @@ def drivers_for(kernels: Kernels) -> tuple[Any, Any]:
         with os.fdopen(fd, "w") as fh:
             fh.write(_generate(names))  # type: ignore[arg-type]
         os.replace(tmp, path)
+    announce_compile(directory, stem, f"integrator for {rm.rsplit('.', 1)[-1]}")
     mod_name = f"_rotorlab_drivers_{stem}"
     spec = importlib.util.spec_from_file_location(mod_name, path)
     assert spec is not None and spec.loader is not None

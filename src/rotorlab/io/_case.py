@@ -230,7 +230,9 @@ def dump_case(case: Case) -> str:
         "analysis": data["analyses"],
     }
     header = f"# rotorlab case '{case.name}', written by rotorlab; all values in SI units.\n"
-    return header + _toml_table(_drop_none(doc), ())
+    import tomli_w
+
+    return header + tomli_w.dumps(_drop_none(doc))
 
 
 # --------------------------------------------------------------------------- reading
@@ -538,38 +540,11 @@ def _prefix(prefix: tuple[str | int, ...], issue: Issue) -> Issue:
 
 
 def _drop_none(obj: Any) -> Any:
+    """Drop None values (TOML has no null); refuse NaN (a case file holds no NaN)."""
     if isinstance(obj, dict):
         return {k: _drop_none(v) for k, v in obj.items() if v is not None}
-    if isinstance(obj, list):
+    if isinstance(obj, (list, tuple)):
         return [_drop_none(v) for v in obj]
-    return obj
-
-
-def _is_table_array(value: Any) -> bool:
-    return isinstance(value, list) and bool(value) and all(isinstance(v, dict) for v in value)
-
-
-def _toml_value(value: Any) -> str:
-    if isinstance(value, (list, tuple)):
-        return "[" + ", ".join(_toml_value(v) for v in value) + "]"
-    if isinstance(value, float) and value != value:
+    if isinstance(obj, float) and obj != obj:
         raise ValueError("cannot write nan to a case file")
-    return format_value(value, limit=10**9)
-
-
-def _toml_table(table: dict[str, Any], prefix: tuple[str, ...]) -> str:
-    lines = []
-    for key, value in table.items():
-        if not isinstance(value, dict) and not _is_table_array(value):
-            lines.append(f"{format_path((key,))} = {_toml_value(value)}")
-    out = "\n".join(lines) + ("\n" if lines else "")
-    for key, value in table.items():
-        if isinstance(value, dict):
-            name = format_path((*prefix, key))
-            out += f"\n[{name}]\n" + _toml_table(value, (*prefix, key))
-    for key, value in table.items():
-        if _is_table_array(value):
-            name = format_path((*prefix, key))
-            for item in value:
-                out += f"\n[[{name}]]\n" + _toml_table(item, (*prefix, key))
-    return out
+    return obj

@@ -2,7 +2,10 @@
 
 The shaft is a chain of sections starting at z = 0, each cut into equal Timoshenko elements
 (shear deformation, rotary inertia, gyroscopic matrix); nodes sit at the element ends. Discs
-and bearings sit at nodes, given by node index or axial position.
+and bearings are placed by axial position (anywhere on the shaft) or by node index (a node of
+the sections as written). The mesh is refined automatically: an element with a disc or bearing
+inside it is split there, so that every disc and bearing sits on a node
+(:meth:`FeRotorSpec.refinement` lists the inserted nodes, and ``describe`` says so).
 
 Layout::
 
@@ -108,7 +111,7 @@ class DiscSpec(_Spec):
     node : int, optional
         Node index; excludes ``position``.
     position : float, optional
-        Axial position (m), must be at a node.
+        Axial position (m), on the shaft (the mesh is refined to put a node there).
     outer_diameter, width : float, optional
         Geometry of a uniform annular disc (m); excludes ``mass``.
     inner_diameter : float
@@ -181,7 +184,7 @@ class FeBearingSpec(BearingCoefficients):
     node : int, optional
         Node index; excludes ``position``.
     position : float, optional
-        Axial position (m), must be at a node.
+        Axial position (m), on the shaft (the mesh is refined to put a node there).
     kxx, kyy, kxy, kyx, cxx, cyy, cxy, cyx, k_tilt_x, k_tilt_y : float
         See :class:`~rotorlab.io._linear_common.BearingCoefficients`.
     """
@@ -242,13 +245,58 @@ class FeRotorSpec(AbstractLinearModelSpec):
             raise IssueGroup(issues)
         return self
 
-    def node_positions(self) -> tuple[float, ...]:
-        """Return the axial node positions (m), from 0 to the shaft length."""
+    def section_nodes(self) -> tuple[float, ...]:
+        """Return the node positions of the sections as written (m), before any refinement."""
         z = [0.0]
         for s in self.shaft:
             le = s.length / s.elements
             z += [z[-1] + le * (k + 1) for k in range(s.elements)]
         return tuple(z)
+
+    def _tolerance(self) -> float:
+        return 1e-9 * (sum(s.length for s in self.shaft) or 1.0)
+
+    def refinement(self) -> tuple[float, ...]:
+        """Return the positions of the nodes inserted so that discs and bearings sit on nodes (m).
+
+        Empty when every disc and bearing given by ``position`` is already at a node of the
+        sections (as in the built-in cases).
+        """
+        written = self.section_nodes()
+        tol, length = self._tolerance(), written[-1]
+        inserted: list[float] = []
+        for part in (*self.discs, *self.bearings):
+            z = part.position
+            if z is None or not -tol <= z <= length + tol:
+                continue
+            if all(abs(z - w) > tol for w in (*written, *inserted)):
+                inserted.append(float(z))
+        return tuple(sorted(inserted))
+
+    def node_positions(self) -> tuple[float, ...]:
+        """Return the axial node positions of the refined mesh (m), from 0 to the shaft length."""
+        return tuple(sorted((*self.section_nodes(), *self.refinement())))
+
+    def locate(self, node: int | None, at: str | None,
+               position: float | None) -> tuple[int | None, str, str]:
+        """Find a node by index (of the sections as written), name or axial position."""
+        if node is not None:
+            written = self.section_nodes()
+            if node >= len(written):
+                n = len(written)
+                return None, "node", f"must be < {n} (the shaft's sections have {n} nodes)"
+            position = written[node]
+        elif at is not None:
+            return super().locate(None, at, None)
+        z = self.node_positions()
+        tol = self._tolerance()
+        for i, p in enumerate(z):
+            if abs(p - position) <= tol:
+                return i, "", ""
+        if not -tol <= position <= z[-1] + tol:
+            return None, "position", f"must be on the shaft, from 0 to {z[-1]:.6g} m"
+        listing = ", ".join(f"{p:.6g}" for p in z)
+        return None, "position", f"is not at a node (nodes at {listing} m)"
 
     def node_of(self, part: DiscSpec | FeBearingSpec) -> int:
         """Return the node of a disc or bearing of this model."""
@@ -278,12 +326,31 @@ class FeRotorSpec(AbstractLinearModelSpec):
 
     @property
     def n_elements(self) -> int:
-        """Number of shaft elements."""
-        return sum(s.elements for s in self.shaft)
+        """Number of shaft elements (of the refined mesh)."""
+        return len(self.node_positions()) - 1
+
+    def section_at(self, z: float) -> ShaftSectionSpec:
+        """Return the section that holds axial position ``z`` (m)."""
+        end = 0.0
+        for s in self.shaft:
+            end += s.length
+            if z < end:
+                return s
+        return self.shaft[-1]
+
+    def mesh_note(self) -> str:
+        """Say how the mesh was refined ("" if it was not)."""
+        added = self.refinement()
+        if not added:
+            return ""
+        where = ", ".join(f"{z:.6g}" for z in added)
+        return (f"mesh refined: {len(added)} node(s) added at z = {where} m so that every disc "
+                f"and bearing sits on a node")
 
     def describe(self) -> str:
         """Return e.g. ``"fe_rotor: 6 Timoshenko elements over 1.5 m, 2 discs, ..."``."""
         kind = "Timoshenko" if self.shear else "Euler-Bernoulli"
+        note = self.mesh_note()
         return (f"fe_rotor: {self.n_elements} {kind} elements over "
                 f"{self.node_positions()[-1]:.6g} m, {len(self.discs)} disc(s), "
-                f"{len(self.bearings)} bearing(s), {self.n_dof} DOFs")
+                f"{len(self.bearings)} bearing(s), {self.n_dof} DOFs" + (f"; {note}" if note else ""))

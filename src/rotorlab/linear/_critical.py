@@ -106,6 +106,8 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
     keep = np.ones(speed.size, bool) if max_speed is None else speed <= float(max_speed)
     order = np.argsort(speed[keep], kind="stable")
     speed, harmonic, shp = speed[keep][order], harmonic[keep][order], shp[keep][order]
+    if not speed.size:  # none (up to max_speed)
+        return CriticalSpeeds(speed=speed, harmonic=harmonic, whirl=np.zeros(0, np.int8), shapes=shp)
     L = system.length_scale
     shp = normalize_shapes(shp, L)
     _, code = whirl_of_shapes(shp, L)

@@ -318,7 +318,7 @@ class ImpactRotor:
     def initial_state(self, u=(0.0, 0.0), tilt=(0.0, 0.0), du=(0.0, 0.0), dtilt=(0.0, 0.0)) -> np.ndarray:
         """State at rest (default) or with the given displacement, tilt and rates (SI).
 
-        The rotor must start clear of the housing (|w| < Delta).
+        The rotor must start clear of the housing (``|w| < Delta``).
         """
         y = np.zeros(_k.N_STATE)
         y[_k.U1:_k.U2 + 1] = u

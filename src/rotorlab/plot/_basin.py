@@ -38,9 +38,44 @@ def label_colors(labels) -> dict[str, str]:
     return out
 
 
-def _axis_label(ds, name: str) -> str:
+def _in_degrees(values) -> bool:
+    """Whether angles (rad) were given in degrees: every value a multiple of 0.5 degree."""
+    deg = np.degrees(np.asarray(values, dtype=float)) * 2.0
+    return bool(deg.size) and bool(np.all(np.abs(deg - np.round(deg)) < 1e-6))
+
+
+def _display(ds, name: str) -> tuple[float, str]:
+    """Scale and unit to show coordinate ``name`` in: degrees for angles given in degrees.
+
+    Case files and the command line take angles in any unit and keep radians; a grid whose
+    ends are whole (or half) degrees was given in degrees, and is shown so.
+    """
     units = ds[name].attrs.get("units", "")
+    if units == "rad" and _in_degrees(ds[name].values[[0, -1]] if ds[name].size else []):
+        return 180.0 / np.pi, "deg"
+    return 1.0, units
+
+
+def _axis_label(ds, name: str) -> str:
+    _, units = _display(ds, name)
     return f"{_NAMES.get(name, name)} ({units})" if units else _NAMES.get(name, name)
+
+
+def _start_values(ds) -> str:
+    """The fixed start coordinates (and where the balls not varied start), for a title."""
+    parts = []
+    for key, value in ds.attrs.items():
+        if key.startswith("fixed_"):
+            name = key[6:]
+        elif key.startswith("value_psi_"):  # the start angle of a ball that is not varied
+            name = key[6:]
+        else:
+            continue
+        if name.startswith("psi") and _in_degrees([value]):
+            parts.append(f"{_NAMES.get(name, name)} = {np.degrees(float(value)):g}°")
+        else:
+            parts.append(f"{_NAMES.get(name, name)} = {float(value):g}")
+    return ", ".join(dict.fromkeys(parts))
 
 
 def basin_figure(ds: xarray.Dataset, *, horizon: float | None = None, title: str | None = None) -> Figure:
@@ -55,11 +90,15 @@ def basin_figure(ds: xarray.Dataset, *, horizon: float | None = None, title: str
     horizon : float, optional
         Simulated time whose labels are drawn (s); default the last one.
     title : str, optional
+        The title's first line; a second line says where the coordinates that are not varied
+        start (``attrs["fixed_<name>"]``, and the start angle ``attrs["value_psi_<i>"]`` of
+        every ball that is not varied).
 
     Returns
     -------
     matplotlib.figure.Figure
-        One panel; the legend gives each label's fraction of the grid.
+        One panel; the legend gives each label's fraction of the grid. Angles given in
+        degrees (a grid whose ends are whole or half degrees) are drawn in degrees.
     """
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.figure import Figure
@@ -76,18 +115,21 @@ def basin_figure(ds: xarray.Dataset, *, horizon: float | None = None, title: str
     ax = fig.subplots()
     if label.dims[0] == "ic":  # random starts: one dot per start, at its drawn coordinates
         xdim, ydim = ds.attrs["x"], ds.attrs["y"]
-        ax.scatter(ds[xdim].values, ds[ydim].values, c=sel.values, cmap=cmap, norm=norm, s=9, linewidths=0)
+        sx, sy = _display(ds, xdim)[0], _display(ds, ydim)[0]
+        ax.scatter(ds[xdim].values * sx, ds[ydim].values * sy, c=sel.values, cmap=cmap, norm=norm, s=9,
+                   linewidths=0)
     else:
         ydim, xdim = [d for d in label.dims if d != "horizon"]
-        x, y = ds[xdim].values, ds[ydim].values
+        sx, sy = _display(ds, xdim)[0], _display(ds, ydim)[0]
+        x, y = ds[xdim].values * sx, ds[ydim].values * sy
         ax.pcolormesh(x, y, sel.transpose(ydim, xdim).values, cmap=cmap, norm=norm, shading="nearest")
     ax.set_xlabel(_axis_label(ds, xdim))
     ax.set_ylabel(_axis_label(ds, ydim))
     values = sel.values.ravel()
     handles = [Patch(color=colors[n], label=f"{n} ({np.mean(values == k):.1%})") for k, n in enumerate(names)]
     ax.legend(handles=handles, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)
-    fixed = ", ".join(f"{_NAMES.get(k[6:], k[6:])} = {v:g}" for k, v in ds.attrs.items() if k.startswith("fixed_"))
-    ax.set_title(title or f"regimes after {t:g} s" + (f" ({fixed})" if fixed else ""))
+    fixed = _start_values(ds)
+    ax.set_title((title or f"regimes after {t:g} s") + (f"\nother starts: {fixed}" if fixed else ""))
     return fig
 
 

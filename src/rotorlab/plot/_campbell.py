@@ -34,6 +34,26 @@ def _segments(x: np.ndarray, y: np.ndarray, code: np.ndarray):
             start = i
 
 
+def _close_groups(x: np.ndarray, y: np.ndarray, dx: float, dy: float):
+    """Group points closer than (dx, dy) to the previous one (in x order), for one label each.
+
+    Examples
+    --------
+    >>> [list(map(float, g[0])) for g in _close_groups(np.array([1475.0, 1490.0, 5200.0]),
+    ...                                                 np.array([24.6, 24.8, 86.8]), 240, 10)]
+    [[1475.0, 1490.0], [5200.0]]
+    """
+    order = np.argsort(x, kind="stable")
+    groups: list[tuple[list[float], list[float]]] = []
+    for i in order:
+        if groups and x[i] - groups[-1][0][-1] < dx and abs(y[i] - groups[-1][1][-1]) < dy:
+            groups[-1][0].append(x[i])
+            groups[-1][1].append(y[i])
+        else:
+            groups.append(([x[i]], [y[i]]))
+    return [(np.array(gx), np.array(gy)) for gx, gy in groups]
+
+
 def campbell_figure(ds: xarray.Dataset, *, ax: Axes | None = None, title: str | None = None,
                     harmonics=None, show_critical: bool = True) -> Figure:
     """Draw a Campbell diagram.
@@ -91,23 +111,30 @@ def campbell_figure(ds: xarray.Dataset, *, ax: Axes | None = None, title: str | 
                     gid=f"mode{k}-{_WHIRL_NAMES[code]}")
     handles = [Line2D([], [], ls=WHIRL_STYLES[c], color="k", lw=1.4, label=_WHIRL_NAMES[c])
                for c in (1, -1, 0) if c in seen]
+    top = float(np.nanmax(freq)) if freq.size else 1.0
+    ax.set_xlim(rpm[0], rpm[-1])
+    ax.set_ylim(0.0, 1.05 * top)
+    x_span, y_top = float(rpm[-1] - rpm[0]) or 1.0, 1.05 * top
     hs = list(ds.attrs.get("harmonics", [1])) if harmonics is None else list(harmonics)
     for h in hs:
         ax.plot(rpm, h * rpm / 60.0, "-", color="0.55", lw=0.9, gid=f"harmonic{h}")
-        ax.annotate(f"{h}x", (rpm[-1], h * rpm[-1] / 60.0), fontsize=8, color="0.4",
-                    xytext=(2, 0), textcoords="offset points", va="center")
+        # label the line where it leaves the axes: the right edge, or the top
+        x_end = min(float(rpm[-1]), 60.0 * y_top / h)
+        room = h * x_end / 60.0 < 0.92 * y_top  # room above the line's end for its label
+        ax.annotate(f"{h}x", (x_end, h * x_end / 60.0), fontsize=8, color="0.4",
+                    xytext=(-3, 3 if room else -3), textcoords="offset points", ha="right",
+                    va="bottom" if room else "top")
     if show_critical and "critical_speed_rpm" in ds and ds.sizes.get("critical", 0):
         sel = np.isin(ds.critical_harmonic.values, hs)
         cr = ds.critical_speed_rpm.values[sel]
         cf = ds.critical_frequency.values[sel]
         handles += ax.plot(cr, cf, "o", mfc="none", mec="k", ms=7, label="critical speed",
                            gid="critical")
-        for x, y in zip(cr, cf):
-            ax.annotate(f"{x:.0f}", (x, y), fontsize=7, xytext=(4, -10),
-                        textcoords="offset points")
-    top = float(np.nanmax(freq)) if freq.size else 1.0
-    ax.set_xlim(rpm[0], rpm[-1])
-    ax.set_ylim(0.0, 1.05 * top)
+        for xs, ys in _close_groups(cr, cf, 0.06 * x_span, 0.08 * y_top):
+            right = xs[0] > rpm[0] + 0.8 * x_span  # near the right edge: label to the left
+            ax.annotate(" / ".join(f"{x:.0f}" for x in xs), (xs[0], ys[0]), fontsize=7,
+                        xytext=(-4 if right else 4, -10), textcoords="offset points",
+                        ha="right" if right else "left")
     ax.set_xlabel("spin speed (rev/min)")
     ax.set_ylabel("natural frequency (Hz)")
     ax.set_title("Campbell diagram" if title is None else title)

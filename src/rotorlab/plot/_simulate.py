@@ -47,6 +47,51 @@ def _colors(n: int) -> list:
     return [cmap(i if n <= 10 else i / max(n - 1, 1)) for i in range(n)]
 
 
+#: Up to this many starts, each has its colour and legend entry; beyond it, the starts are
+#: coloured and counted by the motion they reached (a legend of 64 starts would hide the axes).
+MAX_LISTED_STARTS = 8
+
+
+def _start_styles(ds: xarray.Dataset, k: int) -> list[tuple[object, str | None]]:
+    """Colour and legend entry (None: no entry) of every start at speed ``k``."""
+    n_ic = ds.sizes["ic"]
+    outcomes = [str(v) for v in ds.outcome.values[k]]
+    if n_ic <= MAX_LISTED_STARTS:
+        return [(c, f"{configuration_label(ds, i)}: {outcomes[i]}")
+                for i, c in enumerate(_colors(n_ic))]
+    kinds = sorted(set(outcomes), key=outcomes.index)
+    colors = dict(zip(kinds, _colors(len(kinds)), strict=True))
+    styles, seen = [], set()
+    for name in outcomes:
+        label = None
+        if name not in seen:
+            seen.add(name)
+            label = f"{name} ({outcomes.count(name)} of {n_ic} starts)"
+        styles.append((colors[name], label))
+    return styles
+
+
+def _legend(ax: Axes) -> None:
+    """Put the legend beside the axes (never over the curves)."""
+    ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.02, 1.0), frameon=False)
+
+
+def _time_axis(ax: Axes, t_end: float) -> None:
+    """Stretch the start of a long run: linear near 0, logarithmic beyond ``t_end / 40``.
+
+    The transient of a start-up lasts a fraction of a second and the settled motion the rest:
+    on a linear axis of 20 s the transient is squeezed into the first pixels.
+    """
+    width = t_end / 40.0
+    ax.set_xscale("asinh", linear_width=width)
+    ticks = [v for v in (0.0, 0.1, 0.2, 0.5, 1.0, 2.0, 5.0, 10.0, 20.0, 50.0, 100.0, 200.0, 500.0)
+             if v <= t_end * (1 + 1e-9) and (v == 0.0 or v >= width / 2)]
+    ax.set_xticks(ticks, [f"{v:g}" for v in ticks])
+    ax.minorticks_off()
+    ax.set_xlim(0.0, t_end)
+    ax.set_xlabel("time (s)")  # the ticks show the stretch
+
+
 def speed_label(ds: xarray.Dataset, k: int) -> str:
     """Return the panel title of speed ``k``: rpm, Hz and omega/p.
 
@@ -101,21 +146,20 @@ def amplitude_figure(ds: xarray.Dataset, *, log: bool = False) -> Figure:
     """
     n_speed, n_ic = ds.sizes["speed"], ds.sizes["ic"]
     fig, axes = _new_figure(n_speed)
-    colors = _colors(n_ic)
     t = ds.time.values
+    lw = 1.0 if n_ic <= MAX_LISTED_STARTS else 0.6
     for k, ax in enumerate(axes):
-        for i in range(n_ic):
-            ax.plot(t, ds.amplitude.values[k, i] * 1e3, color=colors[i], lw=1.0,
-                    label=f"{configuration_label(ds, i)}: {ds.outcome.values[k, i]}")  # fmt: skip
+        for i, (color, label) in enumerate(_start_styles(ds, k)):
+            ax.plot(t, ds.amplitude.values[k, i] * 1e3, color=color, lw=lw, label=label)
         ref = float(ds.reference_amplitude.values[k]) * 1e3
         ax.axhline(ref, color="k", ls="--", lw=0.8, label="unbalance alone")
         if log:
             ax.set_yscale("log")
         ax.set_title(speed_label(ds, k), fontsize=10)
-        ax.set_xlabel("time (s)")
+        _time_axis(ax, float(t[-1]))
         ax.set_ylabel("shaft deflection (mm)")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7, loc="upper right", ncol=2 if n_ic > 4 else 1)
+        _legend(ax)
     return fig
 
 
@@ -135,22 +179,21 @@ def ball_angle_figure(ds: xarray.Dataset) -> Figure:
     """
     n_speed, n_ic, n_ball = ds.sizes["speed"], ds.sizes["ic"], ds.sizes["ball"]
     fig, axes = _new_figure(n_speed)
-    colors = _colors(n_ic)
     t = ds.time.values
+    lw = 1.0 if n_ic <= MAX_LISTED_STARTS else 0.6
     for k, ax in enumerate(axes):
-        for i in range(n_ic):
+        for i, (color, label) in enumerate(_start_styles(ds, k)):
             for b in range(n_ball):
-                label = configuration_label(ds, i) if b == 0 else None
                 ax.plot(t, _break_wraps(np.degrees(ds.ball_angle.values[k, i, :, b])),
-                        color=colors[i], ls=_LINESTYLES[b % len(_LINESTYLES)], lw=1.0,
-                        label=label)  # fmt: skip
+                        color=color, ls=_LINESTYLES[b % len(_LINESTYLES)], lw=lw,
+                        label=label if b == 0 else None)  # fmt: skip
         ax.set_ylim(-185, 185)
         ax.set_yticks(np.arange(-180, 181, 60))
         ax.set_title(speed_label(ds, k) + "; line style = ball", fontsize=10)
-        ax.set_xlabel("time (s)")
-        ax.set_ylabel("ball angle from unbalance (deg)")
+        _time_axis(ax, float(t[-1]))
+        ax.set_ylabel("ball angle from unbalance (deg)", fontsize=9)
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7, loc="upper right", ncol=2 if n_ic > 4 else 1)
+        _legend(ax)
     return fig
 
 
@@ -170,19 +213,19 @@ def final_positions_figure(ds: xarray.Dataset) -> Figure:
     """
     n_speed, n_ic = ds.sizes["speed"], ds.sizes["ic"]
     fig, axes = _new_figure(n_speed, polar=True, width=7.0, height=3.6)
-    colors = _colors(n_ic)
+    ms = 6 if n_ic <= MAX_LISTED_STARTS else 3
     for k, ax in enumerate(axes):
         ax.annotate("", xy=(0.0, n_ic + 1.0), xytext=(0.0, 0.0),
                     arrowprops={"arrowstyle": "->", "color": "k", "lw": 1.5})  # fmt: skip
-        ax.text(0.0, n_ic + 1.6, "unbalance", ha="left", va="bottom", fontsize=8)
-        for i in range(n_ic):
+        ax.text(0.05, 0.55 * (n_ic + 1.0), "unbalance", ha="center", va="bottom", fontsize=8)
+        for i, (color, label) in enumerate(_start_styles(ds, k)):
             ang = ds.final_ball_angle.values[k, i]
-            ax.plot(ang, np.full(ang.shape, i + 1.0), "o", color=colors[i], ms=6,
-                    label=f"{configuration_label(ds, i)}: {ds.outcome.values[k, i]}")  # fmt: skip
+            ax.plot(ang, np.full(ang.shape, i + 1.0), "o", color=color, ms=ms, label=label)
         ax.set_rmax(n_ic + 1.5)
         ax.set_yticklabels([])
         ax.set_title(speed_label(ds, k), fontsize=10)
-        ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.05, 1.0))
+        ax.set_xlabel(f"radius: start number, 1 (centre) to {n_ic} (rim)", fontsize=8)
+        _legend(ax)
     return fig
 
 
@@ -204,20 +247,19 @@ def orbit_figure(ds: xarray.Dataset, *, revolutions: float = 5.0) -> Figure:
     """
     n_speed, n_ic = ds.sizes["speed"], ds.sizes["ic"]
     fig, axes = _new_figure(n_speed, width=5.0, height=4.5)
-    colors = _colors(n_ic)
     t = ds.time.values
     for k, ax in enumerate(axes):
         om = float(ds.speed.values[k])
         sel = t >= t[-1] - revolutions * 2.0 * math.pi / om
-        for i in range(n_ic):
+        for i, (color, label) in enumerate(_start_styles(ds, k)):
             ax.plot(ds.x.values[k, i, sel] * 1e3, ds.y.values[k, i, sel] * 1e3, ".-",
-                    color=colors[i], lw=0.6, ms=2, label=configuration_label(ds, i))  # fmt: skip
+                    color=color, lw=0.6, ms=2, label=label)  # fmt: skip
         ax.set_aspect("equal", adjustable="datalim")
         ax.set_title(speed_label(ds, k), fontsize=10)
         ax.set_xlabel("x (mm)")
         ax.set_ylabel("y (mm)")
         ax.grid(alpha=0.3)
-        ax.legend(fontsize=7, loc="upper right")
+        _legend(ax)
     return fig
 
 

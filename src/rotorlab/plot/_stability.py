@@ -164,7 +164,7 @@ def verify_figure(ds: xarray.Dataset) -> Figure:
     Returns
     -------
     matplotlib.figure.Figure
-        Bars split by the motion reached (grey: not settled, other or failed); a cross over a bar
+        Bars split by the motion reached (grey: non-synchronous, other or failed); a cross over a bar
         marks a speed where some start did not end as the exact eigenvalues predict.
 
     Examples
@@ -172,7 +172,7 @@ def verify_figure(ds: xarray.Dataset) -> Figure:
     >>> import numpy as np, xarray as xr
     >>> ds = xr.Dataset({"fraction": (("speed", "outcome"), [[1.0, 0.0], [0.25, 0.75]]),
     ...                  "agrees_exact": (("speed",), [True, False])},
-    ...                 coords={"speed_ratio": ("speed", [0.6, 1.2]), "outcome": ["side 00", "not settled"]})
+    ...                 coords={"speed_ratio": ("speed", [0.6, 1.2]), "outcome": ["side 00", "non-synchronous"]})
     >>> len(verify_figure(ds).axes)
     1
     """
@@ -189,7 +189,7 @@ def verify_figure(ds: xarray.Dataset) -> Figure:
     for j, name in enumerate(outcomes):
         if not np.any(frac[:, j] > 0):
             continue
-        color = next(greys) if name in ("not settled", "other", "failed") else f"C{j % 10}"
+        color = next(greys) if name in ("non-synchronous", "other", "failed") else f"C{j % 10}"
         ax.bar(x, frac[:, j], bottom=bottom, color=color, label=name, width=0.7)
         bottom += frac[:, j]
     for k in np.flatnonzero(~np.asarray(ds.agrees_exact.values, dtype=bool)):

@@ -73,7 +73,8 @@ def _unbalance(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str
              _g(r["peak_speed_rpm"])) for r in rows]
     return "\n".join([
         f'<p class="muted">Unbalance: {_e(parts)}.</p>',
-        "<h3>Largest orbit on the speed grid</h3>",
+        "<h3>Largest orbit</h3>",
+        *([f'<p class="muted">{_e(ds.attrs["note"])}</p>'] if ds.attrs.get("note") else []),
         table(("node", "index", "orbit semi-major axis (mm)", "at speed (rpm)"), body,
               numeric={2, 3}),
     ])

@@ -281,7 +281,7 @@ class SteadyMotion:
 
     @property
     def amplitude(self) -> float:
-        """Shaft deflection |z| (m)."""
+        """Shaft deflection ``|z|`` (m)."""
         return abs(self.deflection)
 
     @property

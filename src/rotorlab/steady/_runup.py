@@ -52,7 +52,7 @@ def run_up(model: JeffcottBalls, profile: Any, *, t_end: float, initial_ball_ang
         Final window (revolutions at the final speed) in which the balls must rest relative to the
         rotor to count as synchronised.
     rate_tol : float
-        Synchronised: every |psi_i'| and the rotor's co-rotating velocity / deflection scale below
+        Synchronised: every ``|psi_i'|`` and the rotor's co-rotating velocity / deflection scale below
         ``rate_tol * omega`` over the window.
     angle_tol : float
         Tolerance of the match to a steady motion at the final speed (rad).

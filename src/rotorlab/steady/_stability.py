@@ -122,7 +122,7 @@ def _moments(model: JeffcottBalls) -> np.ndarray:
 
 
 def hessian_f(imbalance: float, moments, angles) -> np.ndarray:
-    """Return the Hessian of f = |U|^2 / 2 in the ball angles (seed 003 eq. (19), any n).
+    """Return the Hessian of ``f = |U|^2 / 2`` in the ball angles (seed 003 eq. (19), any n).
 
     Parameters
     ----------

@@ -27,7 +27,7 @@ if TYPE_CHECKING:
 __all__ = ["verify", "ball_grid", "match_state", "typical_deflection", "OTHER_OUTCOMES"]
 
 #: Outcomes of a start that reaches no predicted motion.
-OTHER_OUTCOMES = ("not settled", "other", "failed")
+OTHER_OUTCOMES = ("non-synchronous", "other", "failed")
 _METHODS = ("hamilton", "averaged", "exact")
 _RPM = 60.0 / (2.0 * math.pi)
 
@@ -116,7 +116,7 @@ def _auto_t_end(analysis: SteadyAnalysis) -> float:
 def _consistent(outcome: str, method: str, analysis: SteadyAnalysis) -> bool:
     stable = analysis.stable(method)
     if outcome in OTHER_OUTCOMES:
-        return outcome == "not settled" and not stable
+        return outcome == "non-synchronous" and not stable
     return outcome in stable
 
 
@@ -142,7 +142,7 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
     settle_revolutions : float
         Length of the final window in which a start must be at rest in the co-rotating frame.
     rate_tol : float
-        At rest: every |psi_i'| and |(u', v')| / (deflection scale) below ``rate_tol * Omega``.
+        At rest: every ``|psi_i'|`` and ``|(u', v')|`` / (deflection scale) below ``rate_tol * Omega``.
     angle_tol : float
         Ball-angle tolerance of the match (rad), see :func:`match_state`.
     rtol, atol : float
@@ -156,9 +156,9 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
     -------
     xarray.Dataset
         Dims ``speed``, ``ic``, ``ball``, ``motion`` and ``outcome`` (the motion labels, then
-        ``"not settled"``, ``"other"`` (settled on no predicted motion) and ``"failed"``).
+        ``"non-synchronous"``, ``"other"`` (settled on no predicted motion) and ``"failed"``).
         Variables: ``initial_ball_angle`` (ic, ball; rad), ``final_ball_angle`` (speed, ic, ball;
-        rad), ``final_amplitude`` (m), ``final_rate`` (largest |psi_i'| / Omega in the window),
+        rad), ``final_amplitude`` (m), ``final_rate`` (largest ``|psi_i'|`` / Omega in the window),
         ``mean_ball_speed`` (speed, ic, ball; absolute ball speed Omega + mean psi_i' over the
         window, rad/s: about p for balls captured in a non-synchronous whirl),
         ``status``, ``reached`` (label or other outcome), ``fraction`` (speed, outcome; the basin
@@ -250,7 +250,7 @@ def verify(model: JeffcottBalls, speeds: Any, *, points: int = 8, initial_ball_a
             if sol.status[i] < 0:
                 out = "failed"
             elif max(ball_rate, rotor_rate) > rate_tol * om:
-                out = "not settled"
+                out = "non-synchronous"
             else:
                 out = match_state(analysis, yf, scale, angle_tol=angle_tol) or "other"
             reached[k, i] = out
