@@ -11,7 +11,7 @@ from typing import Any
 
 from rotorlab._version import __version__
 
-_SUBMODULES = {"integrate", "models", "io", "plot", "report", "analyses", "linear", "steady", "explore"}
+_SUBMODULES = {"contact", "integrate", "models", "io", "plot", "report", "analyses", "linear", "steady", "explore"}
 
 __all__ = ["__version__", *sorted(_SUBMODULES)]
 

@@ -1,0 +1,202 @@
+"""The ``rub`` analysis: simulate a rotor in its clearance, name its regime and put the closed-form
+prediction beside every measured number (:mod:`rotorlab.contact`)."""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+if TYPE_CHECKING:
+    import xarray
+
+    from rotorlab.contact import JeffcottRub, RubRotor
+
+__all__ = ["rub_model", "rub_quantities", "run_rub_analysis", "rub_rows", "rub_prediction"]
+
+
+def _rotor(case_model: Any) -> RubRotor:
+    from rotorlab.contact import RubRotor
+
+    ks = case_model.stator_stiffness
+    return RubRotor(
+        mass=case_model.mass, stiffness=case_model.stiffness, clearance=case_model.clearance,
+        damping=case_model.damping, eccentricity=case_model.eccentricity,
+        stator_stiffness=math.inf if ks is None else ks, stator_damping=case_model.stator_damping,
+        friction=case_model.friction, rotor_radius=case_model.rotor_radius,
+    )  # fmt: skip
+
+
+def rub_model(case_model: Any) -> JeffcottRub:
+    """Build the :class:`~rotorlab.contact.JeffcottRub` of a validated ``rub_rotor`` case model."""
+    from rotorlab.contact import JeffcottRub
+
+    if getattr(case_model, "type", None) != "rub_rotor":
+        raise ValueError(f"needs a rub_rotor model, got {getattr(case_model, 'type', None)!r}")
+    return JeffcottRub(_rotor(case_model), case_model.spin_speed, restitution=case_model.restitution,
+                       rest_speed=case_model.rest_speed)  # fmt: skip
+
+
+def rub_quantities(case_model: Any) -> list[dict[str, Any]]:
+    """Natural frequency, grazing speeds and the no-rub orbit at the spin speed."""
+    from rotorlab.contact import grazing_speeds, no_rub_radius
+
+    rotor = _rotor(case_model)
+    out = [{"quantity": "natural frequency sqrt(k/m)", "value": rotor.natural_frequency, "unit": "rad/s", "sign": ""}]
+    for i, w in enumerate(grazing_speeds(rotor)):
+        out.append({"quantity": f"grazing speed {i + 1} (no-rub orbit reaches the clearance)", "value": w,
+                    "unit": "rad/s", "sign": ""})  # fmt: skip
+    out.append({"quantity": "no-rub orbit radius at the spin speed", "value": no_rub_radius(rotor, case_model.spin_speed),
+                "unit": "m", "sign": ""})  # fmt: skip
+    return out
+
+
+def rub_prediction(rotor: RubRotor, speed: float) -> dict[str, Any]:
+    """What the closed forms say at one speed: every regime they allow, with its numbers.
+
+    Returns a dict with ``no_rub_radius`` (m) and ``no_rub_fits`` (inside the clearance), the
+    full-rub ``branches`` (radius m, normal force N, stable or not, largest first; stability for
+    an elastic stator only), ``critical_friction`` (elastic stator, where a frictionless branch
+    exists), the ``rolling`` backward whirl (whirl speed rad/s, radius m, normal force N,
+    friction needed) or None, and ``regimes``: the labels of the regimes allowed.
+    """
+    from dataclasses import replace
+
+    from rotorlab.contact import (
+        critical_friction,
+        full_rub,
+        full_rub_characteristic,
+        hurwitz_stable,
+        no_rub_radius,
+        rolling_whirl,
+    )
+
+    r0 = no_rub_radius(rotor, speed)
+    branches = []
+    for b in full_rub(rotor, speed):
+        stable = None if rotor.rigid_stator else hurwitz_stable(full_rub_characteristic(rotor, speed, b.radius))
+        branches.append({"radius": b.radius, "normal_force": b.normal_force, "stable": stable})
+    mu_c = None
+    if not rotor.rigid_stator and full_rub(replace(rotor, friction=0.0), speed):
+        mu_c = critical_friction(rotor, speed)
+    roll = rolling_whirl(rotor, speed) if rotor.stator_mass == 0.0 else None
+    rolling = None
+    if roll is not None:
+        rolling = {"whirl_speed": roll.whirl_speed, "radius": roll.radius, "normal_force": roll.normal_force,
+                   "friction_needed": roll.friction_needed}  # fmt: skip
+    regimes = []
+    if r0 < rotor.clearance:
+        regimes.append("no contact")
+    if any(b["stable"] is not False for b in branches):
+        regimes.append("full rub (forward)")
+    if rolling is not None and rotor.friction >= rolling["friction_needed"]:
+        regimes.append("backward whirl, rolling")
+    return {"no_rub_radius": r0, "no_rub_fits": r0 < rotor.clearance, "branches": branches,
+            "critical_friction": mu_c, "rolling": rolling, "regimes": regimes}  # fmt: skip
+
+
+def run_rub_analysis(case_model: Any, analysis: Any,
+                     progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+    """Simulate, classify the last window and store measured features beside the closed forms."""
+    import xarray as xr
+
+    from rotorlab.contact import RubRegime, rub_features
+    from rotorlab.integrate import SaveAt, Status, StepControl, solve
+
+    model = rub_model(case_model)
+    rotor = model.rotor
+    r, w = analysis.initial_radius, analysis.initial_whirl
+    y0 = model.initial_state((r, 0.0), (0.0, w * r))
+    ts = np.linspace(analysis.t_end - analysis.window, analysis.t_end, analysis.samples)
+    sol = solve(model, y0, (0.0, analysis.t_end), save_at=SaveAt(ts=ts), control=StepControl(rtol=1e-9, atol=1e-12 * rotor.clearance / 1e-3),
+                max_events_recorded=0)  # fmt: skip
+    if progress is not None:
+        progress(1, 1)
+    pred = rub_prediction(rotor, model.spin_speed)
+    ys = sol.ys
+    radius = np.hypot(ys[:, 0], ys[:, 1])
+    status, message = int(sol.status), sol.status.message
+    # a rotor found beyond a rigid stator is impossible: a rebound lower than the integrator
+    # resolves was missed (rest_speed below sqrt(2 a atol)); report it, never a regime
+    excess = float(radius.max() - rotor.clearance) if rotor.rigid_stator else 0.0
+    if status >= 0 and excess > 1e-6 * rotor.clearance:
+        status = int(getattr(Status, "IMPOSSIBLE", -5))  # the sanity code of the integrator's statuses
+        message = (f"the rotor passed through the rigid stator ({excess:.3g} m beyond the clearance): "
+                   f"raise model.rest_speed ({model.rest_speed:g} m/s) so that chatter settles into contact")
+    if status < 0:
+        regime, feats = RubRegime.FAILED, None
+    else:
+        feats = rub_features(model, ts, ys)
+        regime = feats.regime
+    ds = xr.Dataset(
+        {
+            "x": (("time",), ys[:, 0], {"units": "m"}),
+            "y": (("time",), ys[:, 1], {"units": "m"}),
+            "radius": (("time",), radius, {"units": "m"}),
+            "mode": (("time",), ys[:, 8].astype(np.int8), {"units": "1"}),
+        },
+        coords={"time": ("time", ts, {"units": "s"})},
+    )
+    ds.attrs.update({
+        "name": analysis.name, "status": status, "status_message": message,
+        "regime": int(regime), "regime_label": regime.label, "spin_speed": model.spin_speed,
+        "clearance": rotor.clearance, "rigid_stator": int(rotor.rigid_stator), "friction": rotor.friction,
+        "predicted_regimes": "; ".join(pred["regimes"]) or "none of the closed forms",
+        "no_rub_radius": pred["no_rub_radius"],
+        "branch_radius": [b["radius"] for b in pred["branches"]],
+        "branch_normal_force": [b["normal_force"] for b in pred["branches"]],
+        "branch_stable": [(-1 if b["stable"] is None else int(b["stable"])) for b in pred["branches"]],
+        "critical_friction": np.nan if pred["critical_friction"] is None else pred["critical_friction"],
+    })  # fmt: skip
+    if pred["rolling"] is not None:
+        ds.attrs.update({f"rolling_{k}": v for k, v in pred["rolling"].items()})
+    if feats is not None:
+        ds.attrs.update({"impact_rate": feats.impact_rate, "contact_fraction": feats.contact_fraction,
+                         "rolling_fraction": feats.rolling_fraction, "whirl_ratio": feats.whirl_ratio,
+                         "peak_force": feats.peak_force, "peak_impulse": feats.peak_impulse,
+                         "mean_radius": float(radius.mean())})  # fmt: skip
+    return ds
+
+
+def _closed_form_for(ds: xarray.Dataset) -> tuple[float | None, float | None, float | None, str]:
+    """(radius m, whirl ratio, normal force N, source) the closed forms give for the measured regime."""
+    from rotorlab.contact import RubRegime
+
+    a = ds.attrs
+    regime = RubRegime(a["regime"])
+    if regime == RubRegime.NO_CONTACT:
+        return a["no_rub_radius"], 1.0, 0.0, "Jeffcott unbalance response"
+    if regime == RubRegime.FULL_RUB and len(a["branch_radius"]):
+        radii = list(a["branch_radius"])
+        i = int(np.argmin([abs(r - a["mean_radius"]) for r in radii]))
+        return radii[i], 1.0, list(a["branch_normal_force"])[i], "Black (1968), Choy & Padovan (1987)"
+    if regime == RubRegime.BACKWARD_ROLLING and "rolling_radius" in a:
+        return a["rolling_radius"], a["rolling_whirl_speed"] / a["spin_speed"], a["rolling_normal_force"], "Crandall (1990)"
+    return None, None, None, "no closed form for this regime"
+
+
+def rub_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """Summary rows: the regime, then each measured quantity with its closed-form value."""
+    a = ds.attrs
+    radius, whirl, force, source = _closed_form_for(ds)
+    rows: list[dict[str, Any]] = [{"quantity": "regime", "measured": a["regime_label"],
+                                   "closed_form": a["predicted_regimes"], "unit": "", "source": source}]  # fmt: skip
+    if "mean_radius" not in a:
+        return rows
+    for name, measured, closed, unit in (
+        ("whirl radius (mean)", a["mean_radius"], radius, "m"),
+        ("whirl speed / spin speed", a["whirl_ratio"], whirl, ""),
+        ("contact normal force (peak)", a["peak_force"], force, "N"),
+        ("contact fraction", a["contact_fraction"], None, ""),
+        ("contacts begun per second", a["impact_rate"], None, "1/s"),
+        ("largest impact impulse", a["peak_impulse"], None, "N*s"),
+    ):
+        rows.append({"quantity": name, "measured": float(measured), "closed_form": None if closed is None else float(closed),
+                     "unit": unit, "source": source if closed is not None else ""})  # fmt: skip
+    mu_c = a.get("critical_friction")
+    if mu_c is not None and np.isfinite(mu_c):
+        rows.append({"quantity": "critical friction of the full rub", "measured": float(a["friction"]),
+                     "closed_form": float(mu_c), "unit": "", "source": "Hurwitz criterion of the rub orbit"})  # fmt: skip
+    return rows

@@ -1,0 +1,51 @@
+"""Rotor-stator contact: the closed forms every rub simulation is checked against.
+
+See :mod:`rotorlab.contact._theory` for the physics and references (Black 1968; Choy & Padovan
+1987; Crandall 1990; Nordmark & Piiroinen 2009).
+"""
+
+from rotorlab.contact._model import JeffcottRub
+from rotorlab.contact._regimes import RubFeatures, RubRegime, RubRegimes, classify_rub, rub_features
+from rotorlab.contact._theory import (
+    RollingWhirl,
+    RubBranch,
+    RubRotor,
+    chatter_impact_times,
+    chatter_time,
+    critical_friction,
+    dry_whip_frequency,
+    friction_to_roll,
+    full_rub,
+    full_rub_characteristic,
+    full_rub_fold_speeds,
+    full_rub_jacobian,
+    grazing_speeds,
+    hurwitz_stable,
+    no_rub_radius,
+    rolling_whirl,
+)
+
+__all__ = [
+    "JeffcottRub",
+    "RubFeatures",
+    "RubRegime",
+    "RubRegimes",
+    "classify_rub",
+    "rub_features",
+    "RubRotor",
+    "RubBranch",
+    "RollingWhirl",
+    "no_rub_radius",
+    "grazing_speeds",
+    "full_rub",
+    "full_rub_fold_speeds",
+    "full_rub_jacobian",
+    "full_rub_characteristic",
+    "hurwitz_stable",
+    "critical_friction",
+    "rolling_whirl",
+    "friction_to_roll",
+    "dry_whip_frequency",
+    "chatter_time",
+    "chatter_impact_times",
+]

@@ -1,0 +1,154 @@
+"""The Jeffcott rotor in a circular clearance: the reference model of the contact law.
+
+The smallest model on the kernel contract (:mod:`rotorlab.models._base`) that carries the whole
+contact law of :mod:`rotorlab._kernels.contact`: located impacts with Newton restitution and a
+Coulomb impulse (stick or slip, the rotor's surface speed in the slip), chatter turned into
+sustained contact, sliding and rolling sustained contact (full rub, backward whirl), stick-slip
+transitions and lift-off, against a rigid or an elastic (massless) stator. It is what the closed
+forms of :mod:`rotorlab.contact._theory` are checked against in simulation.
+
+Equations (fixed frame, complex ``z = x + i y``)::
+
+    m z'' + c z' + k z = m eps Omega^2 e^{i Omega t} + m g + (-N + i F_t) z / |z|   (in contact)
+
+with ``N`` and ``F_t`` from the contact law: a rigid stator holds ``|z| = delta`` (``N`` the
+constraint force), an elastic one pushes with ``N = max(0, k_s (|z| - delta) + c_s d|z|/dt)``;
+sliding ``F_t = -mu sign(s) N`` with the slip ``s = u_t + R_r Omega``, rolling ``F_t`` keeps
+``s = 0`` while ``|F_t| <= mu N``. The spin ``Omega`` is prescribed (a drive holds it: its work
+through the friction torque is the ``drive`` state).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+
+import numpy as np
+
+from rotorlab._kernels import jeffcott_rub as _k
+from rotorlab.contact._theory import RubRotor
+from rotorlab.models._base import EventSpec, Kernels
+from rotorlab.models._checks import check_number as _num
+
+__all__ = ["JeffcottRub"]
+
+_KERNELS = Kernels(
+    rhs=_k.rhs,
+    n_state=_k.N_STATE,
+    n_discrete=_k.N_DISCRETE,
+    events=_k.events,
+    reset=_k.reset,
+    event_specs=(
+        EventSpec("contact", -1, "reset"),
+        EventSpec("lift_off", -1, "reset"),
+        EventSpec("stick", -1, "reset"),
+        EventSpec("slip", -1, "reset"),
+    ),
+)
+
+MODES = {0: "free", 1: "sliding (positive slip)", -1: "sliding (negative slip)", 2: "rolling"}
+
+
+@dataclass(frozen=True, slots=True)
+class JeffcottRub:
+    """A Jeffcott rotor at constant spin in a circular clearance with a rigid or elastic stator.
+
+    Parameters
+    ----------
+    rotor : RubRotor
+        Rotor, clearance, stator and friction (``stator_mass`` must be 0: a moving housing needs
+        the composed machine).
+    spin_speed : float
+        Omega, prescribed spin speed (rad/s), >= 0.
+    restitution : float
+        e, Newton's coefficient of restitution of a rigid stator, in [0, 1].
+    rest_speed : float
+        Rebound speed (m/s) below which a pressed rotor's impacts are treated as accumulated
+        (chatter): one plastic impulse, then sustained contact. The skipped time is below
+        ``2 rest_speed / (a (1 - e))`` for a pressing acceleration ``a``. It must exceed the
+        speed the integrator resolves, ``sqrt(2 a atol)``: a rebound lower than the position
+        tolerance cannot be located.
+    gravity : tuple of float
+        (g_x, g_y), lateral acceleration of gravity (m/s^2).
+
+    Notes
+    -----
+    State ``[x, y, vx, vy, dissipated, drive_work, impacts, peak_impulse, mode]`` (the last three
+    discrete); packed parameters and events are documented in
+    :mod:`rotorlab._kernels.jeffcott_rub`. ``energy(y) = m |v|^2 / 2 + k |z|^2 / 2`` (+ the
+    stator's ``k_s p^2 / 2``); without unbalance, gravity and rotor damping,
+    ``energy(y) - energy(y0) = drive_work - dissipated`` exactly.
+
+    Examples
+    --------
+    >>> from rotorlab.contact import RubRotor
+    >>> m = JeffcottRub(RubRotor(1.0, 1.0, 1.0, stator_stiffness=10.0), spin_speed=1.5)
+    >>> m.to_array()[[4, 5, 6, 14]].tolist()
+    [1.5, 1.0, 10.0, 0.0]
+    """
+
+    rotor: RubRotor
+    spin_speed: float
+    restitution: float = 0.5
+    rest_speed: float = 1e-5
+    gravity: tuple[float, float] = field(default=(0.0, 0.0))
+
+    def __post_init__(self) -> None:
+        o = "JeffcottRub"
+        if not isinstance(self.rotor, RubRotor):
+            raise ValueError(f"{o}.rotor must be a RubRotor, got {type(self.rotor).__name__}")
+        if self.rotor.stator_mass != 0.0:
+            raise ValueError(
+                f"{o}.rotor.stator_mass must be 0 (a massless stator), got {self.rotor.stator_mass!r} kg"
+            )
+        object.__setattr__(self, "spin_speed", _num(o, "spin_speed", self.spin_speed, lo_open=False, unit="rad/s"))
+        object.__setattr__(self, "restitution", _num(o, "restitution", self.restitution, lo_open=False, hi=1.0))
+        object.__setattr__(self, "rest_speed", _num(o, "rest_speed", self.rest_speed, unit="m/s"))
+        g = tuple(_num(o, f"gravity[{i}]", v, lo=None, unit="m/s^2") for i, v in enumerate(self.gravity))
+        if len(g) != 2:
+            raise ValueError(f"{o}.gravity must be (g_x, g_y), got {self.gravity!r}")
+        object.__setattr__(self, "gravity", g)
+
+    @property
+    def kernels(self) -> Kernels:
+        return _KERNELS
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return ("x", "y", "vx", "vy", "dissipated", "drive_work", "impacts", "peak_impulse", "mode")
+
+    def to_array(self) -> np.ndarray:
+        r = self.rotor
+        rigid = r.rigid_stator
+        return np.array([
+            r.mass, r.stiffness, r.damping, r.eccentricity, self.spin_speed, r.clearance,
+            0.0 if rigid else r.stator_stiffness, r.stator_damping, r.friction, r.rotor_radius,
+            self.restitution, self.rest_speed, self.gravity[0], self.gravity[1], 1.0 if rigid else 0.0,
+        ])  # fmt: skip
+
+    def initial_state(self, position=(0.0, 0.0), velocity=(0.0, 0.0)) -> np.ndarray:
+        """State at rest in the contact accounting, free (mode 0); the position must be inside
+        the clearance for a rigid stator."""
+        x, y = (float(v) for v in position)
+        if self.rotor.rigid_stator and math.hypot(x, y) > self.rotor.clearance:
+            raise ValueError(
+                f"JeffcottRub.initial_state: position {position!r} lies outside the rigid stator "
+                f"(clearance {self.rotor.clearance:g} m)"
+            )
+        mode = 0.0
+        rad = math.hypot(x, y)
+        if not self.rotor.rigid_stator and rad > self.rotor.clearance:  # pressed: slide along the slip
+            slip = (-x * float(velocity[0]) + y * float(velocity[1])) / rad + self.rotor.rotor_radius * self.spin_speed
+            mode = 1.0 if slip >= 0.0 else -1.0
+        return np.array([x, y, float(velocity[0]), float(velocity[1]), 0.0, 0.0, 0.0, 0.0, mode])
+
+    def energy(self, y) -> np.ndarray:
+        """Kinetic + shaft + stator elastic energy (J), shape of ``y[..., 0]``."""
+        y = np.asarray(y, dtype=float)
+        r = self.rotor
+        rad = np.hypot(y[..., 0], y[..., 1])
+        e = 0.5 * r.mass * (y[..., 2] ** 2 + y[..., 3] ** 2) + 0.5 * r.stiffness * rad**2
+        if not r.rigid_stator:
+            pen = np.maximum(rad - r.clearance, 0.0)
+            e = e + 0.5 * r.stator_stiffness * pen**2
+        return e

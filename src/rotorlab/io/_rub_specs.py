@@ -1,0 +1,101 @@
+"""Case-file specs of a Jeffcott rotor in a circular clearance (rub, impacts, backward whirl).
+
+The ``rub_rotor`` model (:class:`rotorlab.contact.JeffcottRub`: rotor, clearance, rigid or
+elastic stator, restitution and friction in ``[model]``) and the analysis ``rub`` (simulate,
+classify the regime of the last window and put the closed-form predictions beside it),
+registered in :mod:`rotorlab.io._schema`.
+
+Examples
+--------
+>>> from rotorlab.io import load_case
+>>> case = load_case("rub-jeffcott")
+>>> case.model.type, round(case.model.clearance, 6), [a.type for a in case.analyses]
+('rub_rotor', 0.001, ['rub'])
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Literal
+
+from pydantic import Field, model_validator
+
+from rotorlab.io._errors import Issue, IssueGroup
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, integer, quantity
+
+__all__ = ["JeffcottRubSpec", "RubSpec"]
+
+
+class JeffcottRubSpec(AbstractModelSpec):
+    """A Jeffcott rotor at constant spin in a circular clearance (see :class:`rotorlab.contact.RubRotor`)."""
+
+    type: Literal["rub_rotor"] = "rub_rotor"
+    mass: quantity("mass", gt=0) = Field(description="rotor mass m (kg)")
+    stiffness: quantity("stiffness", gt=0) = Field(description="shaft and support stiffness k (N/m)")
+    damping: quantity("damping", ge=0) = Field(0.0, description="viscous damping c of the rotor (N*s/m)")
+    eccentricity: quantity("length", ge=0) = Field(0.0, description="unbalance eccentricity eps (m)")
+    clearance: quantity("length", gt=0) = Field(description="radial clearance delta (m)")
+    stator_stiffness: quantity("stiffness", gt=0) | None = Field(
+        None, description="radial stiffness k_s of the stator (N/m); omit for a rigid stator"
+    )
+    stator_damping: quantity("damping", ge=0) = Field(0.0, description="radial damping c_s of the stator (N*s/m)")
+    friction: quantity("dimensionless", ge=0) = Field(0.0, description="Coulomb friction mu at the stator (-)")
+    rotor_radius: quantity("length", gt=0) = Field(description="rotor radius R_r at the contact (m)")
+    restitution: quantity("dimensionless", ge=0, le=1) = Field(0.5, description="restitution e of a rigid stator (-)")
+    rest_speed: quantity("velocity", gt=0) = Field(
+        1e-5, description="rebound speed below which chatter becomes sustained contact (m/s)"
+    )
+    spin_speed: quantity("angular_speed", ge=0) = Field(description="spin speed Omega (rad/s)")
+
+    @model_validator(mode="after")
+    def _check_stator(self) -> JeffcottRubSpec:
+        if self.stator_stiffness is None and self.stator_damping > 0.0:
+            raise IssueGroup([Issue(("stator_damping",), "needs an elastic stator (give stator_stiffness)",
+                                    self.stator_damping)])  # fmt: skip
+        return self
+
+    def critical_speed(self) -> float | None:
+        """sqrt(k / m) (rad/s)."""
+        return math.sqrt(self.stiffness / self.mass)
+
+    def describe(self) -> str:
+        """Return a one-line description."""
+        stator = "rigid stator" if self.stator_stiffness is None else f"stator {self.stator_stiffness:g} N/m"
+        return (f"Jeffcott rotor {self.mass:g} kg at {self.spin_speed * 30 / math.pi:.5g} rpm in a "
+                f"{self.clearance * 1e3:.3g} mm clearance, {stator}, friction {self.friction:g}")  # fmt: skip
+
+
+class RubSpec(AbstractAnalysisSpec):
+    """Simulate the rotor in its clearance and classify what it does (:class:`rotorlab.contact.RubRegime`).
+
+    The start is a circular whirl of radius ``initial_radius`` at ``initial_whirl`` (rad/s, < 0
+    backward); the last ``window`` seconds of ``t_end`` are classified, with the closed-form
+    predictions (no-rub orbit, full-rub branch and its stability, rolling backward whirl) beside.
+    """
+
+    type: Literal["rub"] = "rub"
+    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
+    window: quantity("time", gt=0) = Field(description="classified window at the end of the run (s)")
+    initial_radius: quantity("length", ge=0) = Field(0.0, description="radius of the starting whirl (m)")
+    initial_whirl: quantity("angular_speed") = Field(0.0, description="angular speed of the starting whirl (rad/s)")
+    samples: integer(ge=2) = Field(400, description="samples in the window (-)")
+
+    @model_validator(mode="after")
+    def _check_window(self) -> RubSpec:
+        if self.window >= self.t_end:
+            raise IssueGroup([Issue(("window",), f"must be < t_end ({self.t_end:g} s)", self.window)])
+        return self
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        """A rigid stator's rotor must start inside the clearance."""
+        clearance = getattr(model, "clearance", None)
+        if getattr(model, "type", None) != "rub_rotor":
+            return [Issue(("type",), "needs a rub_rotor model", self.type)]
+        if model.stator_stiffness is None and self.initial_radius > clearance:
+            return [Issue(("initial_radius",), f"must be <= the clearance ({clearance:g} m) with a rigid stator",
+                          self.initial_radius)]  # fmt: skip
+        return []
+
+    def describe(self, model: AbstractModelSpec) -> str:
+        """Return a one-line description."""
+        return f"rub regime over the last {self.window:g} s of {self.t_end:g} s"
