@@ -223,3 +223,15 @@ def test_working_point_findings_name_the_point_and_its_band():
     assert found.verdict == f"working point psi = {float(ds.psi):.6g} rad, alpha = {float(ds.alpha):.6g} rad"
     band = [float(v) for v in ds.psi_band.values]
     assert found.numbers[0].startswith(f"friction band psi {band[0]:.6g} to {band[1]:.6g} rad")
+
+
+def test_undamped_unbalance_response_findings_say_the_peak_is_unbounded():
+    from rotorlab.analyses import run_analysis
+    from rotorlab.io import load_case
+    from rotorlab.report import presentation_of
+
+    case = load_case("friswell-rotor")  # undamped bearings: no finite peak
+    analysis = next(a for a in case.analyses if a.type == "unbalance_response")
+    ds = run_analysis(case.model, analysis)
+    found = presentation_of("unbalance_response").findings(ds, summarize(ds))
+    assert found.verdict.startswith("undamped rotor: the response is unbounded at the critical speeds")
