@@ -113,6 +113,17 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
      ["analysis[0].seed", "integer"]),
     ("ir-sequences-zero", ["validate", FILE], ("krasnov-crusher", "n_sequences = 16", "n_sequences = 0"),
      ["analysis[1].n_sequences", ">= 1"]),
+    ("rb-negative-clearance", ["validate", FILE], ("rub-jeffcott", 'clearance = "1 mm"', 'clearance = "-1 mm"'),
+     ["model.clearance", "> 0"]),
+    ("rb-friction-text", ["run", FILE, "--out", "{d}/o"], ("rub-jeffcott", "friction = 0.02", 'friction = "high"'),
+     ["model.friction"]),
+    ("rb-window-wrong-unit", ["validate", FILE], ("rub-jeffcott", 'window = "0.1 s"', 'window = "0.1 m"'),
+     ["analysis[0].window", "wrong dimension"]),
+    ("rb-unknown-key", ["validate", FILE], ("rub-jeffcott", 'rotor_radius = "50 mm"',
+                                            'rotor_radius = "50 mm"\nrotor_radus = 1'),
+     ["model.rotor_radus", "unknown key"]),
+    ("rb-zero-t-end", ["run", FILE, "--out", "{d}/o"], ("rub-jeffcott", 't_end = "2 s"', 't_end = "0 s"'),
+     ["analysis[0].t_end", "> 0"]),
     # ---- validate / cases / global options -------------------------------------------------
     ("validate-toml-syntax", ["validate", FILE], ("autobalancer", 'disc_mass = "1 kg"', 'disc_mass = "1 kg'),
      ["line", "column"]),
@@ -240,7 +251,7 @@ def test_the_corpus_is_large_and_covers_every_command_and_model_type():
     assert commands >= {"run", "simulate", "campbell", "modes", "steady", "stability-chart", "basin", "sweep",
                         "show", "impacts", "impacts-sweep", "validate", "cases"}  # fmt: skip
     bases = {entry[2][0] for entry in CORPUS if entry[2]}
-    assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher"}
+    assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher", "rub-jeffcott"}
 
 
 @pytest.mark.parametrize("name, argv, case, words", CORPUS, ids=[entry[0] for entry in CORPUS])

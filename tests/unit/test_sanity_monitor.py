@@ -153,3 +153,7 @@ def test_exit_if_failed_passes_usable_results(bad):
     with pytest.raises(typer.Exit) as err:
         exit_if_failed({"a": xr.Dataset({"status": ("ic", np.array([0, -5, -1], dtype=np.int32))})})
     assert err.value.exit_code == 3
+    # a single run's status as an attribute (the rub analysis), with its message
+    exit_if_failed({"r": xr.Dataset(attrs={"status": 0, "status_message": "reached the end time"})})
+    with pytest.raises(typer.Exit):
+        exit_if_failed({"r": xr.Dataset(attrs={"status": -5, "status_message": "passed through the stator"})})

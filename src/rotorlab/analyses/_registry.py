@@ -143,7 +143,7 @@ def register_analysis_type(entry: AnalysisType, *, replace: bool = False) -> Non
 
 
 def _register_builtins() -> None:
-    from rotorlab.analyses import _basin, _builders, _impacts, _linear, _rub, _simulate, _steady, _sweep
+    from rotorlab.analyses import _basin, _builders, _impacts, _linear, _machine, _rub, _simulate, _steady, _sweep
     from rotorlab.analyses._linear_build import build_linear_system
 
     for name, build, quantities, mapper in (
@@ -152,6 +152,7 @@ def _register_builtins() -> None:
         ("fe_rotor", build_linear_system, _builders.linear_quantities, None),
         ("toroidal_ball", _builders.toroidal_ball_model, _builders.reference_speed_quantities, _basin.torus_mapper),
         ("impact_rotor", _impacts.impact_model, _builders.reference_speed_quantities, None),
+        ("machine", _machine.machine_model, _machine.machine_quantities, None),
         ("rub_rotor", _rub.rub_model, _rub.rub_quantities, None),
     ):
         register_model_type(ModelType(name, build, quantities, mapper))
@@ -172,6 +173,8 @@ def _register_builtins() -> None:
     register_analysis_type(AnalysisType("impacts", _impacts.run_impact_analysis, _impacts.impact_rows, "impacts"))
     register_analysis_type(AnalysisType("impacts-sweep", _impacts.run_impact_analysis, _impacts.sweep_rows,
                                         "impacts"))  # fmt: skip
+    for name in _machine.MACHINE_ANALYSES:
+        register_analysis_type(AnalysisType(name, _machine.run_machine_analysis, _machine.machine_rows, "machine"))
     register_analysis_type(AnalysisType("rub", _rub.run_rub_analysis, _rub.rub_rows, "rub"))
 
 

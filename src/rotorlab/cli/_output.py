@@ -172,8 +172,9 @@ def _internal(settings: Settings, exc: BaseException) -> None:
 
 def exit_if_failed(datasets: Mapping[str, Any]) -> None:
     """Exit with :data:`EXIT_FAILED_RESULTS` (3) after the results are out when any trajectory or
-    run of ``datasets`` (name -> Dataset with an integer ``status``) failed, naming how many and
-    why; nothing happens when every status is usable (>= 0).
+    run of ``datasets`` (name -> Dataset with an integer ``status`` variable, or attribute for a
+    single run) failed, naming how many and why; nothing happens when every status is usable
+    (>= 0).
 
     Every command that integrates calls this last, so that no command exits 0 with a result it
     knows is impossible.
@@ -184,9 +185,14 @@ def exit_if_failed(datasets: Mapping[str, Any]) -> None:
 
     lines = []
     for name, ds in datasets.items():
-        if ds is None or "status" not in ds:
+        if ds is None:
             continue
-        codes = np.asarray(ds["status"].values).ravel()
+        if "status" in ds.variables:
+            codes = np.asarray(ds["status"].values).ravel()
+        elif isinstance(ds.attrs.get("status"), (int, np.integer)):  # a single run's status attribute
+            codes = np.array([int(ds.attrs["status"])])
+        else:
+            continue
         bad = codes[codes < 0]
         if bad.size == 0:
             continue
@@ -197,7 +203,8 @@ def exit_if_failed(datasets: Mapping[str, Any]) -> None:
             except ValueError:
                 text = f"status {int(code)}"
             kinds.append(f"{int(np.count_nonzero(bad == code))} {text}")
-        detail = ds.attrs.get("status_detail", "")
+        detail = ds.attrs.get("status_detail", "") or (ds.attrs.get("status_message", "") if "status" not in
+                                                        ds.variables else "")  # fmt: skip
         lines.append(f"{name}: {bad.size} of {codes.size} failed ({'; '.join(kinds)})"
                      + (f"; first: {detail}" if detail else ""))  # fmt: skip
     if lines:

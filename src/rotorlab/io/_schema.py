@@ -90,6 +90,7 @@ from rotorlab.io._linear_analyses import (
     ModesSpec,
     UnbalanceResponseSpec,
 )
+from rotorlab.io._machine_spec import MachineRunUpSpec, MachineSimulateSpec, MachineSpec, MachineSteadySpec
 from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._rub_specs import JeffcottRubSpec, RubSpec
 from rotorlab.io._steady_specs import RunUpSpec, StabilityChartSpec, SteadySpec, VerifySpec
@@ -145,10 +146,12 @@ MODEL_SPECS: Registry[type[AbstractModelSpec]] = Registry("model type", on_chang
 #: :func:`register_analysis_spec`).
 ANALYSIS_SPECS: Registry[type[AbstractAnalysisSpec]] = Registry("analysis type", on_change=lambda: _rebuild_case())
 
-_BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSpec, ImpactRotorSpec, JeffcottRubSpec)
+_BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSpec, ImpactRotorSpec, MachineSpec,
+                   JeffcottRubSpec)
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
-                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec)  # fmt: skip
+                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, MachineSteadySpec,
+                     MachineSimulateSpec, MachineRunUpSpec, RubSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:

@@ -15,6 +15,15 @@ from rotorlab.models._impact_rotor import (
 from rotorlab.models._jeffcott_balls import JeffcottBalls, fixed_to_rotating, rotating_to_fixed
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
 from rotorlab.models._jeffcott_physics import Linearization
+from rotorlab.models._machine import (
+    Ball,
+    BallRace,
+    Gravity,
+    Machine,
+    MachineLinearization,
+    Motor,
+    Unbalance,
+)
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp, speed_from_array
 from rotorlab.models._toroidal_ball import ToroidalBall, WorkingPoint, strautmanis_torus
 
@@ -25,3 +34,4 @@ __all__ += ["ToroidalBall", "WorkingPoint", "strautmanis_torus"]
 __all__ += ["BENCHMARK", "BenchmarkProblem"]
 __all__ += ["ImpactRotor", "CentrifugeRotor", "Housing", "StoneFeed", "StonePush", "StoneSequence",
             "krasnov_crusher", "stone_push"]
+__all__ += ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor"]

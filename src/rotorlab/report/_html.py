@@ -76,6 +76,8 @@ def _other_units(value: Any, unit: str) -> str:
     if unit == "rad" and isinstance(value, (int, float)):
         return f"{math.degrees(value):.6g}°"
     if unit == "rad" and isinstance(value, (list, tuple)):
+        if all(isinstance(a, (int, float)) for a in value):  # one list of angles
+            return ", ".join(f"{math.degrees(a):.4g}°" for a in value)
         rows = ["(" + ", ".join(f"{math.degrees(a):.4g}°" for a in row) + ")" for row in value]
         return ", ".join(rows)
     return ""

@@ -156,6 +156,10 @@ for _entry in (
                  lazy("rotorlab.cli._impacts:impact_tables"), notes=_impact_notes),
     Presentation("linear", lazy("rotorlab.plot:linear_figures"), _linear_section, linear_findings,
                  lazy("rotorlab.cli._linear:linear_tables")),
+    Presentation("machine", lazy("rotorlab.report._machine:machine_figures"),
+                 lazy("rotorlab.report._machine:machine_section"),
+                 lazy("rotorlab.report._machine:machine_findings"),
+                 lazy("rotorlab.cli._machine:machine_tables")),
     Presentation("rub", lazy("rotorlab.plot._rub:rub_figures"), lazy("rotorlab.report._rub:rub_section"),
                  lazy("rotorlab.report._rub:rub_findings"), lazy("rotorlab.cli._rub:rub_tables")),
 ):  # fmt: skip

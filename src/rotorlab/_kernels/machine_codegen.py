@@ -1,0 +1,444 @@
+r"""Generator of the compiled right-hand side of the composed machine model (``machine``).
+
+The physics is documented in :mod:`rotorlab.models._machine`; this module turns the *sizes* of
+one machine (structure coordinates, races and balls per race, unbalances, drive, energy states)
+into the source of a module with one ``rhs(t, y, p, out)`` in which every count is a
+compile-time constant and every loop is unrolled into straight scalar code. The lane driver
+(:mod:`rotorlab.integrate._lanes`, "Lane-friendly kernels") can then vectorise it across its
+lanes: sines and cosines come from :func:`rotorlab._kernels._vmath.sincos`, the drive profile is
+inlined for its kind (a Hill run-up needs ``exp``/``log`` and runs scalar), and no loop runs over
+a count read from ``p``.
+
+The generated file is written once per source hash into the cache directory of the integrator's
+drivers (``$ROTORLAB_CACHE_DIR``, see :mod:`rotorlab.integrate._codegen`), imported under a
+module name containing that hash and cached by numba like any module-level kernel.
+
+Packed parameters ``p`` (float64; offsets from :class:`Layout`)
+---------------------------------------------------------------
+=================  ===========================================================================
+``speed``          6: the prescribed profile block (:mod:`rotorlab._kernels.speed`); zeros with a
+                   motor
+``motor``          3 + 2 n_t: polar inertia J (kg m^2), stall torque T_s (N m), no-load speed
+                   w_0 (rad/s) [linear]; then n_t speeds (rad/s) and n_t torques (N m) [table]
+``gravity``        2: g_x, g_y (m/s^2), the lateral components of gravity
+``balls``          4 per ball (races in order): m (kg), m l (kg m), J = m l^2 + J_c (kg m^2),
+                   c (N m s/rad)
+``unbalances``     3 per unbalance: U = m e (kg m), cos beta, sin beta (beta: phase, rad)
+``stations``       per station (races, then unbalances): B (2 x n_z, row-major), then H B^T
+                   (n_z x 2, row-major); ``B z`` is the lateral displacement of the station
+``L``              per ordered pair of stations (s, s'): B_s H B_s'^T (2 x 2, row-major)
+``HK, HC, HG``     n_z x n_z each (row-major): H K, H C, H G; ``HG`` only when the structure is
+                   gyroscopic
+``Hf``             n_z: H f_g, the weight of the structure and of the balls
+``C, Ka``          n_z x n_z each, only with energy states: C and the skew part of K
+=================  ===========================================================================
+
+``H = M0^-1`` with ``M0 = M_s + sum_r m_r B_r^T B_r`` (the structure plus the ball masses carried
+by the races).
+
+States
+------
+``[z (n_z), z' (n_z), phi (n_b), phi' (n_b), (theta, Omega) with a motor, (W, D) with energy
+states]``: structure coordinates and their rates, absolute ball angles and rates, spin angle and
+speed, drive work and dissipated energy.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib.util
+import inspect
+import os
+import sys
+import tempfile
+from dataclasses import dataclass
+from pathlib import Path
+from typing import Any
+
+__all__ = ["Layout", "kernel_module"]
+
+SPEED_KINDS = ("constant", "ramp", "hill")
+DRIVE_KINDS = ("profile", "linear", "table")
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Sizes of one machine and the offsets of its packed parameters and states.
+
+    Parameters
+    ----------
+    n_z : int
+        Structure coordinates (4 per node, or the number of modes kept).
+    races : tuple of int
+        Balls per race.
+    n_unbalance : int
+        Number of unbalances.
+    drive : {"profile", "linear", "table"}
+        Prescribed spin, or a motor with a linear or tabulated characteristic.
+    speed_kind : {"constant", "ramp", "hill"}
+        Kind of the prescribed profile (``"constant"`` with a motor, unused).
+    n_table : int
+        Points of the tabulated characteristic (0 otherwise).
+    gyroscopic : bool
+        The structure has a nonzero G.
+    energy : bool
+        The state carries the drive work and the dissipated energy.
+    """
+
+    n_z: int
+    races: tuple[int, ...]
+    n_unbalance: int
+    drive: str = "profile"
+    speed_kind: str = "constant"
+    n_table: int = 0
+    gyroscopic: bool = False
+    energy: bool = False
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "races", tuple(int(n) for n in self.races))
+        if self.drive not in DRIVE_KINDS or self.speed_kind not in SPEED_KINDS:
+            raise ValueError(f"bad layout drive={self.drive!r} speed_kind={self.speed_kind!r}")
+
+    # ---- counts
+    @property
+    def n_balls(self) -> int:
+        return sum(self.races)
+
+    @property
+    def n_races(self) -> int:
+        return len(self.races)
+
+    @property
+    def n_stations(self) -> int:
+        return self.n_races + self.n_unbalance
+
+    @property
+    def motor(self) -> bool:
+        return self.drive != "profile"
+
+    @property
+    def ball_race(self) -> tuple[int, ...]:
+        """Race of each ball."""
+        return tuple(r for r, n in enumerate(self.races) for _ in range(n))
+
+    # ---- state offsets
+    @property
+    def i_phi(self) -> int:
+        return 2 * self.n_z
+
+    @property
+    def i_w(self) -> int:
+        return 2 * self.n_z + self.n_balls
+
+    @property
+    def i_theta(self) -> int:
+        return 2 * self.n_z + 2 * self.n_balls
+
+    @property
+    def i_energy(self) -> int:
+        return self.i_theta + (2 if self.motor else 0)
+
+    @property
+    def n_state(self) -> int:
+        return self.i_energy + (2 if self.energy else 0)
+
+    # ---- parameter offsets
+    @property
+    def offsets(self) -> dict[str, int]:
+        nz, ns = self.n_z, self.n_stations
+        sizes = [
+            ("speed", 6),
+            ("motor", 3 + 2 * self.n_table),
+            ("gravity", 2),
+            ("balls", 4 * self.n_balls),
+            ("unbalances", 3 * self.n_unbalance),
+            ("stations", 4 * nz * ns),
+            ("L", 4 * ns * ns),
+            ("HK", nz * nz),
+            ("HC", nz * nz),
+            ("HG", nz * nz if self.gyroscopic else 0),
+            ("Hf", nz),
+            ("C", nz * nz if self.energy else 0),
+            ("Ka", nz * nz if self.energy else 0),
+        ]
+        out, k = {}, 0
+        for name, size in sizes:
+            out[name] = k
+            k += size
+        out["size"] = k
+        return out
+
+    @property
+    def n_param(self) -> int:
+        return self.offsets["size"]
+
+    def station_B(self, s: int) -> int:
+        """Offset of B (2 x n_z) of station ``s``."""
+        return self.offsets["stations"] + 4 * self.n_z * s
+
+    def station_HBT(self, s: int) -> int:
+        """Offset of H B^T (n_z x 2) of station ``s``."""
+        return self.station_B(s) + 2 * self.n_z
+
+    def pair_L(self, s: int, s2: int) -> int:
+        """Offset of B_s H B_s2^T (2 x 2)."""
+        return self.offsets["L"] + 4 * (s * self.n_stations + s2)
+
+    @property
+    def key(self) -> str:
+        """Short identifier of the sizes (used in the generated module's name)."""
+        races = "x".join(str(n) for n in self.races) or "0"
+        return (f"z{self.n_z}r{races}u{self.n_unbalance}{self.drive[0]}{self.speed_kind[0]}"
+                f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}")
+
+
+def _sum(terms: list[str]) -> str:
+    return " + ".join(terms) if terms else "0.0"
+
+
+def generate(lay: Layout) -> str:
+    """Return the source of the kernel module for ``lay`` (see the module docstring)."""
+    nz, nb, o = lay.n_z, lay.n_balls, lay.offsets
+    races, br = lay.races, lay.ball_race
+    nr, nu = lay.n_races, lay.n_unbalance
+    L: list[str] = []
+    a = L.append
+    a(f"    # sizes: n_z={nz}, races={races}, unbalances={nu}, drive={lay.drive}, "
+      f"speed={lay.speed_kind}, energy={lay.energy}")
+    # ---- spin
+    if lay.motor:
+        a(f"    theta = y[{lay.i_theta}]")
+        a(f"    om = y[{lay.i_theta + 1}]")
+    elif lay.speed_kind == "constant":
+        a(f"    om = p[{o['speed'] + 1}]")
+        a("    theta = om * t")
+        a("    dom = 0.0")
+    elif lay.speed_kind == "ramp":
+        k = o["speed"]
+        a(f"    w0 = p[{k + 1}]")
+        a(f"    w1 = p[{k + 2}]")
+        a(f"    dur = p[{k + 3}]")
+        a("    slope = (w1 - w0) / dur")
+        a("    tc = min(max(t, 0.0), dur)")
+        a("    om = w0 + slope * tc")
+        a("    theta = w0 * tc + 0.5 * slope * tc * tc + om * (t - tc)")
+        a("    dom = slope if (t >= 0.0 and t < dur) else 0.0")
+    else:
+        a(f"    theta, om, dom = profile(t, p, {o['speed']})")
+    # ---- coordinates
+    for i in range(nz):
+        a(f"    z{i} = y[{i}]")
+        a(f"    v{i} = y[{nz + i}]")
+    for b in range(nb):
+        a(f"    s{b}, c{b} = sincos(y[{lay.i_phi + b}])")
+        a(f"    w{b} = y[{lay.i_w + b}]")
+    a(f"    gx = p[{o['gravity']}]")
+    a(f"    gy = p[{o['gravity'] + 1}]")
+    if nu:
+        a("    sth, cth = sincos(theta)")
+    for u in range(nu):
+        k = o["unbalances"] + 3 * u
+        a(f"    U{u} = p[{k}]")
+        a(f"    eux{u} = cth * p[{k + 1}] - sth * p[{k + 2}]")
+        a(f"    euy{u} = sth * p[{k + 1}] + cth * p[{k + 2}]")
+    # ---- ball parameters and station forces (centrifugal terms)
+    for b in range(nb):
+        k = o["balls"] + 4 * b
+        a(f"    ml{b} = p[{k + 1}]")
+        a(f"    J{b} = p[{k + 2}]")
+        a(f"    cb{b} = p[{k + 3}]")
+        a(f"    rel{b} = w{b} - om")
+    stations_force = []
+    for r in range(nr):
+        bs = [b for b in range(nb) if br[b] == r]
+        a(f"    fx{r} = {_sum([f'ml{b} * w{b} * w{b} * c{b}' for b in bs])}")
+        a(f"    fy{r} = {_sum([f'ml{b} * w{b} * w{b} * s{b}' for b in bs])}")
+        stations_force.append((r, f"fx{r}", f"fy{r}"))
+    for u in range(nu):
+        s = nr + u
+        if lay.motor:
+            a(f"    fx{s} = U{u} * om * om * eux{u}")
+            a(f"    fy{s} = U{u} * om * om * euy{u}")
+        else:  # U (Omega^2 e_u - Omega' t_u), t_u = (-euy, eux)
+            a(f"    fx{s} = U{u} * (om * om * eux{u} + dom * euy{u})")
+            a(f"    fy{s} = U{u} * (om * om * euy{u} - dom * eux{u})")
+        stations_force.append((s, f"fx{s}", f"fy{s}"))
+    # ---- h = H R_z
+    for i in range(nz):
+        terms = [f"p[{o['Hf'] + i}]"]
+        terms += [f"p[{o['HK'] + nz * i + j}] * z{j}" for j in range(nz)]
+        terms += [f"p[{o['HC'] + nz * i + j}] * v{j}" for j in range(nz)]
+        rhs = f"    h{i} = " + terms[0] + "".join(" - " + t for t in terms[1:])
+        a(rhs)
+        if lay.gyroscopic:
+            kg = o["HG"] + nz * i
+            a(f"    h{i} -= om * ({_sum([f'p[{kg + j}] * v{j}' for j in range(nz)])})")
+        for s, fx, fy in stations_force:
+            k = lay.station_HBT(s) + 2 * i
+            a(f"    h{i} += p[{k}] * {fx} + p[{k + 1}] * {fy}")
+    # ---- a0_s = B_s h for the stations that enter the Schur system
+    need = list(range(nr)) + ([nr + u for u in range(nu)] if lay.motor else [])
+    for s in need:
+        kb = lay.station_B(s)
+        a(f"    ax{s} = {_sum([f'p[{kb + j}] * h{j}' for j in range(nz)])}")
+        a(f"    ay{s} = {_sum([f'p[{kb + nz + j}] * h{j}' for j in range(nz)])}")
+    # ---- Schur system S x = q in the ball accelerations (and theta'')
+    unknowns = [("b", b) for b in range(nb)] + ([("th", 0)] if lay.motor else [])
+    n_s = len(unknowns)
+
+    def t_vec(kind, idx):  # (tx, ty) expressions of the unit tangent of a ball / unbalance
+        return (f"(-s{idx})", f"c{idx}") if kind == "b" else (f"(-euy{idx})", f"eux{idx}")
+
+    def station(kind, idx):
+        return br[idx] if kind == "b" else nr + idx
+
+    def tLt(k1, i1, k2, i2):
+        s1, s2 = station(k1, i1), station(k2, i2)
+        kk = lay.pair_L(s1, s2)
+        t1, t2 = t_vec(k1, i1), t_vec(k2, i2)
+        return (f"({t1[0]} * (p[{kk}] * {t2[0]} + p[{kk + 1}] * {t2[1]}) + "
+                f"{t1[1]} * (p[{kk + 2}] * {t2[0]} + p[{kk + 3}] * {t2[1]}))")
+
+    for i, (ki, ii) in enumerate(unknowns):
+        for j, (kj, ij) in enumerate(unknowns[: i + 1]):
+            if ki == "b" and kj == "b":
+                diag = f"J{ii} - " if i == j else "-"
+                a(f"    S{i}_{j} = {diag}ml{ii} * ml{ij} * {tLt('b', ii, 'b', ij)}")
+            else:  # rows/cols of theta: sums over the unbalances
+                if ki == "th" and kj == "th":
+                    terms = [f"U{u} * U{u2} * {tLt('u', u, 'u', u2)}"
+                             for u in range(nu) for u2 in range(nu)]
+                    a(f"    S{i}_{j} = p[{o['motor']}] - ({_sum(terms)})")
+                else:
+                    b = ij if kj == "b" else ii
+                    terms = [f"U{u} * {tLt('b', b, 'u', u)}" for u in range(nu)]
+                    a(f"    S{i}_{j} = -ml{b} * ({_sum(terms)})")
+    # right-hand sides
+    for i, (k, idx) in enumerate(unknowns):
+        if k == "b":
+            r = br[idx]
+            a(f"    q{i} = -cb{idx} * rel{idx} + ml{idx} * (-gx * s{idx} + gy * c{idx})"
+              f" - ml{idx} * (-s{idx} * ax{r} + c{idx} * ay{r})")
+        else:
+            km = o["motor"]
+            if lay.drive == "linear":
+                a(f"    torque = p[{km + 1}] * (1.0 - om / p[{km + 2}])")
+            else:
+                nt = lay.n_table
+                ks, kt = km + 3, km + 3 + nt
+                a(f"    torque = p[{kt}]")
+                for q in range(nt - 1):
+                    a(f"    fr = min(max((om - p[{ks + q}]) / (p[{ks + q + 1}] - p[{ks + q}]), 0.0), 1.0)")
+                    a(f"    torque += fr * (p[{kt + q + 1}] - p[{kt + q}])")
+            terms = ["torque"] + [f"cb{b} * rel{b}" for b in range(nb)]
+            terms += [f"U{u} * (-gx * euy{u} + gy * eux{u})" for u in range(nu)]
+            terms += [f"-U{u} * (-euy{u} * ax{nr + u} + eux{u} * ay{nr + u})" for u in range(nu)]
+            a(f"    q{i} = {_sum(terms)}")
+    # LDL^T (S symmetric positive definite: a Schur complement of the mass matrix)
+    for j in range(n_s):
+        a(f"    D{j} = S{j}_{j}" + "".join(f" - L{j}_{k} * L{j}_{k} * D{k}" for k in range(j)))
+        for i in range(j + 1, n_s):
+            a(f"    L{i}_{j} = (S{i}_{j}" + "".join(f" - L{i}_{k} * L{j}_{k} * D{k}" for k in range(j))
+              + f") / D{j}")
+    for i in range(n_s):
+        a(f"    x{i} = q{i}" + "".join(f" - L{i}_{k} * x{k}" for k in range(i)))
+    for i in reversed(range(n_s)):
+        a(f"    x{i} = x{i} / D{i}" + "".join(f" - L{k}_{i} * x{k}" for k in range(i + 1, n_s)))
+    # ---- structure accelerations
+    for r in range(nr):
+        bs = [b for b in range(nb) if br[b] == r]
+        a(f"    gx{r} = {_sum([f'-ml{b} * x{b} * s{b}' for b in bs])}")
+        a(f"    gy{r} = {_sum([f'ml{b} * x{b} * c{b}' for b in bs])}")
+    corr = [(r, f"gx{r}", f"gy{r}") for r in range(nr)]
+    if lay.motor:
+        for u in range(nu):
+            a(f"    gx{nr + u} = -U{u} * x{nb} * euy{u}")
+            a(f"    gy{nr + u} = U{u} * x{nb} * eux{u}")
+            corr.append((nr + u, f"gx{nr + u}", f"gy{nr + u}"))
+    for i in range(nz):
+        terms = [f"p[{lay.station_HBT(s) + 2 * i}] * {gx} + p[{lay.station_HBT(s) + 2 * i + 1}] * {gy}"
+                 for s, gx, gy in corr]
+        a(f"    out[{i}] = v{i}")
+        a(f"    out[{nz + i}] = h{i}" + "".join(f" - ({t})" for t in terms))
+    for b in range(nb):
+        a(f"    out[{lay.i_phi + b}] = w{b}")
+        a(f"    out[{lay.i_w + b}] = x{b}")
+    if lay.motor:
+        a(f"    out[{lay.i_theta}] = om")
+        a(f"    out[{lay.i_theta + 1}] = x{nb}")
+    if lay.energy:
+        ie = lay.i_energy
+        if lay.motor:
+            a(f"    out[{ie}] = torque * om")
+        else:  # drive torque from the spin equation with J = 0
+            terms = []
+            for u in range(nu):
+                kb = lay.station_B(nr + u)
+                axu = _sum([f"p[{kb + j}] * out[{nz + j}]" for j in range(nz)])
+                ayu = _sum([f"p[{kb + nz + j}] * out[{nz + j}]" for j in range(nz)])
+                terms.append(f"U{u} * (-euy{u} * ({axu}) + eux{u} * ({ayu}))")
+                terms.append(f"-U{u} * (-gx * euy{u} + gy * eux{u})")
+            terms += [f"-cb{b} * rel{b}" for b in range(nb)]
+            a(f"    torque = {_sum(terms)}")
+            a(f"    out[{ie}] = torque * om")
+        diss = [f"cb{b} * rel{b} * rel{b}" for b in range(nb)]
+        kc, ka = o["C"], o["Ka"]
+        diss += [f"v{i} * (p[{kc + nz * i + j}] * v{j} + p[{ka + nz * i + j}] * z{j})"
+                 for i in range(nz) for j in range(nz)]
+        a(f"    out[{ie + 1}] = {_sum(diss)}")
+    body = "\n".join(L)
+    return _HEADER.format(key=lay.key) + body + "\n"
+
+
+_HEADER = '''"""Generated by rotorlab._kernels.machine_codegen for sizes {key}; do not edit."""
+from numba import njit
+
+from rotorlab._kernels._vmath import sincos
+from rotorlab._kernels.speed import profile
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def rhs(t, y, p, out):  # pragma: no cover - compiled
+    """Right-hand side of the machine (layout in rotorlab._kernels.machine_codegen)."""
+'''
+
+_LOADED: dict[str, Any] = {}
+
+
+def _deps_hash(source: str) -> str:
+    import numba
+
+    from rotorlab._kernels import _vmath, speed
+
+    h = hashlib.sha256(numba.__version__.encode())
+    h.update(sys.version.encode())
+    h.update(source.encode())
+    for mod in (_vmath, speed):
+        h.update(Path(inspect.getsourcefile(mod)).read_bytes())
+    return h.hexdigest()[:20]
+
+
+def kernel_module(lay: Layout):
+    """Return the imported kernel module for ``lay`` (generated and written on first use)."""
+    from rotorlab.integrate._codegen import cache_dir as _cache_dir
+
+    source = generate(lay)
+    digest = _deps_hash(source)
+    if digest in _LOADED:
+        return _LOADED[digest]
+    name = f"_rotorlab_machine_{lay.key}_{digest}"
+    directory = _cache_dir()
+    if directory is None:  # pragma: no cover - no writable directory at all
+        directory = Path(tempfile.mkdtemp(prefix="rotorlab-machine-"))
+    path = directory / f"{name}.py"
+    if not path.exists():
+        fd, tmp = tempfile.mkstemp(dir=directory, suffix=".tmp")
+        with os.fdopen(fd, "w") as fh:
+            fh.write(source)
+        os.replace(tmp, path)
+    spec = importlib.util.spec_from_file_location(name, path)
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[name] = module
+    spec.loader.exec_module(module)
+    _LOADED[digest] = module
+    return module

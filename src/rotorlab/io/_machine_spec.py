@@ -1,0 +1,359 @@
+"""Case-file spec of the ``machine`` model: a linear structure with balancers, unbalances,
+gravity and a drive (see :mod:`rotorlab.models._machine`).
+
+Layout::
+
+    [model]
+    type = "machine"
+    n_modes = 6                      # optional: keep the lowest modes of the structure
+    [model.structure]                # the same tables as a multibody or fe_rotor model
+    type = "multibody"
+    [[model.structure.bodies]]
+    ...
+    [[model.races]]                  # any number of races
+    at = "rotor"                     # node: its name (or node = index, or position = z)
+    radius = "40 mm"
+    axial_offset = "0 mm"            # race plane from the node along +z
+    balls = [{ mass = "5 g", damping = "2e-4 N*m*s/rad", count = 2 }]
+    [[model.unbalances]]
+    at = "rotor"
+    magnitude = "50 g*mm"
+    phase = "0 deg"
+    [model.gravity]
+    vector = ["0 m/s^2", "-9.81 m/s^2", "0 m/s^2"]   # z is the shaft axis
+    [model.drive]                    # a speed profile (constant, ramp, hill) or a motor
+    profile = "motor"
+    stall_torque = "2 N*m"
+    no_load_speed = "1500 rpm"
+    polar_inertia = "0.05 kg*m^2"
+"""
+
+from __future__ import annotations
+
+from typing import Annotated, Literal, Union
+
+from pydantic import Field, field_validator, model_validator
+
+from rotorlab.io._errors import Issue, IssueGroup
+from rotorlab.io._fe_rotor_spec import FeRotorSpec
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _Spec, integer, quantity
+from rotorlab.io._jeffcott_specs import SPEED_PROFILES, AbstractSpeedProfile
+from rotorlab.io._linear_common import label
+from rotorlab.io._multibody_spec import MultibodySpec
+
+__all__ = ["MachineBallSpec", "RaceSpec", "MachineUnbalanceSpec", "GravitySpec", "MotorSpec",
+           "MachineSpec", "build_machine", "MachineSteadySpec", "MachineSimulateSpec",
+           "MachineRunUpSpec"]
+
+
+class _Station(_Spec):
+    """Where an attachment sits: one of ``node`` (index), ``at`` (name) or ``position`` (z)."""
+
+    node: integer(ge=0) | None = Field(None, description="node index")
+    at: label() | None = Field(None, description="name of a node or component")
+    position: quantity("length") | None = Field(None, description="axial position of a node (m)")
+    axial_offset: quantity("length") = Field(0.0, description="offset along +z from the node (m)")
+
+    @model_validator(mode="after")
+    def _one_place(self):
+        given = [k for k in ("node", "at", "position") if getattr(self, k) is not None]
+        if len(given) != 1:
+            raise IssueGroup([Issue((), "give exactly one of node, at or position"
+                                    + (f" (got {', '.join(given)})" if given else ""),
+                                    show_value=False)])
+        return self
+
+
+class MachineBallSpec(_Spec):
+    """One ball (or pendulum) of a race.
+
+    Parameters
+    ----------
+    mass : float
+        m (kg), > 0.
+    inertia : float
+        Own moment of inertia about its centre (kg*m^2), >= 0.
+    damping : float
+        Viscous damping relative to the rotor (N*m*s/rad), >= 0.
+    coulomb, rolling : float
+        Coulomb friction coefficient (-) and rolling-friction arm (m); must be 0 (stick-slip is
+        not yet in the machine model).
+    count : int
+        Repeat this ball ``count`` times.
+    """
+
+    mass: quantity("mass", gt=0) = Field(description="ball mass (kg)")
+    inertia: quantity("inertia", ge=0) = Field(0.0, description="own central inertia (kg*m^2)")
+    damping: quantity("torque_damping", ge=0) = Field(
+        0.0, description="viscous damping relative to the rotor (N*m*s/rad)")
+    coulomb: quantity("dimensionless", ge=0) = Field(0.0, description="Coulomb friction (-)")
+    rolling: quantity("length", ge=0) = Field(0.0, description="rolling-friction arm (m)")
+    count: integer(ge=1) = Field(1, exclude=True, description="number of identical balls")
+
+    @model_validator(mode="after")
+    def _no_friction_yet(self):
+        issues = [Issue((k,), "must be 0: Coulomb and rolling friction (stick-slip) are not yet "
+                              "in the machine model (use the jeffcott_balls model for them)",
+                        getattr(self, k))
+                  for k in ("coulomb", "rolling") if getattr(self, k) != 0.0]
+        if issues:
+            raise IssueGroup(issues)
+        return self
+
+
+class RaceSpec(_Station):
+    """A ball race at a station of the structure.
+
+    Parameters
+    ----------
+    node, at, position : int, str, float
+        Where (one of them).
+    axial_offset : float
+        Race plane from the node along +z (m).
+    radius : float
+        Radius of the balls' centre path (m), > 0.
+    balls : tuple of MachineBallSpec
+        Its balls (``count`` expanded).
+    """
+
+    radius: quantity("length", gt=0) = Field(description="radius of the balls' path (m)")
+    balls: tuple[MachineBallSpec, ...] = Field(min_length=1, description="balls of the race")
+
+    @field_validator("balls", mode="after")
+    @classmethod
+    def _expand(cls, balls):
+        out = []
+        for b in balls:
+            out.extend([b.model_copy(update={"count": 1})] * b.count)
+        return tuple(out)
+
+
+class MachineUnbalanceSpec(_Station):
+    """An unbalance ``m e`` at a station, at ``phase`` from the rotor's reference direction."""
+
+    magnitude: quantity("unbalance", ge=0) = Field(description="unbalance m e (kg*m)")
+    phase: quantity("angle") = Field(0.0, description="angle from the reference (rad)")
+
+
+class GravitySpec(_Spec):
+    """Gravity in the fixed frame, z along the shaft axis (m/s^2)."""
+
+    vector: tuple[quantity("acceleration"), quantity("acceleration"), quantity("acceleration")] = \
+        Field(description="gravity (g_x, g_y, g_z) with z the shaft axis (m/s^2)")
+
+
+class MotorSpec(AbstractSpeedProfile):
+    """A motor: linear torque characteristic, or a table of torque over speed.
+
+    Parameters
+    ----------
+    stall_torque, no_load_speed : float, optional
+        ``T = stall_torque (1 - Omega / no_load_speed)`` (N*m, rad/s).
+    speeds, torques : tuple of float, optional
+        A table instead (rad/s increasing, N*m), interpolated linearly.
+    polar_inertia : float
+        Of everything that spins with the rotor (kg*m^2), > 0.
+    initial_speed : float
+        Speed at t = 0 (rad/s), >= 0.
+    """
+
+    profile: Literal["motor"] = "motor"
+    stall_torque: quantity("torque") | None = Field(None, description="stall torque (N*m)")
+    no_load_speed: quantity("angular_speed", gt=0) | None = Field(
+        None, description="no-load speed (rad/s)")
+    speeds: tuple[quantity("angular_speed", ge=0), ...] | None = Field(
+        None, description="speeds of the torque table (rad/s)")
+    torques: tuple[quantity("torque"), ...] | None = Field(
+        None, description="torques of the torque table (N*m)")
+    polar_inertia: quantity("inertia", gt=0) = Field(description="spinning inertia (kg*m^2)")
+    initial_speed: quantity("angular_speed", ge=0) = Field(0.0, description="speed at t = 0 (rad/s)")
+
+    @model_validator(mode="after")
+    def _one_characteristic(self):
+        lin = self.stall_torque is not None or self.no_load_speed is not None
+        tab = self.speeds is not None or self.torques is not None
+        issues = []
+        if lin == tab:
+            issues.append(Issue((), "give either stall_torque and no_load_speed, or speeds and "
+                                    "torques", show_value=False))
+        elif lin and (self.stall_torque is None or self.no_load_speed is None):
+            k = "stall_torque" if self.stall_torque is None else "no_load_speed"
+            issues.append(Issue((k,), "required with a linear characteristic", show_value=False))
+        elif tab:
+            if self.speeds is None or self.torques is None or len(self.speeds) != len(self.torques) \
+                    or len(self.speeds) < 2:
+                issues.append(Issue(("torques",), "speeds and torques must both be given, of "
+                                                  "equal length >= 2", show_value=False))
+            elif any(b <= a for a, b in zip(self.speeds[:-1], self.speeds[1:])):
+                issues.append(Issue(("speeds",), "must increase strictly", list(self.speeds)))
+        if issues:
+            raise IssueGroup(issues)
+        return self
+
+    def speed_at(self, t: float) -> float:
+        """The initial speed (the motor's speed is a state, not a profile)."""
+        return self.initial_speed
+
+    @property
+    def final_speed(self) -> float:
+        """No-load speed, or the table's zero-torque speed if any, else its last speed (rad/s)."""
+        if self.no_load_speed is not None:
+            return self.no_load_speed
+        for (w0, t0), (w1, t1) in zip(zip(self.speeds, self.torques),
+                                      zip(self.speeds[1:], self.torques[1:])):
+            if t0 > 0 >= t1:
+                return w0 + (w1 - w0) * t0 / (t0 - t1)
+        return self.speeds[-1]
+
+
+_Drive = Annotated[Union[tuple(SPEED_PROFILES.values()) + (MotorSpec,)],  # noqa: UP007
+                   Field(discriminator="profile")]
+_Structure = Annotated[Union[MultibodySpec, FeRotorSpec], Field(discriminator="type")]  # noqa: UP007
+
+
+class MachineSpec(AbstractModelSpec):
+    """A linear structure with ball races, unbalances, gravity and a drive.
+
+    Parameters
+    ----------
+    structure : MultibodySpec or FeRotorSpec
+        The rotor and its supports, with the tables of those models.
+    races : tuple of RaceSpec
+    unbalances : tuple of MachineUnbalanceSpec
+    gravity : GravitySpec, optional
+    drive : a speed profile or MotorSpec
+    n_modes : int, optional
+        Keep the lowest modes of the structure.
+    """
+
+    type: Literal["machine"] = "machine"
+    structure: _Structure = Field(description="the linear structure (multibody or fe_rotor)")
+    races: tuple[RaceSpec, ...] = Field((), description="ball races")
+    unbalances: tuple[MachineUnbalanceSpec, ...] = Field((), description="unbalances")
+    gravity: GravitySpec | None = Field(None, description="gravity")
+    drive: _Drive = Field(description="spin-speed profile or motor")
+    n_modes: integer(ge=1) | None = Field(None, description="modes of the structure kept")
+
+    @model_validator(mode="after")
+    def _check_places(self):
+        issues = []
+        for key, items in (("races", self.races), ("unbalances", self.unbalances)):
+            for i, it in enumerate(items):
+                node, bad, msg = self.structure.locate(it.node, it.at, it.position)
+                if node is None:
+                    issues.append(Issue((key, i, bad), msg, getattr(it, bad)))
+        if self.n_modes is not None and self.n_modes > self.structure.n_dof:
+            issues.append(Issue(("n_modes",), f"must be <= {self.structure.n_dof} (the "
+                                              "structure's DOFs)", self.n_modes))
+        if issues:
+            raise IssueGroup(issues)
+        return self
+
+    def node_of(self, item) -> int:
+        """Node index of a race or unbalance spec."""
+        return self.structure.locate(item.node, item.at, item.position)[0]
+
+    @property
+    def n_balls(self) -> int:
+        return sum(len(r.balls) for r in self.races)
+
+    def speed_profile(self) -> AbstractSpeedProfile | None:
+        return self.drive
+
+    def describe(self) -> str:
+        drive = self.drive.profile
+        return (f"machine: {self.structure.describe()}; {len(self.races)} race(s) with "
+                f"{self.n_balls} ball(s), {len(self.unbalances)} unbalance(s), "
+                f"{'gravity, ' if self.gravity else ''}drive {drive}")
+
+
+def build_machine(spec: MachineSpec):
+    """Build the :class:`rotorlab.models.Machine` of a validated ``machine`` spec."""
+    from rotorlab.analyses._linear_build import build_linear_system
+    from rotorlab.models import (Ball, BallRace, ConstantSpeed, Gravity, HillRunUp, LinearRamp,
+                                 Machine, Motor, Unbalance)
+
+    structure = build_linear_system(spec.structure)
+    races = tuple(BallRace(spec.node_of(r), r.radius,
+                           tuple(Ball(b.mass, b.inertia, b.damping, b.coulomb, b.rolling) for b in r.balls),
+                           r.axial_offset) for r in spec.races)
+    unb = tuple(Unbalance(spec.node_of(u), u.magnitude, u.phase, u.axial_offset)
+                for u in spec.unbalances)
+    d = spec.drive
+    drives = {
+        "constant": lambda: ConstantSpeed(d.speed),
+        "ramp": lambda: LinearRamp(d.start, d.stop, d.duration),
+        "hill": lambda: HillRunUp(d.max_speed, d.t_half, d.exponent),
+        "motor": lambda: Motor(d.stall_torque if d.speeds is None else (d.speeds, d.torques),
+                               d.polar_inertia,
+                               float("inf") if d.no_load_speed is None else d.no_load_speed),
+    }
+    drive = drives[d.profile]()
+    gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)
+    return Machine(structure, races=races, unbalances=unb, gravity=gravity, drive=drive,
+                   n_modes=spec.n_modes)
+
+
+# --------------------------------------------------------------------------- analyses
+
+
+def _machine_issues(model: AbstractModelSpec) -> list[Issue]:
+    if isinstance(model, MachineSpec):
+        return []
+    return [Issue((), f'needs a machine model ([model] type "machine"), but the case\'s model is '
+                      f'"{model.type}"', show_value=False)]
+
+
+class _MachineAnalysis(AbstractAnalysisSpec):
+    """Options shared by the machine analyses: which races take part (variants)."""
+
+    races: tuple[integer(ge=0), ...] | None = Field(
+        None, description="indices of the races that take part (default: all)")
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        issues = _machine_issues(model)
+        if not issues and self.races is not None:
+            n = len(model.races)
+            issues += [Issue(("races", i), f"must be < {n} (the model has {n} race(s))", r)
+                       for i, r in enumerate(self.races) if r >= n]
+        return issues
+
+
+class MachineSteadySpec(_MachineAnalysis):
+    """Balanced states of a machine over ``n_speeds`` speeds and their exact stability."""
+
+    type: Literal["machine-steady"] = "machine-steady"
+    start: quantity("angular_speed", gt=0) = Field(description="lowest spin speed (rad/s)")
+    stop: quantity("angular_speed", gt=0) = Field(description="highest spin speed (rad/s)")
+    n_speeds: integer(ge=1) = Field(41, description="number of equally spaced speeds")
+
+    @model_validator(mode="after")
+    def _order(self):
+        if self.stop < self.start:
+            raise IssueGroup([Issue(("stop",), f"must be >= start = {self.start:.6g} rad/s", self.stop)])
+        return self
+
+
+class MachineSimulateSpec(_MachineAnalysis):
+    """Simulations of a machine from several ball starts: final ball angles, vibration."""
+
+    type: Literal["machine-simulate"] = "machine-simulate"
+    speed: quantity("angular_speed", gt=0) | None = Field(
+        None, description="constant spin speed instead of the model's drive (rad/s)")
+    initial_ball_angles: tuple[tuple[quantity("angle"), ...], ...] | None = Field(
+        None, description="ball angles of each start (rad), races in order")
+    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
+    rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
+    atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
+
+
+class MachineRunUpSpec(_MachineAnalysis):
+    """A run-up with the model's drive (motor or profile): criticals passed, residual vibration."""
+
+    type: Literal["machine-run-up"] = "machine-run-up"
+    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
+    n_save: integer(ge=10) = Field(1000, description="points of the saved time grid")
+    initial_ball_angles: tuple[quantity("angle"), ...] | None = Field(
+        None, description="initial ball angles (rad), races in order")
+    rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
+    atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")

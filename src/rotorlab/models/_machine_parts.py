@@ -1,0 +1,233 @@
+"""Attachments of the composed machine model: balls and races, unbalances, gravity, a motor.
+
+See :mod:`rotorlab.models._machine` for the model and its equations.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+
+import numpy as np
+
+__all__ = ["Ball", "BallRace", "Unbalance", "Gravity", "Motor"]
+
+
+def _num(owner: str, name: str, value, unit: str, *, low: float | None = 0.0,
+         strict: bool = False) -> float:
+    """Return ``value`` as a finite float, or raise ValueError naming field, value and range."""
+    if low is None:
+        allowed = f"a finite number ({unit})"
+    else:
+        allowed = f"a finite number {'>' if strict else '>='} {low:g} ({unit})"
+    try:
+        v = float(value)
+    except (TypeError, ValueError):
+        raise ValueError(f"{owner}.{name} must be {allowed}, got {value!r}") from None
+    if not math.isfinite(v) or (low is not None and (v < low or (strict and v == low))):
+        raise ValueError(f"{owner}.{name} must be {allowed}, got {value!r}")
+    return v
+
+
+def _node(owner: str, value) -> int:
+    if isinstance(value, bool) or not isinstance(value, (int, np.integer)) or value < 0:
+        raise ValueError(f"{owner}.node must be an integer >= 0, got {value!r}")
+    return int(value)
+
+
+@dataclass(frozen=True, slots=True)
+class Ball:
+    """One ball (or pendulum) of an automatic balancer.
+
+    Parameters
+    ----------
+    mass : float
+        m (kg), > 0.
+    inertia : float
+        Own moment of inertia about its centre, about an axis parallel to the shaft (kg m^2),
+        >= 0; the ball's inertia about the shaft axis is ``m l^2 + inertia`` (l: race radius).
+    damping : float
+        Viscous damping c of its motion relative to the rotor: torque ``-c (phi' - Omega)``
+        (N m s/rad), >= 0.
+    coulomb : float
+        Coulomb friction coefficient (1), >= 0. Only 0 is implemented in ``machine`` (stick-slip
+        runs in ``jeffcott_balls``); a positive value is rejected by :class:`Machine`.
+    rolling : float
+        Rolling-friction arm (m), >= 0; as ``coulomb``.
+    """
+
+    mass: float
+    inertia: float = 0.0
+    damping: float = 0.0
+    coulomb: float = 0.0
+    rolling: float = 0.0
+
+    def __post_init__(self) -> None:
+        o = "Ball"
+        object.__setattr__(self, "mass", _num(o, "mass", self.mass, "kg", strict=True))
+        for name, unit in (("inertia", "kg m^2"), ("damping", "N m s/rad"), ("coulomb", "1"),
+                           ("rolling", "m")):
+            object.__setattr__(self, name, _num(o, name, getattr(self, name), unit))
+
+
+@dataclass(frozen=True, slots=True)
+class BallRace:
+    """A race (or a set of pendulums) at a station of the structure.
+
+    Parameters
+    ----------
+    node : int
+        Node of the structure that carries the race.
+    radius : float
+        l, distance of the balls' centres from the shaft axis (m), > 0.
+    balls : tuple of Ball
+        The balls in this race (at least one).
+    axial_offset : float
+        Axial distance a of the race plane from the node along +z (m): the race centre moves by
+        ``(x + a phi_x, y + a phi_y)``, so an offset race couples to the tilt.
+    """
+
+    node: int
+    radius: float
+    balls: tuple[Ball, ...] = ()
+    axial_offset: float = 0.0
+
+    def __post_init__(self) -> None:
+        o = "BallRace"
+        object.__setattr__(self, "node", _node(o, self.node))
+        object.__setattr__(self, "radius", _num(o, "radius", self.radius, "m", strict=True))
+        object.__setattr__(self, "axial_offset",
+                           _num(o, "axial_offset", self.axial_offset, "m", low=None))
+        balls = tuple(self.balls)
+        if not balls:
+            raise ValueError("BallRace.balls must hold at least one Ball, got none")
+        for i, b in enumerate(balls):
+            if not isinstance(b, Ball):
+                raise ValueError(f"BallRace.balls[{i}] must be a Ball, got {type(b).__name__}")
+        object.__setattr__(self, "balls", balls)
+
+    @property
+    def capacity(self) -> float:
+        """Balancing capacity ``sum m l`` (kg m)."""
+        return sum(b.mass for b in self.balls) * self.radius
+
+
+@dataclass(frozen=True, slots=True)
+class Unbalance:
+    """A mass unbalance at a station: ``m e`` at the phase ``beta`` from the rotor's +x at theta=0.
+
+    Several unbalances at different stations make static and couple unbalance.
+
+    Parameters
+    ----------
+    node : int
+        Node of the structure (it must spin with the rotor).
+    mass_eccentricity : float
+        U = m e (kg m), >= 0.
+    phase : float
+        beta (rad): the unbalance points along ``theta + beta``.
+    axial_offset : float
+        Axial distance from the node (m), as for :class:`BallRace`.
+    """
+
+    node: int
+    mass_eccentricity: float
+    phase: float = 0.0
+    axial_offset: float = 0.0
+
+    def __post_init__(self) -> None:
+        o = "Unbalance"
+        object.__setattr__(self, "node", _node(o, self.node))
+        object.__setattr__(self, "mass_eccentricity",
+                           _num(o, "mass_eccentricity", self.mass_eccentricity, "kg m"))
+        object.__setattr__(self, "phase", _num(o, "phase", self.phase, "rad", low=None))
+        object.__setattr__(self, "axial_offset",
+                           _num(o, "axial_offset", self.axial_offset, "m", low=None))
+
+
+@dataclass(frozen=True, slots=True)
+class Gravity:
+    """Gravity: the acceleration vector ``(g_x, g_y, g_z)`` in the fixed frame (m/s^2).
+
+    z is the shaft axis: a vertical machine has ``(0, 0, -9.81)`` (no lateral load), a
+    horizontal one e.g. ``(0, -9.81, 0)``. Only the lateral components act in the model.
+    """
+
+    vector: tuple[float, float, float] = (0.0, 0.0, -9.81)
+
+    def __post_init__(self) -> None:
+        v = tuple(self.vector)
+        if len(v) != 3:
+            raise ValueError(f"Gravity.vector must have 3 components (m/s^2), got {self.vector!r}")
+        object.__setattr__(self, "vector",
+                           tuple(_num("Gravity", f"vector[{i}]", x, "m/s^2", low=None)
+                                 for i, x in enumerate(v)))
+
+    @property
+    def lateral(self) -> tuple[float, float]:
+        """``(g_x, g_y)`` (m/s^2)."""
+        return self.vector[0], self.vector[1]
+
+
+@dataclass(frozen=True, slots=True)
+class Motor:
+    """A motor with a torque characteristic; spin angle and speed become states.
+
+    Parameters
+    ----------
+    torque : float or (array_like, array_like)
+        Either the stall torque T_s (N m) of the linear characteristic
+        ``T = T_s (1 - Omega / Omega_0)``, or a table ``(speeds, torques)`` (rad/s, N m) with
+        increasing speeds, interpolated linearly and held constant outside.
+    polar_inertia : float
+        Polar moment of inertia of everything that spins with the rotor (rotor, armature,
+        coupling, the unbalance's ``m e^2``; the balls are separate states) (kg m^2), > 0.
+    no_load_speed : float
+        Omega_0 of the linear characteristic (rad/s), > 0; unused with a table.
+    """
+
+    torque: object
+    polar_inertia: float
+    no_load_speed: float = math.inf
+
+    def __post_init__(self) -> None:
+        o = "Motor"
+        object.__setattr__(self, "polar_inertia",
+                           _num(o, "polar_inertia", self.polar_inertia, "kg m^2", strict=True))
+        if isinstance(self.torque, (tuple, list)) and len(self.torque) == 2 and np.ndim(self.torque[0]) == 1:
+            w = np.asarray(self.torque[0], dtype=float)
+            tq = np.asarray(self.torque[1], dtype=float)
+            if w.shape != tq.shape or w.size < 2 or not np.all(np.isfinite(w)) \
+                    or not np.all(np.isfinite(tq)) or np.any(np.diff(w) <= 0):
+                raise ValueError("Motor.torque table must be two finite arrays of equal length "
+                                 ">= 2 with strictly increasing speeds (rad/s, N m), got "
+                                 f"{self.torque!r}")
+            object.__setattr__(self, "torque", (tuple(w.tolist()), tuple(tq.tolist())))
+        else:
+            object.__setattr__(self, "torque", _num(o, "torque", self.torque, "N m", low=None))
+            if not (self.no_load_speed > 0 and math.isfinite(self.no_load_speed)):
+                raise ValueError("Motor.no_load_speed must be a finite number > 0 (rad/s) for a "
+                                 f"linear characteristic, got {self.no_load_speed!r}")
+        object.__setattr__(self, "no_load_speed", float(self.no_load_speed))
+
+    @property
+    def kind(self) -> str:
+        """``"linear"`` or ``"table"``."""
+        return "table" if isinstance(self.torque, tuple) else "linear"
+
+    @property
+    def n_table(self) -> int:
+        return len(self.torque[0]) if self.kind == "table" else 0
+
+    def torque_at(self, speed):
+        """Return the torque T(Omega) (N m) at speeds ``speed`` (rad/s)."""
+        w = np.asarray(speed, dtype=float)
+        if self.kind == "linear":
+            return self.torque * (1.0 - w / self.no_load_speed)
+        return np.interp(w, self.torque[0], self.torque[1])
+
+    def to_array(self) -> np.ndarray:
+        """``[J, T_s, Omega_0, speeds..., torques...]`` (see the kernel layout)."""
+        if self.kind == "linear":
+            return np.array([self.polar_inertia, self.torque, self.no_load_speed])
+        return np.concatenate([[self.polar_inertia, 0.0, 0.0], self.torque[0], self.torque[1]])

@@ -1,0 +1,97 @@
+"""The machine model in case files: built-in cases, variants, errors with key paths."""
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from rotorlab.analyses import run_analysis, summarize
+from rotorlab.cli import app
+from rotorlab.io import CaseError, load_case, parse_case
+
+
+
+def test_builtin_machine_cases_validate_and_build():
+    for name, n_state in (("pico21-balancer", 2 * 6 + 2 * 4), ("washer-horizontal", 8 + 4 + 2)):
+        case = load_case(name)
+        from rotorlab.analyses import build_model
+
+        m = build_model(case.model)
+        assert m.n_state == n_state
+    pico = build_model(load_case("pico21-balancer").model)
+    # the case file's statement: 12 modes instead of 6 move the unbalance response at 10000 rpm
+    # by about 3 % (2.85 %)
+    assert 0.02 < pico.reduction_change(2 * np.pi * 10000 / 60) < 0.03
+
+
+def test_no_steady_motion_under_gravity_across_the_axis_is_a_failed_status_with_the_reason():
+    case = load_case("washer-horizontal")
+    ds = run_analysis(case.model, case.analysis("steady"))
+    rows = summarize(ds)
+    assert all(r["status"] == 3 and not r["exists"] for r in rows)
+    assert "gravity acts across the axis" in rows[0]["message"] and "simulate" in rows[0]["message"]
+
+
+def test_two_race_variant_balances_exactly_and_a_flat_rotor_loses_it_at_speed():
+    """Pico 21's centrifuge rotor is flat (I_p = 1529 > I_d = 882 kg mm^2): its two-plane balanced
+    state is stable in a band above the critical speeds and unstable at the top speed, as
+    Rodrigues et al. (2008, Section 5) find for disc-like rotors; one race leaves the couple."""
+    case = load_case("pico21-balancer")
+    two = case.analysis("stability-two-races").model_copy(update={"start": 4000 * np.pi / 30,
+                                                                    "stop": 14000 * np.pi / 30,
+                                                                    "n_speeds": 2})
+    rows = summarize(run_analysis(case.model, two))
+    assert [r["balanced"] for r in rows] == [True, True]
+    assert [r["stable"] for r in rows] == [True, False]
+    assert all(a == 0.0 for r in rows for a in r["amplitude"].values())
+    one = case.analysis("stability-one-race").model_copy(update={"start": 10000 * np.pi / 30,
+                                                                  "stop": 10000 * np.pi / 30,
+                                                                  "n_speeds": 1})
+    (row,) = summarize(run_analysis(case.model, one))
+    assert row["exists"] and not row["balanced"] and row["stable"]
+    assert 1e-8 < row["amplitude"]["stator"] < 1e-6  # the couple is left: 0.3 um at the stator
+
+
+def test_bad_machine_input_names_the_key_path():
+    text = load_case("washer-horizontal").text
+    bad = text.replace('at = "drum"\nradius', 'at = "drun"\nradius', 1)
+    with pytest.raises(CaseError) as err:
+        parse_case(bad)
+    assert "model.races[0].at" in str(err.value) and "drum" in str(err.value)
+    bad = text.replace("races = []", "races = [3]")
+    with pytest.raises(CaseError) as err:
+        parse_case(bad)
+    assert "races[0]" in str(err.value) and "must be < 1" in str(err.value)
+    bad = text.replace('damping = "0.05 N*m*s/rad", count = 2', 'damping = "0.05 N*m*s/rad", coulomb = 0.1, count = 2')
+    with pytest.raises(CaseError) as err:
+        parse_case(bad)
+    assert "coulomb" in str(err.value) and "not yet in the machine model" in str(err.value)
+
+
+def test_cli_validate_bad_machine_case_exits_2(tmp_path):
+    text = load_case("washer-horizontal").text.replace('stall_torque = "10 N*m"\n', "")
+    path = tmp_path / "w.toml"
+    path.write_text(text)
+    res = CliRunner().invoke(app, ["validate", str(path)])
+    assert res.exit_code == 2
+    assert "stall_torque" in res.output
+
+
+def test_readme_machine_case_and_python_example():
+    """The README's 'Put a balancer on your own rotor' case validates and its Python runs."""
+    import re
+    from pathlib import Path
+
+    readme = (Path(__file__).resolve().parents[2] / "README.md").read_text(encoding="utf-8")
+    sec = re.search(r"^## Put a balancer on your own rotor\n(.*?)(?=^## )", readme, re.S | re.M)[1]
+    (toml,) = re.findall(r"^```toml\n(.*?)^```", sec, re.S | re.M)
+    case = parse_case(toml)
+    assert case.model.type == "machine" and [a.type for a in case.analyses] == ["machine-steady", "machine-simulate"]
+    (code,) = re.findall(r"^```python\n(.*?)^```", sec, re.S | re.M)
+    import contextlib
+    import io
+
+    out = io.StringIO()
+    with contextlib.redirect_stdout(out):
+        exec(compile(code, "README", "exec"), {})  # noqa: S102
+    # 314 rad/s against a critical speed sqrt(2e5 / 8.04) = 158 rad/s: above it, stable
+    assert out.getvalue().strip() == "True"
