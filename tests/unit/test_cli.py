@@ -380,7 +380,7 @@ def test_progress_is_plain_lines_when_piped():
 def test_compile_notice_only_without_a_numba_cache(tmp_path, caplog):
     import logging
 
-    from rotorlab.integrate._specialize import announce_compile
+    from rotorlab.integrate._codegen import announce_compile
 
     with caplog.at_level(logging.INFO, logger="rotorlab.compile"):
         announce_compile(tmp_path, "drv_x_rhs_abc", "integrator for x")

@@ -157,7 +157,7 @@ def test_bench_kernel_vectorises():
     """The benchmark kernel (vmath.sincos) vectorises across lanes; with math.sin it does not."""
     from llvmlite import binding as ll
 
-    from rotorlab.integrate._lanes_build import is_vectorised
+    from rotorlab.integrate._drivers import is_vectorised
 
     features = ll.get_host_cpu_features()
     if not (features.get("avx") or features.get("sse2") or features.get("neon")):

@@ -279,7 +279,7 @@ def test_bad_input_names_the_field():
 
 
 def test_kernel_vectorises_in_the_lane_driver():
-    from rotorlab.integrate._lanes_build import is_vectorised
+    from rotorlab.integrate._drivers import is_vectorised
 
     assert is_vectorised(rigid_two_plane().kernels, lanes=8)
 
@@ -288,7 +288,7 @@ def test_lanes_give_the_scalar_numbers():
     mac = rigid_two_plane()
     rng = np.random.default_rng(0)
     y0 = np.array([mac.initial_state(a) for a in rng.uniform(0, 2 * np.pi, (11, 4))])
-    a = solve_ensemble(mac, y0, (0.0, 5.0), threads=1)
+    a = solve_ensemble(mac, y0, (0.0, 5.0), threads=1, lanes=None)  # the scalar reference
     b = solve_ensemble(mac, y0, (0.0, 5.0), threads=1, lanes=8)
     np.testing.assert_array_equal(a.y_final, b.y_final)
 

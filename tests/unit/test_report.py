@@ -210,3 +210,28 @@ def test_basin_findings_state_the_fraction_in_words():
     found = presentation_of("basin").findings(ds, rows)
     assert found.verdict == "balanced from 1290 of 1296 starts (99.5 %) after 20 s"
     assert found.numbers == ("non-synchronous: 6 of 1296 starts (0.5 %)",)
+
+
+def test_working_point_findings_name_the_point_and_its_band():
+    from rotorlab.analyses import run_analysis
+    from rotorlab.io import load_case
+    from rotorlab.report import presentation_of
+
+    case = load_case("strautmanis-torus")
+    ds = run_analysis(case.model, case.analysis("working-point"))
+    found = presentation_of("working-point").findings(ds, summarize(ds))
+    assert found.verdict == f"working point psi = {float(ds.psi):.6g} rad, alpha = {float(ds.alpha):.6g} rad"
+    band = [float(v) for v in ds.psi_band.values]
+    assert found.numbers[0].startswith(f"friction band psi {band[0]:.6g} to {band[1]:.6g} rad")
+
+
+def test_undamped_unbalance_response_findings_say_the_peak_is_unbounded():
+    from rotorlab.analyses import run_analysis
+    from rotorlab.io import load_case
+    from rotorlab.report import presentation_of
+
+    case = load_case("friswell-rotor")  # undamped bearings: no finite peak
+    analysis = next(a for a in case.analyses if a.type == "unbalance_response")
+    ds = run_analysis(case.model, analysis)
+    found = presentation_of("unbalance_response").findings(ds, summarize(ds))
+    assert found.verdict.startswith("undamped rotor: the response is unbounded at the critical speeds")

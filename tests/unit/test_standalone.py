@@ -53,3 +53,18 @@ def test_no_absolute_machine_path_in_src_or_tests():
 
 def test_no_reference_to_the_development_folder_beside_the_repository():
     assert _hits(_SHARED) == []
+
+
+def test_user_documents_link_only_files_of_the_repository():
+    link = re.compile(r"\]\(([^)\s]+)\)")
+    for doc in ("README.md", "CONTRIBUTING.md", "docs/architecture.md", "bench/README.md"):
+        path = ROOT / doc
+        for target in link.findall(path.read_text(encoding="utf-8")):
+            if target.startswith("#"):
+                continue
+            assert "://" not in target or target.startswith("https://doi.org/"), (doc, target)
+            if "://" not in target:
+                assert (path.parent / target.split("#")[0]).resolve().is_relative_to(ROOT), (doc, target)
+                assert (path.parent / target.split("#")[0]).exists(), (doc, target)
+    readme = (ROOT / "README.md").read_text(encoding="utf-8")
+    assert not _SHARED.search(readme) and "DESIGN.md" not in readme and "STYLE.md" not in readme

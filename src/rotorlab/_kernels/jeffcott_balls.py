@@ -60,11 +60,11 @@ ball stuck), else slips with ``mode_i = sign(D_i)``; leaving stick slips with ``
 relative velocity is set exactly to zero in both cases.
 """
 
-import math
 
 from numba import njit
 
-from rotorlab._kernels.speed import profile
+from rotorlab._kernels._vmath import sincos
+from rotorlab._kernels.speed import profile, profile_arithmetic
 
 __all__ = [
     "P_N",
@@ -78,6 +78,8 @@ __all__ = [
     "BALL_STRIDE",
     "rhs_fixed",
     "rhs_rotating",
+    "rhs_fixed_free",
+    "rhs_rotating_free",
     "events_fixed",
     "events_rotating",
     "reset_fixed",
@@ -156,8 +158,7 @@ def _solve(t, y, p, rotating, forced, scr, ks, kc, stride):
         Y = y[I_Y]
         VX = y[I_VX]
         VY = y[I_VY]
-        cu = math.cos(theta)
-        su = math.sin(theta)
+        su, cu = sincos(theta)
     rx = m1e * (om * om * cu + dom * su) - cst * X - dmp * VX
     ry = m1e * (om * om * su - dom * cu) - cst * Y - dmp * VY
     mass = p[P_M1]
@@ -171,8 +172,7 @@ def _solve(t, y, p, rotating, forced, scr, ks, kc, stride):
         k = P_BALLS + BALL_STRIDE * i
         ang = y[I_ANGLE + i]
         rate = y[I_ANGLE + n + i]
-        s = math.sin(ang)
-        c = math.cos(ang)
+        s, c = sincos(ang)
         scr[ks + stride * i] = s
         scr[kc + stride * i] = c
         mode = y[I_ANGLE + 2 * n + i] if has_modes else 1.0
@@ -246,10 +246,19 @@ def _rhs(t, y, p, out, rotating):
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _rhs_free(t, y, p, out, rotating):
-    """Right-hand side without stick/slip modes (the common, fast path; same equations)."""
-    n = int(p[P_N])
-    theta, om, dom = profile(t, p, P_SPEED)
+def _rhs_free(t, y, p, out, rotating, arithmetic_speed):
+    """Right-hand side without stick/slip modes (the common, fast path; same equations).
+
+    The ball count is taken from the state's length (``4 + 2 n``), which the lane driver makes a
+    compile-time constant: its loops over the balls then unroll and the loop over lanes
+    vectorises. ``arithmetic_speed`` (a literal) restricts the speed profile to the kinds
+    computed without library calls (constant, ramp).
+    """
+    n = (y.shape[0] - 4) // 2
+    if arithmetic_speed:
+        theta, om, dom = profile_arithmetic(t, p, P_SPEED)
+    else:
+        theta, om, dom = profile(t, p, P_SPEED)
     m1e = p[P_M1] * p[P_E]
     X = y[I_X]
     Y = y[I_Y]
@@ -261,8 +270,7 @@ def _rhs_free(t, y, p, out, rotating):
     else:
         VX = y[I_VX]
         VY = y[I_VY]
-        cu = math.cos(theta)
-        su = math.sin(theta)
+        su, cu = sincos(theta)
     rx = m1e * (om * om * cu + dom * su) - p[P_C] * X - p[P_D] * VX
     ry = m1e * (om * om * su - dom * cu) - p[P_C] * Y - p[P_D] * VY
     mass = p[P_M1]
@@ -275,8 +283,7 @@ def _rhs_free(t, y, p, out, rotating):
         ml = m * p[k + B_L]
         mass += m
         rate = y[I_ANGLE + n + i]
-        s = math.sin(y[I_ANGLE + i])
-        c = math.cos(y[I_ANGLE + i])
+        s, c = sincos(y[I_ANGLE + i])
         out[I_ANGLE + i] = s
         out[I_ANGLE + n + i] = c
         w = rate + om if rotating else rate
@@ -321,7 +328,7 @@ def rhs_fixed(t, y, p, out):
     if p[P_MODES] != 0.0:
         _rhs(t, y, p, out, False)
     else:
-        _rhs_free(t, y, p, out, False)
+        _rhs_free(t, y, p, out, False, False)
 
 
 @njit(cache=True, nogil=True, fastmath=False)
@@ -330,7 +337,21 @@ def rhs_rotating(t, y, p, out):
     if p[P_MODES] != 0.0:
         _rhs(t, y, p, out, True)
     else:
-        _rhs_free(t, y, p, out, True)
+        _rhs_free(t, y, p, out, True, False)
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def rhs_fixed_free(t, y, p, out):
+    """Lane-friendly right-hand side in the fixed frame: no stick/slip modes, constant or ramp
+    speed (a Hill run-up gives NaN: use :func:`rhs_fixed`). Same equations and numbers as
+    :func:`rhs_fixed` for those models."""
+    _rhs_free(t, y, p, out, False, True)
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def rhs_rotating_free(t, y, p, out):
+    """Lane-friendly right-hand side in the co-rotating frame (see :func:`rhs_fixed_free`)."""
+    _rhs_free(t, y, p, out, True, True)
 
 
 @njit(cache=True, nogil=True, inline="always")
@@ -431,8 +452,7 @@ def stick_torques(t, y, p, rotating, forced, drive, bound, acc):
     ax, ay, theta, om, dom = _solve(t, y, p, rotating, forced, bound, 0, 0, 1)
     for i in range(n):
         ang = y[I_ANGLE + i]
-        s = math.sin(ang)
-        c = math.cos(ang)
+        s, c = sincos(ang)
         k = P_BALLS + BALL_STRIDE * i
         d_i, b_i = _drive_and_bound(k, s, c, ax, ay, om, dom, p)
         drive[i] = d_i

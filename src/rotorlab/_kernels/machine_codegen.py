@@ -10,7 +10,7 @@ inlined for its kind (a Hill run-up needs ``exp``/``log`` and runs scalar), and 
 a count read from ``p``.
 
 The generated file is written once per source hash into the cache directory of the integrator's
-drivers (``$ROTORLAB_CACHE_DIR``, see :mod:`rotorlab.integrate._specialize`), imported under a
+drivers (``$ROTORLAB_CACHE_DIR``, see :mod:`rotorlab.integrate._codegen`), imported under a
 module name containing that hash and cached by numba like any module-level kernel.
 
 Packed parameters ``p`` (float64; offsets from :class:`Layout`)
@@ -420,7 +420,7 @@ def _deps_hash(source: str) -> str:
 
 def kernel_module(lay: Layout):
     """Return the imported kernel module for ``lay`` (generated and written on first use)."""
-    from rotorlab.integrate._specialize import _cache_dir
+    from rotorlab.integrate._codegen import cache_dir as _cache_dir
 
     source = generate(lay)
     digest = _deps_hash(source)

@@ -47,6 +47,7 @@ __all__ = [
     "KIND_RAMP",
     "KIND_HILL",
     "profile",
+    "profile_arithmetic",
     "hill_integrals",
     "evaluate",
 ]
@@ -173,6 +174,44 @@ def _hill_g(z, n, g_a, g_b):
 
 
 @njit(cache=True, nogil=True, inline="always")
+def _constant(t, p, k):
+    w = p[k + 1]
+    return w * t, w, 0.0
+
+
+@njit(cache=True, nogil=True, inline="always")
+def _ramp(t, p, k):
+    w0 = p[k + 1]
+    w1 = p[k + 2]
+    dur = p[k + 3]
+    if t < 0.0:
+        return w0 * t, w0, 0.0
+    slope = (w1 - w0) / dur
+    if t < dur:
+        return w0 * t + 0.5 * slope * t * t, w0 + slope * t, slope
+    return 0.5 * (w0 + w1) * dur + w1 * (t - dur), w1, 0.0
+
+
+@njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def profile_arithmetic(t, p, k):
+    """:func:`profile` for the constant and ramp kinds only (NaN for a Hill run-up).
+
+    Both kinds are computed and one is selected, with no library call: inlined into the lane
+    driver's loop over lanes this vectorises (a kind that may vary per lane becomes a select).
+    Same numbers as :func:`profile` for those kinds.
+    """
+    kind = p[k]
+    a0, b0, c0 = _constant(t, p, k)
+    a1, b1, c1 = _ramp(t, p, k)
+    ramp = kind == KIND_RAMP
+    ok = kind == KIND_CONSTANT or ramp
+    theta = (a1 if ramp else a0) if ok else math.nan
+    omega = (b1 if ramp else b0) if ok else math.nan
+    domega = (c1 if ramp else c0) if ok else math.nan
+    return theta, omega, domega
+
+
+@njit(cache=True, nogil=True, inline="always")
 def profile(t, p, k):
     """Return ``(theta, omega, domega)`` of the profile stored at ``p[k:k+6]``.
 
@@ -196,18 +235,9 @@ def profile(t, p, k):
     """
     kind = p[k]
     if kind == KIND_CONSTANT:
-        w = p[k + 1]
-        return w * t, w, 0.0
+        return _constant(t, p, k)
     if kind == KIND_RAMP:
-        w0 = p[k + 1]
-        w1 = p[k + 2]
-        dur = p[k + 3]
-        if t < 0.0:
-            return w0 * t, w0, 0.0
-        slope = (w1 - w0) / dur
-        if t < dur:
-            return w0 * t + 0.5 * slope * t * t, w0 + slope * t, slope
-        return 0.5 * (w0 + w1) * dur + w1 * (t - dur), w1, 0.0
+        return _ramp(t, p, k)
     # Hill run-up
     wmax = p[k + 1]
     th = p[k + 2]

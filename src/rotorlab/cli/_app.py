@@ -89,10 +89,6 @@ def _load(source: str) -> Any:
     return load_case(source)
 
 
-def _trajectory_count(case_model: Any, analysis: Any) -> int:
-    return len(analysis.ball_angle_sets(case_model.n_balls))
-
-
 def _json_case(case: Any) -> dict[str, Any]:
     return {"case": case.name, "source": case.source}
 
@@ -121,29 +117,8 @@ def cases_command(ctx: typer.Context, json_out: JsonOpt = False) -> None:
         stdout().print(table)
 
 
-def _speed_text(omega: float | None, p: float | None) -> str:
-    if omega is None:
-        return "follows the model's speed profile"
-    text = f"{omega:.6g} rad/s = {omega * _RPM:.6g} rpm = {omega / (2 * math.pi):.6g} Hz"
-    return text + (f" (ω/p = {omega / p:.3g})" if p else "")
-
-
 def _analysis_summary(case: Any) -> list[dict[str, Any]]:
-    out = []
-    for a in case.analyses:
-        if a.type != "simulate":
-            out.append({"name": a.name, "type": a.type, "description": a.describe(case.model)})
-            continue
-        omega = a.spin_speed(case.model)
-        out.append({
-            "name": a.name,
-            "type": a.type,
-            "speed": omega,
-            "speed_rpm": None if omega is None else omega * _RPM,
-            "configurations": _trajectory_count(case.model, a),
-            "t_end": a.duration(case.model),
-        })  # fmt: skip
-    return out
+    return [{"name": a.name, "type": a.type, **a.summary(case.model)} for a in case.analyses]
 
 
 @app.command("validate")
@@ -171,18 +146,9 @@ def validate_command(ctx: typer.Context, case: CaseArg, json_out: JsonOpt = Fals
         con.print(f"OK: {loaded.name} ({loaded.source})", markup=False)
         if loaded.description:
             con.print(f"  {loaded.description}", markup=False)
-        if loaded.model.type == "jeffcott_balls":
-            con.print(f"  model: {loaded.model.type}, {loaded.model.n_balls} ball(s), "
-                      f"critical speed p = {_speed_text(p, None)}", markup=False)  # fmt: skip
-        else:
-            con.print(f"  model: {loaded.model.describe()}", markup=False)
-        for a, row in zip(loaded.analyses, analyses):
-            if a.type != "simulate":
-                con.print(f"  analysis {a.name} ({a.type}): {row['description']}", markup=False)
-                continue
-            con.print(f"  analysis {a.name} ({a.type}): {row['configurations']} start "
-                      f"configuration(s), {row['t_end']:.6g} s at "
-                      f"{_speed_text(row['speed'], p)}", markup=False)  # fmt: skip
+        con.print(f"  model: {loaded.model.describe()}", markup=False)
+        for a in loaded.analyses:
+            con.print(f"  analysis {a.name} ({a.type}): {a.describe(loaded.model)}", markup=False)
 
 
 # --------------------------------------------------------------------------- run

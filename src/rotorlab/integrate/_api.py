@@ -241,6 +241,8 @@ class EnsembleSolution:
     event_index : ndarray of int, shape (N, max_events)
         Index into ``event_names`` (-1 where unused).
     event_names, state_names : tuple of str
+    driver : str
+        The compiled driver that ran: ``"scalar"`` or ``"lanes8"`` (lane width).
     notes : tuple of str, shape (N,)
         Per trajectory, why its status is :attr:`Status.IMPOSSIBLE` (empty string otherwise).
     """
@@ -256,6 +258,7 @@ class EnsembleSolution:
     event_index: np.ndarray
     event_names: tuple[str, ...]
     state_names: tuple[str, ...]
+    driver: str = "scalar"
     notes: tuple[str, ...] = ()
 
     def __len__(self) -> int:
@@ -416,7 +419,7 @@ def solve_ensemble(
     threads: int | None = None,
     chunk_size: int | None = None,
     progress: Callable[[int, int], None] | None = None,
-    lanes: int | None = None,
+    lanes: int | Literal["auto"] | None = "auto",
 ) -> EnsembleSolution:
     """Integrate many trajectories of one model in one compiled, parallel call.
 
@@ -441,12 +444,14 @@ def solve_ensemble(
     chunk_size : int, optional
         Integrate in chunks of this many trajectories (results do not depend on it); with
         ``progress`` the callback is called after each chunk as ``progress(done, total)``.
-    lanes : int, optional
+    lanes : int, "auto" or None
         Step this many trajectories together per thread in SIMD lanes (lane driver of
-        :mod:`rotorlab.integrate._lanes`; 8 suits AVX2 and AVX-512). Same numbers as the default
-        scalar driver, several times faster when the model's ``rhs`` vectorises (see that
-        module's "Lane-friendly kernels"). Needs all events off (``events=[]`` for a model that
-        has some).
+        :mod:`rotorlab.integrate._lanes`; 8 suits AVX2 and AVX-512). Same numbers as the scalar
+        driver, several times faster when the model's ``rhs`` vectorises (see that module's
+        "Lane-friendly kernels"). Needs all events off (``events=[]`` for a model that has
+        some). ``"auto"`` (default): 8 lanes when there are several trajectories, no active
+        event and the model declares a lane-friendly kernel (``Kernels.vectorises``), else the
+        scalar driver. ``None``: the scalar driver (the reference).
 
     Returns
     -------
@@ -464,7 +469,8 @@ def solve_ensemble(
     array([[1., 0.],
            [0., 1.]])
     """
-    from rotorlab.integrate._specialize import drivers_for
+    from rotorlab.integrate._driver_args import EventTable, Inputs, Outputs, Settings
+    from rotorlab.integrate._drivers import check_lanes, default_lanes, driver
 
     kernels = _kernels_of(model)
     n = kernels.n_state
@@ -506,28 +512,36 @@ def solve_ensemble(
     RECK = np.full((N, max_rec), -1, dtype=np.int64)
     STATS = np.zeros((N, 4), dtype=np.int64)
     first_step = -1.0 if control.first_step is None else float(control.first_step)
-    if lanes is None:
-        ensemble_driver, serial_driver = drivers_for(kernels)
-        driver = serial_driver if threads == 1 else ensemble_driver
-    else:  # ---- lane driver hook (rotorlab.integrate._lanes): same call signature ----
-        from rotorlab.integrate._lanes_build import lane_driver
-
-        driver = lane_driver(kernels, lanes, n_ev, ev_act, serial=threads == 1)
+    if isinstance(lanes, str) and lanes == "auto":
+        lanes = default_lanes(kernels, N, ev_act[:n_ev])
+    elif lanes is not None:
+        check_lanes(lanes, ev_act[:n_ev])
+    run = driver(kernels, lanes, serial=threads == 1)
+    settings = Settings(
+        t0, float(control.rtol), n_cont, first_step, float(control.max_step), int(control.max_steps)
+    )
+    event_table = EventTable(n_ev, ev_dir, ev_act)
     step = N if chunk_size is None else max(1, int(chunk_size))
 
     def sl(a: np.ndarray, lo: int, hi: int) -> np.ndarray:
         return a if a.shape[0] == 1 else a[lo:hi]
 
+    import numba
+
     with _threads(threads):
+        n_threads = numba.get_num_threads()
         for lo in range(0, N, step):
             hi = min(N, lo + step)
-            driver(
-                n_ev, sl(Y0, lo, hi), sl(P, lo, hi),
-                t0, sl(T1, lo, hi), sl(TS, lo, hi), float(control.rtol), atol, n_cont,
-                first_step, float(control.max_step), int(control.max_steps), ev_dir, ev_act,
-                YS[lo:hi], YF[lo:hi], STATUS[lo:hi], TEND[lo:hi], EVC[lo:hi], RECT[lo:hi],
-                RECK[lo:hi], STATS[lo:hi],
-            )  # fmt: skip
+            run(
+                Inputs(sl(Y0, lo, hi), sl(P, lo, hi), sl(T1, lo, hi), sl(TS, lo, hi), atol),
+                settings,
+                event_table,
+                Outputs(
+                    YS[lo:hi], YF[lo:hi], STATUS[lo:hi], TEND[lo:hi], EVC[lo:hi], RECT[lo:hi],
+                    RECK[lo:hi], STATS[lo:hi],
+                ),
+                n_threads,
+            )
             if progress is not None:
                 progress(hi, N)
     notes = sanity_check(model, n_cont, YS, YF, TEND, STATUS, P)
@@ -545,6 +559,7 @@ def solve_ensemble(
         event_names=names,
         state_names=state_names,
         notes=notes,
+        driver="scalar" if lanes is None else f"lanes{int(lanes)}",
     )
 
 

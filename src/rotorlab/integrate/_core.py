@@ -2,9 +2,9 @@
 
 Everything here is ``@njit(cache=True, nogil=True)`` and works on float64 arrays only. The
 model's kernels are the module globals ``rhs``, ``events`` and ``reset`` bound by the three
-import lines marked ``# @kernel``: :mod:`rotorlab.integrate._specialize` compiles a copy of this
+import lines marked ``# @kernel``: :mod:`rotorlab.integrate._codegen` compiles a copy of this
 module per model with those lines pointing at the model's kernels (so numba can cache it across
-processes). Python code never calls into a step: see ``_api.py`` for the public interface.
+processes). The entry points take the argument groups of :mod:`rotorlab.integrate._driver_args`. Python code never calls into a step: see ``_api.py`` for the public interface.
 
 Step-size control is a line-by-line match of SciPy's ``RK45`` (RMS norm with scale
 ``atol + rtol * max(|y|, |y_new|)``, factor ``min(10, 0.9 err^-1/5)``, no growth right after a
@@ -26,9 +26,9 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from rotorlab.models._base import no_events as events  # @kernel
-from rotorlab.models._base import no_reset as reset  # @kernel
-from rotorlab.models._base import no_rhs as rhs  # @kernel
+from rotorlab.models._base import no_events as events  # @kernel events
+from rotorlab.models._base import no_reset as reset  # @kernel reset
+from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
 from rotorlab.integrate._tableau import (
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65,
     B1, B3, B4, B5, B6,
@@ -59,6 +59,24 @@ ST_NACCEPT = 1
 ST_NREJECT = 2
 ST_NEVENTS = 3
 N_STATS = 4
+
+
+
+def _own(kernel):
+    """The kernel compiled afresh from its Python source as part of this module's code.
+
+    A generated copy of this module is keyed on the sources of everything the kernels depend on
+    (:mod:`rotorlab.integrate._codegen`); linking the kernel's own cached binary instead would
+    bring back whatever numba cached for it, which only watches the kernel's own file.
+    """
+    opts = {k: v for k, v in kernel.targetoptions.items() if k != "nopython"}
+    opts["cache"] = False
+    return njit(**opts)(kernel.py_func)
+
+
+rhs = _own(rhs)
+events = _own(events)
+reset = _own(reset)
 
 _MAX_RESETS_WITHOUT_PROGRESS = 1000
 _PROBES = (1e-7, 1e-10, 1e-13)  # step fractions probing an event function that starts at zero
@@ -484,51 +502,38 @@ def integrate_one(
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def integrate_ensemble(
-    n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, ev_dir, ev_act,
-    YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
-):  # fmt: skip
-    """Integrate ``STATUS.shape[0]`` trajectories in parallel (see :func:`integrate_one`).
+def integrate_ensemble(inputs, settings, event_table, outputs, n_threads):
+    """Integrate ``outputs.STATUS.shape[0]`` trajectories in parallel (see :func:`integrate_one`).
 
-    Each trajectory writes only its own rows of the outputs, so results are bit-identical
-    whatever the number of threads. Inputs whose first dimension is 1 are shared by all
-    trajectories: ``Y0`` (1 or N, n), ``P`` (1 or N, n_param), ``T1`` (1 or N,), ``TS``
-    (1 or N, n_save).
+    The arguments are the groups of :mod:`rotorlab.integrate._driver_args` (``n_threads`` is
+    unused: the threads are numba's). Each trajectory writes only its own rows of the outputs, so
+    results are bit-identical whatever the number of threads. Inputs whose first dimension is 1
+    are shared by all trajectories.
     """
-    N = STATUS.shape[0]
+    N = outputs.STATUS.shape[0]
     for i in prange(N):
-        _one_of_many(
-            i, n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps,
-            ev_dir, ev_act, YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
-        )  # fmt: skip
+        _one_of_many(i, inputs, settings, event_table, outputs)
 
 
 @njit(cache=True, nogil=True)
-def integrate_serial(
-    n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, ev_dir, ev_act,
-    YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
-):  # fmt: skip
+def integrate_serial(inputs, settings, event_table, outputs, n_threads):
     """Same as :func:`integrate_ensemble` on the calling thread."""
-    for i in range(STATUS.shape[0]):
-        _one_of_many(
-            i, n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps,
-            ev_dir, ev_act, YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
-        )  # fmt: skip
+    for i in range(outputs.STATUS.shape[0]):
+        _one_of_many(i, inputs, settings, event_table, outputs)
 
 
 @njit(cache=True, nogil=True)
-def _one_of_many(
-    i, n_ev, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, ev_dir,
-    ev_act, YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS,
-):  # fmt: skip
+def _one_of_many(i, inputs, settings, ev, out):
     i = np.int64(i)  # the prange index may arrive unsigned; mixing it with int64 gives float64
-    iy = i if Y0.shape[0] > 1 else np.int64(0)
-    ip = i if P.shape[0] > 1 else np.int64(0)
-    it1 = i if T1.shape[0] > 1 else np.int64(0)
-    its = i if TS.shape[0] > 1 else np.int64(0)
+    iy = i if inputs.Y0.shape[0] > 1 else np.int64(0)
+    ip = i if inputs.P.shape[0] > 1 else np.int64(0)
+    it1 = i if inputs.T1.shape[0] > 1 else np.int64(0)
+    its = i if inputs.TS.shape[0] > 1 else np.int64(0)
     st, te = integrate_one(
-        n_ev, Y0[iy], P[ip], t0, T1[it1], TS[its], rtol, atol, n_cont, first_step, max_step,
-        max_steps, ev_dir, ev_act, YS[i], YF[i], EVC[i], RECT[i], RECK[i], STATS[i],
+        ev.n_ev, inputs.Y0[iy], inputs.P[ip], settings.t0, inputs.T1[it1], inputs.TS[its],
+        settings.rtol, inputs.atol, settings.n_cont, settings.first_step, settings.max_step,
+        settings.max_steps, ev.ev_dir, ev.ev_act, out.YS[i], out.YF[i], out.EVC[i], out.RECT[i],
+        out.RECK[i], out.STATS[i],
     )  # fmt: skip
-    STATUS[i] = st
-    TEND[i] = te
+    out.STATUS[i] = st
+    out.TEND[i] = te

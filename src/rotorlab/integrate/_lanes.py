@@ -29,21 +29,26 @@ straight loop body. LLVM vectorises that loop when the kernel
    ``math.sqrt``, ``np.floor`` and comparisons (``math.exp``, ``math.pow`` ... are computed one
    lane at a time: correct, but slow);
 2. has no loop whose trip count is not a compile-time constant (LLVM vectorises innermost loops
-   only, so a ``for i in range(int(p[0]))`` becomes the vectorised loop instead of the lanes);
+   only, so a ``for i in range(int(p[0]))`` becomes the vectorised loop instead of the lanes).
+   Sizes derived from ``y.shape[0]`` are constants here (``N_STATE`` of the generated copy):
+   ``n = (y.shape[0] - 4) // 2`` balls gives loops that unroll, as in ``jeffcott_balls``;
 3. has no branch with an expensive or side-effecting arm (both arms of an ``if`` are executed
    for all lanes, then selected), no ``raise``, and calls only functions compiled with
    ``inline="always"`` (a call of another compiled function is opaque to LLVM).
 
 A kernel that breaks these rules still gives identical results on the lane path, only no faster
-than the scalar path. :func:`rotorlab.integrate._lanes_build.is_vectorised` reports whether it vectorised.
+than the scalar path. A model declares a kernel that follows them with ``Kernels(vectorises=True)``
+(``tests/unit/test_vectorise.py`` checks each); ``solve_ensemble`` then uses this driver by default
+for its event-free ensembles. :func:`rotorlab.integrate._drivers.is_vectorised` reports whether it vectorised.
 
 Why not a lane kernel ``rhs_lanes`` written by the model? It would be a second hand-written right
 side per model to keep in sync with the first; the loop above vectorises the existing one.
 
 This module is the template of per-model copies and holds only compiled code:
-:func:`rotorlab.integrate._lanes_build.lane_drivers_for` writes a copy in which the import line
-marked ``# @kernel`` imports the model's ``rhs`` (see :mod:`rotorlab.integrate._specialize` for
-why), so numba caches it across processes.
+:mod:`rotorlab.integrate._codegen` writes a copy in which the import line marked ``# @kernel``
+imports the model's ``rhs`` and the ``# @const`` lines set the lane width and the state size, so
+numba caches it across processes. The entry points take the argument groups of
+:mod:`rotorlab.integrate._driver_args`, as the scalar drivers of :mod:`rotorlab.integrate._core`.
 """
 
 from __future__ import annotations
@@ -54,7 +59,7 @@ import numpy as np
 from numba import njit, prange, types
 from numba.extending import intrinsic
 
-from rotorlab.models._base import no_rhs as rhs  # @kernel
+from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
 from rotorlab.integrate._core import (
     MAX_STEPS, NONFINITE, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NREJECT, STEP_UNDERFLOW, SUCCESS,
     _all_finite, _dense,
@@ -67,9 +72,9 @@ from rotorlab.integrate._tableau import (
     ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY,
 )  # fmt: skip
 
-LANES = 8  # @lanes
-"""Trajectories per worker stepped together (set per generated copy, see :func:`rotorlab.integrate._lanes_build.lane_driver`)."""
-N_STATE = 1  # @n_state
+LANES = 8  # @const LANES
+"""Trajectories per worker stepped together (set per generated copy, see :mod:`rotorlab.integrate._drivers`)."""
+N_STATE = 1  # @const N_STATE
 """Length of the model's state vector (set per generated copy)."""
 NL = N_STATE * LANES
 
@@ -125,7 +130,7 @@ _DONE = -2
 # removes the division-by-zero branches (an exit from the loop) of the inlined code. The scalar
 # evaluations (start of a trajectory) use it too, so that everything this module computes is
 # compiled here: numba's cache of the kernel's own dispatcher does not notice a change in a
-# function the kernel inlines (e.g. sincos), this module's file name does (_kernel_dependencies).
+# function the kernel inlines (e.g. sincos), the generated copy's file name does (rotorlab.integrate._codegen).
 _rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func)
 
 
@@ -195,7 +200,7 @@ def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def _probe(W, PL, nl):
-    """One stage's kernel call as the worker makes it (constant rows): see :func:`rotorlab.integrate._lanes_build.is_vectorised`."""
+    """One stage's kernel call as the worker makes it (constant rows): see :func:`rotorlab.integrate._drivers.is_vectorised`."""
     _rhs_lanes(W, _tt, _T, _K2, PL, nl)
 
 
@@ -288,11 +293,14 @@ def _min_steps(W, Wi, nl):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")  # no ZeroDivisionError branch in the loops
-def _worker(
-    counter, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, nl,
-    YS, YF, STATUS, TEND, STATS,
-):  # fmt: skip
+def _worker(counter, inputs, settings, outputs):
     """Integrate trajectories taken from ``counter`` until none is left (one thread)."""
+    Y0, P, T1, TS, atol = inputs
+    t0, rtol, n_cont, first_step, max_step, max_steps = settings
+    YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS = outputs
+    # LANES, but a run-time value: with a constant trip count this small, LLVM treats the loops
+    # over lanes as "optimise for size" and will not emit the alias checks it needs to vectorise
+    nl = LANES * (atol.shape[0] // N_STATE)
     N = STATUS.shape[0]
     n = N_STATE
     L = LANES
@@ -543,38 +551,24 @@ def _finish(W, lane, j, status, YF, STATUS, TEND, STATS):
 
 
 @njit(cache=True, nogil=True, parallel=True)
-def integrate_lanes(
-    Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, nl,
-    YS, YF, STATUS, TEND, STATS, n_threads,
-):  # fmt: skip
-    """Integrate ``STATUS.shape[0]`` trajectories, ``LANES`` at a time on each of ``n_threads``.
+def integrate_lanes(inputs, settings, event_table, outputs, n_threads):
+    """Integrate ``outputs.STATUS.shape[0]`` trajectories, ``LANES`` at a time on each of ``n_threads``.
 
-    Inputs whose first dimension is 1 are shared by all trajectories: ``Y0`` (1 or N, n),
-    ``P`` (1 or N, n_param), ``T1`` (1 or N,), ``TS`` (1 or N, n_save). ``nl`` must equal
-    ``LANES`` and ``n`` must equal ``N_STATE``; ``n_threads`` is the number of worker threads
-    (numba's current number of threads at most: pass ``numba.get_num_threads()``, which cannot
-    be called here without making the function uncacheable). Each trajectory writes only its own
-    rows of ``YS``, ``YF``, ``STATUS``, ``TEND`` and ``STATS``, with the same numbers whatever
-    the thread that integrated it.
+    The arguments are the groups of :mod:`rotorlab.integrate._driver_args` (the events must all
+    be off). ``inputs.atol`` must have ``N_STATE`` entries; ``n_threads`` is the number of worker
+    threads (numba's current number of threads at most: pass ``numba.get_num_threads()``, which
+    cannot be called here without making the function uncacheable). Each trajectory writes only
+    its own rows of the outputs, with the same numbers whatever the thread that integrated it.
     """
-    N = STATUS.shape[0]
+    N = outputs.STATUS.shape[0]
     n_workers = max(1, min(n_threads, (N + LANES - 1) // LANES))
     counter = np.zeros(1, dtype=np.int64)
     for _ in prange(n_workers):
-        _worker(
-            counter, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, nl,
-            YS, YF, STATUS, TEND, STATS,
-        )  # fmt: skip
+        _worker(counter, inputs, settings, outputs)
 
 
 @njit(cache=True, nogil=True)
-def integrate_lanes_serial(
-    Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, nl,
-    YS, YF, STATUS, TEND, STATS, n_threads,
-):  # fmt: skip
+def integrate_lanes_serial(inputs, settings, event_table, outputs, n_threads):
     """Same as :func:`integrate_lanes` on the calling thread (``n_threads`` is ignored)."""
     counter = np.zeros(1, dtype=np.int64)
-    _worker(
-        counter, Y0, P, t0, T1, TS, rtol, atol, n_cont, first_step, max_step, max_steps, nl,
-        YS, YF, STATUS, TEND, STATS,
-    )  # fmt: skip
+    _worker(counter, inputs, settings, outputs)

@@ -34,6 +34,7 @@ __all__ = [
     "exclusive_issues",
     "duplicate_name_issues",
     "plain_data",
+    "speed_text",
 ]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
@@ -157,6 +158,7 @@ def quantity(
     schema = {
         "anyOf": [{"type": "number"}, {"type": "string"}],
         "description": f"{dim.noun}: a number in {dim.si or 'SI'} or a string with a unit",
+        "unit": dim.si or "1",  # the SI unit of the value after reading (as Unit below)
     }
     return Annotated[
         float, PlainValidator(_QuantityValidator(dimension, gt, ge, lt, le)), WithJsonSchema(schema),
@@ -282,6 +284,20 @@ class AbstractModelSpec(_Spec):
         return str(getattr(self, "type", type(self).__name__))
 
 
+def speed_text(omega: float | None, p: float | None = None) -> str:
+    """A spin speed in rad/s, rpm and Hz (and as omega / p when ``p`` is given), for messages.
+
+    Examples
+    --------
+    >>> speed_text(251.32741228718345, 125.66370614359172)
+    '251.327 rad/s = 2400 rpm = 40 Hz (ω/p = 2)'
+    """
+    if omega is None:
+        return "follows the model's speed profile"
+    text = f"{omega:.6g} rad/s = {omega * 30.0 / math.pi:.6g} rpm = {omega / (2 * math.pi):.6g} Hz"
+    return text + (f" (ω/p = {omega / p:.3g})" if p else "")
+
+
 def exclusive_issues(
     pairs: tuple[tuple[str, str, bool], ...], present: set[str]
 ) -> list[Issue]:
@@ -370,6 +386,10 @@ class AbstractAnalysisSpec(_Spec):
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description of what the analysis computes on ``model``."""
         return f"{self.type} analysis"
+
+    def summary(self, model: AbstractModelSpec) -> dict[str, Any]:
+        """Return plain data describing the analysis on ``model`` (``rotorlab validate --json``)."""
+        return {"description": self.describe(model)}
 
 
 def plain_data(obj: Any) -> Any:

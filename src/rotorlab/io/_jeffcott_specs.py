@@ -8,7 +8,7 @@ import itertools
 import math
 from collections.abc import Mapping
 from types import MappingProxyType
-from typing import Annotated, ClassVar, Literal, Union
+from typing import Annotated, Any, ClassVar, Literal, Union
 
 from pydantic import Field, field_validator, model_validator
 
@@ -20,6 +20,7 @@ from rotorlab.io._fields import (
     _Spec,
     integer,
     quantity,
+    speed_text,
 )
 
 __all__ = [
@@ -301,6 +302,10 @@ class JeffcottBallsSpec(AbstractModelSpec):
         """Return the ``[model.speed]`` profile, or None."""
         return self.speed
 
+    def describe(self) -> str:
+        """Return ``jeffcott_balls, <n> ball(s), critical speed p = ...`` (``rotorlab validate``)."""
+        return f"{self.type}, {self.n_balls} ball(s), critical speed p = {speed_text(self.critical_speed())}"
+
 
 #: Model specifications by the value of their ``type`` key.
 
@@ -389,6 +394,17 @@ class SimulateSpec(AbstractAnalysisSpec):
         if omega is None or self.revolutions is None:
             raise ValueError("revolutions need a constant spin speed")
         return self.revolutions * 2.0 * math.pi / omega
+
+    def describe(self, model: AbstractModelSpec) -> str:
+        """Return ``<n> start configuration(s), <t> s at <speed>`` (``rotorlab validate``)."""
+        return (f"{len(self.ball_angle_sets(model.n_balls))} start configuration(s), {self.duration(model):.6g} s "
+                f"at {speed_text(self.spin_speed(model), model.critical_speed())}")  # fmt: skip
+
+    def summary(self, model: AbstractModelSpec) -> dict[str, Any]:
+        """Return ``speed`` (rad/s or None), ``speed_rpm``, ``configurations`` and ``t_end`` (s)."""
+        omega = self.spin_speed(model)
+        return {"speed": omega, "speed_rpm": None if omega is None else omega * 30.0 / math.pi,
+                "configurations": len(self.ball_angle_sets(model.n_balls)), "t_end": self.duration(model)}  # fmt: skip
 
     def ball_angle_sets(self, n_balls: int) -> tuple[tuple[float, ...], ...]:
         """Return the initial ball configurations, shape (n_configurations, n_balls), in rad.

@@ -33,6 +33,13 @@ For implementers
    in Python after every compiled call and marks those trajectories
    :attr:`rotorlab.integrate.Status.IMPOSSIBLE` (a failure, never a success); non-finite and
    absurdly large states are checked for every model without it.
+7. Make ``rhs`` lane-friendly (see "Lane-friendly kernels" in :mod:`rotorlab.integrate._lanes`:
+   :func:`rotorlab._kernels._vmath.sincos` instead of ``math.sin``/``cos``, sizes such as the
+   ball count from ``y.shape[0]``, which the lane driver makes a compile-time constant, no
+   library calls, ``error_model="numpy"`` when a discarded arm may divide by zero) and declare
+   it with ``Kernels(..., vectorises=True)``: ensembles without active events then run on the
+   lane driver by default (same numbers). ``tests/unit/test_vectorise.py`` asserts that every
+   kernel so declared vectorises.
 """
 
 from __future__ import annotations
@@ -121,6 +128,9 @@ class Kernels:
         ``reset(k, t, y, p, y_new) -> int``; :func:`no_reset` if the model has none.
     event_specs : tuple of EventSpec
         One per event function, in the order ``events`` fills ``g``.
+    vectorises : bool
+        True if ``rhs`` is lane-friendly (vectorised by the lane driver, checked by the tests):
+        event-free ensembles then use the lane driver by default.
     """
 
     rhs: Any
@@ -129,6 +139,7 @@ class Kernels:
     events: Any = no_events
     reset: Any = no_reset
     event_specs: tuple[EventSpec, ...] = ()
+    vectorises: bool = False
 
     def __post_init__(self) -> None:
         if self.n_state < 1:

@@ -125,6 +125,7 @@ from typing import Literal
 import numpy as np
 
 from rotorlab._kernels import jeffcott_balls as _k
+from rotorlab._kernels.speed import KIND_CONSTANT, KIND_RAMP
 from rotorlab.models._base import EventSpec, Kernels, no_events, no_reset
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
 from rotorlab.models._speed import ConstantSpeed, SpeedProfile, speed_from_array  # noqa: F401
@@ -135,9 +136,15 @@ Frame = Literal["fixed", "rotating"]
 _KERNELS: dict[tuple[str, int, bool], Kernels] = {}
 
 
-def _kernels_for(frame: str, n_balls: int, friction: bool) -> Kernels:
-    """Return the (shared) Kernels bundle of one frame / size / friction configuration."""
-    key = (frame, n_balls, friction)
+def _kernels_for(frame: str, n_balls: int, friction: bool, arithmetic_speed: bool = False) -> Kernels:
+    """Return the (shared) Kernels bundle of one frame / size / friction / speed configuration.
+
+    Without friction and with a constant or ramp speed (``arithmetic_speed``) the lane-friendly
+    kernels (:func:`rotorlab._kernels.jeffcott_balls.rhs_fixed_free`) are used: same numbers,
+    vectorised by the lane driver.
+    """
+    arithmetic_speed = arithmetic_speed and not friction
+    key = (frame, n_balls, friction, arithmetic_speed)
     if key not in _KERNELS:
         rhs = _k.rhs_fixed if frame == "fixed" else _k.rhs_rotating
         if friction:
@@ -152,6 +159,9 @@ def _kernels_for(frame: str, n_balls: int, friction: bool) -> Kernels:
                 reset=_k.reset_fixed if frame == "fixed" else _k.reset_rotating,
                 event_specs=tuple(specs),
             )
+        elif arithmetic_speed:
+            rhs = _k.rhs_fixed_free if frame == "fixed" else _k.rhs_rotating_free
+            _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n_balls, vectorises=True)
         else:
             _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n_balls, events=no_events, reset=no_reset)
     return _KERNELS[key]
@@ -291,7 +301,8 @@ class JeffcottBalls:
     @property
     def kernels(self) -> Kernels:
         """Compiled kernels for this frame and friction configuration (shared, cached)."""
-        return _kernels_for(self.frame, self.n_balls, self.has_friction)
+        kind = float(self.speed.to_array()[0])
+        return _kernels_for(self.frame, self.n_balls, self.has_friction, kind in (KIND_CONSTANT, KIND_RAMP))
 
     @property
     def n_state(self) -> int:

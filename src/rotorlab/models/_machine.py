@@ -244,7 +244,7 @@ class Machine:
         """Compiled kernels, generated for this machine's sizes (shared between equal sizes)."""
         if "kernels" not in self._cache:
             mod = _cg.kernel_module(self.layout)
-            self._cache["kernels"] = Kernels(rhs=mod.rhs, n_state=self.n_state)
+            self._cache["kernels"] = Kernels(rhs=mod.rhs, n_state=self.n_state, vectorises=True)
         return self._cache["kernels"]
 
     @property

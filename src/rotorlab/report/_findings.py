@@ -236,13 +236,14 @@ def _modes(ds: xarray.Dataset, rows: Rows) -> Findings:
 
 def _unbalance(ds: xarray.Dataset, rows: Rows) -> Findings:
     shown = [r for r in rows if r["peak_amplitude"] is not None]
+    note = next((r["note"] for r in rows if r.get("note")), "")
     if not shown:
-        return Findings("no finite response")
+        return Findings(note or "no finite response")
     top = max(shown, key=lambda r: r["peak_amplitude"])
     return Findings(f"largest orbit {top['peak_amplitude'] * 1e3:.4g} mm at {top['peak_speed_rpm']:.0f} rpm "
-                    f"(node {top['label']}), on the speed grid",
+                    f"(node {top['label']})",
                     tuple(f"node {r['label']}: {r['peak_amplitude'] * 1e3:.4g} mm at {r['peak_speed_rpm']:.0f} rpm"
-                          for r in shown))  # fmt: skip
+                          for r in shown) + ((note,) if note else ()))  # fmt: skip
 
 
 def _identify(ds: xarray.Dataset, rows: Rows) -> Findings:

@@ -1,0 +1,288 @@
+"""The one generator of per-model compiled drivers (the scalar :mod:`._core` and the lanes :mod:`._lanes`).
+
+Why generated copies
+--------------------
+A numba function that takes other compiled functions as *arguments* is keyed in numba's on-disk
+cache by the dispatcher types, which differ from one process to the next, so it is recompiled
+(seconds) in every new process. A function whose arguments are arrays and scalars, and which
+reaches the model's kernels as module *globals*, is cached normally. So for each model a driver
+template (a module of compiled code) is copied with its marked lines changed and imported:
+
+- ``... import no_rhs as rhs  # @kernel rhs``: imports the model's kernel of that role instead;
+- ``LANES = 8  # @const LANES``: a compile-time constant of this copy (lane width, state size).
+
+The templates stay the single source of the integrators; the copies are never edited.
+
+The cache key
+-------------
+The copy's file name carries a hash of its own text, of the source of **every module the kernels
+and the template depend on, transitively** (found through their import statements and globals; the
+standard library and installed third-party packages are left out, the versions of Python, numba,
+NumPy and llvmlite are hashed instead), and of the Python, numba and NumPy versions. Editing e.g.
+``rotorlab/_kernels/speed.py`` therefore gives a new file, which numba compiles afresh; the copy
+re-compiles the model's kernels from their Python source (``py_func``) rather than linking their
+own cached binaries, whose numba cache only watches their own file.
+
+Before importing a cached copy its bytes are compared with the text generated now; a copy that
+differs (edited, truncated, corrupted) is rewritten and its numba cache dropped. Copies go only to
+the cache directory ``$ROTORLAB_CACHE_DIR/drivers`` (default ``$XDG_CACHE_HOME/rotorlab/drivers``,
+``~/.cache/rotorlab/drivers``); if it is not writable the driver is compiled in memory without
+caching (a few seconds per process), never written elsewhere. Kernels that are not importable
+module-level functions (defined in ``__main__``, closures) are compiled the same way, in memory.
+"""
+
+from __future__ import annotations
+
+import hashlib
+import importlib
+import importlib.util
+import inspect
+import os
+import sys
+import tempfile
+import types
+from pathlib import Path
+from typing import Any
+
+__all__ = ["build", "dependencies", "source_digest", "cache_dir", "announce_compile"]
+
+# third-party packages whose versions (not sources) enter the key
+_VERSIONED = ("numba", "numpy", "llvmlite")
+_SKIP_TOP = {"numba", "numpy", "llvmlite", "scipy", "typing_extensions", "_pytest", "pytest"}
+_LOADED: dict[tuple, tuple[tuple, dict[str, Any]]] = {}
+
+
+def _importable_name(dispatcher: Any) -> tuple[str, str] | None:
+    """``(module, name)`` if ``dispatcher`` is reachable as a module-level attribute."""
+    py_func = getattr(dispatcher, "py_func", None)
+    if py_func is None:
+        return None
+    mod, name = py_func.__module__, py_func.__qualname__
+    if mod == "__main__" or "<" in name or "." in name:
+        return None
+    try:
+        if getattr(importlib.import_module(mod), name) is not dispatcher:
+            return None
+    except (ImportError, AttributeError):
+        return None
+    return mod, name
+
+
+def cache_dir() -> Path | None:
+    """The directory of the generated drivers, created if needed; None if it is not writable."""
+    base = os.environ.get("ROTORLAB_CACHE_DIR")
+    if base:
+        cand = Path(base)
+    else:
+        xdg = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
+        cand = Path(xdg) / "rotorlab"
+    d = cand / "drivers"
+    try:
+        d.mkdir(parents=True, exist_ok=True)
+        probe = d / f".write-test-{os.getpid()}"
+        probe.write_text("ok")
+        probe.unlink()
+    except OSError:
+        return None
+    return d
+
+
+def _module_of(obj: Any) -> str | None:
+    if isinstance(obj, types.ModuleType):
+        return obj.__name__
+    if isinstance(obj, (types.FunctionType, type)):
+        return getattr(obj, "__module__", None)
+    if type(obj).__name__.endswith("Dispatcher"):  # numba's (and numba-compatible) dispatchers
+        return getattr(getattr(obj, "py_func", None), "__module__", None)
+    return None
+
+
+def _followed(name: str) -> bool:
+    if not _followed_name(name):
+        return False
+    mod = sys.modules.get(name)
+    path = getattr(mod, "__file__", None)
+    if path is None:
+        return False
+    # installed third-party packages are covered by the interpreter's and numba's versions only
+    parts = Path(path).parts
+    return name.split(".", 1)[0] == "rotorlab" or not ("site-packages" in parts or "dist-packages" in parts)
+
+
+def _imports(name: str) -> set[str]:
+    """Modules named by the import statements in the source of module ``name`` (any depth)."""
+    import ast
+
+    path = inspect.getsourcefile(sys.modules[name])
+    if path is None:
+        return set()
+    found: set[str] = set()
+    for node in ast.walk(ast.parse(Path(path).read_text())):
+        if isinstance(node, ast.Import):
+            found.update(a.name for a in node.names)
+        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
+            found.add(node.module)
+            found.update(f"{node.module}.{a.name}" for a in node.names if f"{node.module}.{a.name}" in sys.modules)
+    return found
+
+
+def dependencies(modules: list[str]) -> list[str]:
+    """``modules`` and every module they depend on, transitively, sorted.
+
+    A module's dependencies are the modules its import statements name (constants imported with
+    ``from m import X`` are compiled in, so ``m`` counts) and the defining modules of the
+    functions, classes and numba dispatchers among its globals. The standard library and the
+    compiled-numerics packages (numba, numpy, llvmlite, scipy) are not followed.
+    """
+    seen: set[str] = set()
+    todo = list(modules)
+    while todo:
+        name = todo.pop()
+        if name in seen or not _followed_name(name):
+            continue
+        try:
+            importlib.import_module(name)
+        except ImportError:
+            continue
+        if not _followed(name):
+            continue
+        seen.add(name)
+        found = _imports(name)
+        found.update(filter(None, (_module_of(v) for v in vars(sys.modules[name]).values())))
+        todo.extend(d for d in found if d not in seen and _followed_name(d))
+    return sorted(seen)
+
+
+def _followed_name(name: str) -> bool:
+    top = name.split(".", 1)[0]
+    return not (top in _SKIP_TOP or top in sys.stdlib_module_names or name == "__main__")
+
+
+def source_digest(text: str, modules: list[str]) -> str:
+    """Hash of a generated text, the sources of ``modules`` and the interpreter and library versions."""
+    h = hashlib.sha256(text.encode())
+    h.update(sys.version.encode())
+    for pkg in _VERSIONED:
+        h.update(f"{pkg}={importlib.import_module(pkg).__version__}".encode())
+    for mod in modules:
+        path = inspect.getsourcefile(sys.modules[mod])
+        h.update(mod.encode())
+        h.update(Path(path).read_bytes() if path else b"")
+    return h.hexdigest()[:20]
+
+
+def _render(template: str, kernels: dict[str, tuple[str, str]], consts: dict[str, int]) -> str:
+    """The template's source with its ``# @kernel ROLE`` and ``# @const NAME`` lines replaced."""
+    path = inspect.getsourcefile(importlib.import_module(template))
+    lines = Path(path).read_text().splitlines()  # type: ignore[arg-type]
+    found: set[str] = set()
+    for i, line in enumerate(lines):
+        body, sep, mark = line.rpartition("# @")
+        if not sep:
+            continue
+        kind, _, name = mark.strip().partition(" ")
+        if kind == "kernel" and name in kernels:
+            mod, fn = kernels[name]
+            lines[i] = f"from {mod} import {fn} as {name}  # @kernel {name}"
+            found.add(name)
+        elif kind == "const" and name in consts:
+            lines[i] = f"{name} = {int(consts[name])}  # @const {name}"
+            found.add(name)
+    missing = (set(kernels) | set(consts)) - found
+    if missing:
+        raise RuntimeError(f"{template} has no '# @kernel'/'# @const' line for {sorted(missing)}")
+    return f"# Generated by rotorlab.integrate._codegen from {template}; do not edit.\n" + "\n".join(lines) + "\n"
+
+
+def build(template: str, kernels: dict[str, Any], consts: dict[str, int] | None = None) -> dict[str, Any]:
+    """Return the namespace of ``template`` compiled for the given kernels and constants.
+
+    Parameters
+    ----------
+    template : str
+        Module name of a driver template (``"rotorlab.integrate._core"``, ``"..._lanes"``).
+    kernels : dict
+        Role (``"rhs"``, ``"events"``, ``"reset"``) to the model's numba dispatcher.
+    consts : dict, optional
+        Compile-time constants of the copy (``{"LANES": 8, "N_STATE": 4}``).
+
+    Returns
+    -------
+    dict
+        The generated module's namespace (its compiled entry points by name).
+    """
+    consts = dict(consts or {})
+    disp = tuple(kernels[r] for r in sorted(kernels))
+    key = (template, tuple(sorted(consts.items())), tuple(id(d) for d in disp))
+    hit = _LOADED.get(key)
+    if hit is not None and all(a is b for a, b in zip(hit[0], disp)):
+        return hit[1]
+    names = {role: _importable_name(d) for role, d in kernels.items()}
+    directory = cache_dir()
+    if directory is None or any(n is None for n in names.values()):
+        namespace = _in_memory(template, kernels, consts)
+    else:
+        namespace = _cached(template, names, consts, directory)  # type: ignore[arg-type]
+    _LOADED[key] = (disp, namespace)
+    return namespace
+
+
+def _cached(template: str, names: dict[str, tuple[str, str]], consts: dict[str, int], directory: Path) -> dict[str, Any]:
+    text = _render(template, names, consts)
+    deps = dependencies([template, __name__] + [m for m, _ in names.values()])
+    digest = source_digest(text, deps)
+    mod, fn = names.get("rhs", next(iter(names.values())))
+    tag = template.rsplit(".", 1)[-1].lstrip("_") + "".join(f"{k[0].lower()}{v}" for k, v in sorted(consts.items()))
+    stem = f"{tag}_{mod.rsplit('.', 1)[-1]}_{fn}_{digest}"
+    path = directory / f"{stem}.py"
+    if not (path.exists() and path.read_bytes() == text.encode()):
+        _prune(directory, stem.rsplit("_", 1)[0])
+        _drop_numba_cache(directory, stem)
+        fd, tmp = tempfile.mkstemp(dir=directory, suffix=".tmp")
+        with os.fdopen(fd, "w") as fh:
+            fh.write(text)
+        os.replace(tmp, path)
+    mod_name = f"_rotorlab_gen_{stem}"
+    if mod_name in sys.modules:
+        return vars(sys.modules[mod_name])
+    lanes = f"{consts['LANES']}-lane integrator" if "LANES" in consts else "integrator"
+    announce_compile(directory, stem, f"{lanes} for {mod.rsplit('.', 1)[-1]}")
+    spec = importlib.util.spec_from_file_location(mod_name, path)
+    assert spec is not None and spec.loader is not None
+    module = importlib.util.module_from_spec(spec)
+    sys.modules[mod_name] = module
+    spec.loader.exec_module(module)
+    return vars(module)
+
+
+def announce_compile(directory: Path, stem: str, what: str) -> None:
+    """Log (logger ``rotorlab.compile``, INFO) that ``stem`` has no numba cache yet: the first
+    call compiles it (tens of seconds). The command line shows this on stderr."""
+    if not any((directory / "__pycache__").glob(f"{stem}.*.nbi")):
+        import logging
+
+        logging.getLogger("rotorlab.compile").info("compiling the %s (first run only, ~30 s) ...", what)
+
+
+def _drop_numba_cache(directory: Path, stem: str) -> None:
+    for cached in (directory / "__pycache__").glob(f"{stem}.*"):
+        cached.unlink(missing_ok=True)
+
+
+def _prune(directory: Path, prefix: str) -> None:
+    """Delete copies for the same kernels generated from older sources (and their numba cache)."""
+    for old in directory.glob(f"{prefix}_*.py"):
+        if len(old.stem) == len(prefix) + 21:  # prefix + "_" + 20-hex digest
+            _drop_numba_cache(directory, old.stem)
+            old.unlink(missing_ok=True)
+
+
+def _in_memory(template: str, kernels: dict[str, Any], consts: dict[str, int]) -> dict[str, Any]:
+    """Compile the template with the kernels bound as globals, without on-disk caching."""
+    placeholder = {role: ("rotorlab.models._base", "no_rhs") for role in kernels}
+    source = _render(template, placeholder, consts).replace("cache=True", "cache=False")
+    lines = [ln for ln in source.splitlines() if "# @kernel " not in ln]
+    namespace: dict[str, Any] = dict(kernels)
+    namespace["__name__"] = f"_rotorlab_gen_uncached_{template.rsplit('.', 1)[-1]}"
+    exec(compile("\n".join(lines), f"<rotorlab {template}>", "exec"), namespace)  # noqa: S102
+    return namespace

@@ -1,0 +1,115 @@
+"""Which compiled driver runs an ensemble, and whether a model's kernel vectorises in lanes.
+
+Two driver templates, one generator (:mod:`rotorlab.integrate._codegen`):
+
+- :mod:`rotorlab.integrate._core`, the scalar driver: one trajectory per thread at a time, events
+  and reset maps; the reference.
+- :mod:`rotorlab.integrate._lanes`, the lane driver: ``lanes`` trajectories per thread stepped
+  together in SIMD lanes, the same numbers bit for bit.
+
+Both are called as ``driver(inputs, settings, event_table, outputs, n_threads)`` with the groups
+of :mod:`rotorlab.integrate._driver_args`.
+"""
+
+from __future__ import annotations
+
+import numpy as np
+
+from rotorlab.integrate._codegen import build
+
+__all__ = ["driver", "check_lanes", "default_lanes", "is_vectorised"]
+
+_ACT_OFF = 3  # rotorlab.integrate._core.ACT_OFF
+DEFAULT_LANES = 8  # a multiple of the SIMD width in doubles: 4 (AVX2), 8 (AVX-512)
+
+
+def default_lanes(kernels, n_traj, ev_act):
+    """The lane width ``lanes="auto"`` chooses: :data:`DEFAULT_LANES` for an ensemble (more than
+    one trajectory) of a model whose kernel vectorises (``Kernels.vectorises``) with no active
+    event, else None (the scalar driver)."""
+    if n_traj > 1 and kernels.vectorises and not np.any(np.asarray(ev_act) != _ACT_OFF):
+        return DEFAULT_LANES
+    return None
+
+
+def check_lanes(lanes, ev_act):
+    """Validate ``lanes=`` of :func:`rotorlab.integrate.solve_ensemble`.
+
+    Raises
+    ------
+    ValueError
+        If ``lanes`` is not an integer in [2, 64] or an event is active.
+    """
+    if isinstance(lanes, bool) or not isinstance(lanes, (int, np.integer)) or not 2 <= lanes <= 64:
+        raise ValueError(f"lanes must be an integer in [2, 64] or None, got {lanes!r}")
+    if np.any(np.asarray(ev_act) != _ACT_OFF):
+        raise ValueError(
+            "lanes= runs without event location; this model has active events: pass events=[] "
+            "to switch them off, or lanes=None to use the scalar driver"
+        )
+
+
+def driver(kernels, lanes, serial):
+    """Return the compiled driver for the model's kernels.
+
+    Parameters
+    ----------
+    kernels : Kernels
+    lanes : int or None
+        None: the scalar driver; else the lane driver of that width (validated by
+        :func:`check_lanes`).
+    serial : bool
+        Run on the calling thread.
+    """
+    if lanes is None:
+        ns = build(
+            "rotorlab.integrate._core",
+            {"rhs": kernels.rhs, "events": kernels.events, "reset": kernels.reset},
+        )
+        return ns["integrate_serial" if serial else "integrate_ensemble"]
+    ns = build("rotorlab.integrate._lanes", {"rhs": kernels.rhs}, {"LANES": int(lanes), "N_STATE": kernels.n_state})
+    return ns["integrate_lanes_serial" if serial else "integrate_lanes"]
+
+
+def is_vectorised(kernels, lanes=8):
+    """Report whether LLVM vectorises the model's ``rhs`` across ``lanes`` lanes on this CPU.
+
+    Compiles (without caching, a few seconds) the loop over lanes that the lane driver runs for
+    each stage and inspects its optimised LLVM IR.
+
+    Parameters
+    ----------
+    kernels : Kernels
+    lanes : int
+
+    Returns
+    -------
+    bool
+        True if the loop body is SIMD code (several lanes per instruction) without scalar calls
+        of mathematical library functions (``math.sin`` and the like, which LLVM can only call
+        one lane at a time).
+    """
+    import re
+
+    from numba import typeof
+
+    from rotorlab.integrate._codegen import _in_memory
+
+    ns = _in_memory("rotorlab.integrate._lanes", {"rhs": kernels.rhs}, {"LANES": lanes, "N_STATE": kernels.n_state})
+    probe = ns["_probe"]
+    W = np.zeros(ns["_W_SIZE"])
+    PL = np.zeros(lanes)
+    probe.compile((typeof(W), typeof(PL), typeof(lanes)))
+    ir = probe.inspect_llvm(probe.signatures[0])
+    # the compiled loop (in _rhs_lanes, or inlined into _probe), not the CPython wrappers
+    body = "\n".join(
+        f for f in re.split(r"^define ", ir, flags=re.M)
+        if re.match(r"[^(]*@_ZN[^(]*(_probe|_rhs_lanes)", f)
+    )
+    packed = re.findall(r"= f(?:mul|add|sub|div) (?:[a-z]+ )*<\d+ x double>", body)
+    libm = re.findall(
+        r"call [^@\n]*@(?:llvm\.)?(?:sin|cos|sincos|tan|pow|exp|exp2|log|log2|log10|atan2?|asin|acos"
+        r"|sinh|cosh|tanh|expm1|log1p|cbrt|hypot)\b",
+        body,
+    )
+    return len(packed) >= 20 and not libm
