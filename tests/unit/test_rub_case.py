@@ -116,25 +116,36 @@ def test_rigid_stator_below_grazing_is_the_jeffcott_orbit():
     assert rows["contacts begun per second"]["measured"] == 0.0
 
 
-def test_a_rotor_found_beyond_a_rigid_stator_is_a_failure_not_a_regime(monkeypatch):
-    """A missed rebound (rest_speed below what the tolerances resolve) lets the rotor through a
-    rigid stator; the integrator cannot see it, the analysis must: failed status and a message."""
+def test_a_rotor_beyond_a_rigid_stator_is_an_impossible_run():
+    """The sanity monitor: a rotor started 0.5 mm beyond a 1 mm rigid clearance (its contact event
+    can never fire) is a failed run that says where it was, not a regime."""
     import numpy as np
 
+    from rotorlab.contact import JeffcottRub
+    from rotorlab.integrate import SaveAt, Status, solve
+
+    model = JeffcottRub(RubRotor(mass=10.0, stiffness=1e6, clearance=1e-3, rotor_radius=0.05), 100.0)
+    y0 = np.array([1.5e-3, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0, 0.0])
+    sol = solve(model, y0, (0.0, 0.01), save_at=SaveAt(ts=np.linspace(0.0, 0.01, 11)))
+    assert sol.status == Status.IMPOSSIBLE
+    assert "passed through the rigid stator: radius 0.0015 m, 0.0005 m beyond the clearance 0.001 m" in sol.note
+    inside = solve(model, model.initial_state((0.9e-3, 0.0)), (0.0, 0.01), save_at=SaveAt(ts=np.linspace(0.0, 0.01, 11)))
+    assert inside.status == Status.SUCCESS and inside.note == ""
+
+
+def test_the_rub_analysis_reports_an_impossible_run_as_failed(monkeypatch):
     import rotorlab.integrate as integrate
     from rotorlab.integrate import Status
 
     real_solve = integrate.solve
 
-    def through(model, y0, t_span, **kw):
+    def impossible(model, y0, t_span, **kw):
         sol = real_solve(model, y0, t_span, **kw)
-        ys = sol.ys.copy()
-        ys[-1, 0] = 1.5e-3  # half a millimetre beyond the 1 mm clearance, as a missed rebound leaves it
-        return type(sol)(**{**{k: getattr(sol, k) for k in sol.__dataclass_fields__}, "ys": ys})
+        fields = {k: getattr(sol, k) for k in sol.__dataclass_fields__}
+        return type(sol)(**{**fields, "status": Status.IMPOSSIBLE, "note": "the rotor passed through the rigid stator"})
 
-    monkeypatch.setattr(integrate, "solve", through)
+    monkeypatch.setattr(integrate, "solve", impossible)
     ds = run_case(parse_case(NO_CONTACT, origin="through.toml"))["quiet"]
-    assert ds.attrs["status"] == int(getattr(Status, "IMPOSSIBLE", -5)) < 0
-    assert "passed through the rigid stator (0.0005 m beyond the clearance)" in ds.attrs["status_message"]
+    assert ds.attrs["status"] == int(Status.IMPOSSIBLE)
+    assert ds.attrs["status_message"] == "the rotor passed through the rigid stator"
     assert summarize(ds)[0]["measured"] == "integration failed"
-    assert np.isfinite(ds.attrs["no_rub_radius"])

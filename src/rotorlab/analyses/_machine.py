@@ -282,6 +282,11 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
 
     if isinstance(n_save, bool) or int(n_save) != n_save or n_save < 10:
         raise ValueError(f"n_save must be an integer >= 10, got {n_save!r}")
+    from rotorlab._memory import check_memory
+
+    check_memory(8.0 * int(n_save) * (2 * machine.kernels.n_state + 8),
+                 f"n_save = {int(n_save)} saved states of {machine.kernels.n_state} entries",
+                 "save fewer states (n_save)")  # fmt: skip
     y0 = machine.initial_state(ball_angles, spin_speed=initial_speed)
     ts = np.linspace(0.0, float(t_end), int(n_save))
     sol = solve(machine, y0, (0.0, float(t_end)), save_at=SaveAt(ts=ts),

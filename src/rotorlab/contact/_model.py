@@ -142,6 +142,44 @@ class JeffcottRub:
             mode = 1.0 if slip >= 0.0 else -1.0
         return np.array([x, y, float(velocity[0]), float(velocity[1]), 0.0, 0.0, 0.0, 0.0, mode])
 
+    def impossible_states(self, ys, y_final, t_final, params) -> list[str]:
+        """Sanity monitor (kernel contract item 6): runs where the rotor went through a rigid stator.
+
+        A rigid stator holds the centre on ``|z| <= delta`` up to the event tolerance; beyond
+        ``delta (1 + 1e-6)`` a rebound lower than the integrator resolves was missed (raise
+        ``rest_speed`` above ``sqrt(2 a atol)``): a failed run. (An elastic stator may yield by
+        any amount: its deflection is the physics, e.g. a full rub on a soft stator.)
+
+        Parameters
+        ----------
+        ys : ndarray, shape (N, n_save, 9)
+        y_final : ndarray, shape (N, 9)
+        t_final : ndarray, shape (N,)
+        params : ndarray, shape (N or 1, 15)
+
+        Returns
+        -------
+        list of str
+            Per run, empty or the message naming the radius, the clearance and the time.
+        """
+        ys, y_final, params = np.asarray(ys, float), np.asarray(y_final, float), np.atleast_2d(params)
+        n = y_final.shape[0]
+        delta = np.broadcast_to(params[:, _k.P_D], (n,))
+        rigid = np.broadcast_to(params[:, _k.P_RIGID] != 0.0, (n,))
+        radius = np.hypot(ys[..., _k.X], ys[..., _k.Y]) if ys.size else np.zeros((n, 0))
+        r_final = np.hypot(y_final[:, _k.X], y_final[:, _k.Y])
+        out = []
+        for i in range(n):
+            r = np.concatenate([radius[i][np.isfinite(radius[i])], [r_final[i]]])
+            worst = float(r.max())
+            if not rigid[i] or worst <= delta[i] * (1.0 + 1e-6):
+                out.append("")
+            else:
+                out.append(f"the rotor passed through the rigid stator: radius {worst:.6g} m, "
+                           f"{worst - delta[i]:.3g} m beyond the clearance {delta[i]:g} m (by t = {t_final[i]:.6g} s); "
+                           "a rebound lower than the tolerances resolve was missed: raise rest_speed")  # fmt: skip
+        return out
+
     def energy(self, y) -> np.ndarray:
         """Kinetic + shaft + stator elastic energy (J), shape of ``y[..., 0]``."""
         y = np.asarray(y, dtype=float)

@@ -37,7 +37,7 @@ from pydantic import Field, field_validator, model_validator
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
 from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _Spec, integer, quantity
-from rotorlab.io._jeffcott_specs import SPEED_PROFILES, AbstractSpeedProfile
+from rotorlab.io._jeffcott_specs import MAX_BALLS, SPEED_PROFILES, AbstractSpeedProfile, _too_many_balls
 from rotorlab.io._linear_common import label
 from rotorlab.io._multibody_spec import MultibodySpec
 
@@ -96,6 +96,8 @@ class MachineBallSpec(_Spec):
                               "in the machine model (use the jeffcott_balls model for them)",
                         getattr(self, k))
                   for k in ("coulomb", "rolling") if getattr(self, k) != 0.0]
+        if self.count > MAX_BALLS:
+            issues.append(Issue(("count",), _too_many_balls(self.count), self.count))
         if issues:
             raise IssueGroup(issues)
         return self
@@ -122,6 +124,9 @@ class RaceSpec(_Station):
     @field_validator("balls", mode="after")
     @classmethod
     def _expand(cls, balls):
+        total = sum(b.count for b in balls)
+        if total > MAX_BALLS:
+            raise IssueGroup([Issue((), _too_many_balls(total), total)])
         out = []
         for b in balls:
             out.extend([b.model_copy(update={"count": 1})] * b.count)
@@ -346,6 +351,18 @@ class MachineSimulateSpec(_MachineAnalysis):
     rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
     atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
 
+    @model_validator(mode="after")
+    def _some_starts(self):
+        return _not_empty(self)
+
+
+def _not_empty(spec):
+    """Refuse ``initial_ball_angles = []`` (nothing to start from; leave the key out instead)."""
+    if spec.initial_ball_angles is not None and len(spec.initial_ball_angles) == 0:
+        raise IssueGroup([Issue(("initial_ball_angles",), "is empty: give the ball angles (one per ball, races in "
+                                "order), or leave the key out", [])])  # fmt: skip
+    return spec
+
 
 class MachineRunUpSpec(_MachineAnalysis):
     """A run-up with the model's drive (motor or profile): criticals passed, residual vibration."""
@@ -357,3 +374,7 @@ class MachineRunUpSpec(_MachineAnalysis):
         None, description="initial ball angles (rad), races in order")
     rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
     atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
+
+    @model_validator(mode="after")
+    def _some_starts(self):
+        return _not_empty(self)
