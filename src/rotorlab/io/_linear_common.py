@@ -103,6 +103,26 @@ def plane_matrix(kind: str) -> Any:
                      WithJsonSchema(schema), Unit(unit)]
 
 
+def square_symmetric_issues(key: str, a: tuple[tuple[float, ...], ...], size: int):
+    """Check a plane matrix's size and symmetry; return ``(matrix, issues)`` (issues empty if fine).
+
+    The one shape and symmetry check of stiffness, compliance and damping plane matrices.
+    """
+    import numpy as np
+
+    m = np.array(a, dtype=float)
+    if m.shape != (size, size):
+        return m, [Issue((key,), f"must be {size} x {size} (translation and tilt of each of the "
+                                  f"{size // 2} connected bodies), got {m.shape[0]} x "
+                                  f"{m.shape[1]}", show_value=False)]
+    diff = np.abs(m - m.T)
+    if diff.max() > 1e-8 * float(np.abs(m).max()):
+        i, j = np.unravel_index(int(np.argmax(diff)), diff.shape)
+        return m, [Issue((key,), f"must be symmetric: [{i}][{j}] = {m[i, j]:.10g} but "
+                                 f"[{j}][{i}] = {m[j, i]:.10g}", show_value=False)]
+    return m, []
+
+
 def matrix_issues(key: str, a: tuple[tuple[float, ...], ...], size: int) -> list[Issue]:
     """Check a plane matrix: its size, symmetry (Maxwell-Betti) and positive definiteness.
 
@@ -121,17 +141,9 @@ def matrix_issues(key: str, a: tuple[tuple[float, ...], ...], size: int) -> list
     """
     import numpy as np
 
-    m = np.array(a, dtype=float)
-    if m.shape != (size, size):
-        return [Issue((key,), f"must be {size} x {size} (translation and tilt of each of the "
-                               f"{size // 2} connected bodies), got {m.shape[0]} x {m.shape[1]}",
-                      show_value=False)]
-    scale = float(np.abs(m).max())
-    diff = np.abs(m - m.T)
-    if diff.max() > 1e-8 * scale:
-        i, j = np.unravel_index(int(np.argmax(diff)), diff.shape)
-        return [Issue((key,), f"must be symmetric: [{i}][{j}] = {m[i, j]:.10g} but "
-                              f"[{j}][{i}] = {m[j, i]:.10g}", show_value=False)]
+    m, issues = square_symmetric_issues(key, a, size)
+    if issues:
+        return issues
     try:
         np.linalg.cholesky(0.5 * (m + m.T))
     except np.linalg.LinAlgError:

@@ -36,6 +36,7 @@ from rotorlab.io._linear_common import (
     label,
     matrix_issues,
     plane_matrix,
+    square_symmetric_issues,
 )
 
 __all__ = [
@@ -296,17 +297,10 @@ def damping_issues(key: str, a: tuple[tuple[float, ...], ...], size: int) -> lis
     """
     import numpy as np
 
-    m = np.array(a, dtype=float)
-    if m.shape != (size, size):
-        return [Issue((key,), f"must be {size} x {size} (translation and tilt of each of the "
-                               f"{size // 2} connected bodies), got {m.shape[0]} x {m.shape[1]}",
-                      show_value=False)]
+    m, issues = square_symmetric_issues(key, a, size)
+    if issues:
+        return issues
     scale = float(np.abs(m).max())
-    diff = np.abs(m - m.T)
-    if diff.max() > 1e-8 * scale:
-        i, j = np.unravel_index(int(np.argmax(diff)), diff.shape)
-        return [Issue((key,), f"must be symmetric: [{i}][{j}] = {m[i, j]:.10g} but "
-                              f"[{j}][{i}] = {m[j, i]:.10g}", show_value=False)]
     low = float(np.linalg.eigvalsh(0.5 * (m + m.T)).min())
     if low < -1e-12 * scale:
         return [Issue((key,), f"must be positive semi-definite (dampers dissipate energy): it "

@@ -67,6 +67,7 @@ from rotorlab._kernels import machine_codegen as _cg
 from rotorlab.linear._system import LinearSystem
 from rotorlab.models._base import Kernels
 from rotorlab.models._machine_parts import Ball, BallRace, Gravity, Motor, Unbalance
+from rotorlab.models._jeffcott_physics import Linearization
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
 
 __all__ = ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor"]
@@ -76,34 +77,16 @@ _SPEED_KIND = {ConstantSpeed: "constant", LinearRamp: "ramp", HillRunUp: "hill"}
 
 
 @dataclass(frozen=True)
-class MachineLinearization:
+class MachineLinearization(Linearization):
     """Linearized co-rotating-frame motion about an equilibrium (constant speed).
 
-    Attributes
-    ----------
-    A : ndarray, shape (2 n, 2 n)
-        First-order Jacobian ``dy'/dy`` of ``[q, q']``.
-    M, C, G, K : ndarray, shape (n, n)
-        ``M q'' + (C + G) q' + K q = 0`` for ``q = (z_rotating, psi)``: mass matrix, damping
-        (symmetric part of the velocity matrix), gyroscopic (its skew part), stiffness.
-    spin_speed : float
-        Omega (rad/s).
-    residual : ndarray
-        Rotating-frame dy/dt at the state (zero at an equilibrium).
+    The fields of :class:`rotorlab.models.Linearization`, here for ``q = (z_rotating, psi)``:
+    ``A`` (shape (2 n, 2 n)) the first-order Jacobian ``dy'/dy`` of ``[q, q']``; ``M``, ``C``,
+    ``G``, ``K`` (shape (n, n)) with ``M q'' + (C + G) q' + K q = 0`` (mass, damping as the
+    symmetric part of the velocity matrix, gyroscopic as its skew part, stiffness);
+    ``spin_speed`` Omega (rad/s); ``residual`` the rotating-frame dy/dt at the state (zero at an
+    equilibrium). Adds :attr:`is_stable`.
     """
-
-    A: np.ndarray
-    M: np.ndarray
-    C: np.ndarray
-    G: np.ndarray
-    K: np.ndarray
-    spin_speed: float
-    residual: np.ndarray
-
-    @property
-    def eigenvalues(self) -> np.ndarray:
-        """Eigenvalues of A (1/s)."""
-        return np.linalg.eigvals(self.A)
 
     @property
     def is_stable(self) -> bool:
