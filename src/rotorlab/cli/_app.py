@@ -186,7 +186,9 @@ def run_command(
         start = time.perf_counter()
         from rotorlab.analyses import run_case, summarize
 
-        entries = {a.name: ANALYSIS_TYPES[a.type] for a in loaded.analyses}
+        from rotorlab.analyses import analysis_entry
+
+        entries = {a.name: analysis_entry(loaded.model.type, a.type) for a in loaded.analyses}
         tasks = {a.name: entries[a.name].task_size(loaded.model, a) for a in loaded.analyses}
         units = {name: entry.progress_unit for name, entry in entries.items()}
         with progress_bar(settings, tasks, units) as update:
