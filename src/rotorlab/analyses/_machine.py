@@ -511,7 +511,7 @@ def _num(v) -> float | None:
 
 
 def _deg(values) -> list[float | None]:
-    return [None if not np.isfinite(v) else round(float(np.degrees(v)), 3) for v in np.ravel(values)]
+    return [None if not np.isfinite(v) else round(float(np.degrees(v)), 6) for v in np.ravel(values)]
 
 
 def _per_race(ds, values) -> dict[str, list[float | None]]:

@@ -167,17 +167,17 @@ def _register_builtins() -> None:
     from rotorlab.analyses import _basin, _builders, _impacts, _linear, _machine, _rub, _simulate, _steady, _sweep
     from rotorlab.analyses._linear_build import build_linear_system
 
-    for name, build, quantities, mapper in (
+    machine = {"analyses": _machine.machine_analysis_types()}
+    for name, build, quantities, mapper, *own in (
         ("jeffcott_balls", _builders.jeffcott_balls_model, _builders.jeffcott_quantities, _basin.balancer_mapper),
         ("multibody", build_linear_system, _builders.linear_quantities, None),
         ("fe_rotor", build_linear_system, _builders.linear_quantities, None),
         ("toroidal_ball", _builders.toroidal_ball_model, _builders.reference_speed_quantities, _basin.torus_mapper),
         ("impact_rotor", _impacts.impact_model, _builders.reference_speed_quantities, None),
+        ("machine", _machine.machine_model, _machine.machine_quantities, _machine.machine_mapper, machine),
         ("rub_rotor", _rub.rub_model, _rub.rub_quantities, None),
     ):
-        register_model_type(ModelType(name, build, quantities, mapper))
-    register_model_type(ModelType("machine", _machine.machine_model, _machine.machine_quantities,
-                                  _machine.machine_mapper, analyses=_machine.machine_analysis_types()))
+        register_model_type(ModelType(name, build, quantities, mapper, **(own[0] if own else {})))
 
     trajectories = {"progress_unit": "trajectories"}
     register_analysis_type(AnalysisType("simulate", _simulate.run_simulate_analysis, _simulate.simulation_rows,
