@@ -445,6 +445,9 @@ class RunUpSpec(SteadyAnalysisSpec):
                                 "acceleration is unbounded at t = 0)", self.t_start))  # fmt: skip
         if not self.t_end > self.t_start:
             issues.append(Issue(("t_end",), f"must be > t_start = {self.t_start:g} (s)", self.t_end))
+        if self.initial_ball_angles is not None and len(self.initial_ball_angles) == 0:
+            issues.append(Issue(("initial_ball_angles",), "is empty: give at least one configuration (one angle "
+                                "per ball), or leave it out", []))
         issues += _angle_issues(self.initial_ball_angles, "initial_ball_angles", model.balls_in(self.races))
         return issues
 
