@@ -254,6 +254,43 @@ MACHINE = [
      ["model.drive.stall_torq", "unknown key"]),
 ]
 
+# ---- --set KEY=VALUE on every analysis command (issue 12): refused like the same edit of the file --------
+SET = [
+    ("set-run-negative-mass", ["run", "autobalancer", "--out", "{d}/o", "--set", "model.disc_mass=-1 kg"], None,
+     ["model.disc_mass", '"-1 kg"', "> 0"]),
+    ("set-simulate-index-past-end", ["simulate", "autobalancer", "--set", "model.balls[4].mass=20g"], None,
+     ["model.balls[4].mass", "model.balls has 1 entry", "from 0 to 0"]),
+    ("set-campbell-unknown-key", ["campbell", "friswell-rotor", "--set", "model.bearings[0].kxx2=1e6"], None,
+     ["model.bearings[0].kxx2", "unknown key", "kxx"]),
+    ("set-modes-wrong-unit", ["modes", "friswell-rotor", "--set", "model.material.density=7810 kg"], None,
+     ["model.material.density", "wrong dimension"]),
+    ("set-steady-into-a-value", ["steady", "zhakash-k2", "--set", "model.disc_mass.unit=kg"], None,
+     ["model.disc_mass.unit", '"2 kg"', "single value"]),
+    ("set-stability-chart-no-equals", ["stability-chart", "zhakash-k2", "--set", "model.disc_mass"], None,
+     ["--set model.disc_mass", "KEY=VALUE"]),
+    ("set-basin-bad-toml", ["basin", "autobalancer", "--set", "analysis[2].x=[psi_1"], None,
+     ["--set analysis[2].x=[psi_1", "not a TOML value"]),
+    ("set-sweep-bad-key-path", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--ic", "psi_1=0:6:4",
+                                "--set", "model..mass=1"], None, ["--set model..mass=1", "not a key path"]),
+    ("set-impacts-list-without-index", ["impacts", "krasnov-crusher", "--set", "analysis.seed=1"], None,
+     ["analysis.seed", "analysis is a list", "analysis[0].seed"]),
+    ("set-isweep-negative-gap", ["impacts-sweep", "krasnov-crusher", "--set", "model.housing.gap=-4 mm"], None,
+     ["model.housing.gap", "-4 mm"]),
+    ("set-validate-typo-in-list-name", ["validate", "autobalancer", "--set", "model.bals[0].mass=1"], None,
+     ["model.bals[0].mass", "did you mean 'balls'"]),
+    ("set-validate-empty-value", ["validate", "autobalancer", "--set", "model.disc_mass="], None,
+     ["--set model.disc_mass=", "no value"]),
+    ("set-validate-two-problems", ["validate", "autobalancer", "--set", "model.disc_mass=0", "--set",
+                                   "model.stiffness=-1"], None, ["model.disc_mass = 0", "model.stiffness = -1"]),
+]
+CORPUS += SET
+MACHINE += [
+    ("set-mc-race-radius-digit-index", ["validate", "washer-horizontal", "--set", "model.races.0.radius=-0.2 m"], None,
+     ["model.races[0].radius", "> 0"]),
+    ("set-mc-race-past-end", ["run", "pico21-balancer", "--out", "{d}/o", "--set", "model.races.2.radius=1"], None,
+     ["model.races.2.radius", "model.races has 2 entries"]),
+]
+
 if resources.files("rotorlab.cases").joinpath("washer-horizontal.toml").is_file():  # once the machine model landed
     CORPUS += MACHINE
 

@@ -52,6 +52,10 @@ app = typer.Typer(
 CaseArg = Annotated[str, typer.Argument(help="TOML case file or built-in case name (see 'rotorlab cases').",
                                         metavar="CASE", show_default=False)]  # fmt: skip
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print a machine-readable summary on stdout only.")]
+SetOpt = Annotated[Optional[list[str]], typer.Option(  # noqa: UP007
+    "--set", metavar="KEY=VALUE", help="Set a key of the case before it is validated, e.g. --set model.disc_mass=2kg "
+    "or --set 'model.balls[0].mass=20 g' (KEY as in the error messages; VALUE a TOML value or a number with a "
+    "unit); repeatable.", show_default=False)]  # fmt: skip
 
 
 def _version(value: bool) -> None:
@@ -83,14 +87,19 @@ def _settings(ctx: typer.Context) -> Settings:
     return obj if isinstance(obj, Settings) else Settings()
 
 
-def _load(source: str) -> Any:
-    from rotorlab.io import load_case
+def _load(source: str, sets: list[str] | None = None) -> Any:
+    """Load a case with the command's ``--set KEY=VALUE`` options applied (the one place that does)."""
+    from rotorlab.io import load_case, parse_override
 
-    return load_case(source)
+    overrides = dict(parse_override(text) for text in sets or ())
+    return load_case(source, overrides=overrides)
 
 
 def _json_case(case: Any) -> dict[str, Any]:
-    return {"case": case.name, "source": case.source}
+    out = {"case": case.name, "source": case.source}
+    if case.overrides:
+        out["set"] = case.overrides
+    return out
 
 
 # --------------------------------------------------------------------------- cases / validate
@@ -122,14 +131,14 @@ def _analysis_summary(case: Any) -> list[dict[str, Any]]:
 
 
 @app.command("validate")
-def validate_command(ctx: typer.Context, case: CaseArg, json_out: JsonOpt = False) -> None:
+def validate_command(ctx: typer.Context, case: CaseArg, sets: SetOpt = None, json_out: JsonOpt = False) -> None:
     """Check a case file and print a summary of it (exit code 2 and the problems if invalid)."""
     settings = _settings(ctx)
     with handled(settings):
         from rotorlab.io import CaseError
 
         try:
-            loaded = _load(case)
+            loaded = _load(case, sets)
         except CaseError as exc:
             if json_out:
                 emit_json({"ok": False, "source": case, "problems": list(exc.problems)})
@@ -159,6 +168,7 @@ def run_command(
     ctx: typer.Context,
     case: Annotated[str, typer.Argument(
         help="TOML case file or built-in case name.", metavar="CASE")] = DEFAULT_CASE,
+    sets: SetOpt = None,
     out: Annotated[Path, typer.Option("--out", "-o", metavar="DIR", help="Output folder.")] = Path(DEFAULT_OUT),
     json_out: JsonOpt = False,
 ) -> None:
@@ -167,7 +177,7 @@ def run_command(
     with handled(settings):
         from rotorlab.report import check_output_dir
 
-        loaded = _load(case)
+        loaded = _load(case, sets)
         try:
             check_output_dir(out)
         except ValueError as exc:
@@ -319,6 +329,7 @@ def _pick_analysis(loaded: Any, name: str | None) -> Any:
 def simulate_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speed_rpm: Annotated[Optional[list[float]], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Constant spin speed (rpm); repeat for several speeds.")] = None,
     speed_ratio: Annotated[Optional[list[float]], typer.Option(  # noqa: UP007
@@ -352,7 +363,7 @@ def simulate_command(
                 raise BadInput(f"--out = {out}: is a folder (give a .nc file name)")
             if not out.absolute().parent.is_dir():
                 raise BadInput(f"--out = {out}: folder {out.absolute().parent} does not exist")
-        loaded = _load(case)
+        loaded = _load(case, sets)
         if own_entry(loaded, "simulate"):
             spec = _pick_analysis(loaded, analysis)
             if len(rpm) + len(ratio) > 1:

@@ -18,7 +18,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
+from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app
 from rotorlab.cli._options import check_plot_path, check_speed, parse_speed_range
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
@@ -29,8 +29,8 @@ _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
 _LINEAR_MODELS = ("multibody", "fe_rotor")
 
 
-def _linear_case(source: str, command: str) -> Any:
-    loaded = _load(source)
+def _linear_case(source: str, command: str, sets: list[str] | None = None) -> Any:
+    loaded = _load(source, sets)
     if loaded.model.linear_structure() is None:
         raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; {command} "
                        f"needs a linear rotor model ([model] type {' or '.join(_LINEAR_MODELS)}) or a "
@@ -134,6 +134,7 @@ def linear_tables(results: Mapping[str, Any], tables: Mapping[str, Sequence[Mapp
 def campbell_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speeds_rpm: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--speeds-rpm", metavar="START:STOP:N",
         help="N equally spaced speeds from START to STOP (rpm); default: the case's campbell "
@@ -163,7 +164,7 @@ def campbell_command(
                 raise BadInput(f"--harmonic = {h}: must be an integer >= 1")
         if plot is not None:
             check_plot_path(plot)
-        loaded = _linear_case(case, "campbell")
+        loaded = _linear_case(case, "campbell", sets)
         spec = _first(loaded, "campbell")
         if rng is None and spec is None:
             raise BadInput(f"case {loaded.name} has no campbell analysis: give --speeds-rpm "
@@ -211,6 +212,7 @@ def campbell_command(
 def modes_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speed_rpm: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Spin speed (rpm); default: the case's modes "
                                            "analysis, or 0.")] = None,
@@ -229,7 +231,7 @@ def modes_command(
             check_speed(speed_rpm)
         if modes is not None and modes < 1:
             raise BadInput(f"--modes = {modes}: must be an integer >= 1")
-        loaded = _linear_case(case, "modes")
+        loaded = _linear_case(case, "modes", sets)
         _check_modes(modes, loaded.model.linear_structure().n_dof)
         spec = _first(loaded, "modes")
         from rotorlab.io import ModesSpec

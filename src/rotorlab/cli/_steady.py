@@ -14,7 +14,8 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis, own_entry, run_through_entry
+from rotorlab.cli._app import (CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis, own_entry,
+                               run_through_entry)
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
 __all__ = ["steady_command", "stability_chart_command", "run_up_command", "parse_range", "regime_overrides", "steady_tables"]
@@ -169,6 +170,7 @@ def _fmt(value: float | None, spec: str) -> str:
 def steady_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speed_rpm: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Spin speed (rpm).")] = None,
     speed_ratio: Annotated[Optional[float], typer.Option(  # noqa: UP007
@@ -188,7 +190,7 @@ def steady_command(
         _positive("--speed-ratio", speed_ratio)
         if speed_rpm is not None and speed_ratio is not None:
             raise BadInput("--speed-rpm and --speed-ratio exclude each other: give only one")
-        loaded = _load(case)
+        loaded = _load(case, sets)
         if own_entry(loaded, "steady"):
             _own_steady(settings, loaded, speed_rpm, speed_ratio, json_out)
             return
@@ -210,7 +212,7 @@ def steady_command(
 
         samples = spec.family_samples if spec is not None else 12
         doc = steady_document(analyze_steady(model, omega, family_samples=samples))
-        doc = {"case": loaded.name, "source": loaded.source, "regime": regime, "overrides": overrides, **doc}
+        doc = {**_json_case(loaded), "regime": regime, "overrides": overrides, **doc}
         if json_out:
             emit_json(doc)
             return
@@ -272,6 +274,7 @@ def _print_steady(doc: dict[str, Any]) -> None:
 def stability_chart_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speeds_rpm: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--speeds-rpm", metavar="A:B:N", help="N speeds from A to B rpm.")] = None,
     speed_ratios: Annotated[Optional[str], typer.Option(  # noqa: UP007
@@ -303,7 +306,7 @@ def stability_chart_command(
         name, values = _param(param)
         _check_plot("--plot", plot)
         _check_plot("--out", out)
-        loaded = _load(case)
+        loaded = _load(case, sets)
         if own_entry(loaded, "stability-chart"):
             _own_chart(settings, loaded, rpm, ratios, name, values, out, json_out)
             return
@@ -344,7 +347,7 @@ def stability_chart_command(
         written = _write_outputs(ds, plot, out)
         if json_out:
             crit = ds.critical_speed.values
-            emit_json({"case": loaded.name, "source": loaded.source, "regime": regime, "overrides": overrides,
+            emit_json({**_json_case(loaded), "regime": regime, "overrides": overrides,
                        "param": name, "values": None if values is None else [float(v) for v in values],
                        "param_units": _param_units(name), "speeds": [float(w) for w in speeds],
                        "speeds_rpm": [float(w * _RPM) for w in speeds],
@@ -388,6 +391,7 @@ def run_up_command(
         "--t-end", metavar="SECONDS", help="Simulated time (s) instead of the analysis'.")] = None,
     out: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")] = None,
+    sets: SetOpt = None,
     json_out: JsonOpt = False,
 ) -> None:
     """Run a case's run-up analysis: passage through the critical speeds, residual vibration.
@@ -400,7 +404,7 @@ def run_up_command(
     with handled(settings):
         _positive("--t-end", t_end)
         _check_plot("--out", out)
-        loaded = _load(case)
+        loaded = _load(case, sets)
         spec = find_analysis(loaded, "run-up", analysis)
         if spec is None:
             raise BadInput(f"case {loaded.name} has no run-up analysis ([[analysis]] type \"run-up\")")

@@ -246,6 +246,7 @@ class Case(BaseModel):
 
     _source: str = PrivateAttr("<python>")
     _text: str = PrivateAttr("")
+    _overrides: dict[Any, Any] = PrivateAttr(default_factory=dict)
 
     @field_validator("analyses", mode="after")
     @classmethod
@@ -279,6 +280,11 @@ class Case(BaseModel):
     def text(self) -> str:
         """The TOML text the case was read from."""
         return self._text
+
+    @property
+    def overrides(self) -> dict[Any, Any]:
+        """The keys set on top of the file (``load_case(..., overrides=...)``, ``--set``); {} if none."""
+        return dict(self._overrides)
 
     def analysis(self, name: str) -> Any:
         """Return the analysis called ``name``.

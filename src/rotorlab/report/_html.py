@@ -202,6 +202,11 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapp
         f"<p>{_e(case.description)}</p>" if case.description else "",
         f'<p class="muted">Case source: {_e(case.source)} · generated {now}</p>',
     ]
+    if case.overrides:
+        from rotorlab.io._overrides import describe_overrides
+
+        parts.append(f'<p class="muted">Keys set on top of the case file (--set): '
+                     f"{_e('; '.join(describe_overrides(case.overrides)))}</p>")
     if ran:
         parts.append("<h2>Findings</h2>")
         parts += [_findings_box(a, results[a.name], summary_tables.get(a.name, [])) for a in ran]
