@@ -28,6 +28,7 @@ from rotorlab.analyses._registry import (
     MODEL_TYPES,
     AnalysisType,
     ModelType,
+    analysis_entry,
     register_analysis_type,
     register_model_type,
 )
@@ -87,6 +88,7 @@ __all__ = [
     "BALANCED_FRACTION",
     "MODEL_TYPES",
     "ModelType",
+    "analysis_entry",
     "model_quantities",
     "register_analysis_type",
     "register_model_type",

@@ -196,7 +196,9 @@ def run_command(
         start = time.perf_counter()
         from rotorlab.analyses import run_case, summarize
 
-        entries = {a.name: ANALYSIS_TYPES[a.type] for a in loaded.analyses}
+        from rotorlab.analyses import analysis_entry
+
+        entries = {a.name: analysis_entry(loaded.model.type, a.type) for a in loaded.analyses}
         tasks = {a.name: entries[a.name].task_size(loaded.model, a) for a in loaded.analyses}
         units = {name: entry.progress_unit for name, entry in entries.items()}
         with progress_bar(settings, tasks, units) as update:
@@ -236,6 +238,60 @@ def run_command(
 
 
 # --------------------------------------------------------------------------- simulate
+
+
+def own_entry(loaded: Any, kind: str) -> bool:
+    """Whether the case's model type runs analysis type ``kind`` with its own implementation
+    (:attr:`rotorlab.analyses.ModelType.analyses`); the command then runs it through
+    :func:`run_through_entry`."""
+    from rotorlab.analyses import MODEL_TYPES
+
+    entry = MODEL_TYPES.get(loaded.model.type)
+    return entry is not None and kind in entry.analyses
+
+
+def run_through_entry(settings: Any, loaded: Any, spec: Any, json_out: bool, out: Path | None = None,
+                      extra: dict[str, Any] | None = None) -> None:
+    """Check ``spec`` against the case's model, run it through the registries and print its
+    presentation's tables (or ``{case, source, analysis, type, ..., rows}`` as JSON).
+
+    Raises BadInput (exit 2, nothing run) when the analysis cannot run on the model, naming why.
+    """
+    issues = spec.case_issues(loaded.model)
+    if issues:
+        raise BadInput("; ".join(
+            f"{spec.type}" + "".join(f"[{k}]" if isinstance(k, int) else f".{k}" for k in i.loc)
+            + (f" = {i.value!r}" if i.show_value and i.value is not None else "") + f": {i.message}"
+            for i in issues))
+    from rotorlab.analyses import analysis_entry, run_analysis, summarize
+
+    entry = analysis_entry(loaded.model.type, spec.type)
+    info(settings, f"{loaded.name}: {spec.type} ({spec.describe(loaded.model)}) ...", json_mode=json_out)
+    with progress_bar(settings, {spec.name: entry.task_size(loaded.model, spec)},
+                      {spec.name: entry.progress_unit}) as update:
+        ds = run_analysis(loaded.model, spec, progress=lambda done, n: update(spec.name, done, n))
+    ds.attrs["case"] = loaded.name
+    rows = summarize(ds)
+    written = None
+    if out is not None:
+        from rotorlab.io import save_netcdf
+
+        written = str(save_netcdf(ds, out))
+    if json_out:
+        emit_json({**_json_case(loaded), "analysis": spec.name, "type": spec.type, **(extra or {}),
+                   "out": written, "rows": rows})
+        exit_if_failed({spec.name: ds})
+        return
+    from rotorlab.report import PRESENTATIONS
+
+    con = stdout()
+    for table in PRESENTATIONS[entry.family].console({spec.name: ds}, {spec.name: rows}):
+        con.print(table)
+    if ds.attrs.get("message"):
+        con.print(str(ds.attrs["message"]), markup=False)
+    if written:
+        con.print(f"Wrote {written}", markup=False)
+    exit_if_failed({spec.name: ds})
 
 
 def _positive(option: str, values: list[float] | None, unit: str) -> list[float]:
@@ -308,6 +364,18 @@ def simulate_command(
             if not out.absolute().parent.is_dir():
                 raise BadInput(f"--out = {out}: folder {out.absolute().parent} does not exist")
         loaded = _load(case, sets)
+        if own_entry(loaded, "simulate"):
+            spec = _pick_analysis(loaded, analysis)
+            if len(rpm) + len(ratio) > 1:
+                raise BadInput(f"case {loaded.name}: a {loaded.model.type} model simulates one speed at a time: "
+                               "give one --speed-rpm or --speed-ratio")
+            update: dict[str, Any] = {}
+            if rpm or ratio:
+                update.update(speed=rpm[0] / _RPM if rpm else None, speed_ratio=ratio[0] if ratio else None)
+            if t_end_given:
+                update.update(t_end=t_end, revolutions=None)
+            run_through_entry(settings, loaded, spec.model_copy(update=update), json_out, out)
+            return
         if loaded.model.type != "jeffcott_balls":
             raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; simulate "
                            "needs a rotor with balls ([model] type jeffcott_balls); for a "

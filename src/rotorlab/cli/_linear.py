@@ -1,6 +1,7 @@
 """The linear-rotordynamics commands: ``rotorlab campbell`` and ``rotorlab modes``.
 
-Both run on a case whose model is a linear rotor (``multibody`` or ``fe_rotor``), take their
+Both run on a case whose model is a linear rotor (``multibody`` or ``fe_rotor``) or is built on one
+(a ``machine``: the structure it was built from), take their
 defaults from the case's first analysis of the same type, and print tables, or with ``--json``
 only a JSON document on stdout. Imported by :mod:`rotorlab.cli`, which registers them on the
 shared :data:`~rotorlab.cli._app.app`.
@@ -30,9 +31,10 @@ _LINEAR_MODELS = ("multibody", "fe_rotor")
 
 def _linear_case(source: str, command: str, sets: list[str] | None = None) -> Any:
     loaded = _load(source, sets)
-    if loaded.model.type not in _LINEAR_MODELS:
+    if loaded.model.linear_structure() is None:
         raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; {command} "
-                       f"needs a linear rotor model ([model] type {' or '.join(_LINEAR_MODELS)})")
+                       f"needs a linear rotor model ([model] type {' or '.join(_LINEAR_MODELS)}) or a "
+                       "model built on one (machine: its structure)")
     return loaded
 
 
@@ -167,7 +169,7 @@ def campbell_command(
         if rng is None and spec is None:
             raise BadInput(f"case {loaded.name} has no campbell analysis: give --speeds-rpm "
                            "START:STOP:N")
-        n_dof = loaded.model.n_dof
+        n_dof = loaded.model.linear_structure().n_dof
         _check_modes(modes, n_dof)
         from rotorlab.io import CampbellSpec
 
@@ -230,7 +232,7 @@ def modes_command(
         if modes is not None and modes < 1:
             raise BadInput(f"--modes = {modes}: must be an integer >= 1")
         loaded = _linear_case(case, "modes", sets)
-        _check_modes(modes, loaded.model.n_dof)
+        _check_modes(modes, loaded.model.linear_structure().n_dof)
         spec = _first(loaded, "modes")
         from rotorlab.io import ModesSpec
 

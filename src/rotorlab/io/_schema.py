@@ -90,7 +90,7 @@ from rotorlab.io._linear_analyses import (
     ModesSpec,
     UnbalanceResponseSpec,
 )
-from rotorlab.io._machine_spec import MachineRunUpSpec, MachineSimulateSpec, MachineSpec, MachineSteadySpec
+from rotorlab.io._machine_spec import MachineSpec
 from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._rub_specs import JeffcottRubSpec, RubSpec
 from rotorlab.io._steady_specs import RunUpSpec, StabilityChartSpec, SteadySpec, VerifySpec
@@ -150,8 +150,7 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
                    JeffcottRubSpec)
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
-                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, MachineSteadySpec,
-                     MachineSimulateSpec, MachineRunUpSpec, RubSpec)  # fmt: skip
+                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:
