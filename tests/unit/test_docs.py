@@ -93,9 +93,10 @@ def test_balancer_tutorial_balances_where_the_closed_form_says(site):
     page = site / "tutorials" / "balancer.html"
     text = _text(page)
     assert re.search(r"balanced ball angles \(deg\): \[240\.\s+120\.\]", text), text[:2000]
-    finals = re.findall(r"final ball angles \(deg\): \[\s*(\S+)\s+(\S+?)\s*\]", text)
-    assert len(finals) == 2
-    fast, slow = [[float(v) for v in pair] for pair in finals]
+    finals = re.findall(r"final ball angles \(deg\): \[\s*([^\s,]+),?\s+([^\s,]+?)\s*\]", text)
+    assert len(finals) == 3  # Python at 2500 and 1000 rpm, then rotorlab run at 2500 rpm
+    fast, slow, cli = [[float(v) for v in pair] for pair in finals]
+    assert cli == pytest.approx(fast, abs=0.01)
     assert sorted(fast) == pytest.approx([-120.0, 120.0], abs=0.5)  # the start-up at 2500 rpm balances
     assert abs(slow[0] - slow[1]) < 1.0 and abs(slow[0]) < 60.0  # at 1000 rpm both balls gather
     assert "same parameters: True" in text and "same stability map: True" in text
@@ -108,3 +109,7 @@ def test_balancer_tutorial_balances_where_the_closed_form_says(site):
     assert float(partial) == pytest.approx(float(expected), rel=0.05)
     assert page.read_text().count("<img") >= 1
     assert "(exit code 2)" in text and "model.races has 1 entry" in text
+    # rotorlab run on the case file of the same machine: the same stable speeds, the start-up balances
+    cli = re.search(r"rotorlab run: stable at \(rpm\): \[([^\]]*)\]", text).group(1).replace(",", " ").split()
+    assert [float(v) for v in cli] == [float(v) for v in stable]
+    assert "rotorlab run: start-up balanced" in text
