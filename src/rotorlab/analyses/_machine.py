@@ -745,5 +745,16 @@ def machine_analysis_types() -> dict[str, Any]:
 
 
 def machine_mapper(case_model, analysis, kw):
-    """The regime mapper of a machine's basins and sweeps (none yet)."""
-    return None
+    """The regime mapper of a machine's basins and sweeps (:class:`rotorlab.explore.MachineRegimes`
+    at the analysis' constant speed; None without balls)."""
+    from rotorlab.explore import MachineRegimes
+    from rotorlab.integrate import StepControl
+
+    if case_model.n_balls == 0:
+        return None
+    omega = analysis.spin_speed(case_model)
+    if omega is None:  # spin_speed is a coordinate of every start: any base speed will do
+        omega = case_model.critical_speed()
+    if analysis.rtol is not None or analysis.atol is not None:
+        kw["control"] = StepControl(rtol=analysis.rtol or 1e-8, atol=analysis.atol or 1e-10)
+    return MachineRegimes(_variant(case_model, analysis, omega), **kw)
