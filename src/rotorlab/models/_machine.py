@@ -447,7 +447,7 @@ class Machine:
         return float(self.drive.spin_angle(t)), float(self.drive.spin_speed(t))
 
     def initial_state(self, ball_angles=None, *, ball_rates=None, spin_speed: float | None = None,
-                      z=None, dz=None, t0: float = 0.0) -> np.ndarray:
+                      z=None, dz=None, t0: float = 0.0, housing=None) -> np.ndarray:
         """Build a fixed-frame initial state.
 
         Parameters
@@ -463,6 +463,8 @@ class Machine:
             Structure coordinates and rates; default at rest at the origin.
         t0 : float
             Initial time (s).
+        housing : array_like, shape (4,), optional
+            ``(x_h, y_h, vx_h, vy_h)`` of a moving housing (m, m/s); default at rest at 0.
 
         Returns
         -------
@@ -492,7 +494,28 @@ class Machine:
             y[nz:2 * nz] = np.asarray(dz, dtype=float).reshape(nz)
         y[lay.i_phi:lay.i_phi + lay.n_balls] = th + psi
         y[lay.i_w:lay.i_w + lay.n_balls] = om + rates
+        if housing is not None:
+            if not self.clearances or self.clearances[0].kind != "housing":
+                raise ValueError("initial_state: housing given but the machine has no moving housing")
+            y[lay.i_clearance:lay.i_clearance + 4] = np.asarray(housing, dtype=float).reshape(4)
+        if self.clearances:
+            self._clearance_initial(y, om)
         return y
+
+    def _clearance_initial(self, y: np.ndarray, om: float) -> None:
+        """Contact mode of an initial state: free inside the clearance; pressed into an elastic
+        stator, sliding along its slip; beyond a rigid one, an error."""
+        c = self.clearances[0]
+        w = self.gap_vector(y)
+        rad = math.hypot(w[0], w[1])
+        if rad <= c.gap:
+            return
+        if c.kind != "elastic":
+            raise ValueError(f"Machine.initial_state: the gap vector {w.tolist()!r} m lies outside the "
+                             f"{c.kind} stator (clearance {c.gap:g} m)")
+        u = self.gap_matrix(c) @ y[self.n_coordinates:2 * self.n_coordinates]
+        slip = (-w[1] * u[0] + w[0] * u[1]) / rad + c.rotor_radius * om
+        y[-1] = 1.0 if slip >= 0.0 else -1.0
 
     # ------------------------------------------------------------------ physics
     def mass_matrix(self, y) -> np.ndarray:
