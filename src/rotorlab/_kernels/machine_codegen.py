@@ -183,7 +183,7 @@ class Layout:
             ("Hf", nz),
             ("C", nz * nz if self.energy else 0),
             ("Ka", nz * nz if self.energy else 0),
-            ("clearance", 8 if self.clearance else 0),
+            ("clearance", 11 if self.clearance else 0),
         ]
         out, k = {}, 0
         for name, size in sizes:

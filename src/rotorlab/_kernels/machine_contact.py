@@ -26,8 +26,10 @@ Generated functions (besides ``rhs``)
     as one plastic impulse below the rest speed when the rotor is pressed, then sustained
     contact; rolling while the cone holds).
 
-Clearance parameters (8, at ``offsets["clearance"]``): ``delta, e, mu, R_r, v_rest, k_s, c_s,
-m_s`` (:meth:`rotorlab.models.Clearance.to_array`). Clearance states (from
+Clearance parameters (11, at ``offsets["clearance"]``): ``delta, e, mu, R_r, v_rest, k_s, c_s,
+m_s, c_x, c_y, a`` (:meth:`rotorlab.models.Clearance.to_array`, then the stator's centre: the gap
+vector is ``w = B z - (x_h, y_h) - c``, then the rate ``a`` (1/s) of the Baumgarte stabilisation
+of a rigid sustained contact, ``r'' + 2 a r' + a^2 (r - delta) = 0`` instead of ``r'' = 0``). Clearance states (from
 ``Layout.i_clearance``): a moving housing's ``x_h, y_h, vx_h, vy_h``; ``dissipated`` (restitution,
 friction, stator damping, J) and ``drive_work`` (the work of a prescribed spin against the friction
 torque, J); then the three discrete states ``impacts`` (impacts, or contact onsets with a
@@ -110,7 +112,8 @@ def _geometry(lay, L: list[str], ind: str) -> None:
     for name, row, src, h in (("wx", 0, "z", 0), ("wy", 1, "z", 1),
                               ("uvx", 0, "v", 2), ("uvy", 1, "v", 3)):
         expr = _sum([f"p[{kb + row * nz + j}] * {src}{j}" for j in range(nz)])
-        a(f"{name} = {expr}" + (f" - y[{ih + h}]" if house else ""))
+        centre = f" - p[{kc + 8 + row}]" if src == "z" else ""
+        a(f"{name} = {expr}" + (f" - y[{ih + h}]" if house else "") + centre)
     a("gap, nx, ny = circular_gap(wx, wy, dl)")
     a("rad = dl - gap")
     a("ss = Rr * om")
@@ -166,7 +169,14 @@ def _core(lay, corr, L: list[str], ind: str, md: str, full: bool) -> None:
         b2(f"npen = penalty_normal_force(-gap, vn, p[{kc + 5}], p[{kc + 6}])")
     else:
         b2("npen = 0.0")
-    b2(f"cN, cF = delassus_forces(bn, bs, wnn, wnt, wtt, mu, {md}, {lay.clearance != 'elastic'}, npen)")
+    if lay.clearance != "elastic":
+        # Baumgarte stabilisation of the rigid contact: the constraint r'' = 0 becomes
+        # r'' + 2 a r' + a^2 (r - delta) = 0, which brings the integration's drift back (a: the
+        # structure's highest natural frequency, so that it adds no stiffer time scale)
+        b2(f"bnc = bn + 2.0 * p[{kc + 10}] * vn - p[{kc + 10}] * p[{kc + 10}] * gap")
+    else:
+        b2("bnc = bn")
+    b2(f"cN, cF = delassus_forces(bnc, bs, wnn, wnt, wtt, mu, {md}, {lay.clearance != 'elastic'}, npen)")
     if full:
         for i in range(nz):
             b2(f"cz{i} = -cN * rn_z{i} + cF * rt_z{i}")
@@ -257,7 +267,7 @@ def extra_functions(lay, corr) -> str:
     L = [f"    dl = p[{kc}]"]
     for name, row in (("wx", 0), ("wy", 1)):
         L.append(f"    {name} = {_sum([f'p[{kb + row * nz + j}] * y[{j}]' for j in range(nz)])}"
-                 + (f" - y[{ih + row}]" if house else ""))
+                 + (f" - y[{ih + row}]" if house else "") + f" - p[{kc + 8 + row}]")
     L += ["    gap, nx, ny = circular_gap(wx, wy, dl)",
           "    dx = gap * nx", "    dy = gap * ny",
           f"    det = p[{kl}] * p[{kl + 3}] - p[{kl + 1}] * p[{kl + 2}]",
@@ -288,7 +298,7 @@ def extra_functions(lay, corr) -> str:
     L = [f"    dl = p[{kc}]", f"    md = y[{i_mode}]", "    if md == 0.0:"]
     for name, row in (("wx", 0), ("wy", 1)):
         L.append(f"        {name} = {_sum([f'p[{kb + row * nz + j}] * y[{j}]' for j in range(nz)])}"
-                 + (f" - y[{ih + row}]" if house else ""))
+                 + (f" - y[{ih + row}]" if house else "") + f" - p[{kc + 8 + row}]")
     L += ["        gap, _, _ = circular_gap(wx, wy, dl)",
           "        g[0] = gap if abs(gap) > 8.0 * 2.220446049250313e-16 * dl else 0.0",
           "        g[1] = 1.0", "        g[2] = 1.0", "        g[3] = 1.0", "        return",

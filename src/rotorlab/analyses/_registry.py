@@ -176,6 +176,10 @@ def _register_builtins() -> None:
     for name in _machine.MACHINE_ANALYSES:
         register_analysis_type(AnalysisType(name, _machine.run_machine_analysis, _machine.machine_rows, "machine"))
     register_analysis_type(AnalysisType("rub", _rub.run_rub_analysis, _rub.rub_rows, "rub"))
+    from rotorlab.analyses import _knock
+
+    register_analysis_type(AnalysisType("machine-knock", _knock.run_knock_analysis, _knock.knock_rows, "knock",
+                                        _knock.knock_task_size, **trajectories))  # fmt: skip
 
 
 _register_builtins()

@@ -90,6 +90,7 @@ from rotorlab.io._linear_analyses import (
     ModesSpec,
     UnbalanceResponseSpec,
 )
+from rotorlab.io._knock_spec import MachineKnockSpec
 from rotorlab.io._machine_spec import MachineRunUpSpec, MachineSimulateSpec, MachineSpec, MachineSteadySpec
 from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._rub_specs import JeffcottRubSpec, RubSpec
@@ -151,7 +152,7 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
                      WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, MachineSteadySpec,
-                     MachineSimulateSpec, MachineRunUpSpec, RubSpec)  # fmt: skip
+                     MachineSimulateSpec, MachineRunUpSpec, RubSpec, MachineKnockSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:

@@ -300,6 +300,10 @@ class Clearance:
     rest_speed : float
         Rebound speed (m/s), > 0, below which a pressed rotor's impacts count as accumulated
         (chatter): one plastic impulse, then sustained contact (see :class:`rotorlab.contact.JeffcottRub`).
+    center : (float, float) or "static"
+        Centre of the stator's circle in the fixed frame (m), the gap vector being measured from
+        it; ``"static"``: where the station rests under gravity (the housing built around the
+        sagging rotor), see :meth:`rotorlab.models.Machine.clearance_center`.
     """
 
     node: int
@@ -311,9 +315,19 @@ class Clearance:
     axial_offset: float = 0.0
     conical: tuple[float, float] | None = None
     rest_speed: float = 1e-5
+    center: tuple[float, float] | str = (0.0, 0.0)
 
     def __post_init__(self) -> None:
         o = "Clearance"
+        if isinstance(self.center, str):
+            if self.center != "static":
+                raise ValueError(f'{o}.center must be (x, y) (m) or "static", got {self.center!r}')
+        else:
+            c = tuple(self.center)
+            if len(c) != 2:
+                raise ValueError(f'{o}.center must be (x, y) (m) or "static", got {self.center!r}')
+            object.__setattr__(self, "center", tuple(_num(o, f"center[{i}]", v, "m", low=None)
+                                                     for i, v in enumerate(c)))
         object.__setattr__(self, "node", _node(o, self.node))
         object.__setattr__(self, "gap", _num(o, "gap", self.gap, "m", strict=True))
         if not (self.stator == "rigid" or isinstance(self.stator, ElasticStator)):
