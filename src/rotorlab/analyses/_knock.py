@@ -72,6 +72,12 @@ def machine_knock(machine, *, t_end: float, ball_damping, starts: int = 32, seed
     if not (math.isfinite(t_end) and t_end > 0):
         raise ValueError(f"t_end must be a finite number > 0 (s), got {t_end!r}")
     starts = int(starts)
+    from rotorlab._memory import check_memory
+
+    n_runs = damping.size * starts
+    check_memory(8.0 * n_runs * (4 * machine.kernels.n_state + machine.layout.n_param + nb),
+                 f"starts = {starts} for {damping.size} ball damping(s) ({n_runs} run-ups)",
+                 "use fewer starts")  # fmt: skip
     angles = np.random.default_rng(seed).uniform(0.0, 2.0 * np.pi, (starts, nb))
     base = machine.to_array()
     kb = machine.layout.offsets["balls"]
@@ -104,7 +110,7 @@ def machine_knock(machine, *, t_end: float, ball_damping, starts: int = 32, seed
         {
             "impacts": (("ball_damping", "ic"), impacts, {"units": "1"}),
             "peak_impulse": (("ball_damping", "ic"), peak, {"units": "N s"}),
-            "status": (("ball_damping", "ic"), status),
+            "status": (("ball_damping", "ic"), status, {"units": "1"}),
             "contact_probability": (("ball_damping",), prob, {"units": "1"}),
             "probability_low": (("ball_damping",), lo, {"units": "1"}),
             "probability_high": (("ball_damping",), hi, {"units": "1"}),
@@ -112,7 +118,7 @@ def machine_knock(machine, *, t_end: float, ball_damping, starts: int = 32, seed
             "initial_ball_angle": (("ic", "ball"), angles, {"units": "rad"}),
         },
         coords={"ball_damping": ("ball_damping", damping, {"units": "N m s/rad"}),
-                "ic": np.arange(starts), "ball": np.arange(nb)},
+                "ic": ("ic", np.arange(starts), {"units": "1"}), "ball": ("ball", np.arange(nb), {"units": "1"})},
         attrs={"analysis": "knock", "model": "machine", "t_end": float(t_end), "seed": int(seed),
                "starts": starts, "gap": float(machine.clearances[0].gap),
                "no_balls_impacts": float(ref.y_final[-3]) if int(ref.status) >= 0 else math.nan,

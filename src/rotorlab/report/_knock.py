@@ -28,10 +28,9 @@ def _imp(v: float | None) -> str:
     return "–" if v is None else f"{v:.3g} N s"
 
 
-def _safe(rows: Rows) -> float | None:
-    """Smallest damping whose whole 95 % interval lies below 5 % contact probability, or None."""
-    ok = [r["ball_damping"] for r in rows if r["probability_high"] is not None and r["probability_high"] < 0.05]
-    return min(ok) if ok else None
+def _safe(rows: Rows) -> list[float]:
+    """The dampings whose whole 95 % interval lies below 5 % contact probability."""
+    return [r["ball_damping"] for r in rows if r["probability_high"] is not None and r["probability_high"] < 0.05]
 
 
 def knock_figure(ds: xarray.Dataset) -> Figure:
@@ -73,8 +72,12 @@ def _verdict(ds: xarray.Dataset, rows: Rows) -> str:
            f"without balls it strikes {int(nb)} times (largest impulse {_imp(a.get('no_balls_peak_impulse'))})"
            if nb is not None and np.isfinite(nb) else "the run without balls failed")
     safe = _safe(rows)
-    advice = (f"from {safe:.3g} N m s/rad of ball damping the contact probability is below 5 % (95 % confidence)"
-              if safe is not None else "no ball damping tried keeps the contact probability below 5 % with 95 % confidence")
+    clear = [r["ball_damping"] for r in rows if r["contact_probability"] == 0.0]
+    advice = ("no run touched it at ball damping " + ", ".join(f"{d:.3g}" for d in clear) + " N m s/rad"
+              if clear else "every ball damping tried lets some run-ups touch it")
+    advice += ("; at " + ", ".join(f"{d:.3g}" for d in safe) + " N m s/rad the contact probability is below "
+               "5 % with 95 % confidence" if safe else "; no damping tried shows a contact probability below 5 % with 95 % "
+                                        "confidence (more starts narrow the interval)")
     return (f"The rotor touches its housing in up to {_pct(worst['contact_probability'])} of the run-ups "
             f"(ball damping {worst['ball_damping']:.3g} N m s/rad); {ref}; {advice}.")
 
