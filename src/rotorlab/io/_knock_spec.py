@@ -19,17 +19,18 @@ from typing import Literal
 from pydantic import Field
 
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import AbstractModelSpec, integer, quantity
-from rotorlab.io._machine_spec import _MachineAnalysis
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, integer, quantity
 
 __all__ = ["MachineKnockSpec"]
 
 
-class MachineKnockSpec(_MachineAnalysis):
+class MachineKnockSpec(AbstractAnalysisSpec):
     """Probability of any contact with the housing and the largest impact impulse during a run-up,
     over random initial ball positions, for each ball damping."""
 
     type: Literal["machine-knock"] = "machine-knock"
+    races: tuple[integer(ge=0), ...] | None = Field(
+        None, description="indices of the races that take part (default: all)")
     t_end: quantity("time", gt=0) = Field(description="duration of each run-up (s)")
     ball_damping: tuple[quantity("torque_damping", ge=0), ...] = Field(
         min_length=1, description="viscous damping of every ball relative to the rotor (N*m*s/rad)")
@@ -39,7 +40,12 @@ class MachineKnockSpec(_MachineAnalysis):
     atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        issues = super().case_issues(model)
+        if getattr(model, "type", None) != "machine":
+            return [Issue(("type",), f'needs a machine model ([model] type "machine"), but the case\'s model is '
+                                     f'"{getattr(model, "type", None)}"', self.type)]
+        n = len(model.races)
+        issues = [Issue(("races", i), f"must be < {n} (the model has {n} race(s))", r)
+                  for i, r in enumerate(self.races or ()) if r >= n]
         if issues:
             return issues
         if not model.clearances:

@@ -91,7 +91,7 @@ from rotorlab.io._linear_analyses import (
     UnbalanceResponseSpec,
 )
 from rotorlab.io._knock_spec import MachineKnockSpec
-from rotorlab.io._machine_spec import MachineRunUpSpec, MachineSimulateSpec, MachineSpec, MachineSteadySpec
+from rotorlab.io._machine_spec import MachineSpec
 from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._rub_specs import JeffcottRubSpec, RubSpec
 from rotorlab.io._steady_specs import RunUpSpec, StabilityChartSpec, SteadySpec, VerifySpec
@@ -151,8 +151,7 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
                    JeffcottRubSpec)
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
-                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, MachineSteadySpec,
-                     MachineSimulateSpec, MachineRunUpSpec, RubSpec, MachineKnockSpec)  # fmt: skip
+                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec, MachineKnockSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:
@@ -248,6 +247,7 @@ class Case(BaseModel):
 
     _source: str = PrivateAttr("<python>")
     _text: str = PrivateAttr("")
+    _overrides: dict[Any, Any] = PrivateAttr(default_factory=dict)
 
     @field_validator("analyses", mode="after")
     @classmethod
@@ -281,6 +281,11 @@ class Case(BaseModel):
     def text(self) -> str:
         """The TOML text the case was read from."""
         return self._text
+
+    @property
+    def overrides(self) -> dict[Any, Any]:
+        """The keys set on top of the file (``load_case(..., overrides=...)``, ``--set``); {} if none."""
+        return dict(self._overrides)
 
     def analysis(self, name: str) -> Any:
         """Return the analysis called ``name``.
