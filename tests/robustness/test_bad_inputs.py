@@ -244,7 +244,7 @@ MACHINE = [
     ("mc-absurd-ball-count", ["validate", FILE], ("washer-horizontal", "count = 2 }", "count = 1e8 }"),
      ["model.races[0].balls[0].count", "at most 1000 balls"]),
     ("mc-empty-ball-angles", ["validate", FILE], ("washer-horizontal",
-                                                   'initial_ball_angles = [["-90 deg", "-85 deg"]]',
+                                                   'initial_ball_angles = [["-100 deg", "-80 deg"], ["-90 deg", "-90 deg"]]',
                                                    "initial_ball_angles = []"),
      ["analysis[1].initial_ball_angles", "empty"]),
     ("mc-n-save-absurd", ["run", FILE, "--out", "{d}/o"], ("washer-horizontal", "n_save = 800", "n_save = 1e12"),

@@ -78,6 +78,20 @@ type = "simulate"
 name = "starts"
 initial_ball_angles = [["47 deg", "145 deg"], ["-113 deg", "87 deg"], ["36 deg", "36 deg"]]
 t_end = "3000 s"
+
+[[analysis]]
+type = "simulate"
+name = "grid"
+ball_angle_grid = 3
+t_end = "3000 s"
+
+[[analysis]]
+type = "basin"
+name = "basin"
+x = ["psi_1", "0 deg", "240 deg", 3]
+y = ["psi_2", "0 deg", "240 deg", 3]
+t_end = "3000 s"
+n_horizons = 2
 """
 P = 1.0 / math.sqrt(1.04)  # rad/s
 PSI = math.degrees(math.acos(-0.01 / (2 * 0.02 * 1.0)))  # 104.48 deg from the unbalance
@@ -180,3 +194,40 @@ def test_run_up_command_on_a_machine_and_a_rotor_with_balls():
     assert row["critical_speeds"][0] == pytest.approx(25.0, rel=1e-12) and row["passed"] == 1
     res = CliRunner().invoke(app, ["run-up", "pico21"])
     assert res.exit_code == 2 and "no run-up analysis" in res.output
+
+
+def test_basin_over_the_ball_angles_agrees_with_simulate_from_the_same_starts(planar):
+    """A 3 x 3 grid of the two ball angles (0, 120, 240 deg): the starts with both balls together
+    (the diagonal, an invariant set) cannot balance, the six others balance; ``simulate`` from the
+    same starts (``ball_angle_grid = 3``) labels each start the same way."""
+    basin = run_analysis(planar.model, planar.analysis("basin"))
+    rows = {r["regime"]: r for r in summarize(basin)}
+    assert rows["balanced"]["count"] == 6 and rows["not balanced"]["count"] == 3
+    assert rows["balanced"]["fraction"] == pytest.approx(6 / 9, abs=1e-15)
+    labels = [str(r) for r in basin["regime"].values]
+    grid = summarize(run_analysis(planar.model, planar.analysis("grid")))
+    angles = [0.0, 120.0, 240.0]
+    for r in grid:  # simulate's order: psi_1 slowest, psi_2 fastest
+        i, j = divmod(r["ic"], 3)
+        expect = labels[int(basin.outcome.sel(psi_1=math.radians(angles[i]), psi_2=math.radians(angles[j]),
+                                              method="nearest"))]
+        assert r["outcome"] == expect, (r["ic"], r["outcome"], expect)
+
+
+def test_sweep_over_ball_mass_finds_the_capacity_limit(tmp_path):
+    """The two balls can cancel the unbalance only if 2 m l >= M1 e, i.e. m >= 0.005 kg: at
+    m = 0.004 kg they cannot (not balanced), at 0.02 kg they do (one start, psi = 46, 149 deg)."""
+    path = tmp_path / "planar.toml"
+    path.write_text(PLANAR)
+    res = CliRunner().invoke(app, ["-q", "sweep", str(path), "--out", str(tmp_path / "s.zarr"), "--param",
+                                   "ball_mass=0.004:0.02:2", "--ic", "psi_1=0.8:0.8:1", "--ic", "psi_2=2.6:2.6:1",
+                                   "--t-end", "3000", "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.output)
+    assert doc["dims"] == ["ball_mass", "psi_1", "psi_2"] and doc["n"] == 2
+    assert doc["fractions"]["balanced"] == 0.5 and doc["fractions"]["not balanced"] == 0.5
+    import xarray as xr
+
+    ds = xr.open_zarr(tmp_path / "s.zarr", consolidated=False)
+    labels = ds.attrs["result_attrs"]["labels"]
+    assert [labels[int(k)] for k in ds.outcome.values] == ["not balanced", "balanced"]

@@ -73,7 +73,7 @@ def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None) 
     entry = MODEL_TYPES.get(kind)
     mapper = None if entry is None or entry.mapper is None else entry.mapper(case_model, analysis, kw)
     if mapper is None:
-        raise ValueError(f"analysis {analysis.name}: basins need a toroidal_ball model or a jeffcott_balls "
+        raise ValueError(f"analysis {analysis.name}: basins need a toroidal_ball model or a jeffcott_balls or machine "
                          f"model with balls, not {kind!r}")  # fmt: skip
     return mapper
 

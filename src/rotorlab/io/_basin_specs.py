@@ -79,6 +79,14 @@ BALANCER_COORDINATES: dict[str, str] = {
     "ball_friction": "dimensionless",
 }
 
+#: Start coordinates of a machine's balancer besides ``psi_<i>`` and ``dpsi_<i>`` (every ball of
+#: every race; :class:`rotorlab.explore.MachineRegimes`).
+MACHINE_COORDINATES: dict[str, str] = {
+    "spin_speed": "angular_speed",
+    "ball_mass": "mass",
+    "ball_damping": "torque_damping",
+}
+
 _BALL_COORD = re.compile(r"^(d?)psi_([1-9][0-9]*)$")
 
 #: Lower bounds of the parameters among the coordinates: name -> ("gt" or "ge", 0).
@@ -111,14 +119,14 @@ def coordinate_dimensions(model: Any) -> dict[str, str]:
 
     Parameters
     ----------
-    model : ToroidalBallSpec or rotorlab.io.JeffcottBallsSpec
+    model : rotorlab.io.AbstractModelSpec
         A validated ``[model]`` table.
 
     Returns
     -------
     dict of str to str
-        Coordinate name to a key of :data:`rotorlab.io.DIMENSIONS`; empty for a model whose
-        basins rotorlab cannot map.
+        Coordinate name to a key of :data:`rotorlab.io.DIMENSIONS` (the model spec's
+        ``start_coordinates()``); empty for a model whose basins rotorlab cannot map.
 
     Examples
     --------
@@ -126,15 +134,18 @@ def coordinate_dimensions(model: Any) -> dict[str, str]:
     ...        ball_radius=0.0125, spin_speed=140, offset=0.02)))[:4]
     ['alpha', 'ball_radius', 'dalpha', 'dpsi']
     """
-    kind = getattr(model, "type", None)
-    if kind == "toroidal_ball":
-        return dict(TORUS_COORDINATES)
-    if kind == "jeffcott_balls" and model.n_balls > 0:
-        out = {f"psi_{i}": "angle" for i in range(1, model.n_balls + 1)}
-        out.update({f"dpsi_{i}": "angular_speed" for i in range(1, model.n_balls + 1)})
-        out.update(BALANCER_COORDINATES)
-        return out
-    return {}
+    return dict(model.start_coordinates())
+
+
+def ball_coordinates(n_balls: int, parameters: dict[str, str]) -> dict[str, str]:
+    """The start coordinates of a balancer with ``n_balls`` balls: ``psi_<i>``, ``dpsi_<i>`` and
+    ``parameters`` (none without balls)."""
+    if n_balls == 0:
+        return {}
+    out = {f"psi_{i}": "angle" for i in range(1, n_balls + 1)}
+    out.update({f"dpsi_{i}": "angular_speed" for i in range(1, n_balls + 1)})
+    out.update(parameters)
+    return out
 
 
 def _known_names() -> str:
@@ -255,6 +266,10 @@ class ToroidalBallSpec(AbstractModelSpec):
             raise IssueGroup(issues)
         return self
 
+    def start_coordinates(self) -> dict[str, str]:
+        """Its state entries and parameters (:data:`TORUS_COORDINATES`)."""
+        return dict(TORUS_COORDINATES)
+
     def describe(self) -> str:
         """One line: geometry, speed and friction."""
         rpm = self.spin_speed * 60.0 / (2.0 * math.pi)
@@ -341,7 +356,7 @@ class BasinSpec(AbstractAnalysisSpec):
         known = coordinate_dimensions(model)
         if not known:
             what = "a jeffcott_balls model without balls" if kind == "jeffcott_balls" else f"model type {kind!r}"
-            return [Issue(("type",), f"basins need a toroidal_ball model or a jeffcott_balls model with "
+            return [Issue(("type",), f"basins need a toroidal_ball model or a jeffcott_balls or machine model with "
                                      f"balls, not {what}", self.type)]  # fmt: skip
         issues = []
         for key, axis in (("x", self.x), ("y", self.y)):

@@ -356,6 +356,18 @@ class MachineSpec(AbstractModelSpec):
         crit = structure_critical_speeds(build_machine(self))
         return float(crit[0]) if crit.size else None
 
+    @property
+    def balls(self) -> tuple[MachineBallSpec, ...]:
+        """Every ball, races in order."""
+        return tuple(b for r in self.races for b in r.balls)
+
+    def start_coordinates(self) -> dict[str, str]:
+        """``psi_<i>``, ``dpsi_<i>`` (every ball, races in order), ``spin_speed``, ``ball_mass``,
+        ``ball_damping`` (none without balls)."""
+        from rotorlab.io._basin_specs import MACHINE_COORDINATES, ball_coordinates
+
+        return ball_coordinates(self.n_balls, MACHINE_COORDINATES)
+
     def linear_structure(self) -> MultibodySpec | FeRotorSpec:
         """The structure (campbell, modes and the other linear analyses run on it)."""
         return self.structure
