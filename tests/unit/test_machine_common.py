@@ -36,11 +36,9 @@ diametral_inertia = "0.3 kg*m^2"
 polar_inertia = "0 kg*m^2"
 spinning = false
 
-[[model.structure.bearings]]
-body = "disc"
-kxx = "1 N/m"
-cxx = "0.1 N*s/m"
-k_tilt_x = "5 N*m/rad"
+[model.structure.elastic]
+stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]
+damping = [["0.1 N*s/m", "0 N*s/rad"], ["0 N*s/rad", "0.05 N*m*s/rad"]]
 
 [[model.races]]
 at = "disc"
@@ -138,8 +136,18 @@ def test_steady_balanced_angles_are_the_jeffcott_closed_form_with_the_seeds_verd
         assert all(v == 0.0 for v in r["amplitude"].values())
         # above p all three verdicts say stable (seed 002 averaged, seed 003 Hamilton, exact)
         assert (r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"]) == ("stable",) * 3
+        assert r["max_real_eigenvalue"] < -1e-4  # every mode damped (tilt included)
     below = summarize(run_analysis(planar.model, planar.analysis("below")))
     assert 0.8 < P and all(r["verdict_exact"] == "unstable" and r["verdict_averaged"] == "unstable" for r in below)
+
+
+def test_no_steady_motion_on_anisotropic_supports_exits_2_naming_why(tmp_path):
+    path = tmp_path / "aniso.toml"
+    path.write_text(PLANAR.replace('stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]',
+                                   'stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]\n'
+                                   'stiffness_y = [["1.3 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]'))
+    res = CliRunner().invoke(app, ["validate", str(path)])
+    assert res.exit_code == 2 and "anisotropic" in res.output and "simulate" in res.output, res.output
 
 
 def test_seed_verdicts_are_refused_with_the_reason_off_the_planar_rotor():

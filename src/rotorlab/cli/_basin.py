@@ -56,6 +56,15 @@ def _fixed(values: list[str] | None, known: dict[str, str]) -> dict[str, float]:
     return out
 
 
+def _input_units(base: Any, x: str | None, y: str | None, fix: list[str] | None) -> dict[str, str]:
+    """The units the coordinates were written in: the case's, then those of --x, --y and --fix."""
+    from rotorlab.io._basin_specs import record_input_units
+
+    given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (x, y) if t]
+    given += [(t.partition("=")[0].strip(), [t.partition("=")[2].strip()]) for t in fix or ()]
+    return record_input_units(base.input_units if base is not None else {}, given)
+
+
 def _effective_spec(loaded: Any, base: Any, updates: dict[str, Any]) -> Any:
     """The basin analysis with the command-line options applied, validated against the model."""
     from pydantic import ValidationError
@@ -175,6 +184,7 @@ def basin_command(
         if updates["x"] is not None and updates["y"] is not None and updates["x"][0] == updates["y"][0]:
             raise BadInput(f"--y = {y}: must vary another coordinate than --x ({updates['x'][0]})")
         spec = _effective_spec(loaded, base, updates)
+        spec = spec.with_input_units(_input_units(base, x, y, fix))
         from rotorlab.analyses._basin import basin_document, run_basin_analysis
 
         n = spec.samples if spec.samples is not None else spec.x[3] * spec.y[3]

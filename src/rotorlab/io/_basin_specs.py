@@ -25,7 +25,7 @@ import math
 import re
 from typing import Annotated, Any, Literal
 
-from pydantic import Field, PlainValidator, WithJsonSchema, model_validator
+from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
@@ -39,6 +39,7 @@ from rotorlab.io._fields import (
     quantity,
 )
 from rotorlab.io._jeffcott_specs import constant_spin_speed
+from rotorlab.io._units import input_unit
 
 __all__ = [
     "TORUS_COORDINATES",
@@ -145,6 +146,26 @@ def ball_coordinates(n_balls: int, parameters: dict[str, str]) -> dict[str, str]
     out = {f"psi_{i}": "angle" for i in range(1, n_balls + 1)}
     out.update({f"dpsi_{i}": "angular_speed" for i in range(1, n_balls + 1)})
     out.update(parameters)
+    return out
+
+
+def record_input_units(units: dict[str, str], given: list[tuple[str, list[Any]]]) -> dict[str, str]:
+    """Return ``units`` updated with the unit each given angle coordinate was written in.
+
+    Parameters
+    ----------
+    units : dict of str to str
+        Units recorded so far (a copy is returned).
+    given : list of (name, raw values)
+        Coordinates as written (numbers or strings with units); an angle given with a degree
+        unit in any of its values is recorded as ``"deg"``, otherwise as ``"rad"``; other
+        coordinates are not recorded.
+    """
+    out = dict(units)
+    for name, raws in given:
+        out.pop(name, None)
+        if _any_dimension(name) == "angle":
+            out[name] = next((u for u in map(input_unit, raws) if u), "rad")
     return out
 
 
@@ -337,6 +358,36 @@ class BasinSpec(AbstractAnalysisSpec):
     speed: quantity("angular_speed", gt=0) | None = Field(None, description="spin speed (rad/s)")
     rtol: quantity("dimensionless", gt=0, lt=1) | None = Field(None, description="relative tolerance (-)")
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance (-)")
+
+    _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _record_input_units(cls, data: Any, handler: Any) -> BasinSpec:
+        """Keep the unit each angle of x, y and fixed was written in (see :attr:`input_units`)."""
+        spec = handler(data)
+        if isinstance(data, dict):
+            given = [(raw[0], raw[1:3]) for raw in (data.get("x"), data.get("y"))
+                     if isinstance(raw, (list, tuple)) and len(raw) == 4 and isinstance(raw[0], str)]
+            fixed = data.get("fixed")
+            given += [(str(name), [raw]) for name, raw in (fixed.items() if isinstance(fixed, dict) else ())]
+            spec._input_units = record_input_units({}, given)
+        return spec
+
+    @property
+    def input_units(self) -> dict[str, str]:
+        """Angle coordinate given to the unit it was written in: ``"deg"`` or ``"rad"`` (SI).
+
+        The values themselves are SI (radians); results and figures show these coordinates in
+        the unit the case file or command line gave them in.
+        """
+        return dict(self._input_units)
+
+    def with_input_units(self, units: dict[str, str]) -> BasinSpec:
+        """Return a copy whose :attr:`input_units` are ``units`` (for options given apart)."""
+        out = self.model_copy()
+        out._input_units = dict(units)
+        return out
 
     @model_validator(mode="after")
     def _check_axes(self) -> BasinSpec:
