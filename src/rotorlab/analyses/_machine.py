@@ -781,4 +781,5 @@ def machine_mapper(case_model, analysis, kw):
         omega = case_model.critical_speed()
     if analysis.rtol is not None or analysis.atol is not None:
         kw["control"] = StepControl(rtol=analysis.rtol or 1e-8, atol=analysis.atol or 1e-10)
-    return MachineRegimes(_variant(case_model, analysis, omega), **kw)
+    return MachineRegimes(_variant(case_model, analysis, omega), spec=case_model,
+                          races=getattr(analysis, "races", None), **kw)
