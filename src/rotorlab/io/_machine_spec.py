@@ -42,7 +42,7 @@ Layout::
 
 from __future__ import annotations
 
-from typing import Annotated, Literal, Union
+from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import Field, field_validator, model_validator
 
@@ -355,6 +355,8 @@ class MachineSpec(AbstractModelSpec):
 
         crit = structure_critical_speeds(build_machine(self))
         return float(crit[0]) if crit.size else None
+
+    sweeps_keys: ClassVar[bool] = True
 
     @property
     def balls(self) -> tuple[MachineBallSpec, ...]:
