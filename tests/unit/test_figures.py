@@ -23,7 +23,7 @@ from rotorlab.io import builtin_cases
 # Smaller settings of the analyses of the built-in cases, by key (what the key holds is kept:
 # a time stays a time, a [start, stop, count] keeps its range).
 _SHORT_TIME = {"simulate": "1 s", "run-up": "1 s", "impacts": "0.3 s", "impacts-sweep": "0.3 s",
-               "basin": "2 s", "working-point": "1 s"}
+               "basin": "2 s", "working-point": "1 s", "machine-knock": "1 s"}
 
 
 def _reduce(analysis: dict) -> dict:
@@ -32,7 +32,7 @@ def _reduce(analysis: dict) -> dict:
     if "t_end" in a and kind in _SHORT_TIME:
         a["t_end"] = _SHORT_TIME[kind]
     for key, small in (("n_save", 200), ("n_speeds", 21), ("ball_angle_points", 3),
-                       ("n_sequences", 2), ("points", 61), ("n_horizons", 2)):
+                       ("n_sequences", 2), ("points", 61), ("n_horizons", 2), ("starts", 2)):
         if key in a:
             a[key] = min(a[key], small)
     for key in ("x", "y"):

@@ -239,3 +239,30 @@ def test_sweep_over_ball_mass_finds_the_capacity_limit(tmp_path):
     ds = xr.open_zarr(tmp_path / "s.zarr", consolidated=False)
     labels = ds.attrs["result_attrs"]["labels"]
     assert [labels[int(k)] for k in ds.outcome.values] == ["not balanced", "balanced"]
+
+
+def test_sweep_over_any_number_of_the_model_by_key_path(tmp_path):
+    """``model.unbalances[0].magnitude`` (with a unit, as in the case file): the two balls' capacity
+    is 2 m l = 0.04 kg m, so 10 g m is balanced and 60 g m is not; the store carries its unit."""
+    path = tmp_path / "planar.toml"
+    path.write_text(PLANAR)
+    store = tmp_path / "k.zarr"
+    res = CliRunner().invoke(app, ["-q", "sweep", str(path), "--out", str(store), "--param",
+                                   "model.unbalances[0].magnitude=10 g*m:60 g*m:2", "--ic", "psi_1=0.8:0.8:1",
+                                   "--ic", "psi_2=2.6:2.6:1", "--t-end", "3000", "--json"])
+    assert res.exit_code == 0, res.output
+    import xarray as xr
+
+    ds = xr.open_zarr(store, consolidated=False)
+    key = "model.unbalances[0].magnitude"
+    np.testing.assert_allclose(ds[key].values, [0.01, 0.06], rtol=1e-15)
+    assert ds[key].attrs["units"] == "kg*m"
+    labels = ds.attrs["result_attrs"]["labels"]
+    assert [labels[int(k)] for k in ds.outcome.values] == ["balanced", "not balanced"]
+    # the reference (locked unbalance response) follows the key: U w^2 / |c - M w^2 + i d w|
+    w = 2.5
+    expect = [u * w**2 / abs(1.0 - 1.04 * w**2 + 0.1j * w) for u in (0.01, 0.06)]
+    np.testing.assert_allclose(ds.reference_amplitude.values, expect, rtol=1e-12)
+    bad = CliRunner().invoke(app, ["sweep", str(path), "--out", str(tmp_path / "b.zarr"), "--param",
+                                   "model.structure.bodies[3].mass=1:2:2", "--ic", "psi_1=0.8:0.8:1"])
+    assert bad.exit_code == 2 and "model.<key path>" in bad.output

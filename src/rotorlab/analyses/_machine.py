@@ -4,6 +4,13 @@ starts, steady balanced states and their exact stability over speed, and run-ups
 All functions are pure: a model in, an :class:`xarray.Dataset` out (SI units in ``attrs``), with
 an integer ``status`` per element (0: success) and, where the question has no answer for this
 machine (no co-rotating equilibria), a failed status and the reason in ``attrs["message"]``.
+
+The common analysis types run on a ``machine`` case through the machine's own entries
+(:func:`machine_analysis_types`, the ``analyses`` of its :class:`~rotorlab.analyses.ModelType`):
+``simulate``, ``steady`` (every balanced motion at one speed, :func:`machine_motions`),
+``stability-chart`` and ``run-up``; ``basin`` and ``sweep`` through its regime mapper
+(:func:`machine_mapper`, :class:`rotorlab.explore.MachineRegimes`); ``campbell``, ``modes`` and
+the other structural analyses through the spec's ``linear_structure()``.
 """
 
 from __future__ import annotations
@@ -781,4 +788,5 @@ def machine_mapper(case_model, analysis, kw):
         omega = case_model.critical_speed()
     if analysis.rtol is not None or analysis.atol is not None:
         kw["control"] = StepControl(rtol=analysis.rtol or 1e-8, atol=analysis.atol or 1e-10)
-    return MachineRegimes(_variant(case_model, analysis, omega), **kw)
+    return MachineRegimes(_variant(case_model, analysis, omega), spec=case_model,
+                          races=getattr(analysis, "races", None), **kw)

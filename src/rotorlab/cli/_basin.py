@@ -18,6 +18,13 @@ from rotorlab.cli._output import BadInput, emit_json, exit_if_failed, handled, i
 from rotorlab.cli._steady import _check_plot, parse_range
 from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
 
+
+def _names(known: Any) -> str:
+    from rotorlab.io._basin_specs import coordinates_text
+
+    return coordinates_text(known)
+
+
 __all__ = ["basin_command", "basin_tables"]
 
 # options that set each key of a basin analysis, for messages
@@ -32,10 +39,10 @@ def _axis(option: str, text: str | None, known: dict[str, str]) -> tuple[str, fl
     name, sep, grid = text.partition("=")
     name = name.strip()
     if not sep or not name:
-        raise BadInput(f"{option} = {text}: must be NAME=A:B:N (coordinates: {', '.join(known)})")
+        raise BadInput(f"{option} = {text}: must be NAME=A:B:N (coordinates: {_names(known)})")
     if name not in known:
         raise BadInput(f"{option} = {text}: {name!r} is not a coordinate of this case's model "
-                       f"(coordinates: {', '.join(known)})")  # fmt: skip
+                       f"(coordinates: {_names(known)})")  # fmt: skip
     start, stop, count = parse_range(option, grid, known[name])
     return name, start, stop, count
 
@@ -48,7 +55,7 @@ def _fixed(values: list[str] | None, known: dict[str, str]) -> dict[str, float]:
         name, sep, raw = text.partition("=")
         name = name.strip()
         if not sep or name not in known:
-            raise BadInput(f"--fix = {text}: must be NAME=VALUE with NAME one of {', '.join(known)}")
+            raise BadInput(f"--fix = {text}: must be NAME=VALUE with NAME one of {_names(known)}")
         try:
             out[name] = float(raw)
         except ValueError:
