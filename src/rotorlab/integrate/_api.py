@@ -513,9 +513,9 @@ def solve_ensemble(
     STATS = np.zeros((N, 4), dtype=np.int64)
     first_step = -1.0 if control.first_step is None else float(control.first_step)
     if isinstance(lanes, str) and lanes == "auto":
-        lanes = default_lanes(kernels, N, ev_act[:n_ev])
+        lanes = default_lanes(kernels, N)
     elif lanes is not None:
-        check_lanes(lanes, ev_act[:n_ev])
+        check_lanes(lanes)
     run = driver(kernels, lanes, serial=threads == 1)
     settings = Settings(
         t0, float(control.rtol), n_cont, first_step, float(control.max_step), int(control.max_steps)
