@@ -15,7 +15,14 @@ the ensemble, taken from a counter shared by the worker threads (``atomicrmw add
 pull work dynamically, so a few long trajectories never leave a thread idle while another has a
 queue. This is the scheme of the benchmark's C reference ``dp5_simd.c`` (see ``bench/README.md``).
 
-No events: a model whose active events need locating keeps the scalar driver (``_core``).
+Events, reset maps and modes: after the vectorised accept/reject of a step, each lane whose step
+was accepted has its events located by the scalar driver's own functions
+(``_core._events_in_step``: the event functions at the step's end, a sign change located on the
+dense output; ``_core._resolve_cut``: save up to the event, then stop or apply the reset map),
+bound to this copy's kernels. A lane without an event costs one event evaluation and a few
+comparisons; a lane with one does its root finding and reset while the other lanes wait for at
+most that step, and then continues (or ends and is refilled) like any other. The same code on
+the same numbers gives the same event times, records and states as the scalar driver.
 Saving at given times uses the same quartic dense output as the scalar driver.
 
 Lane-friendly kernels
@@ -38,8 +45,8 @@ straight loop body. LLVM vectorises that loop when the kernel
 
 A kernel that breaks these rules still gives identical results on the lane path, only no faster
 than the scalar path. A model declares a kernel that follows them with ``Kernels(vectorises=True)``
-(``tests/unit/test_vectorise.py`` checks each); ``solve_ensemble`` then uses this driver by default
-for its event-free ensembles. :func:`rotorlab.integrate._drivers.is_vectorised` reports whether it vectorised.
+(``tests/unit/test_vectorise.py`` checks each). ``solve_ensemble`` uses this driver by default for
+every ensemble, events or not. :func:`rotorlab.integrate._drivers.is_vectorised` reports whether it vectorised.
 
 Why not a lane kernel ``rhs_lanes`` written by the model? It would be a second hand-written right
 side per model to keep in sync with the first; the loop above vectorises the existing one.
@@ -637,8 +644,7 @@ def _finish(W, lane, j, status, n_events, YF, STATUS, TEND, STATS):
 def integrate_lanes(inputs, settings, event_table, outputs, n_threads):
     """Integrate ``outputs.STATUS.shape[0]`` trajectories, ``LANES`` at a time on each of ``n_threads``.
 
-    The arguments are the groups of :mod:`rotorlab.integrate._driver_args` (the events must all
-    be off). ``inputs.atol`` must have ``N_STATE`` entries; ``n_threads`` is the number of worker
+    The arguments are the groups of :mod:`rotorlab.integrate._driver_args`. ``inputs.atol`` must have ``N_STATE`` entries; ``n_threads`` is the number of worker
     threads (numba's current number of threads at most: pass ``numba.get_num_threads()``, which
     cannot be called here without making the function uncacheable). Each trajectory writes only
     its own rows of the outputs, with the same numbers whatever the thread that integrated it.
