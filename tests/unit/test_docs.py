@@ -85,3 +85,31 @@ def test_case_keys_page_is_the_schema(site):
                 assert row.path in text, (kind, row.path)
     # One row read back: a shaft section's length is a length in m, > 0, required.
     assert re.search(r"shaft\[\]\.length\s*length \(m\)\s*> 0\s*required", text)
+
+
+def test_balancer_tutorial_balances_where_the_closed_form_says(site):
+    # Two equal balls of mass m on radius R cancel an unbalance U at their station at
+    # +-(180 deg - arccos(U / (2 m R))) = +-120 deg for U / (2 m R) = 0.5 (the tutorial's numbers).
+    page = site / "tutorials" / "balancer.html"
+    text = _text(page)
+    assert re.search(r"balanced ball angles \(deg\): \[240\.\s+120\.\]", text), text[:2000]
+    finals = re.findall(r"final ball angles \(deg\): \[\s*([^\s,]+),?\s+([^\s,]+?)\s*\]", text)
+    assert len(finals) == 3  # Python at 2500 and 1000 rpm, then rotorlab run at 2500 rpm
+    fast, slow, cli = [[float(v) for v in pair] for pair in finals]
+    assert cli == pytest.approx(fast, abs=0.01)
+    assert sorted(fast) == pytest.approx([-120.0, 120.0], abs=0.5)  # the start-up at 2500 rpm balances
+    assert abs(slow[0] - slow[1]) < 1.0 and abs(slow[0]) < 60.0  # at 1000 rpm both balls gather
+    assert "same parameters: True" in text and "same stability map: True" in text
+    # below the first critical speed (1261 rpm) the balanced state is unstable, at 2500 rpm stable
+    stable = re.search(r"stable at \(rpm\): \[([^\]]*)\]", text).group(1).split()
+    assert min(float(v) for v in stable) > 1261.0 and "2500." in stable
+    # too light balls: the best state leaves U - 2 m R = 20 % of the unbalance
+    partial, expected = re.search(r"vibration at disc 1: (\S+) um \(20 % of the unbalance response: (\S+) um\)",
+                                  text).groups()
+    assert float(partial) == pytest.approx(float(expected), rel=0.05)
+    assert page.read_text().count("<img") >= 1
+    assert "(exit code 2)" in text and "model.races has 1 entry" in text
+    # rotorlab run on the case file of the same machine: the same stable speeds, the start-up balances
+    cli = re.search(r"rotorlab run: stable at \(rpm\): \[([^\]]*)\]", text).group(1).replace(",", " ").split()
+    assert [float(v) for v in cli] == [float(v) for v in stable]
+    assert "rotorlab run: start-up balanced" in text

@@ -23,12 +23,14 @@ def test_builtin_machine_cases_validate_and_build():
     assert 0.02 < pico.reduction_change(2 * np.pi * 10000 / 60) < 0.03
 
 
-def test_no_steady_motion_under_gravity_across_the_axis_is_a_failed_status_with_the_reason():
-    case = load_case("washer-horizontal")
-    ds = run_analysis(case.model, case.analysis("steady"))
-    rows = summarize(ds)
-    assert all(r["status"] == 3 and not r["exists"] for r in rows)
-    assert "gravity acts across the axis" in rows[0]["message"] and "simulate" in rows[0]["message"]
+def test_no_steady_motion_under_gravity_across_the_axis_is_refused_with_the_reason():
+    text = load_case("washer-horizontal").text + '[[analysis]]\ntype = "steady"\nspeed = "100 rad/s"\n'
+    with pytest.raises(CaseError) as err:
+        parse_case(text)
+    assert "gravity acts across the axis" in str(err.value) and "simulate" in str(err.value)
+    res = CliRunner().invoke(app, ["steady", "washer-horizontal", "--speed-rpm", "1000"])
+    assert res.exit_code == 2 and "gravity acts across the axis" in res.output
+    assert "Traceback" not in res.output
 
 
 def test_two_race_variant_balances_exactly_and_a_flat_rotor_loses_it_at_speed():
@@ -36,16 +38,14 @@ def test_two_race_variant_balances_exactly_and_a_flat_rotor_loses_it_at_speed():
     state is stable in a band above the critical speeds and unstable at the top speed, as
     Rodrigues et al. (2008, Section 5) find for disc-like rotors; one race leaves the couple."""
     case = load_case("pico21-balancer")
-    two = case.analysis("stability-two-races").model_copy(update={"start": 4000 * np.pi / 30,
-                                                                    "stop": 14000 * np.pi / 30,
-                                                                    "n_speeds": 2})
+    two = case.analysis("stability-two-races").model_copy(update={"speeds": (4000 * np.pi / 30,
+                                                                               14000 * np.pi / 30, 2)})
     rows = summarize(run_analysis(case.model, two))
     assert [r["balanced"] for r in rows] == [True, True]
     assert [r["stable"] for r in rows] == [True, False]
     assert all(a == 0.0 for r in rows for a in r["amplitude"].values())
-    one = case.analysis("stability-one-race").model_copy(update={"start": 10000 * np.pi / 30,
-                                                                  "stop": 10000 * np.pi / 30,
-                                                                  "n_speeds": 1})
+    one = case.analysis("stability-one-race").model_copy(update={"speeds": (10000 * np.pi / 30,
+                                                                             10000 * np.pi / 30, 1)})
     (row,) = summarize(run_analysis(case.model, one))
     assert row["exists"] and not row["balanced"] and row["stable"]
     assert 1e-8 < row["amplitude"]["stator"] < 1e-6  # the couple is left: 0.3 um at the stator
@@ -85,7 +85,7 @@ def test_readme_machine_case_and_python_example():
     sec = re.search(r"^## Put a balancer on your own rotor\n(.*?)(?=^## )", readme, re.S | re.M)[1]
     (toml,) = re.findall(r"^```toml\n(.*?)^```", sec, re.S | re.M)
     case = parse_case(toml)
-    assert case.model.type == "machine" and [a.type for a in case.analyses] == ["machine-steady", "machine-simulate"]
+    assert case.model.type == "machine" and [a.type for a in case.analyses] == ["stability-chart", "simulate"]
     (code,) = re.findall(r"^```python\n(.*?)^```", sec, re.S | re.M)
     import contextlib
     import io

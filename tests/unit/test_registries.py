@@ -29,10 +29,14 @@ def test_every_spec_has_an_entry_and_every_entry_a_spec():
     assert list(ANALYSIS_SPECS) == list(ANALYSIS_TYPES)
     for name, entry in (*MODEL_TYPES.items(), *ANALYSIS_TYPES.items()):
         assert entry.name == name
+    for model in MODEL_TYPES.values():  # a model's own implementations are of common types
+        assert set(model.analyses) <= set(ANALYSIS_TYPES)
+        assert all(entry.name == name for name, entry in model.analyses.items())
 
 
 def test_every_analysis_type_has_a_presentation_and_every_presentation_is_used():
     families = {entry.family for entry in ANALYSIS_TYPES.values()}
+    families |= {entry.family for model in MODEL_TYPES.values() for entry in model.analyses.values()}
     assert families <= set(PRESENTATIONS)
     assert set(PRESENTATIONS) <= families
     for family, presentation in PRESENTATIONS.items():

@@ -319,7 +319,8 @@ def test_analyses_need_a_model_with_balls(tmp_path):
     path.write_text(head + "\n" + balls[balls.index("[[analysis]]"):])
     with pytest.raises(CaseError) as err:
         load_case(path)
-    assert 'analysis[0].type = "steady": needs a jeffcott_balls model with at least one ball' in str(err.value)
+    assert ('analysis[0].type = "steady": needs a rotor with balls (a jeffcott_balls model with at least one '
+            'ball, or a machine model') in str(err.value)
 
 
 # ------------------------------------------------------------------------------ run and report

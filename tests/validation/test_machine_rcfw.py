@@ -270,7 +270,7 @@ def test_builtin_case_is_the_long_rotor(rcfw_case):
 
 
 def test_builtin_case_stability_over_speed(rcfw_case):
-    """machine-steady: B exists at every speed with the balls at pi +- 60 degrees (eq. (16),
+    """stability-chart: B exists at every speed with the balls at pi +- 60 degrees (eq. (16),
     eps / (4 m) = 1/2), is unstable below Omega_2 and stable from 3 rad/s on (Fig. 5(a) at
     m = 0.005: from 2.94 rad/s; here, without the balls' axial motion, 2.93)."""
     ds = rcfw_case[1]["stability-over-speed"]
@@ -284,7 +284,7 @@ def test_builtin_case_stability_over_speed(rcfw_case):
 
 
 def test_builtin_case_simulations(rcfw_case):
-    """machine-simulate: Fig. 11 (iii) balances from both starts (balls at +-120 degrees, eq.
+    """simulate: Fig. 11 (iii) balances from both starts (balls at +-120 degrees, eq.
     (16)); without the balancer the rotor whirls with eps W^2 / |1 - W^2 + i c11 W|; Fig. 11 (ii)
     at 2.5 rad/s ends in a periodic motion several times the rotor's own whirl."""
     res = rcfw_case[1]

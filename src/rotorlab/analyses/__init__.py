@@ -28,6 +28,7 @@ from rotorlab.analyses._registry import (
     MODEL_TYPES,
     AnalysisType,
     ModelType,
+    analysis_entry,
     register_analysis_type,
     register_model_type,
 )
@@ -66,6 +67,7 @@ from rotorlab.analyses._outcome import (
     wrap_angle,
 )
 from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
+from rotorlab.analyses._machine import machine_run_up, machine_simulate, machine_steady
 from rotorlab.analyses._steady import (
     STEADY_ANALYSES,
     chart_intervals,
@@ -76,6 +78,9 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
+    "machine_run_up",
+    "machine_simulate",
+    "machine_steady",
     *_impacts.__all__,
     *_impact_sweep.__all__,
     "ANALYSIS_TYPES",
@@ -83,6 +88,7 @@ __all__ = [
     "BALANCED_FRACTION",
     "MODEL_TYPES",
     "ModelType",
+    "analysis_entry",
     "model_quantities",
     "register_analysis_type",
     "register_model_type",

@@ -15,7 +15,7 @@ import json
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
-from rotorlab.analyses._registry import ANALYSIS_TYPES, MODEL_TYPES
+from rotorlab.analyses._registry import ANALYSIS_TYPES, MODEL_TYPES, analysis_entry
 
 if TYPE_CHECKING:
     import xarray
@@ -97,8 +97,9 @@ def run_analysis(case_model: Any, analysis: Any,
     xarray.Dataset
         What the analysis type's entry in :data:`ANALYSIS_TYPES` returns (see
         :func:`rotorlab.analyses.simulate`, :func:`rotorlab.analyses.run_linear_analysis`, ...);
-        ``attrs["name"]`` is the analysis name, ``attrs["analysis"]`` its type and
-        ``attrs["model_quantities"]`` the model's derived quantities (JSON text).
+        ``attrs["name"]`` is the analysis name, ``attrs["analysis"]`` its type,
+        ``attrs["model_type"]`` the model's type and ``attrs["model_quantities"]`` the model's
+        derived quantities (JSON text).
 
     Raises
     ------
@@ -107,9 +108,11 @@ def run_analysis(case_model: Any, analysis: Any,
     """
     if analysis.type not in ANALYSIS_TYPES:
         raise ValueError(_not_runnable(analysis))
-    ds = ANALYSIS_TYPES[analysis.type].run(case_model, analysis, progress=progress)
+    kind = getattr(case_model, "type", None)
+    ds = analysis_entry(kind, analysis.type).run(case_model, analysis, progress=progress)
     ds.attrs["name"] = analysis.name
     ds.attrs["analysis"] = analysis.type
+    ds.attrs["model_type"] = str(kind)
     ds.attrs["model_quantities"] = json.dumps(model_quantities(case_model))
     return ds
 
@@ -168,8 +171,9 @@ def summarize(ds: xarray.Dataset) -> list[dict[str, Any]]:
         initial configuration), keys ``speed`` (rad/s), ``speed_rpm``, ``speed_hz``,
         ``speed_ratio`` (omega / p), ``ic``, ``initial_ball_angles_deg``, ``final_amplitude``
         (m), ``reference_amplitude`` (m), ``amplitude_ratio`` (final / reference),
-        ``final_ball_angles_deg``, ``outcome``, ``status``; other types: see their ``rows``
+        ``final_ball_angles_deg``, ``outcome``, ``status``; other types: see the ``rows`` of
+        their entry (:func:`rotorlab.analyses.analysis_entry` of ``attrs["model_type"]``)
         (:func:`rotorlab.analyses.summarize_linear`, :func:`~rotorlab.analyses.steady_rows`,
         :func:`~rotorlab.analyses.basin_rows`, ...).
     """
-    return ANALYSIS_TYPES[ds.attrs.get("analysis", "simulate")].rows(ds)
+    return analysis_entry(ds.attrs.get("model_type"), ds.attrs.get("analysis", "simulate")).rows(ds)

@@ -154,13 +154,18 @@ _RUNNERS = {
 }
 
 
+#: Linear analyses that run on the linear structure of any model that has one (a machine's).
+_STRUCTURAL = ("campbell", "modes", "critical_speeds", "unbalance_response")
+
+
 def run_linear_analysis(case_model: Any, analysis: Any) -> xarray.Dataset:
     """Run one linear analysis of a case.
 
     Parameters
     ----------
     case_model : rotorlab.io.MultibodySpec or rotorlab.io.FeRotorSpec
-        ``Case.model``.
+        ``Case.model``; or a model with a linear structure (``machine``), whose structure the
+        campbell, modes, critical_speeds and unbalance_response analyses run on.
     analysis : CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec
         or DataAuditSpec
         One entry of ``Case.analyses``.
@@ -188,6 +193,9 @@ def run_linear_analysis(case_model: Any, analysis: Any) -> xarray.Dataset:
     if runner is None:
         raise ValueError(f"analysis type {analysis.type!r} is not a linear analysis "
                          f"(linear: {', '.join(LINEAR_ANALYSES)})")
+    structure = case_model.linear_structure()
+    if structure is not None and analysis.type in _STRUCTURAL:
+        case_model = structure  # a machine's linear analyses are those of its structure
     if analysis.type != "data_audit":
         build_linear_system(case_model)  # a clear error for a model that is not linear
     ds = runner(case_model, analysis)

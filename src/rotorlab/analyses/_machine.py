@@ -14,15 +14,32 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["machine_simulate", "machine_steady", "machine_run_up", "locked_structure", "orbit_amplitude",
-           "run_machine_analysis", "machine_rows", "machine_model", "machine_quantities",
-           "MACHINE_ANALYSES",
-           "structure_critical_speeds", "unbalance_amplitudes", "NO_STEADY_STATUS"]
+__all__ = ["machine_simulate", "machine_steady", "machine_motions", "machine_run_up", "locked_structure",
+           "orbit_amplitude", "machine_model", "machine_quantities", "machine_analysis_types",
+           "jeffcott_limit", "structure_critical_speeds", "unbalance_amplitudes", "NO_STEADY_STATUS"]
 
 #: Status of a steady analysis on a machine without co-rotating equilibria.
 NO_STEADY_STATUS = 3
+#: Balls moving relative to the rotor faster than this fraction of its speed in the final window
+#: of a simulation have not synchronised ("non-synchronous").
+NON_SYNCHRONOUS_RATE = 1e-2
 #: Samples per revolution in the final window of a simulation.
 _SAMPLES_PER_REV = 32
+
+
+def _outcome(status: int, amplitude, reference, max_rate: float, speed: float, n_balls: int) -> str:
+    """Label where one simulation ended (see :func:`machine_simulate`)."""
+    from rotorlab.analyses._outcome import BALANCED_FRACTION
+
+    if status < 0:
+        return "failed"
+    if n_balls == 0:
+        return "no balancer"
+    if np.max(amplitude) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
+        return "balanced"
+    if not max_rate <= NON_SYNCHRONOUS_RATE * abs(speed):
+        return "non-synchronous"
+    return "not balanced"
 
 
 def _wrap(a):
@@ -132,7 +149,12 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
         [-pi, pi)); ``amplitude`` (ic, station): vibration amplitude of each node in the final
         window (largest distance from its mean position, m); ``reference_amplitude`` (station): the same without balancing (the
         linear unbalance response at the final speed of each start, first start shown);
-        ``final_speed`` (ic) (rad/s); ``status`` (ic).
+        ``final_speed`` (ic) (rad/s); ``max_final_rate`` (ic): largest ball rate relative to
+        the rotor in the final window (rad/s); ``outcome`` (ic): "balanced" (every station's
+        vibration at most :data:`~rotorlab.analyses.BALANCED_FRACTION` of the largest vibration
+        without balancing), "non-synchronous" (balls still moving relative to the rotor faster
+        than :data:`NON_SYNCHRONOUS_RATE` times its speed), "not balanced", "no balancer" or
+        "failed"; ``status`` (ic).
     """
     import xarray as xr
 
@@ -164,6 +186,12 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     om = np.array([machine.spin(t_end, y)[1] for y in sol.y_final])
     rel = _wrap(sol.y_final[:, lay.i_phi:lay.i_phi + lay.n_balls] - th[:, None])
     ref = unbalance_amplitudes(machine, float(om[0])) if om.size else np.zeros(machine.structure.n_nodes)
+    # ball rates relative to the rotor over the final window (largest |psi'|)
+    om_t = np.array([[machine.spin(t, y)[1] for t, y in zip(ts, traj)] for traj in sol.ys])
+    rates = sol.ys[:, :, lay.i_w:lay.i_w + lay.n_balls] - om_t[:, :, None]
+    max_rate = np.abs(rates).reshape(len(ang), -1).max(axis=1, initial=0.0)
+    outcome = [_outcome(int(st), a, ref, r, w, lay.n_balls)
+               for st, a, r, w in zip(sol.status, amp, max_rate, om)]
     labels = list(machine.structure.node_label)
     ds = xr.Dataset(
         {
@@ -172,6 +200,8 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
             "reference_amplitude": (("station",), ref, {"units": "m"}),
             "final_speed": (("ic",), om, {"units": "rad/s"}),
             "initial_ball_angle": (("ic", "ball"), ang, {"units": "rad"}),
+            "max_final_rate": (("ic",), max_rate, {"units": "rad/s"}),
+            "outcome": (("ic",), np.asarray(outcome, dtype=str)),
             "status": (("ic",), np.asarray(sol.status, dtype=np.int64)),
         },
         coords={"ic": np.arange(ang.shape[0]), "station": labels, **_ball_coords(machine)},
@@ -333,6 +363,145 @@ def _motor_top(machine) -> float:
 
 
 
+# --------------------------------------------------------------------------- steady motions at one speed
+
+
+def jeffcott_limit(machine):
+    """The :class:`~rotorlab.models.JeffcottBalls` model this machine is, or None.
+
+    The seeds' Hamilton-function (seed 003) and averaged (seed 002) stability verdicts are
+    derived for a planar disc on an isotropic shaft with one race of balls in the disc's plane.
+    A machine is that model when its structure is one node whose translation does not couple to
+    its tilt (no cross terms in M, C, G, K), isotropic, with one race and every unbalance at that
+    node's plane, no gravity across the axis and a constant speed. Then M1 = M_xx, c = K_xx,
+    d = C_xx, e = (sum of the unbalances) / M1 (their resultant), and the ball angles of that
+    model are measured from the unbalance (shifted by its phase).
+    """
+    from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, RotorParams
+
+    s = machine.structure
+    if (machine.why_no_rotating_frame() is not None or s.n_dof != 4 or len(machine.races) != 1
+            or machine.races[0].axial_offset != 0.0 or any(u.axial_offset != 0.0 for u in machine.unbalances)):
+        return None
+    for name in ("M", "C", "K", "G"):
+        a = getattr(s, name)
+        if np.any(a[:2, 2:] != 0.0) or np.any(a[2:, :2] != 0.0) or (name == "G" and np.any(a[:2, :2] != 0.0)):
+            return None
+    race = machine.races[0]
+    u = sum(x.mass_eccentricity * np.exp(1j * x.phase) for x in machine.unbalances)
+    m1 = float(s.M[0, 0])
+    rotor = RotorParams(disc_mass=m1, eccentricity=abs(u) / m1, stiffness=float(s.K[0, 0]),
+                        damping=float(s.C[0, 0]))
+    balls = tuple(BallParams(mass=b.mass, radius=race.radius, inertia=b.mass * race.radius ** 2 + b.inertia,
+                             damping=b.damping) for b in race.balls)
+    return JeffcottBalls(rotor, balls, speed=ConstantSpeed(float(machine.drive.speed)), frame="rotating"), \
+        float(np.angle(u)) if abs(u) > 0 else 0.0
+
+
+#: Why the seeds' verdicts are not given for a machine that is not the planar single-mass rotor.
+SEED_VERDICTS_NOTE = ("the seeds' Hamilton (seed 003) and averaged (seed 002) verdicts assume a planar "
+                      "disc on an isotropic shaft with one race in its plane; this machine is not that "
+                      "rotor, so only the exact eigenvalues judge stability")
+
+
+def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: float = 1e-6):
+    """Every balanced steady motion at the machine's constant speed (or the best partial one).
+
+    Balanced motions are the ball angles that cancel the unbalance (:meth:`Machine.balance_residual`
+    = 0, from ``starts`` seeded random starts, distinct ones kept); when the balls cannot cancel
+    it, the steady motion that starts from the best partial balance. Each is judged by the exact
+    eigenvalues of the co-rotating linearization; where the machine is the planar single-mass
+    rotor (:func:`jeffcott_limit`) the seeds' Hamilton and averaged verdicts of the same motion
+    are added, elsewhere they are "n/a" with the reason in ``attrs["seed_verdicts"]``.
+
+    Returns
+    -------
+    xarray.Dataset
+        Dim ``motion``: ``kind`` ("balanced" or "partly balanced"), ``exists``, ``ball_angle``
+        (motion, ball) (rad, from the rotor's reference direction), ``amplitude`` (motion,
+        station) whirl radius (m), ``max_real_eigenvalue`` (1/s), ``stable``,
+        ``verdict_exact``, ``verdict_hamilton``, ``verdict_averaged``; ``status`` (0, or
+        :data:`NO_STEADY_STATUS` with ``attrs["message"]`` when there is no co-rotating frame).
+    """
+    import xarray as xr
+    from scipy.optimize import least_squares
+
+    nb, nz = machine.n_balls, machine.n_coordinates
+    message = machine.why_no_rotating_frame()
+    found: list[np.ndarray] = []
+    kinds: list[str] = []
+    if message is None and nb:
+        scale = max(sum(u.mass_eccentricity for u in machine.unbalances), 1e-300)
+        rng = np.random.default_rng(seed)
+        for _ in range(starts):
+            res = least_squares(lambda a: machine.balance_residual(a) / scale, rng.uniform(0, 2 * np.pi, nb),
+                                xtol=1e-15, ftol=1e-15, gtol=1e-15)
+            if np.max(np.abs(res.fun)) < 1e-10:
+                psi = _wrap(res.x)
+                if not any(np.max(np.abs(_wrap(psi - f))) < angle_tol for f in found):
+                    found.append(psi)
+        ys = [machine.balanced_state(p) for p in sorted(found, key=lambda p: tuple(np.round(p, 6)))]
+        kinds = ["balanced"] * len(ys)
+        if not ys:
+            y = machine.steady_state()
+            if y is not None:
+                ys, kinds = [y], ["partly balanced"]
+        if not ys:
+            message = "no steady motion found (the equilibrium solver did not converge); simulate instead"
+    else:
+        ys = []
+        if message is None:
+            message = "the machine has no balls"
+    n = max(len(ys), 1)
+    angles = np.full((n, nb), np.nan)
+    amp = np.full((n, machine.structure.n_nodes), np.nan)
+    lam = np.full(n, np.nan)
+    stable = np.zeros(n, bool)
+    exact = ["absent"] * n
+    hamilton = ["n/a"] * n
+    averaged = ["n/a"] * n
+    for j, y in enumerate(ys):
+        lin = machine.linearize(y)
+        angles[j] = _wrap(y[2 * nz:2 * nz + nb])
+        amp[j] = machine.station_amplitudes(machine.rotating_to_fixed(y))
+        lam[j] = float(lin.eigenvalues.real.max())
+        stable[j] = lin.is_stable
+        exact[j] = "stable" if stable[j] else "unstable"
+    note = SEED_VERDICTS_NOTE
+    limit = jeffcott_limit(machine) if ys else None
+    if limit is not None:
+        from rotorlab.steady import analyze_steady
+
+        jb, phase = limit
+        doc = analyze_steady(jb).to_dict()
+        note = "the machine is the planar single-mass rotor of seeds 002/003: their verdicts are given"
+        for j in range(len(ys)):
+            for mo in doc["motions"]:
+                if mo["ball_angles"] is not None and np.max(np.abs(_wrap(np.asarray(mo["ball_angles"]) + phase
+                                                                          - angles[j]))) < 1e-5:
+                    hamilton[j], averaged[j] = mo["verdicts"]["hamilton"], mo["verdicts"]["averaged"]
+                    break
+    ds = xr.Dataset(
+        {
+            "kind": (("motion",), np.asarray(kinds or ["none"], dtype=str)),
+            "exists": (("motion",), np.asarray([True] * len(ys) or [False])),
+            "ball_angle": (("motion", "ball"), angles, {"units": "rad"}),
+            "amplitude": (("motion", "station"), amp, {"units": "m"}),
+            "max_real_eigenvalue": (("motion",), lam, {"units": "1/s"}),
+            "stable": (("motion",), stable),
+            "verdict_exact": (("motion",), np.asarray(exact, dtype=str)),
+            "verdict_hamilton": (("motion",), np.asarray(hamilton, dtype=str)),
+            "verdict_averaged": (("motion",), np.asarray(averaged, dtype=str)),
+            "status": ((), np.int64(0 if ys else NO_STEADY_STATUS)),
+        },
+        coords={"motion": np.arange(n), "station": list(machine.structure.node_label), **_ball_coords(machine)},
+        attrs={"analysis": "steady", "model": "machine", "seed_verdicts": note,
+               "speed": float(machine.drive.speed) if hasattr(machine.drive, "speed") else math.nan,
+               **({"message": message} if message else {})},
+    )
+    return ds
+
+
 # --------------------------------------------------------------------------- case files
 
 
@@ -342,7 +511,18 @@ def _num(v) -> float | None:
 
 
 def _deg(values) -> list[float | None]:
-    return [None if not np.isfinite(v) else round(float(np.degrees(v)), 3) for v in np.ravel(values)]
+    return [None if not np.isfinite(v) else round(float(np.degrees(v)), 6) for v in np.ravel(values)]
+
+
+def _per_race(ds, values) -> dict[str, list[float | None]]:
+    """Angles (rad) by race, in degrees: ``{"race 0": [...], ...}``."""
+    race = ds.race.values
+    values = np.asarray(values, dtype=float)
+    return {f"race {r}": _deg(values[race == r]) for r in np.unique(race)}
+
+
+def _per_station(ds, values) -> dict[str, float | None]:
+    return {str(s): _num(v) for s, v in zip(ds.station.values, np.ravel(values))}
 
 
 def machine_model(case_model):
@@ -366,103 +546,204 @@ def machine_quantities(case_model) -> list[dict[str, Any]]:
     return rows
 
 
-def _variant(case_model, analysis):
-    """The case's machine with only the analysis' races (all when it names none)."""
+def _variant(case_model, analysis, speed: float | None = None):
+    """The case's machine with only the analysis' races (all when it names none), at a constant
+    ``speed`` if given."""
     from dataclasses import replace
 
+    from rotorlab.models import ConstantSpeed
+
     m = machine_model(case_model)
-    if analysis.races is not None:
-        m = replace(m, races=tuple(m.races[i] for i in analysis.races))
+    races = getattr(analysis, "races", None)
+    if races is not None:
+        m = replace(m, races=tuple(m.races[i] for i in races))
+    if speed is not None:
+        m = m.with_drive(ConstantSpeed(float(speed)))
     return m
 
 
-def _run_steady(case_model, analysis, progress):
-    m = _variant(case_model, analysis)
-    return machine_steady(m, np.linspace(analysis.start, analysis.stop, analysis.n_speeds))
-
-
-def _run_simulate(case_model, analysis, progress):
-    from rotorlab.models import ConstantSpeed
-
-    m = _variant(case_model, analysis)
-    if analysis.speed is not None:
-        m = m.with_drive(ConstantSpeed(analysis.speed))
-    if analysis.initial_ball_angles is None or m.n_balls == 0:
-        angles = np.zeros((1, m.n_balls))
-    else:
-        angles = np.array([a[: m.n_balls] for a in analysis.initial_ball_angles], dtype=float)
-    return machine_simulate(m, angles, t_end=analysis.t_end, rtol=analysis.rtol, atol=analysis.atol,
-                            progress=progress)
-
-
-def _run_run_up(case_model, analysis, progress):
-    m = _variant(case_model, analysis)
-    angles = None if analysis.initial_ball_angles is None else list(analysis.initial_ball_angles)[: m.n_balls]
-    d = case_model.drive
-    start = getattr(d, "initial_speed", 0.0)
-    return machine_run_up(m, t_end=analysis.t_end, n_save=analysis.n_save, ball_angles=angles,
-                          rtol=analysis.rtol, atol=analysis.atol, initial_speed=start)
-
-
-_RUNNERS = {"machine-steady": _run_steady, "machine-simulate": _run_simulate,
-            "machine-run-up": _run_run_up}
-MACHINE_ANALYSES = tuple(_RUNNERS)
-
-
-def run_machine_analysis(case_model, analysis, progress=None):
-    """Run one machine analysis of a case (``machine-steady``, ``-simulate``, ``-run-up``)."""
-    ds = _with_units(_RUNNERS[analysis.type](case_model, analysis, progress))
-    if analysis.races is not None:
-        ds.attrs["races"] = list(analysis.races)
-    ds.attrs["n_races"] = len(case_model.races) if analysis.races is None else len(analysis.races)
+def _annotate(ds, case_model, analysis):
+    ds = _with_units(ds)
+    races = getattr(analysis, "races", None)
+    if races is not None:
+        ds.attrs["races"] = list(races)
+    ds.attrs["n_races"] = len(case_model.races) if races is None else len(races)
     ds.attrs["name"] = analysis.name
-    if progress is not None:
-        progress(1, 1)
+    ds.attrs["analysis"] = analysis.type
     return ds
 
 
-def _steady_rows(ds) -> list[dict[str, Any]]:
-    msg = ds.attrs.get("message")
-    return [{"speed": _num(w), "speed_rpm": _num(w * 30 / np.pi), "exists": bool(e),
-             "balanced": bool(b), "stable": bool(s), "max_real_eigenvalue": _num(l),
-             "ball_angles_deg": _deg(a),
-             "amplitude": {str(k): _num(v) for k, v in zip(ds.station.values, amp)},
-             "status": int(st), **({"message": msg} if msg and int(st) != 0 else {})}
-            for w, e, b, s, l, a, amp, st in zip(ds.speed.values, ds.exists.values, ds.balanced.values,
-                                                 ds.stable.values, ds.max_real_eigenvalue.values,
-                                                 ds.ball_angle.values, ds.amplitude.values,
-                                                 ds.status.values)]
+def _run_simulate(case_model, analysis, progress=None):
+    omega = analysis.spin_speed(case_model)
+    m = _variant(case_model, analysis, omega)
+    sets = analysis.ball_angle_sets(m.n_balls)
+    angles = np.array(sets, dtype=float).reshape(len(sets), m.n_balls)
+    ds = machine_simulate(m, angles, t_end=analysis.duration(case_model), rtol=analysis.rtol,
+                          atol=analysis.atol, progress=progress)
+    return _annotate(ds, case_model, analysis)
+
+
+def _simulate_task_size(case_model, analysis) -> int:
+    return len(analysis.ball_angle_sets(case_model.balls_in(analysis.races)))
+
+
+def _run_steady(case_model, analysis, progress=None):
+    m = _variant(case_model, analysis, analysis.spin_speed(case_model))
+    ds = machine_motions(m)
+    if progress is not None:
+        progress(1, 1)
+    return _annotate(ds, case_model, analysis)
+
+
+def _with_parameter(machine, name: str, value: float):
+    """Every ball of the machine with ``mass`` or ``damping`` (``ball_mass``, ``ball_damping``) set."""
+    from dataclasses import replace
+
+    key = name.removeprefix("ball_")
+    races = tuple(replace(r, balls=tuple(replace(b, **{key: float(value)}) for b in r.balls))
+                  for r in machine.races)
+    return replace(machine, races=races)
+
+
+def _run_chart(case_model, analysis, progress=None):
+    import xarray as xr
+
+    speeds = analysis.spin_speeds(case_model)
+    m = _variant(case_model, analysis, float(speeds[0]))
+    values = analysis.parameter_values()
+    if values is None:
+        ds = machine_steady(m, speeds)
+    else:
+        parts = []
+        for k, v in enumerate(values):
+            parts.append(machine_steady(_with_parameter(m, analysis.param, v), speeds))
+            if progress is not None:
+                progress(k + 1, len(values))
+        ds = xr.concat(parts, dim="parameter", combine_attrs="drop_conflicts")
+        from rotorlab.io._steady_specs import STEADY_PARAMETERS
+
+        ds = ds.assign_coords(parameter=("parameter", np.asarray(values, float),
+                                         {"units": STEADY_PARAMETERS[analysis.param][2]}))
+        ds.attrs["parameter"] = analysis.param
+    ds.attrs["analysis"] = "stability-chart"
+    return _annotate(ds, case_model, analysis)
+
+
+def _chart_task_size(case_model, analysis) -> int:
+    values = analysis.parameter_values()
+    return 1 if values is None else len(values)
+
+
+def _run_run_up(case_model, analysis, progress=None):
+    import xarray as xr
+
+    from rotorlab.analyses._builders import speed_profile
+
+    m = _variant(case_model, analysis)
+    if analysis.speed is not None:
+        m = m.with_drive(speed_profile(analysis.speed))
+    starts = analysis.initial_ball_angles or (None,)
+    start_speed = getattr(case_model.drive, "initial_speed", 0.0) if analysis.speed is None else 0.0
+    parts = []
+    for k, angles in enumerate(starts):
+        one = machine_run_up(m, t_end=analysis.t_end, n_save=analysis.n_save,
+                             ball_angles=None if angles is None or m.n_balls == 0 else list(angles),
+                             rtol=analysis.rtol, atol=analysis.atol, initial_speed=start_speed)
+        for key in ("final_speed", "passed", "captured_at", "status"):
+            one[key] = ((), one.attrs.pop(key))
+        parts.append(one)
+        if progress is not None:
+            progress(k + 1, len(starts))
+    ds = xr.concat(parts, dim="ic", combine_attrs="override")
+    ds = ds.assign_coords(ic=np.arange(len(starts)))
+    ds["final_speed"].attrs["units"] = "rad/s"
+    ds["captured_at"].attrs["units"] = "rad/s"
+    return _annotate(ds, case_model, analysis)
+
+
+def _run_up_task_size(case_model, analysis) -> int:
+    return len(analysis.initial_ball_angles or (None,))
 
 
 def _simulate_rows(ds) -> list[dict[str, Any]]:
-    race = ds.race.values
     rows = []
     for i in range(ds.sizes["ic"]):
-        ang = ds.final_ball_angle.values[i]
         rows.append({
             "ic": i, "final_speed": _num(ds.final_speed.values[i]),
-            "final_ball_angles_deg": {f"race {r}": _deg(ang[race == r]) for r in np.unique(race)},
-            "amplitude": {str(s): _num(a) for s, a in zip(ds.station.values, ds.amplitude.values[i])},
-            "reference_amplitude": {str(s): _num(a) for s, a in
-                                    zip(ds.station.values, ds.reference_amplitude.values)},
+            "final_speed_rpm": _num(ds.final_speed.values[i] * 30 / np.pi),
+            "initial_ball_angles_deg": _per_race(ds, ds.initial_ball_angle.values[i]),
+            "final_ball_angles_deg": _per_race(ds, ds.final_ball_angle.values[i]),
+            "amplitude": _per_station(ds, ds.amplitude.values[i]),
+            "reference_amplitude": _per_station(ds, ds.reference_amplitude.values),
+            "outcome": str(ds.outcome.values[i]),
             "status": int(ds.status.values[i]),
         })
     return rows
 
 
+def _steady_rows(ds) -> list[dict[str, Any]]:
+    msg = ds.attrs.get("message")
+    rows = []
+    for j in range(ds.sizes["motion"]):
+        exists = bool(ds.exists.values[j])
+        rows.append({
+            "motion": int(j), "kind": str(ds.kind.values[j]), "exists": exists,
+            "speed": _num(ds.attrs.get("speed", math.nan)),
+            "ball_angles_deg": _per_race(ds, ds.ball_angle.values[j]) if exists else None,
+            "amplitude": _per_station(ds, ds.amplitude.values[j]) if exists else None,
+            "stable": bool(ds.stable.values[j]), "max_real_eigenvalue": _num(ds.max_real_eigenvalue.values[j]),
+            **{f"verdict_{k}": str(ds[f"verdict_{k}"].values[j]) for k in ("exact", "hamilton", "averaged")},
+            "seed_verdicts": ds.attrs.get("seed_verdicts", ""),
+            "status": int(ds.status.values),
+            **({"message": msg} if msg else {}),
+        })
+    return rows
+
+
+def _chart_rows(ds) -> list[dict[str, Any]]:
+    """One row per (parameter value and) speed: exists, balanced, exact stability."""
+    msg = ds.attrs.get("message")
+    param = ds.attrs.get("parameter")
+    values = ds.parameter.values if param else [None]
+    rows = []
+    for k, v in enumerate(values):
+        sub = ds.isel(parameter=k) if param else ds
+        for w, e, b, st, lam, a, amp, code in zip(sub.speed.values, sub.exists.values, sub.balanced.values,
+                                                  sub.stable.values, sub.max_real_eigenvalue.values,
+                                                  sub.ball_angle.values, sub.amplitude.values, sub.status.values):
+            rows.append({**({param: float(v)} if param else {}),
+                         "speed": _num(w), "speed_rpm": _num(w * 30 / np.pi), "exists": bool(e),
+                         "balanced": bool(b), "stable": bool(st), "max_real_eigenvalue": _num(lam),
+                         "ball_angles_deg": _per_race(ds, a), "amplitude": _per_station(ds, amp),
+                         "status": int(code), **({"message": msg} if msg and int(code) != 0 else {})})
+    return rows
+
+
 def _run_up_rows(ds) -> list[dict[str, Any]]:
-    a = ds.attrs
-    return [{"final_speed": _num(a["final_speed"]), "final_speed_rpm": _num(a["final_speed"] * 30 / np.pi),
-             "critical_speeds": [_num(w) for w in np.ravel(a["critical_speeds"])],
-             "passed": int(a["passed"]), "captured_at": _num(a["captured_at"]),
-             "residual_amplitude": {str(s): _num(v) for s, v in
-                                    zip(ds.station.values, ds.residual_amplitude.values)},
-             "status": int(a["status"])}]
+    crit = [_num(w) for w in np.ravel(ds.attrs["critical_speeds"])]
+    rows = []
+    for i in range(ds.sizes["ic"]):
+        r = ds.isel(ic=i)
+        rows.append({"ic": i, "final_speed": _num(r.final_speed), "final_speed_rpm": _num(r.final_speed * 30 / np.pi),
+                     "critical_speeds": crit, "passed": int(r.passed), "captured_at": _num(r.captured_at),
+                     "residual_amplitude": _per_station(ds, r.residual_amplitude.values),
+                     "status": int(r.status)})
+    return rows
 
 
-_ROWS = {"machine-steady": _steady_rows, "machine-simulate": _simulate_rows, "machine-run-up": _run_up_rows}
+def machine_analysis_types() -> dict[str, Any]:
+    """The machine's own implementations of the common analysis types (its ``ModelType.analyses``)."""
+    from rotorlab.analyses._registry import AnalysisType
+
+    return {
+        "simulate": AnalysisType("simulate", _run_simulate, _simulate_rows, "machine", _simulate_task_size,
+                                 "trajectories"),
+        "steady": AnalysisType("steady", _run_steady, _steady_rows, "machine"),
+        "stability-chart": AnalysisType("stability-chart", _run_chart, _chart_rows, "machine", _chart_task_size),
+        "run-up": AnalysisType("run-up", _run_run_up, _run_up_rows, "machine", _run_up_task_size),
+    }
 
 
-def machine_rows(ds) -> list[dict[str, Any]]:
-    """Summary rows of a machine analysis (JSON-ready, SI; angles in degrees)."""
-    return _ROWS[ds.attrs["analysis"]](ds)
+def machine_mapper(case_model, analysis, kw):
+    """The regime mapper of a machine's basins and sweeps (none yet)."""
+    return None

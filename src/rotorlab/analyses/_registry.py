@@ -19,6 +19,9 @@ presentation; no other module changes.
    model's parameters (physics belongs here, not in the report) and, if its start-ups can be
    classified into regimes, whose ``mapper`` builds the regime mapper of basins and sweeps:
    ``register_model_type(ModelType("my_model", build=..., quantities=..., mapper=...))``.
+   Where a common analysis type (``simulate``, ``steady``, ...) needs its own code for this
+   model, give it in ``analyses`` as an :class:`AnalysisType` of the same name (same case-file
+   spec; its own run, rows and presentation); :func:`analysis_entry` picks it.
 3. An analysis type: register an :class:`AnalysisType` with
 
    - ``run(case_model, analysis, progress)``: a Dataset with ``attrs["name"]`` (the analysis
@@ -40,7 +43,8 @@ presentation; no other module changes.
 from __future__ import annotations
 
 from collections.abc import Callable
-from dataclasses import dataclass
+from collections.abc import Mapping
+from dataclasses import dataclass, field
 from typing import TYPE_CHECKING, Any
 
 from rotorlab._registry import Registry
@@ -49,7 +53,7 @@ if TYPE_CHECKING:
     import xarray
 
 __all__ = ["ModelType", "AnalysisType", "MODEL_TYPES", "ANALYSIS_TYPES", "register_model_type",
-           "register_analysis_type"]  # fmt: skip
+           "register_analysis_type", "analysis_entry"]  # fmt: skip
 
 Progress = Callable[[int, int], None]
 
@@ -84,12 +88,17 @@ class ModelType:
         regime mapper of ``basin`` and ``sweep`` analyses (``options``: keyword arguments of
         the mapper from the analysis, to complete); None (or a mapper returning None): the model
         has no basins.
+    analyses : mapping of str to AnalysisType
+        The model's own implementations of common analysis types, by analysis type: they read
+        the same case-file spec as the common entry in :data:`ANALYSIS_TYPES` and replace its
+        ``run``, ``rows`` and presentation for this model (see :func:`analysis_entry`).
     """
 
     name: str
     build: Callable[[Any], Any]
     quantities: Callable[[Any], list[dict[str, Any]]] = no_quantities
     mapper: Callable[[Any, Any, dict[str, Any]], Any] | None = None
+    analyses: Mapping[str, AnalysisType] = field(default_factory=dict)
 
 
 @dataclass(frozen=True)
@@ -139,6 +148,18 @@ def register_analysis_type(entry: AnalysisType, *, replace: bool = False) -> Non
     ANALYSIS_TYPES.register(entry.name, entry, replace=replace)
 
 
+def analysis_entry(model_type: str | None, analysis_type: str) -> AnalysisType:
+    """The entry that runs, tabulates and presents ``analysis_type`` on a ``model_type`` model.
+
+    The model type's own implementation (:attr:`ModelType.analyses`) if it has one, else the
+    common entry of :data:`ANALYSIS_TYPES` (KeyError naming the registered types if neither).
+    """
+    model = MODEL_TYPES.get(model_type) if model_type is not None else None
+    if model is not None and analysis_type in model.analyses:
+        return model.analyses[analysis_type]
+    return ANALYSIS_TYPES[analysis_type]
+
+
 # --------------------------------------------------------------------------- the built-in types
 
 
@@ -146,16 +167,17 @@ def _register_builtins() -> None:
     from rotorlab.analyses import _basin, _builders, _impacts, _linear, _machine, _rub, _simulate, _steady, _sweep
     from rotorlab.analyses._linear_build import build_linear_system
 
-    for name, build, quantities, mapper in (
+    machine = {"analyses": _machine.machine_analysis_types()}
+    for name, build, quantities, mapper, *own in (
         ("jeffcott_balls", _builders.jeffcott_balls_model, _builders.jeffcott_quantities, _basin.balancer_mapper),
         ("multibody", build_linear_system, _builders.linear_quantities, None),
         ("fe_rotor", build_linear_system, _builders.linear_quantities, None),
         ("toroidal_ball", _builders.toroidal_ball_model, _builders.reference_speed_quantities, _basin.torus_mapper),
         ("impact_rotor", _impacts.impact_model, _builders.reference_speed_quantities, None),
-        ("machine", _machine.machine_model, _machine.machine_quantities, None),
+        ("machine", _machine.machine_model, _machine.machine_quantities, _machine.machine_mapper, machine),
         ("rub_rotor", _rub.rub_model, _rub.rub_quantities, None),
     ):
-        register_model_type(ModelType(name, build, quantities, mapper))
+        register_model_type(ModelType(name, build, quantities, mapper, **(own[0] if own else {})))
 
     trajectories = {"progress_unit": "trajectories"}
     register_analysis_type(AnalysisType("simulate", _simulate.run_simulate_analysis, _simulate.simulation_rows,
@@ -173,8 +195,6 @@ def _register_builtins() -> None:
     register_analysis_type(AnalysisType("impacts", _impacts.run_impact_analysis, _impacts.impact_rows, "impacts"))
     register_analysis_type(AnalysisType("impacts-sweep", _impacts.run_impact_analysis, _impacts.sweep_rows,
                                         "impacts"))  # fmt: skip
-    for name in _machine.MACHINE_ANALYSES:
-        register_analysis_type(AnalysisType(name, _machine.run_machine_analysis, _machine.machine_rows, "machine"))
     register_analysis_type(AnalysisType("rub", _rub.run_rub_analysis, _rub.rub_rows, "rub"))
 
 

@@ -52,6 +52,10 @@ app = typer.Typer(
 CaseArg = Annotated[str, typer.Argument(help="TOML case file or built-in case name (see 'rotorlab cases').",
                                         metavar="CASE", show_default=False)]  # fmt: skip
 JsonOpt = Annotated[bool, typer.Option("--json", help="Print a machine-readable summary on stdout only.")]
+SetOpt = Annotated[Optional[list[str]], typer.Option(  # noqa: UP007
+    "--set", metavar="KEY=VALUE", help="Set a key of the case before it is validated, e.g. --set model.disc_mass=2kg "
+    "or --set 'model.balls[0].mass=20 g' (KEY as in the error messages; VALUE a TOML value or a number with a "
+    "unit); repeatable.", show_default=False)]  # fmt: skip
 
 
 def _version(value: bool) -> None:
@@ -83,14 +87,19 @@ def _settings(ctx: typer.Context) -> Settings:
     return obj if isinstance(obj, Settings) else Settings()
 
 
-def _load(source: str) -> Any:
-    from rotorlab.io import load_case
+def _load(source: str, sets: list[str] | None = None) -> Any:
+    """Load a case with the command's ``--set KEY=VALUE`` options applied (the one place that does)."""
+    from rotorlab.io import load_case, parse_override
 
-    return load_case(source)
+    overrides = dict(parse_override(text) for text in sets or ())
+    return load_case(source, overrides=overrides)
 
 
 def _json_case(case: Any) -> dict[str, Any]:
-    return {"case": case.name, "source": case.source}
+    out = {"case": case.name, "source": case.source}
+    if case.overrides:
+        out["set"] = case.overrides
+    return out
 
 
 # --------------------------------------------------------------------------- cases / validate
@@ -122,14 +131,14 @@ def _analysis_summary(case: Any) -> list[dict[str, Any]]:
 
 
 @app.command("validate")
-def validate_command(ctx: typer.Context, case: CaseArg, json_out: JsonOpt = False) -> None:
+def validate_command(ctx: typer.Context, case: CaseArg, sets: SetOpt = None, json_out: JsonOpt = False) -> None:
     """Check a case file and print a summary of it (exit code 2 and the problems if invalid)."""
     settings = _settings(ctx)
     with handled(settings):
         from rotorlab.io import CaseError
 
         try:
-            loaded = _load(case)
+            loaded = _load(case, sets)
         except CaseError as exc:
             if json_out:
                 emit_json({"ok": False, "source": case, "problems": list(exc.problems)})
@@ -159,6 +168,7 @@ def run_command(
     ctx: typer.Context,
     case: Annotated[str, typer.Argument(
         help="TOML case file or built-in case name.", metavar="CASE")] = DEFAULT_CASE,
+    sets: SetOpt = None,
     out: Annotated[Path, typer.Option("--out", "-o", metavar="DIR", help="Output folder.")] = Path(DEFAULT_OUT),
     json_out: JsonOpt = False,
 ) -> None:
@@ -167,7 +177,7 @@ def run_command(
     with handled(settings):
         from rotorlab.report import check_output_dir
 
-        loaded = _load(case)
+        loaded = _load(case, sets)
         try:
             check_output_dir(out)
         except ValueError as exc:
@@ -186,7 +196,9 @@ def run_command(
         start = time.perf_counter()
         from rotorlab.analyses import run_case, summarize
 
-        entries = {a.name: ANALYSIS_TYPES[a.type] for a in loaded.analyses}
+        from rotorlab.analyses import analysis_entry
+
+        entries = {a.name: analysis_entry(loaded.model.type, a.type) for a in loaded.analyses}
         tasks = {a.name: entries[a.name].task_size(loaded.model, a) for a in loaded.analyses}
         units = {name: entry.progress_unit for name, entry in entries.items()}
         with progress_bar(settings, tasks, units) as update:
@@ -228,6 +240,60 @@ def run_command(
 # --------------------------------------------------------------------------- simulate
 
 
+def own_entry(loaded: Any, kind: str) -> bool:
+    """Whether the case's model type runs analysis type ``kind`` with its own implementation
+    (:attr:`rotorlab.analyses.ModelType.analyses`); the command then runs it through
+    :func:`run_through_entry`."""
+    from rotorlab.analyses import MODEL_TYPES
+
+    entry = MODEL_TYPES.get(loaded.model.type)
+    return entry is not None and kind in entry.analyses
+
+
+def run_through_entry(settings: Any, loaded: Any, spec: Any, json_out: bool, out: Path | None = None,
+                      extra: dict[str, Any] | None = None) -> None:
+    """Check ``spec`` against the case's model, run it through the registries and print its
+    presentation's tables (or ``{case, source, analysis, type, ..., rows}`` as JSON).
+
+    Raises BadInput (exit 2, nothing run) when the analysis cannot run on the model, naming why.
+    """
+    issues = spec.case_issues(loaded.model)
+    if issues:
+        raise BadInput("; ".join(
+            f"{spec.type}" + "".join(f"[{k}]" if isinstance(k, int) else f".{k}" for k in i.loc)
+            + (f" = {i.value!r}" if i.show_value and i.value is not None else "") + f": {i.message}"
+            for i in issues))
+    from rotorlab.analyses import analysis_entry, run_analysis, summarize
+
+    entry = analysis_entry(loaded.model.type, spec.type)
+    info(settings, f"{loaded.name}: {spec.type} ({spec.describe(loaded.model)}) ...", json_mode=json_out)
+    with progress_bar(settings, {spec.name: entry.task_size(loaded.model, spec)},
+                      {spec.name: entry.progress_unit}) as update:
+        ds = run_analysis(loaded.model, spec, progress=lambda done, n: update(spec.name, done, n))
+    ds.attrs["case"] = loaded.name
+    rows = summarize(ds)
+    written = None
+    if out is not None:
+        from rotorlab.io import save_netcdf
+
+        written = str(save_netcdf(ds, out))
+    if json_out:
+        emit_json({**_json_case(loaded), "analysis": spec.name, "type": spec.type, **(extra or {}),
+                   "out": written, "rows": rows})
+        exit_if_failed({spec.name: ds})
+        return
+    from rotorlab.report import PRESENTATIONS
+
+    con = stdout()
+    for table in PRESENTATIONS[entry.family].console({spec.name: ds}, {spec.name: rows}):
+        con.print(table)
+    if ds.attrs.get("message"):
+        con.print(str(ds.attrs["message"]), markup=False)
+    if written:
+        con.print(f"Wrote {written}", markup=False)
+    exit_if_failed({spec.name: ds})
+
+
 def _positive(option: str, values: list[float] | None, unit: str) -> list[float]:
     out = []
     for v in values or ():
@@ -263,6 +329,7 @@ def _pick_analysis(loaded: Any, name: str | None) -> Any:
 def simulate_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speed_rpm: Annotated[Optional[list[float]], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Constant spin speed (rpm); repeat for several speeds.")] = None,
     speed_ratio: Annotated[Optional[list[float]], typer.Option(  # noqa: UP007
@@ -296,7 +363,19 @@ def simulate_command(
                 raise BadInput(f"--out = {out}: is a folder (give a .nc file name)")
             if not out.absolute().parent.is_dir():
                 raise BadInput(f"--out = {out}: folder {out.absolute().parent} does not exist")
-        loaded = _load(case)
+        loaded = _load(case, sets)
+        if own_entry(loaded, "simulate"):
+            spec = _pick_analysis(loaded, analysis)
+            if len(rpm) + len(ratio) > 1:
+                raise BadInput(f"case {loaded.name}: a {loaded.model.type} model simulates one speed at a time: "
+                               "give one --speed-rpm or --speed-ratio")
+            update: dict[str, Any] = {}
+            if rpm or ratio:
+                update.update(speed=rpm[0] / _RPM if rpm else None, speed_ratio=ratio[0] if ratio else None)
+            if t_end_given:
+                update.update(t_end=t_end, revolutions=None)
+            run_through_entry(settings, loaded, spec.model_copy(update=update), json_out, out)
+            return
         if loaded.model.type != "jeffcott_balls":
             raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; simulate "
                            "needs a rotor with balls ([model] type jeffcott_balls); for a "

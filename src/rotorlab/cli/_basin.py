@@ -13,7 +13,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
+from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, emit_json, exit_if_failed, handled, info, progress_bar, stdout
 from rotorlab.cli._steady import _check_plot, parse_range
 from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
@@ -105,6 +105,7 @@ def _save_plot(fig: Any, path: Path) -> str:
 def basin_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     x: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--x", metavar="NAME=A:B:N", help="First varied start coordinate or parameter: N values from A to B "
         "(SI, or with a unit: psi=0:360deg:64).")] = None,
@@ -159,7 +160,7 @@ def basin_command(
             raise BadInput("--resume needs --store STORE.zarr (the store to continue)")
         if store is not None:
             check_store_path(store, resume, "--store")
-        loaded = _load(case)
+        loaded = _load(case, sets)
         from rotorlab.io import coordinate_dimensions
 
         known = coordinate_dimensions(loaded.model)
@@ -195,7 +196,7 @@ def basin_command(
             written.append(str(save_netcdf(ds, out)))
         doc = basin_document(ds)
         if json_out:
-            emit_json({"case": loaded.name, "source": loaded.source, "analysis": spec.name, **doc,
+            emit_json({**_json_case(loaded), "analysis": spec.name, **doc,
                        "files": written})  # fmt: skip
             exit_if_failed({spec.name: ds})
             return

@@ -14,7 +14,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
+from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, console_or_json, exit_if_failed, handled, info, status
 from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
 
@@ -46,8 +46,8 @@ def _check(stone_mass: float | None, t_end: float | None, seed: int | None, plot
     _check_plot("--out", out)
 
 
-def _impact_case(case: str) -> Any:
-    loaded = _load(case)
+def _impact_case(case: str, sets: list[str] | None = None) -> Any:
+    loaded = _load(case, sets)
     if getattr(loaded.model, "type", None) != "impact_rotor":
         raise BadInput(f"case {loaded.name}: needs an impact_rotor model (this case has '{loaded.model.type}')")
     return loaded
@@ -79,7 +79,7 @@ def _finish(settings: Any, loaded: Any, spec: Any, ds: Any, summary: dict[str, A
         from rotorlab.io import save_netcdf
 
         written.append(str(save_netcdf(ds, out)))
-    doc = {"case": loaded.name, "source": loaded.source, **summary, "files": written}
+    doc = {**_json_case(loaded), **summary, "files": written}
     if ds.attrs.get("analysis") == "impacts-sweep":
         from rotorlab.analyses import paper_counts
 
@@ -98,6 +98,7 @@ def _finish(settings: Any, loaded: Any, spec: Any, ds: Any, summary: dict[str, A
 def impacts_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     stone_mass: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--stone-mass", metavar="KG", help="Mass of every stone (kg).")] = None,
     t_end: TEndOpt = None,
@@ -116,7 +117,7 @@ def impacts_command(
     settings = _settings(ctx)
     with handled(settings):
         _check(stone_mass, t_end, seed, plot, out)
-        loaded = _impact_case(case)
+        loaded = _impact_case(case, sets)
         spec = _spec(loaded, "impacts", analysis)
         from rotorlab.analyses import impact_model, impact_run, impact_summary
 
@@ -211,6 +212,7 @@ def _run_stored(settings: Any, sweep: Any, *, store: Path | None, resume: bool, 
 def impacts_sweep_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     stone_mass: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--stone-mass", metavar="A:B:N", help="N stone masses from A to B (kg, or with a unit: 500g:3kg:6).")] = None,
     param: Annotated[Optional[str], typer.Option(  # noqa: UP007
@@ -249,7 +251,7 @@ def impacts_sweep_command(
         store = out if out is not None and out.suffix == ".zarr" else None
         _check(None, t_end, seed, plot, None if store is not None else out)
         executor = _executor(workers, scheduler, chunk, store, resume)
-        loaded = _impact_case(case)
+        loaded = _impact_case(case, sets)
         spec = _spec(loaded, "impacts-sweep", analysis)
         if name is None:
             name, values = spec.param, list(spec.values)

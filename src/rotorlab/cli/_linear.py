@@ -1,6 +1,7 @@
 """The linear-rotordynamics commands: ``rotorlab campbell`` and ``rotorlab modes``.
 
-Both run on a case whose model is a linear rotor (``multibody`` or ``fe_rotor``), take their
+Both run on a case whose model is a linear rotor (``multibody`` or ``fe_rotor``) or is built on one
+(a ``machine``: the structure it was built from), take their
 defaults from the case's first analysis of the same type, and print tables, or with ``--json``
 only a JSON document on stdout. Imported by :mod:`rotorlab.cli`, which registers them on the
 shared :data:`~rotorlab.cli._app.app`.
@@ -17,7 +18,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
+from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app
 from rotorlab.cli._options import check_plot_path, check_speed, parse_speed_range
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
@@ -28,11 +29,12 @@ _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
 _LINEAR_MODELS = ("multibody", "fe_rotor")
 
 
-def _linear_case(source: str, command: str) -> Any:
-    loaded = _load(source)
-    if loaded.model.type not in _LINEAR_MODELS:
+def _linear_case(source: str, command: str, sets: list[str] | None = None) -> Any:
+    loaded = _load(source, sets)
+    if loaded.model.linear_structure() is None:
         raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; {command} "
-                       f"needs a linear rotor model ([model] type {' or '.join(_LINEAR_MODELS)})")
+                       f"needs a linear rotor model ([model] type {' or '.join(_LINEAR_MODELS)}) or a "
+                       "model built on one (machine: its structure)")
     return loaded
 
 
@@ -132,6 +134,7 @@ def linear_tables(results: Mapping[str, Any], tables: Mapping[str, Sequence[Mapp
 def campbell_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speeds_rpm: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--speeds-rpm", metavar="START:STOP:N",
         help="N equally spaced speeds from START to STOP (rpm); default: the case's campbell "
@@ -161,12 +164,12 @@ def campbell_command(
                 raise BadInput(f"--harmonic = {h}: must be an integer >= 1")
         if plot is not None:
             check_plot_path(plot)
-        loaded = _linear_case(case, "campbell")
+        loaded = _linear_case(case, "campbell", sets)
         spec = _first(loaded, "campbell")
         if rng is None and spec is None:
             raise BadInput(f"case {loaded.name} has no campbell analysis: give --speeds-rpm "
                            "START:STOP:N")
-        n_dof = loaded.model.n_dof
+        n_dof = loaded.model.linear_structure().n_dof
         _check_modes(modes, n_dof)
         from rotorlab.io import CampbellSpec
 
@@ -209,6 +212,7 @@ def campbell_command(
 def modes_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speed_rpm: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Spin speed (rpm); default: the case's modes "
                                            "analysis, or 0.")] = None,
@@ -227,8 +231,8 @@ def modes_command(
             check_speed(speed_rpm)
         if modes is not None and modes < 1:
             raise BadInput(f"--modes = {modes}: must be an integer >= 1")
-        loaded = _linear_case(case, "modes")
-        _check_modes(modes, loaded.model.n_dof)
+        loaded = _linear_case(case, "modes", sets)
+        _check_modes(modes, loaded.model.linear_structure().n_dof)
         spec = _first(loaded, "modes")
         from rotorlab.io import ModesSpec
 

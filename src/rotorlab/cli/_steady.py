@@ -14,10 +14,11 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app
+from rotorlab.cli._app import (CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis, own_entry,
+                               run_through_entry)
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
-__all__ = ["steady_command", "stability_chart_command", "parse_range", "regime_overrides", "steady_tables"]
+__all__ = ["steady_command", "stability_chart_command", "run_up_command", "parse_range", "regime_overrides", "steady_tables"]
 
 _RPM = 60.0 / (2.0 * math.pi)
 _METHODS = ("exact", "hamilton", "averaged")
@@ -169,6 +170,7 @@ def _fmt(value: float | None, spec: str) -> str:
 def steady_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speed_rpm: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Spin speed (rpm).")] = None,
     speed_ratio: Annotated[Optional[float], typer.Option(  # noqa: UP007
@@ -188,7 +190,10 @@ def steady_command(
         _positive("--speed-ratio", speed_ratio)
         if speed_rpm is not None and speed_ratio is not None:
             raise BadInput("--speed-rpm and --speed-ratio exclude each other: give only one")
-        loaded = _load(case)
+        loaded = _load(case, sets)
+        if own_entry(loaded, "steady"):
+            _own_steady(settings, loaded, speed_rpm, speed_ratio, json_out)
+            return
         overrides = regime_overrides(loaded, regime)
         spec = _first(loaded, "steady", regime)
         if speed_rpm is None and speed_ratio is None:
@@ -207,11 +212,38 @@ def steady_command(
 
         samples = spec.family_samples if spec is not None else 12
         doc = steady_document(analyze_steady(model, omega, family_samples=samples))
-        doc = {"case": loaded.name, "source": loaded.source, "regime": regime, "overrides": overrides, **doc}
+        doc = {**_json_case(loaded), "regime": regime, "overrides": overrides, **doc}
         if json_out:
             emit_json(doc)
             return
         _print_steady(doc)
+
+
+def _own_steady(settings: Any, loaded: Any, speed_rpm: float | None, speed_ratio: float | None,
+                json_out: bool) -> None:
+    """``steady`` on a model with its own implementation (a machine): speed from the options, the
+    case's first steady analysis or its constant drive."""
+    from rotorlab.io import SteadySpec
+
+    spec = _first(loaded, "steady", None)
+    if speed_rpm is not None:
+        omega = speed_rpm / _RPM
+    elif speed_ratio is not None:
+        p = loaded.model.critical_speed()
+        if p is None:
+            raise BadInput(f"--speed-ratio: model '{loaded.model.type}' has no critical speed; give --speed-rpm")
+        omega = speed_ratio * p
+    elif spec is not None:
+        omega = spec.spin_speed(loaded.model)
+    else:
+        profile = loaded.model.speed_profile()
+        if profile is None or not profile.is_constant:
+            raise BadInput(f"case {loaded.name} has no steady analysis and no constant speed: give --speed-rpm "
+                           "or --speed-ratio")
+        omega = profile.final_speed
+    run_through_entry(settings, loaded, SteadySpec(name=spec.name if spec is not None else "steady", speed=omega,
+                                                   races=spec.races if spec is not None else None),
+                      json_out, extra={"speed": omega, "speed_rpm": omega * _RPM})
 
 
 def _print_steady(doc: dict[str, Any]) -> None:
@@ -242,6 +274,7 @@ def _print_steady(doc: dict[str, Any]) -> None:
 def stability_chart_command(
     ctx: typer.Context,
     case: CaseArg,
+    sets: SetOpt = None,
     speeds_rpm: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--speeds-rpm", metavar="A:B:N", help="N speeds from A to B rpm.")] = None,
     speed_ratios: Annotated[Optional[str], typer.Option(  # noqa: UP007
@@ -273,7 +306,10 @@ def stability_chart_command(
         name, values = _param(param)
         _check_plot("--plot", plot)
         _check_plot("--out", out)
-        loaded = _load(case)
+        loaded = _load(case, sets)
+        if own_entry(loaded, "stability-chart"):
+            _own_chart(settings, loaded, rpm, ratios, name, values, out, json_out)
+            return
         overrides = regime_overrides(loaded, regime)
         spec = _first(loaded, "stability-chart", regime)
         if rpm is None and ratios is None:
@@ -311,7 +347,7 @@ def stability_chart_command(
         written = _write_outputs(ds, plot, out)
         if json_out:
             crit = ds.critical_speed.values
-            emit_json({"case": loaded.name, "source": loaded.source, "regime": regime, "overrides": overrides,
+            emit_json({**_json_case(loaded), "regime": regime, "overrides": overrides,
                        "param": name, "values": None if values is None else [float(v) for v in values],
                        "param_units": _param_units(name), "speeds": [float(w) for w in speeds],
                        "speeds_rpm": [float(w * _RPM) for w in speeds],
@@ -321,6 +357,60 @@ def stability_chart_command(
         _print_intervals(loaded.name, ds, intervals, name)
         for path in written:
             stdout().print(f"Wrote {path}", markup=False)
+
+
+def _own_chart(settings: Any, loaded: Any, rpm: Any, ratios: Any, name: str | None, values: Any,
+               out: Path | None, json_out: bool) -> None:
+    """``stability-chart`` on a model with its own implementation (a machine)."""
+    from rotorlab.io import StabilityChartSpec
+
+    spec = _first(loaded, "stability-chart", None)
+    update: dict[str, Any] = {}
+    if rpm is not None:
+        update.update(speeds=(rpm[0] / _RPM, rpm[1] / _RPM, rpm[2]), speed_ratios=None)
+    elif ratios is not None:
+        update.update(speed_ratios=ratios, speeds=None)
+    if name is not None:
+        update.update(param=name, values=(float(values[0]), float(values[-1]), len(values)))
+    if spec is None:
+        if not update.get("speeds") and not update.get("speed_ratios"):
+            raise BadInput(f"case {loaded.name} has no stability-chart analysis: give --speeds-rpm or --speed-ratios")
+        spec = StabilityChartSpec(name="stability-chart", **update)
+    else:
+        spec = spec.model_copy(update=update)
+    run_through_entry(settings, loaded, spec, json_out, out)
+
+
+@app.command("run-up")
+def run_up_command(
+    ctx: typer.Context,
+    case: CaseArg,
+    analysis: Annotated[Optional[str], typer.Option(  # noqa: UP007
+        "--analysis", metavar="NAME", help="Which run-up analysis of the case (default: the first).")] = None,
+    t_end: Annotated[Optional[float], typer.Option(  # noqa: UP007
+        "--t-end", metavar="SECONDS", help="Simulated time (s) instead of the analysis'.")] = None,
+    out: Annotated[Optional[Path], typer.Option(  # noqa: UP007
+        "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")] = None,
+    sets: SetOpt = None,
+    json_out: JsonOpt = False,
+) -> None:
+    """Run a case's run-up analysis: passage through the critical speeds, residual vibration.
+
+    Any model with run-ups (a rotor with balls along a speed profile; a machine with its drive or
+    motor). JSON: {"case", "source", "analysis", "type", "rows": [...]} with the rows of the
+    analysis type (``rotorlab run --json`` gives the same rows).
+    """
+    settings = _settings(ctx)
+    with handled(settings):
+        _positive("--t-end", t_end)
+        _check_plot("--out", out)
+        loaded = _load(case, sets)
+        spec = find_analysis(loaded, "run-up", analysis)
+        if spec is None:
+            raise BadInput(f"case {loaded.name} has no run-up analysis ([[analysis]] type \"run-up\")")
+        if t_end is not None:
+            spec = spec.model_copy(update={"t_end": t_end})
+        run_through_entry(settings, loaded, spec, json_out, out)
 
 
 def _param(text: str | None) -> tuple[str | None, Any]:

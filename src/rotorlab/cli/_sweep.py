@@ -16,7 +16,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._app import CaseArg, JsonOpt, _load, _settings, app, find_analysis
+from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, console_or_json, exit_if_failed, handled, info
 from rotorlab.cli._sweep_common import (
     SchedulerOpt,
@@ -116,7 +116,7 @@ def _report(settings: Any, json_out: bool, loaded: Any, out: Path, sweep: Any, w
 
 def _print_report(settings: Any, json_out: bool, loaded: Any, out: Path, sweep: Any, where: str, p: Any,
                   seconds: float, extra: dict[str, Any], lines: list[str]) -> None:  # fmt: skip
-    doc = {"case": loaded.name, "source": loaded.source, "store": str(out), "dims": list(sweep.dims),
+    doc = {**_json_case(loaded), "store": str(out), "dims": list(sweep.dims),
            "shape": list(sweep.shape), "n_points": sweep.n_points, "executor": where,
            "chunks": {"total": p.n_chunks, "computed": p.computed, "skipped": p.skipped}, **extra,
            "seconds": round(seconds, 3)}  # fmt: skip
@@ -166,6 +166,7 @@ def sweep_command(
         "--per-point", metavar="ANALYSIS", help="What each point computes: 'regimes' (integrate and classify) or "
         "'stability' (existence and stability of every steady motion; --param over speed_rpm, speed_ratio or "
         "spin_speed and ball_mass, ball_damping, eccentricity, support_damping).")] = "regimes",
+    sets: SetOpt = None,
     json_out: JsonOpt = False,
 ) -> None:
     """Run the regimes (or, with --per-point stability, the steady-motion stability) of a rotor with
@@ -195,7 +196,7 @@ def sweep_command(
                 if value is not None:
                     raise BadInput(f"{option}: not with --per-point stability (steady motions have no initial "
                                    "conditions, simulated time or case sweep analysis)")  # fmt: skip
-            _stability_sweep(settings, case, out, param or [], sample, seed, speed_rpm, speed_ratio, resume,
+            _stability_sweep(settings, case, sets, out, param or [], sample, seed, speed_rpm, speed_ratio, resume,
                              executor, chunk, json_out)  # fmt: skip
             return
         axes: dict[str, tuple] = {}
@@ -208,7 +209,7 @@ def sweep_command(
         if sample is not None and not axes:
             raise BadInput("--sample needs the ranges to draw from: give --param and/or --ic NAME=LOW:HIGH")
         check_store_path(out, resume)
-        loaded = _load(case)
+        loaded = _load(case, sets)
         from rotorlab.io import SweepSpec
         from rotorlab.io._sweep_specs import sweep_coordinates
 
@@ -267,7 +268,7 @@ def sweep_command(
                     f"{k} {100 * v:.1f}%" for k, v in fractions.items() if v > 0))], ds)  # fmt: skip
 
 
-def _stability_sweep(settings: Any, case: str, out: Path, texts: list[str], sample: int | None, seed: int | None,
+def _stability_sweep(settings: Any, case: str, sets: list[str] | None, out: Path, texts: list[str], sample: int | None, seed: int | None,
                      speed_rpm: float | None, speed_ratio: float | None, resume: bool, executor: Any,
                      chunk: int | None, json_out: bool) -> None:  # fmt: skip
     from rotorlab.analyses._sweep import SPEED_AXES, STABILITY_AXES, STABILITY_CHUNK, stability_summary, stability_sweep
@@ -291,7 +292,7 @@ def _stability_sweep(settings: Any, case: str, out: Path, texts: list[str], samp
         raise BadInput(f"--speed-{'rpm' if speed_rpm is not None else 'ratio'}: the speed is swept by "
                        f"--param {next(iter(swept_speed))}")  # fmt: skip
     check_store_path(out, resume)
-    loaded = _load(case)
+    loaded = _load(case, sets)
     from rotorlab.cli._steady import _model
 
     model = _model(loaded, {})

@@ -23,6 +23,7 @@ from rotorlab.io._basin_specs import (
 )
 from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, validate_case
 from rotorlab.io._errors import CaseError, Issue
+from rotorlab.io._overrides import apply_overrides, parse_key_path, parse_override
 from rotorlab.io._results import load_netcdf, missing_units, save_netcdf
 from rotorlab.io._linear_common import AbstractLinearModelSpec
 from rotorlab.io._fields import Unit, field_unit
@@ -76,6 +77,9 @@ from rotorlab.io._sweep_specs import SweepSpec
 from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
 
 __all__ = [
+    "apply_overrides",
+    "parse_key_path",
+    "parse_override",
     "IMPACT_SWEEP_PARAMETERS",
     "HousingSpec",
     "ImpactRotorSpec",

@@ -30,6 +30,7 @@ from rotorlab.io._errors import (
     format_path,
     format_value,
 )
+from rotorlab.io._overrides import apply_overrides, describe_overrides
 from rotorlab.io._schema import (
     ANALYSIS_SPECS,
     MODEL_SPECS,
@@ -89,7 +90,7 @@ def builtin_cases() -> dict[str, str]:
     return out
 
 
-def load_case(source: str | os.PathLike[str]) -> Case:
+def load_case(source: str | os.PathLike[str], overrides: Mapping[Any, Any] | None = None) -> Case:
     """Load and validate a case file or a built-in case.
 
     Parameters
@@ -97,37 +98,47 @@ def load_case(source: str | os.PathLike[str]) -> Case:
     source : str or os.PathLike
         Path of a TOML case file, or the name of a built-in case (see :func:`builtin_cases`).
         An existing file takes precedence over a built-in case of the same name.
+    overrides : mapping, optional
+        Keys to set before validation (the command line's ``--set``): key path, written as in
+        the error messages (``"model.balls[0].mass"``), to its value as the file would give it
+        (``0.02`` or ``"20 g"``). The case is then validated exactly like the file; see
+        :func:`~rotorlab.io.apply_overrides`.
 
     Returns
     -------
     Case
         With ``source`` set to the resolved path or ``"builtin:<name>"`` and ``text`` to the
-        file's text.
+        file's text (with the overrides, if any, listed in a comment on top).
 
     Raises
     ------
     CaseError
         The file does not exist or cannot be read, is not valid TOML (the message gives line and
-        column), or does not satisfy the schema (the message lists every problem).
+        column), an override's key path does not fit the case, or the case does not satisfy the
+        schema (the message lists every problem).
 
     Examples
     --------
     >>> case = load_case("autobalancer")
     >>> case.source, [a.name for a in case.analyses]
     ('builtin:autobalancer', ['subcritical', 'supercritical', 'basin'])
+    >>> heavier = load_case("autobalancer", overrides={"model.balls[0].mass": "40 g"})
+    >>> [round(b.mass, 3) for b in heavier.model.balls], heavier.overrides
+    ([0.04, 0.04], {'model.balls[0].mass': '40 g'})
     """
     text_source = os.fspath(source)
     path = Path(text_source)
     if path.is_file():
         text = _read(path)
-        return _parse(text, origin=text_source, source=str(path.resolve()), default=path.stem)
+        return _parse(text, origin=text_source, source=str(path.resolve()), default=path.stem,
+                      overrides=overrides)
     if path.exists():
         raise CaseError(f"{text_source}: is not a file (give a .toml case file)")
     builtins = _builtin_files()
     if text_source in builtins:
         text = builtins[text_source].read_text(encoding="utf-8")
         origin = f"builtin:{text_source}"
-        return _parse(text, origin=origin, source=origin, default=text_source)
+        return _parse(text, origin=origin, source=origin, default=text_source, overrides=overrides)
     listing = ", ".join(sorted(builtins)) or "none"
     if path.suffix or os.sep in text_source or "/" in text_source:
         raise CaseError(f"case file not found: {text_source} (built-in cases: {listing})")
@@ -138,7 +149,7 @@ def load_case(source: str | os.PathLike[str]) -> Case:
     )
 
 
-def parse_case(text: str, origin: str = "<string>") -> Case:
+def parse_case(text: str, origin: str = "<string>", overrides: Mapping[Any, Any] | None = None) -> Case:
     """Validate the TOML text of a case.
 
     Parameters
@@ -148,6 +159,8 @@ def parse_case(text: str, origin: str = "<string>") -> Case:
     origin : str, optional
         Where the text came from; used in messages, as ``Case.source`` and for the default case
         name (the file stem, or ``"case"``).
+    overrides : mapping, optional
+        Keys to set before validation, as in :func:`load_case`.
 
     Returns
     -------
@@ -174,10 +187,11 @@ def parse_case(text: str, origin: str = "<string>") -> Case:
     >>> case.name, round(case.model.speed.speed, 4)
     ('case', 125.6637)
     """
-    return _parse(text, origin=origin, source=origin, default=_default_name(origin))
+    return _parse(text, origin=origin, source=origin, default=_default_name(origin), overrides=overrides)
 
 
-def validate_case(data: Mapping[str, Any], origin: str = "<dict>") -> Case:
+def validate_case(data: Mapping[str, Any], origin: str = "<dict>",
+                  overrides: Mapping[Any, Any] | None = None) -> Case:
     """Validate a case given as a mapping (the parsed TOML document).
 
     Parameters
@@ -187,6 +201,8 @@ def validate_case(data: Mapping[str, Any], origin: str = "<dict>") -> Case:
         or strings with units.
     origin : str, optional
         Used in messages and as ``Case.source``.
+    overrides : mapping, optional
+        Keys to set before validation, as in :func:`load_case`.
 
     Returns
     -------
@@ -197,7 +213,8 @@ def validate_case(data: Mapping[str, Any], origin: str = "<dict>") -> Case:
     CaseError
         Every schema violation, one line each.
     """
-    return _validate(data, origin=origin, source=origin, text="", default=_default_name(origin))
+    return _validate(data, origin=origin, source=origin, text="", default=_default_name(origin),
+                     overrides=overrides)
 
 
 def dump_case(case: Case) -> str:
@@ -266,12 +283,12 @@ def _builtin_files() -> dict[str, Any]:
     }
 
 
-def _parse(text: str, origin: str, source: str, default: str) -> Case:
+def _parse(text: str, origin: str, source: str, default: str, overrides: Mapping[Any, Any] | None = None) -> Case:
     try:
         doc = tomllib.loads(text)
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(_toml_message(str(exc), text, origin), origin=origin) from None
-    return _validate(doc, origin=origin, source=source, text=text, default=default)
+    return _validate(doc, origin=origin, source=source, text=text, default=default, overrides=overrides)
 
 
 def _toml_message(message: str, text: str, origin: str) -> str:
@@ -286,10 +303,12 @@ def _toml_message(message: str, text: str, origin: str) -> str:
     return f"{origin}: {message}"
 
 
-def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, default: str) -> Case:
+def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, default: str,
+              overrides: Mapping[Any, Any] | None = None) -> Case:
     if not isinstance(data, Mapping):
         raise CaseError(f"{origin}: a case must be a table of keys, got {format_value(data)}")
-    doc = dict(data)
+    overrides = dict(overrides or {})
+    doc = apply_overrides(data, overrides, origin) if overrides else dict(data)
     doc.setdefault("name", default)
     try:
         case = Case.model_validate(doc, by_alias=True, by_name=False)
@@ -297,10 +316,16 @@ def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, defa
         problems = _problems(exc, doc) + _cross_problems(doc)
         unique = list(dict.fromkeys(problems))
         count = f"{len(unique)} problem" + ("s" if len(unique) != 1 else "")
-        message = f"invalid case {origin} ({count}):\n" + "\n".join(f"  {p}" for p in unique)
+        setting = f" with {'; '.join(describe_overrides(overrides))}" if overrides else ""
+        message = f"invalid case {origin}{setting} ({count}):\n" + "\n".join(f"  {p}" for p in unique)
         raise CaseError(message, unique, origin) from None
     case._source = source
     case._text = text
+    if overrides:
+        case._overrides = overrides
+        if text:
+            lines = "".join(f"#   {line}\n" for line in describe_overrides(overrides))
+            case._text = f"# Keys set on top of the file below (--set KEY=VALUE, or overrides in Python):\n{lines}\n{text}"
     if text and "schema_version" not in doc:
         import warnings
 

@@ -35,6 +35,7 @@ __all__ = [
     "duplicate_name_issues",
     "plain_data",
     "speed_text",
+    "RaceIndices",
 ]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
@@ -282,6 +283,36 @@ class AbstractModelSpec(_Spec):
     def describe(self) -> str:
         """Return a one-line description of the model (shown by ``rotorlab validate``)."""
         return str(getattr(self, "type", type(self).__name__))
+
+    def linear_structure(self) -> AbstractModelSpec | None:
+        """The linear rotor spec the linear analyses (``campbell``, ``modes``, ...) run on, or None.
+
+        A linear rotor model is its own structure; a composed model returns the structure it is
+        built from.
+        """
+        return None
+
+    def race_issues(self, races: tuple[int, ...] | None) -> list[Issue]:
+        """Check an analysis' choice of ball races (``races = [...]``; None: all of them)."""
+        if races is None:
+            return []
+        return [Issue(("races",), f"model '{getattr(self, 'type', '?')}' has no ball races to choose "
+                                  "from: leave races out", list(races))]
+
+    def balls_in(self, races: tuple[int, ...] | None) -> int:
+        """Number of balls of the chosen races (None: all balls)."""
+        return self.n_balls
+
+    def steady_issues(self, analysis: AbstractAnalysisSpec) -> list[Issue]:
+        """Check that a steady-motion analysis (``steady``, ``stability-chart``, ``verify``,
+        ``run-up``) can run on this model; the model types that can override this."""
+        what = f"model '{getattr(self, 'type', '?')}' with {self.n_balls} ball(s)"
+        return [Issue(("type",), "needs a rotor with balls (a jeffcott_balls model with at least one "
+                                 f"ball, or a machine model; this case has a {what})", analysis.type)]
+
+
+#: Type of the ``races`` key of analyses that run on a machine's ball races (indices, >= 0).
+RaceIndices = tuple[integer(ge=0), ...]
 
 
 def speed_text(omega: float | None, p: float | None = None) -> str:

@@ -16,6 +16,7 @@ from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import (
     AbstractAnalysisSpec,
     AbstractModelSpec,
+    RaceIndices,
     _choice,
     _Spec,
     integer,
@@ -302,6 +303,15 @@ class JeffcottBallsSpec(AbstractModelSpec):
         """Return the ``[model.speed]`` profile, or None."""
         return self.speed
 
+    def steady_issues(self, analysis: AbstractAnalysisSpec) -> list[Issue]:
+        """Check a steady-motion analysis: at least one ball, no Coulomb friction if it simulates."""
+        if self.n_balls < 1:
+            return super().steady_issues(analysis)
+        if getattr(analysis, "simulates", False) and any(b.friction > 0 for b in self.balls):
+            return [Issue(("type",), "integrates without Coulomb friction: set the balls' friction to 0",
+                          analysis.type)]
+        return []
+
     def describe(self) -> str:
         """Return ``jeffcott_balls, <n> ball(s), critical speed p = ...`` (``rotorlab validate``)."""
         return f"{self.type}, {self.n_balls} ball(s), critical speed p = {speed_text(self.critical_speed())}"
@@ -349,6 +359,9 @@ class SimulateSpec(AbstractAnalysisSpec):
         Number of points of the saved, uniform time grid, >= 2.
     rtol, atol : float
         Relative (0 < rtol < 1) and absolute (> 0) error tolerances of the integrator.
+    races : tuple of int, optional
+        A machine model: the indices of the ball races that take part (a variant of the
+        machine; ``[]``: no balancer), default all.
     """
 
     exclusive: ClassVar[tuple[tuple[str, str, bool], ...]] = (
@@ -377,6 +390,7 @@ class SimulateSpec(AbstractAnalysisSpec):
     n_save: integer(ge=2) = Field(2000, description="points of the saved time grid")
     rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
     atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
+    races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
     def spin_speed(self, model: AbstractModelSpec) -> float | None:
         """Return the constant spin speed of this analysis (rad/s), or None to follow a profile.
@@ -397,14 +411,16 @@ class SimulateSpec(AbstractAnalysisSpec):
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return ``<n> start configuration(s), <t> s at <speed>`` (``rotorlab validate``)."""
-        return (f"{len(self.ball_angle_sets(model.n_balls))} start configuration(s), {self.duration(model):.6g} s "
+        return (f"{len(self.ball_angle_sets(model.balls_in(self.races)))} start configuration(s), "
+                f"{self.duration(model):.6g} s "
                 f"at {speed_text(self.spin_speed(model), model.critical_speed())}")  # fmt: skip
 
     def summary(self, model: AbstractModelSpec) -> dict[str, Any]:
         """Return ``speed`` (rad/s or None), ``speed_rpm``, ``configurations`` and ``t_end`` (s)."""
         omega = self.spin_speed(model)
         return {"speed": omega, "speed_rpm": None if omega is None else omega * 30.0 / math.pi,
-                "configurations": len(self.ball_angle_sets(model.n_balls)), "t_end": self.duration(model)}  # fmt: skip
+                "configurations": len(self.ball_angle_sets(model.balls_in(self.races))),
+                "t_end": self.duration(model)}  # fmt: skip
 
     def ball_angle_sets(self, n_balls: int) -> tuple[tuple[float, ...], ...]:
         """Return the initial ball configurations, shape (n_configurations, n_balls), in rad.
@@ -423,8 +439,10 @@ class SimulateSpec(AbstractAnalysisSpec):
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """Check ball-angle rows against the number of balls and that a spin speed exists."""
-        issues = []
-        n = model.n_balls
+        issues = model.race_issues(self.races)
+        if issues:
+            return issues
+        n = model.balls_in(self.races)
         if self.initial_ball_angles is not None and len(self.initial_ball_angles) == 0:
             issues.append(Issue(("initial_ball_angles",), "is empty: give at least one configuration (one angle "
                                 "per ball), or leave it out and give ball_angle_grid", []))  # fmt: skip

@@ -9,7 +9,7 @@ They run on a linear rotor model (``multibody`` or ``fe_rotor``; see
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
@@ -54,6 +54,18 @@ def linear_model_issues(model: AbstractModelSpec) -> list[Issue]:
     allowed = " or ".join(f'"{t}"' for t in LINEAR_MODELS)
     return [Issue((), f"needs a linear rotor model ([model] type {allowed}), but the case's "
                       f'model is "{model.type}"', show_value=False)]
+
+
+def structure_issues(model: AbstractModelSpec) -> tuple[Any, list[Issue]]:
+    """The linear structure of ``model`` (:meth:`~AbstractModelSpec.linear_structure`: itself for a
+    linear rotor, the structure of a machine) and, if it has none, the issue saying so."""
+    structure = model.linear_structure()
+    if structure is None:
+        allowed = " or ".join(f'"{t}"' for t in LINEAR_MODELS)
+        return None, [Issue((), f"needs a linear rotor model ([model] type {allowed}) or a model built "
+                                f'on one (machine), but the case\'s model is "{model.type}"',
+                            show_value=False)]
+    return structure, []
 
 
 def _harmonics_issues(harmonics: tuple[int, ...]) -> list[Issue]:
@@ -117,9 +129,9 @@ class CampbellSpec(_SpeedRange):
         (1,), min_length=1, description="excitation orders n of the n x lines")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check that the model is linear and has ``n_modes`` modes."""
-        return (linear_model_issues(model) + _n_modes_issues(self.n_modes, model)
-                + _harmonics_issues(self.harmonics))
+        """Check that the model has a linear structure with ``n_modes`` modes."""
+        structure, issues = structure_issues(model)
+        return issues + _n_modes_issues(self.n_modes, structure) + _harmonics_issues(self.harmonics)
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""
@@ -144,8 +156,9 @@ class ModesSpec(AbstractAnalysisSpec):
     n_modes: integer(ge=1) | None = Field(None, description="number of modes, default all")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check that the model is linear and has ``n_modes`` modes."""
-        return linear_model_issues(model) + _n_modes_issues(self.n_modes, model)
+        """Check that the model has a linear structure with ``n_modes`` modes."""
+        structure, issues = structure_issues(model)
+        return issues + _n_modes_issues(self.n_modes, structure)
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""
@@ -172,8 +185,8 @@ class CriticalSpeedsSpec(AbstractAnalysisSpec):
         None, description="highest critical speed reported (rad/s)")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check that the model is linear."""
-        return linear_model_issues(model) + _harmonics_issues(self.harmonics)
+        """Check that the model has a linear structure."""
+        return structure_issues(model)[1] + _harmonics_issues(self.harmonics)
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""
@@ -237,8 +250,9 @@ class UnbalanceResponseSpec(_SpeedRange):
     outputs: tuple[label(), ...] = Field((), description="nodes to show, by name")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check that the model is linear and every unbalance and output is at one of its nodes."""
-        issues = linear_model_issues(model)
+        """Check that the model has a linear structure and every unbalance and output is at one
+        of its nodes."""
+        model, issues = structure_issues(model)
         if issues:
             return issues
         for i, u in enumerate(self.unbalances):

@@ -226,6 +226,10 @@ class AbstractLinearModelSpec(AbstractModelSpec):
        :class:`rotorlab.linear.LinearSystem`, with nodes in the same order.
     """
 
+    def linear_structure(self) -> AbstractLinearModelSpec:
+        """The model itself (the linear analyses run on it)."""
+        return self
+
     def node_labels(self) -> tuple[str, ...]:
         """Return the name of every node, in node order."""
         raise NotImplementedError

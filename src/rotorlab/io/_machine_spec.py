@@ -42,8 +42,14 @@ from rotorlab.io._linear_common import label
 from rotorlab.io._multibody_spec import MultibodySpec
 
 __all__ = ["MachineBallSpec", "RaceSpec", "MachineUnbalanceSpec", "GravitySpec", "MotorSpec",
-           "MachineSpec", "build_machine", "MachineSteadySpec", "MachineSimulateSpec",
-           "MachineRunUpSpec"]
+           "MachineSpec", "build_machine", "MACHINE_STEADY_PARAMETERS"]
+
+#: Second parameters of a machine's stability chart (every ball of the chosen races takes the
+#: value); the other parameters of :data:`rotorlab.io._steady_specs.STEADY_PARAMETERS` belong to
+#: the single-mass rotor.
+MACHINE_STEADY_PARAMETERS = ("ball_mass", "ball_damping")
+#: Steady-motion analysis types that run on a machine.
+_STEADY_TYPES = ("steady", "stability-chart", "run-up")
 
 
 class _Station(_Spec):
@@ -265,6 +271,53 @@ class MachineSpec(AbstractModelSpec):
     def speed_profile(self) -> AbstractSpeedProfile | None:
         return self.drive
 
+    def critical_speed(self) -> float | None:
+        """The lowest forward 1x critical speed of the structure with the balls locked (rad/s)."""
+        from rotorlab.analyses._machine import structure_critical_speeds
+
+        crit = structure_critical_speeds(build_machine(self))
+        return float(crit[0]) if crit.size else None
+
+    def linear_structure(self) -> MultibodySpec | FeRotorSpec:
+        """The structure (campbell, modes and the other linear analyses run on it)."""
+        return self.structure
+
+    def race_issues(self, races: tuple[int, ...] | None) -> list[Issue]:
+        """Each chosen race index must name one of the races."""
+        n = len(self.races)
+        return [Issue(("races", i), f"must be < {n} (the model has {n} race(s))", r)
+                for i, r in enumerate(races or ()) if r >= n]
+
+    def balls_in(self, races: tuple[int, ...] | None) -> int:
+        chosen = self.races if races is None else [self.races[i] for i in races if i < len(self.races)]
+        return sum(len(r.balls) for r in chosen)
+
+    def steady_issues(self, analysis) -> list[Issue]:
+        """``steady``, ``stability-chart`` (over speed and ``ball_mass`` or ``ball_damping``) and
+        ``run-up`` run on a machine; the single-mass regime overrides do not apply."""
+        if analysis.type not in _STEADY_TYPES:
+            return [Issue(("type",), "does not run on a machine model (it runs "
+                                     f"{', '.join(_STEADY_TYPES)}, simulate, basin and sweep)", analysis.type)]
+        if analysis.type != "run-up":
+            from rotorlab.models import ConstantSpeed
+
+            why = build_machine(self).with_drive(ConstantSpeed(1.0)).why_no_rotating_frame()
+            if why is not None:
+                return [Issue(("type",), f"this machine has no steady motions: {why} (analysis type "
+                                         "simulate or run-up)", analysis.type)]
+        issues = [Issue((key,), "belongs to the single-mass jeffcott_balls model: a machine's "
+                                "unbalances and damping are set in [model]", getattr(analysis, key))
+                  for key in ("eccentricity", "support_damping") if getattr(analysis, key, None) is not None]
+        param = getattr(analysis, "param", None)
+        if param is not None and param not in MACHINE_STEADY_PARAMETERS:
+            issues.append(Issue(("param",), "a machine's stability chart varies "
+                                            f"{' or '.join(MACHINE_STEADY_PARAMETERS)}", param))
+        if analysis.type != "run-up" and self.balls_in(getattr(analysis, "races", None)) == 0:
+            issues.append(Issue(("races",) if getattr(analysis, "races", None) is not None else ("type",),
+                                "steady motions of a balancer need at least one ball",
+                                getattr(analysis, "races", None) or analysis.type))
+        return issues
+
     def describe(self) -> str:
         drive = self.drive.profile
         return (f"machine: {self.structure.describe()}; {len(self.races)} race(s) with "
@@ -297,84 +350,3 @@ def build_machine(spec: MachineSpec):
     gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)
     return Machine(structure, races=races, unbalances=unb, gravity=gravity, drive=drive,
                    n_modes=spec.n_modes)
-
-
-# --------------------------------------------------------------------------- analyses
-
-
-def _machine_issues(model: AbstractModelSpec) -> list[Issue]:
-    if isinstance(model, MachineSpec):
-        return []
-    return [Issue((), f'needs a machine model ([model] type "machine"), but the case\'s model is '
-                      f'"{model.type}"', show_value=False)]
-
-
-class _MachineAnalysis(AbstractAnalysisSpec):
-    """Options shared by the machine analyses: which races take part (variants)."""
-
-    races: tuple[integer(ge=0), ...] | None = Field(
-        None, description="indices of the races that take part (default: all)")
-
-    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        issues = _machine_issues(model)
-        if not issues and self.races is not None:
-            n = len(model.races)
-            issues += [Issue(("races", i), f"must be < {n} (the model has {n} race(s))", r)
-                       for i, r in enumerate(self.races) if r >= n]
-        return issues
-
-
-class MachineSteadySpec(_MachineAnalysis):
-    """Balanced states of a machine over ``n_speeds`` speeds and their exact stability."""
-
-    type: Literal["machine-steady"] = "machine-steady"
-    start: quantity("angular_speed", gt=0) = Field(description="lowest spin speed (rad/s)")
-    stop: quantity("angular_speed", gt=0) = Field(description="highest spin speed (rad/s)")
-    n_speeds: integer(ge=1) = Field(41, description="number of equally spaced speeds")
-
-    @model_validator(mode="after")
-    def _order(self):
-        if self.stop < self.start:
-            raise IssueGroup([Issue(("stop",), f"must be >= start = {self.start:.6g} rad/s", self.stop)])
-        return self
-
-
-class MachineSimulateSpec(_MachineAnalysis):
-    """Simulations of a machine from several ball starts: final ball angles, vibration."""
-
-    type: Literal["machine-simulate"] = "machine-simulate"
-    speed: quantity("angular_speed", gt=0) | None = Field(
-        None, description="constant spin speed instead of the model's drive (rad/s)")
-    initial_ball_angles: tuple[tuple[quantity("angle"), ...], ...] | None = Field(
-        None, description="ball angles of each start (rad), races in order")
-    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
-    rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
-    atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
-
-    @model_validator(mode="after")
-    def _some_starts(self):
-        return _not_empty(self)
-
-
-def _not_empty(spec):
-    """Refuse ``initial_ball_angles = []`` (nothing to start from; leave the key out instead)."""
-    if spec.initial_ball_angles is not None and len(spec.initial_ball_angles) == 0:
-        raise IssueGroup([Issue(("initial_ball_angles",), "is empty: give the ball angles (one per ball, races in "
-                                "order), or leave the key out", [])])  # fmt: skip
-    return spec
-
-
-class MachineRunUpSpec(_MachineAnalysis):
-    """A run-up with the model's drive (motor or profile): criticals passed, residual vibration."""
-
-    type: Literal["machine-run-up"] = "machine-run-up"
-    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
-    n_save: integer(ge=10) = Field(1000, description="points of the saved time grid")
-    initial_ball_angles: tuple[quantity("angle"), ...] | None = Field(
-        None, description="initial ball angles (rad), races in order")
-    rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance")
-    atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
-
-    @model_validator(mode="after")
-    def _some_starts(self):
-        return _not_empty(self)

@@ -90,7 +90,7 @@ from rotorlab.io._linear_analyses import (
     ModesSpec,
     UnbalanceResponseSpec,
 )
-from rotorlab.io._machine_spec import MachineRunUpSpec, MachineSimulateSpec, MachineSpec, MachineSteadySpec
+from rotorlab.io._machine_spec import MachineSpec
 from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._rub_specs import JeffcottRubSpec, RubSpec
 from rotorlab.io._steady_specs import RunUpSpec, StabilityChartSpec, SteadySpec, VerifySpec
@@ -150,8 +150,7 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
                    JeffcottRubSpec)
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
-                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, MachineSteadySpec,
-                     MachineSimulateSpec, MachineRunUpSpec, RubSpec)  # fmt: skip
+                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:
@@ -247,6 +246,7 @@ class Case(BaseModel):
 
     _source: str = PrivateAttr("<python>")
     _text: str = PrivateAttr("")
+    _overrides: dict[Any, Any] = PrivateAttr(default_factory=dict)
 
     @field_validator("analyses", mode="after")
     @classmethod
@@ -280,6 +280,11 @@ class Case(BaseModel):
     def text(self) -> str:
         """The TOML text the case was read from."""
         return self._text
+
+    @property
+    def overrides(self) -> dict[Any, Any]:
+        """The keys set on top of the file (``load_case(..., overrides=...)``, ``--set``); {} if none."""
+        return dict(self._overrides)
 
     def analysis(self, name: str) -> Any:
         """Return the analysis called ``name``.

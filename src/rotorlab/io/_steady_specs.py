@@ -30,6 +30,7 @@ from rotorlab.io._fields import (
     Unit,
     AbstractAnalysisSpec,
     AbstractModelSpec,
+    RaceIndices,
     _choice,
     _error,
     _Name,
@@ -141,6 +142,8 @@ class SteadyAnalysisSpec(AbstractAnalysisSpec):
     support_damping : float, optional
         External damping d of the disc centre of this analysis (N*s/m), >= 0, instead of the
         model's ``damping``.
+    races : tuple of int, optional
+        A machine model: the indices of the ball races that take part (default all).
     """
 
     regime: _Name | None = Field(None, description="regime label")
@@ -148,6 +151,7 @@ class SteadyAnalysisSpec(AbstractAnalysisSpec):
     support_damping: quantity("damping", ge=0) | None = Field(
         None, description="support damping d of this regime (N*s/m)"
     )
+    races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
     #: Whether the analysis integrates in time (then Coulomb friction of the balls is not allowed).
     simulates: ClassVar[bool] = False
@@ -170,14 +174,9 @@ class SteadyAnalysisSpec(AbstractAnalysisSpec):
         return label
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check that the model is a rotor with balls (without friction when it simulates)."""
-        if getattr(model, "type", None) != "jeffcott_balls" or model.n_balls < 1:
-            what = f"model '{getattr(model, 'type', '?')}' with {model.n_balls} ball(s)"
-            return [Issue(("type",), f"needs a jeffcott_balls model with at least one ball (this case has a {what})",
-                          self.type)]  # fmt: skip
-        if self.simulates and any(b.friction > 0 for b in model.balls):
-            return [Issue(("type",), "integrates without Coulomb friction: set the balls' friction to 0", self.type)]
-        return []
+        """Check that the model runs steady-motion analyses (its ``steady_issues``: a rotor with
+        balls, without friction when it simulates) and the choice of races."""
+        return model.race_issues(self.races) or model.steady_issues(self)
 
 
 def _speed_issue(spec: Any, key: str, model: AbstractModelSpec) -> list[Issue]:
@@ -372,7 +371,7 @@ class VerifySpec(SteadyAnalysisSpec):
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """Check the model, angle rows against the balls and per-speed times against the speeds."""
         issues = super().case_issues(model) + _speed_issue(self, "speed_ratios", model)
-        issues += _angle_issues(self.initial_ball_angles, "initial_ball_angles", model.n_balls)
+        issues += _angle_issues(self.initial_ball_angles, "initial_ball_angles", model.balls_in(self.races))
         given = self.speeds if self.speeds is not None else self.speed_ratios
         if isinstance(self.t_end, tuple) and given is not None and len(self.t_end) != len(given):
             issues.append(Issue(("t_end",), f"has {len(self.t_end)} time(s) for {len(given)} speed(s): give one time "
@@ -446,7 +445,10 @@ class RunUpSpec(SteadyAnalysisSpec):
                                 "acceleration is unbounded at t = 0)", self.t_start))  # fmt: skip
         if not self.t_end > self.t_start:
             issues.append(Issue(("t_end",), f"must be > t_start = {self.t_start:g} (s)", self.t_end))
-        issues += _angle_issues(self.initial_ball_angles, "initial_ball_angles", model.n_balls)
+        if self.initial_ball_angles is not None and len(self.initial_ball_angles) == 0:
+            issues.append(Issue(("initial_ball_angles",), "is empty: give at least one configuration (one angle "
+                                "per ball), or leave it out", []))
+        issues += _angle_issues(self.initial_ball_angles, "initial_ball_angles", model.balls_in(self.races))
         return issues
 
     def describe(self, model: AbstractModelSpec) -> str:

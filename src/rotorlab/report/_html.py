@@ -141,7 +141,7 @@ def _quantity_rows(results: Mapping[str, Any]) -> list[tuple[str, str, str, str]
 
 
 def _findings_box(analysis: Any, ds: Any, rows: Sequence[Mapping[str, Any]]) -> str:
-    found = presentation_of(analysis.type).findings(ds, rows)
+    found = presentation_of(analysis.type, ds.attrs.get("model_type")).findings(ds, rows)
     shown = found.numbers[:_MAX_NUMBERS]
     more = len(found.numbers) - len(shown)
     numbers = "".join(f"<li>{_e(n)}</li>" for n in shown) + (
@@ -202,6 +202,11 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapp
         f"<p>{_e(case.description)}</p>" if case.description else "",
         f'<p class="muted">Case source: {_e(case.source)} · generated {now}</p>',
     ]
+    if case.overrides:
+        from rotorlab.io._overrides import describe_overrides
+
+        parts.append(f'<p class="muted">Keys set on top of the case file (--set): '
+                     f"{_e('; '.join(describe_overrides(case.overrides)))}</p>")
     if ran:
         parts.append("<h2>Findings</h2>")
         parts += [_findings_box(a, results[a.name], summary_tables.get(a.name, [])) for a in ran]
@@ -211,11 +216,11 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapp
         parts.append(f'<h2 id="{_e(_anchor(name))}">Analysis: {_e(name)} ({_e(analysis.type)})</h2>')
         parts += [_figure(key, png) for key, png in pngs.get(name, {}).items()]
         if ds is not None:
-            parts.append(presentation_of(analysis.type).section(ds, summary_tables.get(name, [])))
+            parts.append(presentation_of(analysis.type, case.model.type).section(ds, summary_tables.get(name, [])))
         parts += ["<h3>Parameters</h3>", _table(("key", "value", "unit", "also"),
                                                 parameter_rows(analysis, f"analysis.{name}"), numeric={1})]  # fmt: skip
     for family, presentation in PRESENTATIONS.items():
-        chosen = {a.name: results[a.name] for a in ran if presentation_of(a.type).family == family}
+        chosen = {a.name: results[a.name] for a in ran if presentation_of(a.type, case.model.type).family == family}
         if chosen and presentation.notes is not None:
             parts.append(presentation.notes(chosen))
     known = {a.name for a in case.analyses}

@@ -9,6 +9,8 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+import numpy as np
+
 from rotorlab.report._findings import Findings
 
 __all__ = ["machine_section", "machine_findings", "machine_figures", "machine_rows_table"]
@@ -25,42 +27,65 @@ def _mm(v) -> str:
     return "-" if v is None else f"{v * 1e3:.4g}"
 
 
+def _races(angles) -> str:
+    if not angles:
+        return "-"
+    return "; ".join(f"{k}: {', '.join(_g(a, 5) for a in v)}" for k, v in angles.items())
+
+
+def _stations(rows: Rows, key: str) -> list[str]:
+    for r in rows:
+        if r.get(key):
+            return list(r[key])
+    return []
+
+
 def _steady(rows: Rows):
-    stations = list(rows[0]["amplitude"]) if rows else []
-    header = ("speed (rpm)", "steady motion", "stable", "max Re(lambda) (1/s)", "ball angles (deg)",
+    stations = _stations(rows, "amplitude")
+    header = ("motion", "kind", "ball angles (deg)", "exact", "seed 003 (Hamilton)", "seed 002 (averaged)",
+              "max Re(lambda) (1/s)", *(f"whirl at {s} (mm)" for s in stations))
+    body = [(str(r["motion"]), r["kind"] if r["exists"] else "none", _races(r["ball_angles_deg"]),
+             r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"], _g(r["max_real_eigenvalue"]),
+             *(_mm((r["amplitude"] or {}).get(s)) for s in stations)) for r in rows]
+    return header, body
+
+
+def _chart(rows: Rows):
+    stations = _stations(rows, "amplitude")
+    param = [k for k in (rows[0] if rows else {}) if k in ("ball_mass", "ball_damping")]
+    header = (*param, "speed (rpm)", "steady motion", "stable", "max Re(lambda) (1/s)", "ball angles (deg)",
               *(f"whirl at {s} (mm)" for s in stations))
-    body = [(_g(r["speed_rpm"], 6),
+    body = [(*(_g(r[k]) for k in param), _g(r["speed_rpm"], 6),
              ("balanced" if r["balanced"] else "partly balanced") if r["exists"] else "none",
-             "yes" if r["stable"] else "no", _g(r["max_real_eigenvalue"]),
-             ", ".join(_g(a, 5) for a in r["ball_angles_deg"]),
+             "yes" if r["stable"] else "no", _g(r["max_real_eigenvalue"]), _races(r["ball_angles_deg"]),
              *(_mm(r["amplitude"][s]) for s in stations)) for r in rows]
     return header, body
 
 
 def _simulate(rows: Rows):
-    stations = list(rows[0]["amplitude"]) if rows else []
-    header = ("start", "final speed (rpm)", "final ball angles (deg)",
-              *(f"vibration at {s} (mm)" for s in stations), "status")
-    body = [(str(r["ic"]), _g(None if r["final_speed"] is None else r["final_speed"] * _RPM, 6),
-             "; ".join(f"{k}: {', '.join(_g(a, 5) for a in v)}" for k, v in r["final_ball_angles_deg"].items()),
-             *(_mm(r["amplitude"][s]) for s in stations), str(r["status"])) for r in rows]
+    stations = _stations(rows, "amplitude")
+    header = ("start", "initial ball angles (deg)", "final speed (rpm)", "final ball angles (deg)",
+              *(f"vibration at {s} (mm)" for s in stations), "outcome", "status")
+    body = [(str(r["ic"]), _races(r["initial_ball_angles_deg"]), _g(r["final_speed_rpm"], 6),
+             _races(r["final_ball_angles_deg"]), *(_mm(r["amplitude"][s]) for s in stations), r["outcome"],
+             str(r["status"])) for r in rows]
     if rows:
-        body.append(("without balancing", "", "", *(_mm(rows[0]["reference_amplitude"][s]) for s in stations), ""))
+        body.append(("without balancing", "", "", "", *(_mm(rows[0]["reference_amplitude"][s]) for s in stations),
+                     "", ""))
     return header, body
 
 
 def _run_up(rows: Rows):
-    r = rows[0]
-    stations = list(r["residual_amplitude"])
-    header = ("final speed (rpm)", "critical speeds (rpm)", "passed", "captured at (rpm)",
+    stations = _stations(rows, "residual_amplitude")
+    header = ("start", "final speed (rpm)", "critical speeds (rpm)", "passed", "captured at (rpm)",
               *(f"residual vibration at {s} (mm)" for s in stations))
-    body = [(_g(r["final_speed_rpm"], 6), ", ".join(_g(w * _RPM, 5) for w in r["critical_speeds"]),
+    body = [(str(r["ic"]), _g(r["final_speed_rpm"], 6), ", ".join(_g(w * _RPM, 5) for w in r["critical_speeds"]),
              str(r["passed"]), _g(None if r["captured_at"] is None else r["captured_at"] * _RPM, 5),
-             *(_mm(r["residual_amplitude"][s]) for s in stations))]
+             *(_mm(r["residual_amplitude"][s]) for s in stations)) for r in rows]
     return header, body
 
 
-_TABLES = {"machine-steady": _steady, "machine-simulate": _simulate, "machine-run-up": _run_up}
+_TABLES = {"steady": _steady, "stability-chart": _chart, "simulate": _simulate, "run-up": _run_up}
 
 
 def machine_rows_table(ds: Any, rows: Rows):
@@ -86,14 +111,52 @@ def machine_section(ds: Any, rows: Rows) -> str:
 def _steady_findings(ds, rows):
     msg = ds.attrs.get("message")
     if msg and not any(r["exists"] for r in rows):
-        return Findings(f"No balanced steady state: {msg}.")
-    stable = [r["speed_rpm"] for r in rows if r["stable"]]
-    kind = "balanced" if all(r["balanced"] for r in rows if r["exists"]) else "steady (partly balanced)"
+        return Findings(f"No steady motion: {msg}.")
+    stable = [r for r in rows if r["exists"] and r["stable"]]
+    kinds = sorted({r["kind"] for r in rows if r["exists"]})
+    speed = rows[0]["speed"] if rows else None
+    at = f" at {speed * _RPM:.5g} rpm" if speed else ""
     if not stable:
+        return Findings(f"None of the {len(rows)} {'/'.join(kinds)} steady motion(s){at} is stable (exact "
+                        "eigenvalues): the balancer does not settle there.")
+    return Findings(f"{len(stable)} of {len(rows)} {'/'.join(kinds)} steady motion(s){at} are stable (exact "
+                    "eigenvalues): the balancer " + ("balances there." if "balanced" in kinds else
+                                                     "settles but cannot cancel the unbalance."),
+                    tuple(f"motion {r['motion']}: balls at {_races(r['ball_angles_deg'])} deg, "
+                          f"max Re(lambda) = {_g(r['max_real_eigenvalue'])} 1/s" for r in stable))
+
+
+def _intervals(speeds, flags) -> list[tuple[float, float]]:
+    out: list[list[float]] = []
+    prev = False
+    for w, f in zip(speeds, flags):
+        if f and prev:
+            out[-1][1] = w
+        elif f:
+            out.append([w, w])
+        prev = f
+    return [(a, b) for a, b in out]
+
+
+def _chart_findings(ds, rows):
+    msg = ds.attrs.get("message")
+    if msg and not any(r["exists"] for r in rows):
+        return Findings(f"No steady motion: {msg}.")
+    param = [k for k in (rows[0] if rows else {}) if k in ("ball_mass", "ball_damping")]
+    if param:
+        stable = sum(r["stable"] for r in rows)
+        return Findings(f"The balanced state is stable at {stable} of {len(rows)} points of the chart over speed "
+                        f"and {param[0]} (exact eigenvalues).", (f"{stable} of {len(rows)} points stable",))
+    balanced = all(r["balanced"] for r in rows if r["exists"])
+    kind = "balanced" if balanced else "steady (partly balanced)"
+    spans = _intervals([r["speed_rpm"] for r in rows], [r["stable"] for r in rows])
+    if not spans:
         return Findings(f"The {kind} state is unstable at every speed checked: the balancer does not settle there.")
-    return Findings(f"The {kind} state is stable at {len(stable)} of {len(rows)} speeds "
-                    f"({min(stable):.4g} to {max(stable):.4g} rpm, exact eigenvalues).",
-                    (f"{len(stable)} of {len(rows)} speeds stable",))
+    text = ", ".join(f"{a:.4g}-{b:.4g}" if a != b else f"{a:.4g}" for a, b in spans)
+    return Findings(f"The {kind} state is stable from {text} rpm (exact eigenvalues; {sum(r['stable'] for r in rows)} "
+                    f"of {len(rows)} speeds): " + ("the balancer balances there." if balanced else
+                                                   "the balancer cannot cancel the unbalance."),
+                    (f"stable at {text} rpm",))
 
 
 def _simulate_findings(ds, rows):
@@ -104,26 +167,48 @@ def _simulate_findings(ds, rows):
             if a is not None and ref:
                 ratios.append(a / ref)
     worst = max(ratios) if ratios else float("nan")
-    ok = sum(r["status"] == 0 for r in rows)
-    return Findings(f"{ok} of {len(rows)} start(s) finished; the largest vibration is "
-                    f"{100 * worst:.3g} % of the unbalance response without balancing.",
-                    (f"worst vibration ratio {worst:.3g}",))
+    by: dict[str, list[int]] = {}
+    for r in rows:
+        by.setdefault(r["outcome"], []).append(r["ic"])
+    good = by.get("balanced", [])
+    if not rows:
+        return Findings("No starts.")
+    if "no balancer" in by:
+        verdict = (f"Without a balancer the vibration is {100 * worst:.3g} % of the locked unbalance response "
+                   "(the reference for the variants with balls).")
+    elif len(good) == len(rows):
+        verdict = f"The balancer balances from every start ({len(rows)}): vibration at most {100 * worst:.3g} % of "                   "the unbalance response."
+    elif good:
+        verdict = (f"The balancer balances from {len(good)} of {len(rows)} starts (start(s) "
+                   f"{', '.join(map(str, good))}); " + "; ".join(f"{k} from start(s) {', '.join(map(str, v))}"
+                                                                  for k, v in by.items() if k != "balanced") + ".")
+    else:
+        verdict = ("The balancer does not balance from any start: " + "; ".join(
+            f"{k} from start(s) {', '.join(map(str, v))}" for k, v in by.items()) +
+            f" (vibration up to {100 * worst:.3g} % of the unbalance response).")
+    return Findings(verdict, (f"largest vibration / unbalance response {worst:.3g}",
+                              *(f"start {r['ic']}: {r['outcome']}, final ball angles "
+                                f"{_races(r['final_ball_angles_deg'])} deg" for r in rows)))
 
 
 def _run_up_findings(ds, rows):
-    r = rows[0]
-    if r["captured_at"] is not None:
-        verdict = (f"The motor is captured below the critical speed {r['captured_at'] * _RPM:.4g} rpm "
-                   f"(Sommerfeld effect): final speed {r['final_speed_rpm']:.4g} rpm.")
-    else:
-        verdict = (f"The run-up passes {r['passed']} critical speed(s) and reaches "
-                   f"{r['final_speed_rpm']:.4g} rpm.")
-    res = ", ".join(f"{s}: {_mm(v)} mm" for s, v in r["residual_amplitude"].items())
-    return Findings(verdict, (f"residual vibration {res}",))
+    parts, numbers = [], []
+    for r in rows:
+        if r["captured_at"] is not None:
+            parts.append(f"start {r['ic']}: captured below the critical speed {r['captured_at'] * _RPM:.4g} rpm "
+                         f"(Sommerfeld effect), final speed {r['final_speed_rpm']:.4g} rpm")
+        else:
+            parts.append(f"start {r['ic']}: passes {r['passed']} critical speed(s) and reaches "
+                         f"{r['final_speed_rpm']:.4g} rpm")
+        res = ", ".join(f"{s}: {_mm(v)} mm" for s, v in r["residual_amplitude"].items())
+        numbers.append(f"start {r['ic']}: residual vibration {res}")
+    n = int(ds.attrs.get("n_races", 1))
+    head = "Without a balancer: " if n == 0 else ""
+    return Findings(head + "; ".join(parts) + ".", tuple(numbers))
 
 
-_FINDINGS = {"machine-steady": _steady_findings, "machine-simulate": _simulate_findings,
-             "machine-run-up": _run_up_findings}
+_FINDINGS = {"steady": _steady_findings, "stability-chart": _chart_findings, "simulate": _simulate_findings,
+             "run-up": _run_up_findings}
 
 
 def machine_findings(ds: Any, rows: Rows) -> Findings:
@@ -139,7 +224,17 @@ def machine_figures(ds: Any, name: str) -> dict[str, Any]:
     import matplotlib.pyplot as plt
 
     kind = ds.attrs["analysis"]
-    if kind == "machine-steady" and ds.sizes["speed"] > 1 and bool(ds.exists.any()):
+    if kind == "stability-chart" and "parameter" in ds.dims and bool(ds.exists.any()):
+        fig, ax = plt.subplots(figsize=(6, 3.5))
+        st = np.where(ds.exists.values, ds.stable.values.astype(float), np.nan)
+        ax.pcolormesh(ds.speed.values * _RPM, ds.parameter.values, st, shading="nearest", cmap="RdYlGn",
+                      vmin=0, vmax=1)
+        ax.set_xlabel("spin speed (rpm)")
+        ax.set_ylabel(f"{ds.attrs['parameter']} ({ds.parameter.attrs.get('units', '')})")
+        ax.set_title(f"{name}: balanced state stable (green)")
+        fig.tight_layout()
+        return {f"{name}-stability": fig}
+    if kind == "stability-chart" and ds.sizes["speed"] > 1 and bool(ds.exists.any()):
         fig, ax = plt.subplots(figsize=(6, 3.5))
         ax.plot(ds.speed.values * _RPM, ds.max_real_eigenvalue.values, ".-")
         ax.axhline(0.0, color="k", lw=0.8)
@@ -148,14 +243,15 @@ def machine_figures(ds: Any, name: str) -> dict[str, Any]:
         ax.set_title(f"{name}: balanced state stable below the line")
         fig.tight_layout()
         return {f"{name}-stability": fig}
-    if kind == "machine-run-up":
+    if kind == "run-up":
         fig, (a1, a2) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
-        a1.plot(ds.time.values, ds.speed.values * _RPM)
+        for i in range(ds.sizes["ic"]):
+            a1.plot(ds.time.values, ds.speed.values[i] * _RPM, label=f"start {i}")
+            for s in ds.station.values:
+                a2.plot(ds.time.values, ds.amplitude.sel(station=s).values[i] * 1e3, label=f"{s}, start {i}")
         for w in ds.attrs["critical_speeds"]:
             a1.axhline(w * _RPM, color="r", lw=0.6, ls="--")
         a1.set_ylabel("speed (rpm)")
-        for s in ds.station.values:
-            a2.plot(ds.time.values, ds.amplitude.sel(station=s).values * 1e3, label=str(s))
         a2.set_ylabel("radial displacement (mm)")
         a2.set_xlabel("time (s)")
         a2.legend(fontsize="small")

@@ -93,11 +93,12 @@ def register_presentation(entry: Presentation, *, replace: bool = False) -> None
     PRESENTATIONS.register(entry.family, entry, replace=replace)
 
 
-def presentation_of(kind: str) -> Presentation:
-    """The presentation of analysis type ``kind`` (KeyError naming what is registered)."""
-    from rotorlab.analyses import ANALYSIS_TYPES
+def presentation_of(kind: str, model_type: str | None = None) -> Presentation:
+    """The presentation of analysis type ``kind`` on a ``model_type`` model (KeyError naming what
+    is registered); see :func:`rotorlab.analyses.analysis_entry`."""
+    from rotorlab.analyses import analysis_entry
 
-    return PRESENTATIONS[ANALYSIS_TYPES[kind].family]
+    return PRESENTATIONS[analysis_entry(model_type, kind).family]
 
 
 # --------------------------------------------------------------------------- the built-in families

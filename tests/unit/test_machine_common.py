@@ -1,0 +1,182 @@
+"""The common analysis types on the composed machine: campbell/modes of its structure, steady,
+stability-chart, simulate and run-up through the registries and the command line.
+
+The planar machine here is the Jeffcott rotor with two balls (disc M1 = 1 kg on c = 1 N/m, d =
+0.1 N s/m, unbalance M1 e = 0.01 kg m, two 0.02 kg balls on a 1 m race): its balanced state has the
+balls at psi = +-arccos(-M1 e / (2 m l)) from the unbalance (Zhakash et al. 2024, eq. (22) as
+corrected in rotorlab.models._jeffcott_balls) and is unstable below p = sqrt(c / (M1 + 2 m)).
+"""
+
+import json
+import math
+
+import numpy as np
+import pytest
+from typer.testing import CliRunner
+
+from rotorlab.analyses import run_analysis, summarize
+from rotorlab.cli import app
+from rotorlab.io import CampbellSpec, load_case, parse_case
+
+PLANAR = """
+schema_version = 1
+name = "planar-machine"
+
+[model]
+type = "machine"
+
+[model.structure]
+type = "multibody"
+
+[[model.structure.bodies]]
+name = "disc"
+position = "0 m"
+mass = "1 kg"
+diametral_inertia = "0.3 kg*m^2"
+polar_inertia = "0 kg*m^2"
+spinning = false
+
+[[model.structure.bearings]]
+body = "disc"
+kxx = "1 N/m"
+cxx = "0.1 N*s/m"
+k_tilt_x = "5 N*m/rad"
+
+[[model.races]]
+at = "disc"
+radius = "1 m"
+balls = [{ mass = "0.02 kg", damping = "0.05 N*m*s/rad", count = 2 }]
+
+[[model.unbalances]]
+at = "disc"
+magnitude = "0.01 kg*m"
+phase = "30 deg"
+
+[model.drive]
+profile = "constant"
+speed = "2.5 rad/s"
+
+[[analysis]]
+type = "steady"
+name = "above"
+speed = "2.5 rad/s"
+
+[[analysis]]
+type = "steady"
+name = "below"
+speed = "0.8 rad/s"
+
+[[analysis]]
+type = "stability-chart"
+name = "chart"
+speeds = ["0.8 rad/s", "2.5 rad/s", 3]
+param = "ball_mass"
+values = ["0.02 kg", "0.04 kg", 2]
+
+[[analysis]]
+type = "simulate"
+name = "starts"
+initial_ball_angles = [["47 deg", "145 deg"], ["-113 deg", "87 deg"], ["36 deg", "36 deg"]]
+t_end = "3000 s"
+"""
+P = 1.0 / math.sqrt(1.04)  # rad/s
+PSI = math.degrees(math.acos(-0.01 / (2 * 0.02 * 1.0)))  # 104.48 deg from the unbalance
+
+
+@pytest.fixture(scope="module")
+def planar():
+    return parse_case(PLANAR)
+
+
+def _sorted(angles):
+    return sorted(round(a, 6) for a in angles)
+
+
+def test_campbell_and_modes_of_a_machine_are_those_of_its_structure():
+    """rcfw-two-plane: the rigid rotor on k = 1 N/m, c = 0.02 N s/m (translation) and 9 N m/rad,
+    0.18 N m s/rad (tilt) at rest has the damped frequencies w_n sqrt(1 - zeta^2) with w_n =
+    sqrt(k / M) = 1 rad/s, zeta = c / (2 sqrt(k M)) = 0.01 and w_n = sqrt(9 / 3.25) = 1.664 rad/s,
+    zeta = 0.18 / (2 sqrt(9 * 3.25)) (the balls are attachments, not part of the structure)."""
+    from rotorlab.analyses import run_linear_analysis
+
+    case = load_case("rcfw-two-plane")
+    spec = CampbellSpec(name="cb", start=0.0, stop=3.0, n_speeds=4, n_modes=4)
+    ds = run_analysis(case.model, spec)
+    ref = run_linear_analysis(case.model.structure, spec)
+    np.testing.assert_array_equal(ds.frequency.values, ref.frequency.values)
+    zeta = 0.18 / (2 * math.sqrt(9 * 3.25))
+    expect = [math.sqrt(1 - 0.01**2)] * 2 + [math.sqrt(9 / 3.25) * math.sqrt(1 - zeta**2)] * 2
+    np.testing.assert_allclose(ds.frequency.values[0] * 2 * np.pi, expect, rtol=1e-12)
+    res = CliRunner().invoke(app, ["-q", "modes", "rcfw-two-plane", "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.output)
+    np.testing.assert_allclose(np.array(doc["frequency_hz"]) * 2 * np.pi, expect, rtol=1e-12)
+
+
+def test_steady_balanced_angles_are_the_jeffcott_closed_form_with_the_seeds_verdicts(planar):
+    above = summarize(run_analysis(planar.model, planar.analysis("above")))
+    # two mirror balanced motions, the balls at 30 deg (the unbalance) + pi -+ ... = 30 +- 104.48
+    assert len(above) == 2 and all(r["kind"] == "balanced" and r["exists"] for r in above)
+    for r in above:
+        (angles,) = r["ball_angles_deg"].values()
+        rel = [((a - 30.0 + 180.0) % 360.0) - 180.0 for a in angles]
+        np.testing.assert_allclose(_sorted(rel), [-PSI, PSI], atol=2e-6)
+        assert all(v == 0.0 for v in r["amplitude"].values())
+        # above p all three verdicts say stable (seed 002 averaged, seed 003 Hamilton, exact)
+        assert (r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"]) == ("stable",) * 3
+    below = summarize(run_analysis(planar.model, planar.analysis("below")))
+    assert 0.8 < P and all(r["verdict_exact"] == "unstable" and r["verdict_averaged"] == "unstable" for r in below)
+
+
+def test_seed_verdicts_are_refused_with_the_reason_off_the_planar_rotor():
+    case = parse_case(load_case("rcfw-two-plane").text + '[[analysis]]\ntype = "steady"\nspeed = "4 rad/s"\n')
+    rows = summarize(run_analysis(case.model, case.analyses[-1]))
+    # two races, each with its mirror pair: 4 balanced motions, all at pi +- 60 deg (eq. (16))
+    assert len(rows) == 4 and all(r["verdict_hamilton"] == "n/a" for r in rows)
+    assert "only the exact eigenvalues" in rows[0]["seed_verdicts"]
+    for r in rows:
+        for angles in r["ball_angles_deg"].values():
+            np.testing.assert_allclose(_sorted(angles), [-120.0, 120.0], atol=2e-6)
+
+
+def test_stability_chart_over_speed_and_ball_mass(planar):
+    rows = summarize(run_analysis(planar.model, planar.analysis("chart")))
+    assert [r["ball_mass"] for r in rows] == [0.02] * 3 + [0.04] * 3
+    # p = sqrt(1 / (1 + 2 m)): 0.962 and 0.928 rad/s; stable above (1.65, 2.5), not at 0.8
+    assert [r["stable"] for r in rows] == [False, True, True] * 2
+    for r, m in zip(rows, [0.02] * 3 + [0.04] * 3):
+        (angles,) = r["ball_angles_deg"].values()
+        rel = [((a - 30.0 + 180.0) % 360.0) - 180.0 for a in angles]
+        psi = math.degrees(math.acos(-0.01 / (2 * m)))
+        np.testing.assert_allclose(_sorted(rel), [-psi, psi], atol=2e-6)
+
+
+def test_simulate_json_gives_angles_per_race_vibration_per_station_and_the_outcome(planar, tmp_path):
+    path = tmp_path / "planar.toml"
+    path.write_text(PLANAR)
+    res = CliRunner().invoke(app, ["-q", "simulate", str(path), "--json"])
+    assert res.exit_code == 0, res.output
+    rows = json.loads(res.output)["rows"]
+    assert [r["outcome"] for r in rows] == ["balanced", "balanced", "not balanced"]
+    for r in rows[:2]:
+        rel = [((a - 30.0 + 180.0) % 360.0) - 180.0 for a in r["final_ball_angles_deg"]["race 0"]]
+        np.testing.assert_allclose(_sorted(rel), [-PSI, PSI], atol=1e-3)
+        assert r["amplitude"]["disc"] < 1e-3 * r["reference_amplitude"]["disc"]
+    # the balls started together stay together (an invariant set): opposite the unbalance's
+    # response, not balanced
+    final = rows[2]["final_ball_angles_deg"]["race 0"]
+    assert final[0] == pytest.approx(final[1], abs=1e-9)
+    # the locked unbalance response U w^2 / |c - M w^2 + i d w|, M = 1.04 kg
+    ref = 0.01 * 2.5**2 / abs(1.0 - 1.04 * 2.5**2 + 0.1j * 2.5)
+    assert rows[0]["reference_amplitude"]["disc"] == pytest.approx(ref, rel=1e-12)
+
+
+def test_run_up_command_on_a_machine_and_a_rotor_with_balls():
+    res = CliRunner().invoke(app, ["-q", "run-up", "washer-horizontal", "--analysis", "run-up-no-balls",
+                                   "--t-end", "3", "--json"])
+    assert res.exit_code == 0, res.output
+    (row,) = json.loads(res.output)["rows"]
+    # the suspension's critical speed sqrt(25e3 / 40) = 25 rad/s: passed within 3 s
+    assert row["critical_speeds"][0] == pytest.approx(25.0, rel=1e-12) and row["passed"] == 1
+    res = CliRunner().invoke(app, ["run-up", "pico21"])
+    assert res.exit_code == 2 and "no run-up analysis" in res.output
