@@ -171,10 +171,11 @@ def _closed_form_for(ds: xarray.Dataset) -> tuple[float | None, float | None, fl
     regime = RubRegime(a["regime"])
     if regime == RubRegime.NO_CONTACT:
         return a["no_rub_radius"], 1.0, 0.0, "Jeffcott unbalance response"
-    if regime == RubRegime.FULL_RUB and len(a["branch_radius"]):
-        radii = list(a["branch_radius"])
+    # np.atleast_1d: a one-branch list comes back from NetCDF as a scalar attribute
+    if regime == RubRegime.FULL_RUB and np.atleast_1d(a["branch_radius"]).size:
+        radii = list(np.atleast_1d(a["branch_radius"]))
         i = int(np.argmin([abs(r - a["mean_radius"]) for r in radii]))
-        return radii[i], 1.0, list(a["branch_normal_force"])[i], "Black (1968), Choy & Padovan (1987)"
+        return radii[i], 1.0, list(np.atleast_1d(a["branch_normal_force"]))[i], "Black (1968), Choy & Padovan (1987)"
     if regime == RubRegime.BACKWARD_ROLLING and "rolling_radius" in a:
         return a["rolling_radius"], a["rolling_whirl_speed"] / a["spin_speed"], a["rolling_normal_force"], "Crandall (1990)"
     return None, None, None, "no closed form for this regime"
