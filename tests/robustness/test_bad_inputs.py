@@ -244,7 +244,7 @@ MACHINE = [
     ("mc-absurd-ball-count", ["validate", FILE], ("washer-horizontal", "count = 2 }", "count = 1e8 }"),
      ["model.races[0].balls[0].count", "at most 1000 balls"]),
     ("mc-empty-ball-angles", ["validate", FILE], ("washer-horizontal",
-                                                   'initial_ball_angles = [["-90 deg", "-85 deg"]]',
+                                                   'initial_ball_angles = [["-100 deg", "-80 deg"], ["-90 deg", "-90 deg"]]',
                                                    "initial_ball_angles = []"),
      ["analysis[1].initial_ball_angles", "empty"]),
     ("mc-n-save-absurd", ["run", FILE, "--out", "{d}/o"], ("washer-horizontal", "n_save = 800", "n_save = 1e12"),
@@ -293,6 +293,32 @@ MACHINE += [
 
 if resources.files("rotorlab.cases").joinpath("washer-horizontal.toml").is_file():  # once the machine model landed
     CORPUS += MACHINE
+
+# ---- a machine with a clearance (rotor-stator contact) and its knock analysis -------------------
+KNOCK = [
+    ("mk-negative-gap", ["validate", FILE], ("washer-knock", 'gap = "10 mm"', 'gap = "-10 mm"'),
+     ["model.clearances[0].gap", "> 0"]),
+    ("mk-gap-wrong-unit", ["validate", FILE], ("washer-knock", 'gap = "10 mm"', 'gap = "10 kg"'),
+     ["model.clearances[0].gap", "wrong dimension"]),
+    ("mk-restitution-above-1", ["validate", FILE], ("washer-knock", "restitution = 0.3", "restitution = 1.3"),
+     ["model.clearances[0].restitution", "<= 1"]),
+    ("mk-unknown-clearance-key", ["validate", FILE], ("washer-knock", "friction = 0.3", "friction = 0.3\nfrition = 3"),
+     ["model.clearances[0].frition", "unknown key"]),
+    ("mk-center-twice", ["validate", FILE], ("washer-knock", "center_at_rest = true",
+                                             'center_at_rest = true\ncenter = ["0 mm", "1 mm"]'),
+     ["model.clearances[0].center_at_rest", "not both"]),
+    ("mk-negative-ball-damping", ["validate", FILE], ("washer-knock", '["0.002 N*m*s/rad"', '["-0.002 N*m*s/rad"'),
+     ["analysis[0].ball_damping[0]", ">= 0"]),
+    ("mk-zero-starts", ["run", FILE, "--out", "{d}/o"], ("washer-knock", "starts = 80", "starts = 0"),
+     ["analysis[0].starts", ">= 1"]),
+    ("mk-no-balls", ["run", FILE, "--out", "{d}/o"], ("washer-knock", "seed = 0", "seed = 0\nraces = []"),
+     ["analysis[0]", "needs balls"]),
+    ("mk-starts-absurd", ["run", FILE, "--out", "{d}/o"], ("washer-knock", "starts = 80", "starts = 1e12"),
+     ["starts = 1000000000000", "memory"]),
+]
+
+if resources.files("rotorlab.cases").joinpath("washer-knock.toml").is_file():
+    CORPUS += KNOCK
 
 
 def _tree(folder: Path) -> set[str]:

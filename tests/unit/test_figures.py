@@ -23,7 +23,7 @@ from rotorlab.io import builtin_cases
 # Smaller settings of the analyses of the built-in cases, by key (what the key holds is kept:
 # a time stays a time, a [start, stop, count] keeps its range).
 _SHORT_TIME = {"simulate": "1 s", "run-up": "1 s", "impacts": "0.3 s", "impacts-sweep": "0.3 s",
-               "basin": "2 s", "working-point": "1 s"}
+               "basin": "2 s", "working-point": "1 s", "machine-knock": "1 s"}
 
 
 def _reduce(analysis: dict) -> dict:
@@ -32,7 +32,7 @@ def _reduce(analysis: dict) -> dict:
     if "t_end" in a and kind in _SHORT_TIME:
         a["t_end"] = _SHORT_TIME[kind]
     for key, small in (("n_save", 200), ("n_speeds", 21), ("ball_angle_points", 3),
-                       ("n_sequences", 2), ("points", 61), ("n_horizons", 2)):
+                       ("n_sequences", 2), ("points", 61), ("n_horizons", 2), ("starts", 2)):
         if key in a:
             a[key] = min(a[key], small)
     for key in ("x", "y"):
@@ -130,13 +130,19 @@ def test_basin_map_in_the_units_of_its_input():
 
     from rotorlab.plot import basin_figure
 
-    # given in degrees (0 to 350 deg, as the autobalancer case): drawn in degrees
-    ax = basin_figure(_basin(np.radians(np.linspace(0.0, 350.0, 8)))).axes[0]
+    # recorded as given in degrees (the autobalancer case: 0 to 350 deg): drawn in degrees
+    deg = np.radians(np.linspace(0.0, 350.0, 8))
+    ax = basin_figure(_basin(deg, input_units_psi_1="deg", input_units_psi_2="deg")).axes[0]
     assert ax.get_xlabel() == "psi_1 (deg)" and ax.get_ylabel() == "psi_2 (deg)"
     assert 340.0 < ax.get_xlim()[1] < 380.0
-    # given in radians (0 to 6 rad): drawn in radians
-    ax = basin_figure(_basin(np.linspace(0.0, 6.0, 8))).axes[0]
-    assert ax.get_xlabel() == "psi_1 (rad)" and 5.5 < ax.get_xlim()[1] < 7.0
+    # the same numbers recorded as given in radians, or with no record (a Dataset built in
+    # Python, in SI): drawn in radians; the unit is read from the record, never guessed
+    for attrs in ({"input_units_psi_1": "rad", "input_units_psi_2": "rad"}, {}):
+        ax = basin_figure(_basin(deg, **attrs)).axes[0]
+        assert ax.get_xlabel() == "psi_1 (rad)" and 5.5 < ax.get_xlim()[1] < 7.0
+    # one axis in each unit, as given
+    ax = basin_figure(_basin(deg, input_units_psi_1="deg", input_units_psi_2="rad")).axes[0]
+    assert ax.get_xlabel() == "psi_1 (deg)" and ax.get_ylabel() == "psi_2 (rad)"
 
 
 def test_three_ball_basin_says_where_the_third_ball_starts():
@@ -146,7 +152,25 @@ def test_three_ball_basin_says_where_the_third_ball_starts():
 
     from rotorlab.plot import basin_figure
 
+    # the third ball is not varied: its start angle is shown in the unit the varied ones were given in
     ds = _basin(np.radians(np.linspace(0.0, 350.0, 4)), value_psi_3=4.0 * math.pi / 3.0,
-                value_dpsi_3=0.0, value_disc_mass=1.0)
+                value_dpsi_3=0.0, value_disc_mass=1.0, input_units_psi_1="deg", input_units_psi_2="deg")
     title = basin_figure(ds).axes[0].get_title()
     assert "psi_3 = 240°" in title and "disc_mass" not in title
+    ds.attrs.update(input_units_psi_1="rad", input_units_psi_2="rad")
+    assert "psi_3 = 4.18879" in basin_figure(ds).axes[0].get_title()
+
+
+def test_the_unit_an_angle_was_written_in_is_recorded_from_the_case_and_the_command_line():
+    from rotorlab.cli._basin import _input_units
+    from rotorlab.io import BasinSpec, load_case
+
+    spec = load_case("autobalancer").analysis("basin")  # x = ["psi_1", "0 deg", "350 deg", 36]
+    assert spec.input_units == {"psi_1": "deg", "psi_2": "deg"}
+    assert spec.x[2] == __import__("pytest").approx(350.0 * 3.141592653589793 / 180.0, rel=1e-15)  # SI inside
+    si = BasinSpec(x=["psi_1", 0, 6.1, 8], y=["dpsi_1", "-10 rpm", "10 rpm", 3], fixed={"psi_2": "90°"})
+    assert si.input_units == {"psi_1": "rad", "psi_2": "deg"}  # dpsi_1 is not an angle: not recorded
+    # --x / --fix override the case's record for the coordinates they give
+    assert _input_units(spec, "psi_1=0:6.1:8", None, ["psi_3=2 rad"]) == {"psi_1": "rad", "psi_2": "deg",
+                                                                         "psi_3": "rad"}
+    assert _input_units(None, "psi_2=0:350deg:8", "dpsi_1=0:1:2", None) == {"psi_2": "deg"}

@@ -36,11 +36,9 @@ diametral_inertia = "0.3 kg*m^2"
 polar_inertia = "0 kg*m^2"
 spinning = false
 
-[[model.structure.bearings]]
-body = "disc"
-kxx = "1 N/m"
-cxx = "0.1 N*s/m"
-k_tilt_x = "5 N*m/rad"
+[model.structure.elastic]
+stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]
+damping = [["0.1 N*s/m", "0 N*s/rad"], ["0 N*s/rad", "0.05 N*m*s/rad"]]
 
 [[model.races]]
 at = "disc"
@@ -78,6 +76,20 @@ type = "simulate"
 name = "starts"
 initial_ball_angles = [["47 deg", "145 deg"], ["-113 deg", "87 deg"], ["36 deg", "36 deg"]]
 t_end = "3000 s"
+
+[[analysis]]
+type = "simulate"
+name = "grid"
+ball_angle_grid = 3
+t_end = "3000 s"
+
+[[analysis]]
+type = "basin"
+name = "basin"
+x = ["psi_1", "0 deg", "240 deg", 3]
+y = ["psi_2", "0 deg", "240 deg", 3]
+t_end = "3000 s"
+n_horizons = 2
 """
 P = 1.0 / math.sqrt(1.04)  # rad/s
 PSI = math.degrees(math.acos(-0.01 / (2 * 0.02 * 1.0)))  # 104.48 deg from the unbalance
@@ -124,8 +136,18 @@ def test_steady_balanced_angles_are_the_jeffcott_closed_form_with_the_seeds_verd
         assert all(v == 0.0 for v in r["amplitude"].values())
         # above p all three verdicts say stable (seed 002 averaged, seed 003 Hamilton, exact)
         assert (r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"]) == ("stable",) * 3
+        assert r["max_real_eigenvalue"] < -1e-4  # every mode damped (tilt included)
     below = summarize(run_analysis(planar.model, planar.analysis("below")))
     assert 0.8 < P and all(r["verdict_exact"] == "unstable" and r["verdict_averaged"] == "unstable" for r in below)
+
+
+def test_no_steady_motion_on_anisotropic_supports_exits_2_naming_why(tmp_path):
+    path = tmp_path / "aniso.toml"
+    path.write_text(PLANAR.replace('stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]',
+                                   'stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]\n'
+                                   'stiffness_y = [["1.3 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]'))
+    res = CliRunner().invoke(app, ["validate", str(path)])
+    assert res.exit_code == 2 and "anisotropic" in res.output and "simulate" in res.output, res.output
 
 
 def test_seed_verdicts_are_refused_with_the_reason_off_the_planar_rotor():
@@ -180,3 +202,67 @@ def test_run_up_command_on_a_machine_and_a_rotor_with_balls():
     assert row["critical_speeds"][0] == pytest.approx(25.0, rel=1e-12) and row["passed"] == 1
     res = CliRunner().invoke(app, ["run-up", "pico21"])
     assert res.exit_code == 2 and "no run-up analysis" in res.output
+
+
+def test_basin_over_the_ball_angles_agrees_with_simulate_from_the_same_starts(planar):
+    """A 3 x 3 grid of the two ball angles (0, 120, 240 deg): the starts with both balls together
+    (the diagonal, an invariant set) cannot balance, the six others balance; ``simulate`` from the
+    same starts (``ball_angle_grid = 3``) labels each start the same way."""
+    basin = run_analysis(planar.model, planar.analysis("basin"))
+    rows = {r["regime"]: r for r in summarize(basin)}
+    assert rows["balanced"]["count"] == 6 and rows["not balanced"]["count"] == 3
+    assert rows["balanced"]["fraction"] == pytest.approx(6 / 9, abs=1e-15)
+    labels = [str(r) for r in basin["regime"].values]
+    grid = summarize(run_analysis(planar.model, planar.analysis("grid")))
+    angles = [0.0, 120.0, 240.0]
+    for r in grid:  # simulate's order: psi_1 slowest, psi_2 fastest
+        i, j = divmod(r["ic"], 3)
+        expect = labels[int(basin.outcome.sel(psi_1=math.radians(angles[i]), psi_2=math.radians(angles[j]),
+                                              method="nearest"))]
+        assert r["outcome"] == expect, (r["ic"], r["outcome"], expect)
+
+
+def test_sweep_over_ball_mass_finds_the_capacity_limit(tmp_path):
+    """The two balls can cancel the unbalance only if 2 m l >= M1 e, i.e. m >= 0.005 kg: at
+    m = 0.004 kg they cannot (not balanced), at 0.02 kg they do (one start, psi = 46, 149 deg)."""
+    path = tmp_path / "planar.toml"
+    path.write_text(PLANAR)
+    res = CliRunner().invoke(app, ["-q", "sweep", str(path), "--out", str(tmp_path / "s.zarr"), "--param",
+                                   "ball_mass=0.004:0.02:2", "--ic", "psi_1=0.8:0.8:1", "--ic", "psi_2=2.6:2.6:1",
+                                   "--t-end", "3000", "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.output)
+    assert doc["dims"] == ["ball_mass", "psi_1", "psi_2"] and doc["n"] == 2
+    assert doc["fractions"]["balanced"] == 0.5 and doc["fractions"]["not balanced"] == 0.5
+    import xarray as xr
+
+    ds = xr.open_zarr(tmp_path / "s.zarr", consolidated=False)
+    labels = ds.attrs["result_attrs"]["labels"]
+    assert [labels[int(k)] for k in ds.outcome.values] == ["not balanced", "balanced"]
+
+
+def test_sweep_over_any_number_of_the_model_by_key_path(tmp_path):
+    """``model.unbalances[0].magnitude`` (with a unit, as in the case file): the two balls' capacity
+    is 2 m l = 0.04 kg m, so 10 g m is balanced and 60 g m is not; the store carries its unit."""
+    path = tmp_path / "planar.toml"
+    path.write_text(PLANAR)
+    store = tmp_path / "k.zarr"
+    res = CliRunner().invoke(app, ["-q", "sweep", str(path), "--out", str(store), "--param",
+                                   "model.unbalances[0].magnitude=10 g*m:60 g*m:2", "--ic", "psi_1=0.8:0.8:1",
+                                   "--ic", "psi_2=2.6:2.6:1", "--t-end", "3000", "--json"])
+    assert res.exit_code == 0, res.output
+    import xarray as xr
+
+    ds = xr.open_zarr(store, consolidated=False)
+    key = "model.unbalances[0].magnitude"
+    np.testing.assert_allclose(ds[key].values, [0.01, 0.06], rtol=1e-15)
+    assert ds[key].attrs["units"] == "kg*m"
+    labels = ds.attrs["result_attrs"]["labels"]
+    assert [labels[int(k)] for k in ds.outcome.values] == ["balanced", "not balanced"]
+    # the reference (locked unbalance response) follows the key: U w^2 / |c - M w^2 + i d w|
+    w = 2.5
+    expect = [u * w**2 / abs(1.0 - 1.04 * w**2 + 0.1j * w) for u in (0.01, 0.06)]
+    np.testing.assert_allclose(ds.reference_amplitude.values, expect, rtol=1e-12)
+    bad = CliRunner().invoke(app, ["sweep", str(path), "--out", str(tmp_path / "b.zarr"), "--param",
+                                   "model.structure.bodies[3].mass=1:2:2", "--ic", "psi_1=0.8:0.8:1"])
+    assert bad.exit_code == 2 and "model.<key path>" in bad.output

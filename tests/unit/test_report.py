@@ -235,3 +235,19 @@ def test_undamped_unbalance_response_findings_say_the_peak_is_unbounded():
     ds = run_analysis(case.model, analysis)
     found = presentation_of("unbalance_response").findings(ds, summarize(ds))
     assert found.verdict.startswith("undamped rotor: the response is unbounded at the critical speeds")
+
+
+def test_modes_findings_at_rest_name_no_whirl_direction():
+    # An isotropic rotor at rest has no gyroscopic coupling: its modes come in x/y pairs of equal
+    # frequency and have no whirl direction (issue 13: "calls modes forward/backward at standstill").
+    from rotorlab.analyses import run_analysis
+    from rotorlab.io import load_case
+    from rotorlab.report import presentation_of
+
+    case = load_case("friswell-rotor")
+    rest, spinning = (run_analysis(case.model, case.analysis(n)) for n in ("modes-at-rest", "modes-at-3000-rpm"))
+    found = presentation_of("modes").findings(rest, summarize(rest))
+    assert found.numbers[0] == "at rest: no whirl direction; 3 pair(s) of equal frequency (x and y)"
+    assert "forward" not in " ".join(found.numbers) and "backward" not in " ".join(found.numbers)
+    found = presentation_of("modes").findings(spinning, summarize(spinning))
+    assert found.numbers[0] in ("3 backward, 3 forward whirl", "3 forward, 3 backward whirl")

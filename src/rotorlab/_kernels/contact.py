@@ -137,3 +137,25 @@ def penalty_normal_force(penetration, penetration_rate, k_s, c_s):
     """Normal force of an elastic massless stator, ``max(0, k_s p + c_s dp/dt)`` (N)."""
     f = k_s * penetration + c_s * penetration_rate
     return f if f > 0.0 else 0.0
+
+
+@njit(cache=True, nogil=True, inline="always")
+def delassus_forces(bn, bs, wnn, wnt, wtt, mu, mode, rigid, n_given):
+    """Constraint forces ``N, F_t`` (N) of sustained contact of a general structure.
+
+    The contact point's radial acceleration ``r''`` and slip rate ``s'`` are affine in the
+    contact force ``-N n + F_t t`` through the Delassus matrix ``W`` (see
+    :func:`newton_coulomb_impulse`): ``r'' = b_n - w_nn N + w_nt F_t``, ``s' = b_s - w_nt N +
+    w_tt F_t``, with ``b_n, b_s`` their values without contact force
+    (``b_n = a_n + v_t^2 / r``, ``b_s = a_t - v_t v_n / r + R_r Omega'``). A rigid stator holds
+    ``r'' = 0`` (``N`` unknown), an elastic one gives ``N = n_given``; rolling (``mode == 2``)
+    holds ``s' = 0`` (``F_t`` unknown), sliding with slip sign ``mode = +-1`` has ``F_t = -mu
+    mode N``. For a point mass (``W = I / m``) this is :func:`sustained_forces`.
+    """
+    if mode == 2.0:
+        if rigid:
+            det = wnn * wtt - wnt * wnt
+            return (bn * wtt - wnt * bs) / det, (wnt * bn - wnn * bs) / det
+        return n_given, (wnt * n_given - bs) / wtt
+    n = bn / (wnn + mu * mode * wnt) if rigid else n_given
+    return n, -mu * mode * n

@@ -83,6 +83,9 @@ class Layout:
         The structure has a nonzero G.
     energy : bool
         The state carries the drive work and the dissipated energy.
+    clearance : {"", "rigid", "elastic", "housing"}
+        The kind of the machine's clearance (rotor-stator contact), "" for none; see
+        :mod:`rotorlab._kernels.machine_contact`.
     """
 
     n_z: int
@@ -93,11 +96,14 @@ class Layout:
     n_table: int = 0
     gyroscopic: bool = False
     energy: bool = False
+    clearance: str = ""
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "races", tuple(int(n) for n in self.races))
         if self.drive not in DRIVE_KINDS or self.speed_kind not in SPEED_KINDS:
             raise ValueError(f"bad layout drive={self.drive!r} speed_kind={self.speed_kind!r}")
+        if self.clearance not in ("", "rigid", "elastic", "housing"):
+            raise ValueError(f"bad layout clearance={self.clearance!r}")
 
     # ---- counts
     @property
@@ -110,7 +116,7 @@ class Layout:
 
     @property
     def n_stations(self) -> int:
-        return self.n_races + self.n_unbalance
+        return self.n_races + self.n_unbalance + (1 if self.clearance else 0)
 
     @property
     def motor(self) -> bool:
@@ -139,8 +145,25 @@ class Layout:
         return self.i_theta + (2 if self.motor else 0)
 
     @property
-    def n_state(self) -> int:
+    def i_clearance(self) -> int:
+        """First state of the clearance: the housing's (x, y, vx, vy) if it moves, then the
+        contact's dissipated energy and drive work, then its three discrete states (impacts,
+        largest normal impulse, mode) at the very end."""
         return self.i_energy + (2 if self.energy else 0)
+
+    @property
+    def n_clearance_states(self) -> int:
+        if not self.clearance:
+            return 0
+        return 5 + (4 if self.clearance == "housing" else 0)
+
+    @property
+    def n_discrete(self) -> int:
+        return 3 if self.clearance else 0
+
+    @property
+    def n_state(self) -> int:
+        return self.i_clearance + self.n_clearance_states
 
     # ---- parameter offsets
     @property
@@ -160,6 +183,7 @@ class Layout:
             ("Hf", nz),
             ("C", nz * nz if self.energy else 0),
             ("Ka", nz * nz if self.energy else 0),
+            ("clearance", 11 if self.clearance else 0),
         ]
         out, k = {}, 0
         for name, size in sizes:
@@ -189,7 +213,8 @@ class Layout:
         """Short identifier of the sizes (used in the generated module's name)."""
         races = "x".join(str(n) for n in self.races) or "0"
         return (f"z{self.n_z}r{races}u{self.n_unbalance}{self.drive[0]}{self.speed_kind[0]}"
-                f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}")
+                f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
+                f"{'c' + self.clearance[0] if self.clearance else ''}")
 
 
 def _sum(terms: list[str]) -> str:
@@ -198,13 +223,36 @@ def _sum(terms: list[str]) -> str:
 
 def generate(lay: Layout) -> str:
     """Return the source of the kernel module for ``lay`` (see the module docstring)."""
+    nz, nb = lay.n_z, lay.n_balls
+    L: list[str] = []
+    a = L.append
+    a(f"    # sizes: n_z={nz}, races={lay.races}, unbalances={lay.n_unbalance}, drive={lay.drive}, "
+      f"speed={lay.speed_kind}, energy={lay.energy}, clearance={lay.clearance or None}")
+    corr = prefix(lay, L)
+    if lay.clearance:
+        from rotorlab._kernels import machine_contact as _mc
+
+        L += _mc.rhs_contact_lines(lay, corr)
+    _tail(lay, L, corr)
+    body = "\n".join(L)
+    header = _HEADER.format(key=lay.key)
+    if lay.clearance:
+        header = header.replace("import profile\n", "import profile\n" + _mc.IMPORTS, 1)
+    src = header + body + "\n"
+    if lay.clearance:
+        src += _mc.extra_functions(lay, corr)
+    return src
+
+
+def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, str, str]]:
+    """Append the lines that evaluate the spin, the free structure terms ``h = H R_z``, the Schur
+    system of the ball (and spin) accelerations, its LDL^T factors and (``solve``) its solution
+    ``x`` and the reaction forces ``(gx_s, gy_s)`` of the balls on their stations; return those
+    stations as ``(s, gx name, gy name)``."""
     nz, nb, o = lay.n_z, lay.n_balls, lay.offsets
     races, br = lay.races, lay.ball_race
     nr, nu = lay.n_races, lay.n_unbalance
-    L: list[str] = []
     a = L.append
-    a(f"    # sizes: n_z={nz}, races={races}, unbalances={nu}, drive={lay.drive}, "
-      f"speed={lay.speed_kind}, energy={lay.energy}")
     # ---- spin
     if lay.motor:
         a(f"    theta = y[{lay.i_theta}]")
@@ -340,32 +388,55 @@ def generate(lay: Layout) -> str:
         for i in range(j + 1, n_s):
             a(f"    L{i}_{j} = (S{i}_{j}" + "".join(f" - L{i}_{k} * L{j}_{k} * D{k}" for k in range(j))
               + f") / D{j}")
+    if not solve:
+        return []
+    solve_lines(lay, L, "x", "q")
+    return reactions(lay, L, "g", "x")
+
+
+def solve_lines(lay: Layout, L: list[str], x: str, q: str, indent: str = "    ") -> None:
+    """Append the forward and back substitution ``S x = q`` with the LDL^T factors of :func:`prefix`."""
+    n_s = lay.n_balls + (1 if lay.motor else 0)
     for i in range(n_s):
-        a(f"    x{i} = q{i}" + "".join(f" - L{i}_{k} * x{k}" for k in range(i)))
+        L.append(f"{indent}{x}{i} = {q}{i}" + "".join(f" - L{i}_{k} * {x}{k}" for k in range(i)))
     for i in reversed(range(n_s)):
-        a(f"    x{i} = x{i} / D{i}" + "".join(f" - L{k}_{i} * x{k}" for k in range(i + 1, n_s)))
-    # ---- structure accelerations
+        L.append(f"{indent}{x}{i} = {x}{i} / D{i}" + "".join(f" - L{k}_{i} * {x}{k}" for k in range(i + 1, n_s)))
+
+
+def reactions(lay: Layout, L: list[str], g: str, x: str, indent: str = "    ") -> list[tuple[int, str, str]]:
+    """Append the station forces of the ball (and spin) accelerations ``x``: ``(g}x_s, g}y_s)``."""
+    nb, br, nr = lay.n_balls, lay.ball_race, lay.n_races
+    corr = []
     for r in range(nr):
         bs = [b for b in range(nb) if br[b] == r]
-        a(f"    gx{r} = {_sum([f'-ml{b} * x{b} * s{b}' for b in bs])}")
-        a(f"    gy{r} = {_sum([f'ml{b} * x{b} * c{b}' for b in bs])}")
-    corr = [(r, f"gx{r}", f"gy{r}") for r in range(nr)]
+        L.append(f"{indent}{g}x{r} = {_sum([f'-ml{b} * {x}{b} * s{b}' for b in bs])}")
+        L.append(f"{indent}{g}y{r} = {_sum([f'ml{b} * {x}{b} * c{b}' for b in bs])}")
+        corr.append((r, f"{g}x{r}", f"{g}y{r}"))
     if lay.motor:
-        for u in range(nu):
-            a(f"    gx{nr + u} = -U{u} * x{nb} * euy{u}")
-            a(f"    gy{nr + u} = U{u} * x{nb} * eux{u}")
-            corr.append((nr + u, f"gx{nr + u}", f"gy{nr + u}"))
+        for u in range(lay.n_unbalance):
+            L.append(f"{indent}{g}x{nr + u} = -U{u} * {x}{nb} * euy{u}")
+            L.append(f"{indent}{g}y{nr + u} = U{u} * {x}{nb} * eux{u}")
+            corr.append((nr + u, f"{g}x{nr + u}", f"{g}y{nr + u}"))
+    return corr
+
+
+def _tail(lay: Layout, L: list[str], corr: list[tuple[int, str, str]]) -> None:
+    """Append the writes of dy/dt (structure, balls, spin, energy states; clearance: its own)."""
+    nz, nb, o = lay.n_z, lay.n_balls, lay.offsets
+    nr, nu = lay.n_races, lay.n_unbalance
+    a = L.append
+    cl = bool(lay.clearance)
     for i in range(nz):
         terms = [f"p[{lay.station_HBT(s) + 2 * i}] * {gx} + p[{lay.station_HBT(s) + 2 * i + 1}] * {gy}"
                  for s, gx, gy in corr]
         a(f"    out[{i}] = v{i}")
-        a(f"    out[{nz + i}] = h{i}" + "".join(f" - ({t})" for t in terms))
+        a(f"    out[{nz + i}] = h{i}" + "".join(f" - ({t})" for t in terms) + (f" + cz{i}" if cl else ""))
     for b in range(nb):
         a(f"    out[{lay.i_phi + b}] = w{b}")
-        a(f"    out[{lay.i_w + b}] = x{b}")
+        a(f"    out[{lay.i_w + b}] = x{b}" + (f" + cx{b}" if cl else ""))
     if lay.motor:
         a(f"    out[{lay.i_theta}] = om")
-        a(f"    out[{lay.i_theta + 1}] = x{nb}")
+        a(f"    out[{lay.i_theta + 1}] = x{nb}" + (f" + cx{nb}" if cl else ""))
     if lay.energy:
         ie = lay.i_energy
         if lay.motor:
@@ -386,8 +457,10 @@ def generate(lay: Layout) -> str:
         diss += [f"v{i} * (p[{kc + nz * i + j}] * v{j} + p[{ka + nz * i + j}] * z{j})"
                  for i in range(nz) for j in range(nz)]
         a(f"    out[{ie + 1}] = {_sum(diss)}")
-    body = "\n".join(L)
-    return _HEADER.format(key=lay.key) + body + "\n"
+    if cl:
+        from rotorlab._kernels import machine_contact as _mc
+
+        L += _mc.rhs_tail_lines(lay)
 
 
 _HEADER = '''"""Generated by rotorlab._kernels.machine_codegen for sizes {key}; do not edit."""
@@ -413,7 +486,9 @@ def _deps_hash(source: str) -> str:
     h = hashlib.sha256(numba.__version__.encode())
     h.update(sys.version.encode())
     h.update(source.encode())
-    for mod in (_vmath, speed):
+    from rotorlab._kernels import contact, machine_contact
+
+    for mod in (_vmath, speed, contact, machine_contact):
         h.update(Path(inspect.getsourcefile(mod)).read_bytes())
     return h.hexdigest()[:20]
 

@@ -73,7 +73,7 @@ def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None) 
     entry = MODEL_TYPES.get(kind)
     mapper = None if entry is None or entry.mapper is None else entry.mapper(case_model, analysis, kw)
     if mapper is None:
-        raise ValueError(f"analysis {analysis.name}: basins need a toroidal_ball model or a jeffcott_balls "
+        raise ValueError(f"analysis {analysis.name}: basins need a toroidal_ball model or a jeffcott_balls or machine "
                          f"model with balls, not {kind!r}")  # fmt: skip
     return mapper
 
@@ -210,7 +210,9 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
         ``release_dpsi``, ``release_dalpha``; seed 004 Fig. 5) with attrs ``release_stuck``
         and ``release_settle_time`` (s).
         ``attrs["name"]`` is the analysis name; a basin also has ``value_<name>``, the value
-        of every coordinate that is not varied (fixed, or the model's; SI).
+        of every coordinate that is not varied (fixed, or the model's; SI), and
+        ``input_units_<name>`` (``"deg"``) for every coordinate the case gave in degrees
+        (:attr:`rotorlab.io.BasinSpec.input_units`; figures show it in that unit).
 
     Examples
     --------
@@ -237,6 +239,8 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
     if analysis.type == "basin":
         for key, value in _effective_values(case_model, analysis, mapper).items():
             ds.attrs[f"value_{key}"] = value
+        for key, unit in analysis.input_units.items():  # what the input was written in, for display
+            ds.attrs[f"input_units_{key}"] = unit
     return ds
 
 

@@ -4,6 +4,13 @@ starts, steady balanced states and their exact stability over speed, and run-ups
 All functions are pure: a model in, an :class:`xarray.Dataset` out (SI units in ``attrs``), with
 an integer ``status`` per element (0: success) and, where the question has no answer for this
 machine (no co-rotating equilibria), a failed status and the reason in ``attrs["message"]``.
+
+The common analysis types run on a ``machine`` case through the machine's own entries
+(:func:`machine_analysis_types`, the ``analyses`` of its :class:`~rotorlab.analyses.ModelType`):
+``simulate``, ``steady`` (every balanced motion at one speed, :func:`machine_motions`),
+``stability-chart`` and ``run-up``; ``basin`` and ``sweep`` through its regime mapper
+(:func:`machine_mapper`, :class:`rotorlab.explore.MachineRegimes`); ``campbell``, ``modes`` and
+the other structural analyses through the spec's ``linear_structure()``.
 """
 
 from __future__ import annotations
@@ -651,6 +658,9 @@ def _run_run_up(case_model, analysis, progress=None):
                              rtol=analysis.rtol, atol=analysis.atol, initial_speed=start_speed)
         for key in ("final_speed", "passed", "captured_at", "status"):
             one[key] = ((), one.attrs.pop(key))
+        ref = unbalance_amplitudes(m, float(one["final_speed"]))
+        one["reference_amplitude"] = (("station",), ref, {"units": "m"})
+        one["outcome"] = ((), _run_up_outcome(m, one, ref))
         parts.append(one)
         if progress is not None:
             progress(k + 1, len(starts))
@@ -659,6 +669,26 @@ def _run_run_up(case_model, analysis, progress=None):
     ds["final_speed"].attrs["units"] = "rad/s"
     ds["captured_at"].attrs["units"] = "rad/s"
     return _annotate(ds, case_model, analysis)
+
+
+def _run_up_outcome(machine, ds, reference) -> str:
+    """Where a run-up ended: "failed", "no balancer", "captured" (below a critical speed),
+    "balanced" (residual vibration at most BALANCED_FRACTION of the locked unbalance response at
+    the final speed), "non-synchronous" (balls still circling the rotor over the last 10 %) or
+    "not balanced"."""
+    from rotorlab.analyses._outcome import BALANCED_FRACTION
+
+    if int(ds["status"]) < 0:
+        return "failed"
+    if machine.n_balls == 0:
+        return "no balancer"
+    if np.isfinite(float(ds["captured_at"])):
+        return "captured"
+    if np.max(ds.residual_amplitude.values) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
+        return "balanced"
+    tail = ds.time.values >= 0.9 * ds.time.values[-1]
+    turn = np.ptp(np.unwrap(ds.ball_angle.values[tail], axis=0), axis=0)
+    return "non-synchronous" if np.any(turn > np.pi) else "not balanced"
 
 
 def _run_up_task_size(case_model, analysis) -> int:
@@ -727,7 +757,8 @@ def _run_up_rows(ds) -> list[dict[str, Any]]:
         rows.append({"ic": i, "final_speed": _num(r.final_speed), "final_speed_rpm": _num(r.final_speed * 30 / np.pi),
                      "critical_speeds": crit, "passed": int(r.passed), "captured_at": _num(r.captured_at),
                      "residual_amplitude": _per_station(ds, r.residual_amplitude.values),
-                     "status": int(r.status)})
+                     "reference_amplitude": _per_station(ds, r.reference_amplitude.values),
+                     "outcome": str(r.outcome.values), "status": int(r.status)})
     return rows
 
 
@@ -745,5 +776,17 @@ def machine_analysis_types() -> dict[str, Any]:
 
 
 def machine_mapper(case_model, analysis, kw):
-    """The regime mapper of a machine's basins and sweeps (none yet)."""
-    return None
+    """The regime mapper of a machine's basins and sweeps (:class:`rotorlab.explore.MachineRegimes`
+    at the analysis' constant speed; None without balls)."""
+    from rotorlab.explore import MachineRegimes
+    from rotorlab.integrate import StepControl
+
+    if case_model.n_balls == 0:
+        return None
+    omega = analysis.spin_speed(case_model)
+    if omega is None:  # spin_speed is a coordinate of every start: any base speed will do
+        omega = case_model.critical_speed()
+    if analysis.rtol is not None or analysis.atol is not None:
+        kw["control"] = StepControl(rtol=analysis.rtol or 1e-8, atol=analysis.atol or 1e-10)
+    return MachineRegimes(_variant(case_model, analysis, omega), spec=case_model,
+                          races=getattr(analysis, "races", None), **kw)

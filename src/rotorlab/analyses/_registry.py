@@ -196,6 +196,10 @@ def _register_builtins() -> None:
     register_analysis_type(AnalysisType("impacts-sweep", _impacts.run_impact_analysis, _impacts.sweep_rows,
                                         "impacts"))  # fmt: skip
     register_analysis_type(AnalysisType("rub", _rub.run_rub_analysis, _rub.rub_rows, "rub"))
+    from rotorlab.analyses import _knock
+
+    register_analysis_type(AnalysisType("machine-knock", _knock.run_knock_analysis, _knock.knock_rows, "knock",
+                                        _knock.knock_task_size, **trajectories))  # fmt: skip
 
 
 _register_builtins()

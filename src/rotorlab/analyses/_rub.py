@@ -1,5 +1,10 @@
 """The ``rub`` analysis: simulate a rotor in its clearance, name its regime and put the closed-form
-prediction beside every measured number (:mod:`rotorlab.contact`)."""
+prediction beside every measured number (:mod:`rotorlab.contact`).
+
+It runs on any model with a clearance (a ``rub_rotor``, or a ``machine`` with a clearance and a
+constant speed), built through the model registry; the closed forms are those of the model's
+``equivalent_rub_rotor()`` (exact for the Jeffcott rotor, see
+:meth:`rotorlab.models.Machine.equivalent_rub_rotor` for a machine)."""
 
 from __future__ import annotations
 
@@ -102,21 +107,25 @@ def run_rub_analysis(case_model: Any, analysis: Any,
     """Simulate, classify the last window and store measured features beside the closed forms."""
     import xarray as xr
 
+    from rotorlab.analyses._registry import MODEL_TYPES
     from rotorlab.contact import RubRegime, rub_features
     from rotorlab.integrate import SaveAt, StepControl, solve
 
-    model = rub_model(case_model)
-    rotor = model.rotor
+    model = MODEL_TYPES[case_model.type].build(case_model)
+    rotor = model.equivalent_rub_rotor()
     r, w = analysis.initial_radius, analysis.initial_whirl
-    y0 = model.initial_state((r, 0.0), (0.0, w * r))
+    y0 = model.whirl_state(r, w)
     ts = np.linspace(analysis.t_end - analysis.window, analysis.t_end, analysis.samples)
     sol = solve(model, y0, (0.0, analysis.t_end), save_at=SaveAt(ts=ts), control=StepControl(rtol=1e-9, atol=1e-12 * rotor.clearance / 1e-3),
                 max_events_recorded=0)  # fmt: skip
     if progress is not None:
         progress(1, 1)
-    pred = rub_prediction(rotor, model.spin_speed)
+    cs = model.contact_samples(ts, sol.ys)
+    spin_speed = float(cs.spin_speed[-1])
+    pred = rub_prediction(rotor, spin_speed)
     ys = sol.ys
-    radius = np.hypot(ys[:, 0], ys[:, 1])
+    wx, wy = cs.w[:, 0], cs.w[:, 1]
+    radius = np.hypot(wx, wy)
     # the model's sanity monitor (a rotor beyond a rigid stator) marks the run IMPOSSIBLE with a note
     status, message = int(sol.status), (sol.note or sol.status.message)
     if status < 0:
@@ -126,16 +135,16 @@ def run_rub_analysis(case_model: Any, analysis: Any,
         regime = feats.regime
     ds = xr.Dataset(
         {
-            "x": (("time",), ys[:, 0], {"units": "m"}),
-            "y": (("time",), ys[:, 1], {"units": "m"}),
+            "x": (("time",), wx, {"units": "m"}),
+            "y": (("time",), wy, {"units": "m"}),
             "radius": (("time",), radius, {"units": "m"}),
-            "mode": (("time",), ys[:, 8].astype(np.int8), {"units": "1"}),
+            "mode": (("time",), cs.mode.astype(np.int8), {"units": "1"}),
         },
         coords={"time": ("time", ts, {"units": "s"})},
     )
     ds.attrs.update({
         "name": analysis.name, "status": status, "status_message": message,
-        "regime": int(regime), "regime_label": regime.label, "spin_speed": model.spin_speed,
+        "regime": int(regime), "regime_label": regime.label, "spin_speed": spin_speed,
         "clearance": rotor.clearance, "rigid_stator": int(rotor.rigid_stator), "friction": rotor.friction,
         "predicted_regimes": "; ".join(pred["regimes"]) or "none of the closed forms",
         "no_rub_radius": pred["no_rub_radius"],
@@ -162,10 +171,11 @@ def _closed_form_for(ds: xarray.Dataset) -> tuple[float | None, float | None, fl
     regime = RubRegime(a["regime"])
     if regime == RubRegime.NO_CONTACT:
         return a["no_rub_radius"], 1.0, 0.0, "Jeffcott unbalance response"
-    if regime == RubRegime.FULL_RUB and len(a["branch_radius"]):
-        radii = list(a["branch_radius"])
+    # np.atleast_1d: a one-branch list comes back from NetCDF as a scalar attribute
+    if regime == RubRegime.FULL_RUB and np.atleast_1d(a["branch_radius"]).size:
+        radii = list(np.atleast_1d(a["branch_radius"]))
         i = int(np.argmin([abs(r - a["mean_radius"]) for r in radii]))
-        return radii[i], 1.0, list(a["branch_normal_force"])[i], "Black (1968), Choy & Padovan (1987)"
+        return radii[i], 1.0, list(np.atleast_1d(a["branch_normal_force"]))[i], "Black (1968), Choy & Padovan (1987)"
     if regime == RubRegime.BACKWARD_ROLLING and "rolling_radius" in a:
         return a["rolling_radius"], a["rolling_whirl_speed"] / a["spin_speed"], a["rolling_normal_force"], "Crandall (1990)"
     return None, None, None, "no closed form for this regime"

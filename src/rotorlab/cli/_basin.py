@@ -18,6 +18,13 @@ from rotorlab.cli._output import BadInput, emit_json, exit_if_failed, handled, i
 from rotorlab.cli._steady import _check_plot, parse_range
 from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
 
+
+def _names(known: Any) -> str:
+    from rotorlab.io._basin_specs import coordinates_text
+
+    return coordinates_text(known)
+
+
 __all__ = ["basin_command", "basin_tables"]
 
 # options that set each key of a basin analysis, for messages
@@ -32,10 +39,10 @@ def _axis(option: str, text: str | None, known: dict[str, str]) -> tuple[str, fl
     name, sep, grid = text.partition("=")
     name = name.strip()
     if not sep or not name:
-        raise BadInput(f"{option} = {text}: must be NAME=A:B:N (coordinates: {', '.join(known)})")
+        raise BadInput(f"{option} = {text}: must be NAME=A:B:N (coordinates: {_names(known)})")
     if name not in known:
         raise BadInput(f"{option} = {text}: {name!r} is not a coordinate of this case's model "
-                       f"(coordinates: {', '.join(known)})")  # fmt: skip
+                       f"(coordinates: {_names(known)})")  # fmt: skip
     start, stop, count = parse_range(option, grid, known[name])
     return name, start, stop, count
 
@@ -48,12 +55,21 @@ def _fixed(values: list[str] | None, known: dict[str, str]) -> dict[str, float]:
         name, sep, raw = text.partition("=")
         name = name.strip()
         if not sep or name not in known:
-            raise BadInput(f"--fix = {text}: must be NAME=VALUE with NAME one of {', '.join(known)}")
+            raise BadInput(f"--fix = {text}: must be NAME=VALUE with NAME one of {_names(known)}")
         try:
             out[name] = float(raw)
         except ValueError:
             out[name] = to_si(raw.strip(), known[name], f"--fix {name}")
     return out
+
+
+def _input_units(base: Any, x: str | None, y: str | None, fix: list[str] | None) -> dict[str, str]:
+    """The units the coordinates were written in: the case's, then those of --x, --y and --fix."""
+    from rotorlab.io._basin_specs import record_input_units
+
+    given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (x, y) if t]
+    given += [(t.partition("=")[0].strip(), [t.partition("=")[2].strip()]) for t in fix or ()]
+    return record_input_units(base.input_units if base is not None else {}, given)
 
 
 def _effective_spec(loaded: Any, base: Any, updates: dict[str, Any]) -> Any:
@@ -165,7 +181,7 @@ def basin_command(
 
         known = coordinate_dimensions(loaded.model)
         if not known:
-            raise BadInput(f"case {loaded.name}: basins need a toroidal_ball model or a jeffcott_balls model "
+            raise BadInput(f"case {loaded.name}: basins need a toroidal_ball model or a jeffcott_balls or machine model "
                            f"with balls, not {loaded.model.type}")  # fmt: skip
         base = find_analysis(loaded, "basin", analysis)
         updates: dict[str, Any] = {"x": _axis("--x", x, known), "y": _axis("--y", y, known),
@@ -175,6 +191,7 @@ def basin_command(
         if updates["x"] is not None and updates["y"] is not None and updates["x"][0] == updates["y"][0]:
             raise BadInput(f"--y = {y}: must vary another coordinate than --x ({updates['x'][0]})")
         spec = _effective_spec(loaded, base, updates)
+        spec = spec.with_input_units(_input_units(base, x, y, fix))
         from rotorlab.analyses._basin import basin_document, run_basin_analysis
 
         n = spec.samples if spec.samples is not None else spec.x[3] * spec.y[3]

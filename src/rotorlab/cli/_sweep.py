@@ -28,6 +28,13 @@ from rotorlab.cli._sweep_common import (
     stability_line,
 )
 
+
+def _names(known: Any) -> str:
+    from rotorlab.io._basin_specs import coordinates_text
+
+    return coordinates_text(known)
+
+
 __all__ = ["sweep_command", "parse_axis"]
 
 _RPM = 60.0 / (2.0 * math.pi)
@@ -227,7 +234,7 @@ def sweep_command(
                     raise BadInput(f"--ic {name}: the model of {loaded.name} has {loaded.model.n_balls} ball(s)")
                 raise BadInput(f"{option} = {text}: {name!r} is not a{' parameter' if what == 'param' else 'n initial'}"
                                f"{'' if what == 'param' else ' condition'} of this {kind} model (allowed: "
-                               f"{', '.join(known)})")  # fmt: skip
+                               f"{_names(known)})")  # fmt: skip
         if kind == "toroidal_ball" and (speed_rpm is not None or speed_ratio is not None):
             raise BadInput(f"--speed-{'rpm' if speed_rpm is not None else 'ratio'}: a toroidal_ball spins at its "
                            "model's spin_speed; vary it with --param spin_speed=A:B:N")  # fmt: skip

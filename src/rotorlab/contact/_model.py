@@ -180,6 +180,40 @@ class JeffcottRub:
                            "a rebound lower than the tolerances resolve was missed: raise rest_speed")  # fmt: skip
         return out
 
+    @property
+    def rub_parameters(self) -> dict[str, tuple[int, str]]:
+        """Parameters a rub map may vary: name -> (index in :meth:`to_array`, unit)."""
+        out = {"spin_speed": (_k.P_W, "rad/s"), "clearance": (_k.P_D, "m"), "eccentricity": (_k.P_EPS, "m"),
+               "friction": (_k.P_MU, "1"), "stator_stiffness": (_k.P_KS, "N/m"), "restitution": (_k.P_E, "1")}
+        if self.rotor.rigid_stator:  # a rigid stator has no stiffness to vary
+            del out["stator_stiffness"]
+        return out
+
+    def contact_samples(self, ts, ys, params=None):
+        """The contact at saved samples (:class:`rotorlab.contact.ContactSamples`); the normal
+        force from the compiled contact law."""
+        from rotorlab.contact._regimes import ContactSamples
+
+        ys = np.atleast_2d(np.asarray(ys, dtype=float))
+        p = self.to_array() if params is None else np.asarray(params, dtype=float)
+        mode = ys[:, _k.MODE]
+        force = np.array([_k.contact_forces(float(t), row, p)[0] if row[_k.MODE] != 0.0 else 0.0
+                          for t, row in zip(np.broadcast_to(ts, mode.shape), ys)])
+        return ContactSamples(ys[:, [_k.X, _k.Y]], ys[:, [_k.VX, _k.VY]], mode, ys[:, _k.N_IMP],
+                              ys[:, _k.P_MAX], force, np.full(mode.shape, p[_k.P_W]))
+
+    def gap_state(self, position=(0.0, 0.0), velocity=(0.0, 0.0)) -> np.ndarray:
+        """Initial state with the centre at ``position`` (m) moving at ``velocity`` (m/s)."""
+        return self.initial_state(position, velocity)
+
+    def whirl_state(self, radius: float, whirl_speed: float) -> np.ndarray:
+        """Initial state on a circular whirl: ``(radius, 0)`` moving at ``(0, whirl_speed radius)``."""
+        return self.initial_state((radius, 0.0), (0.0, whirl_speed * radius))
+
+    def equivalent_rub_rotor(self) -> RubRotor:
+        """The rotor of the closed forms (:class:`RubRotor`): this model's own."""
+        return self.rotor
+
     def energy(self, y) -> np.ndarray:
         """Kinetic + shaft + stator elastic energy (J), shape of ``y[..., 0]``."""
         y = np.asarray(y, dtype=float)

@@ -14,6 +14,12 @@ feature             meaning
 ``peak_impulse``    largest normal impulse of the run (N s)
 ==================  =========================================================================
 
+Any model with a clearance provides the samples these features are computed from
+(:class:`ContactSamples`, through its ``contact_samples(ts, ys, params)``) and the parameters a map
+may vary (``rub_parameters``: name -> (index in the packed parameters, unit)):
+:class:`rotorlab.contact.JeffcottRub` and the composed :class:`rotorlab.models.Machine` with a
+:class:`~rotorlab.models.Clearance`. Nothing here branches on the model's type.
+
 Regimes (:class:`RubRegime`): no contact; intermittent impacts (contact begun and left in the
 window); full rub (contact in every sample, whirling forward); backward whirl in permanent
 contact, rolling (stick in most samples: the theory's ``omega_w = -R_r Omega / r``) or sliding.
@@ -30,16 +36,29 @@ from __future__ import annotations
 import enum
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from typing import Any
+from typing import Any, NamedTuple
 
 import numpy as np
 
-from rotorlab._kernels import jeffcott_rub as _k
-from rotorlab.contact._model import JeffcottRub
 from rotorlab.models._checks import check_number as _num
 from rotorlab.sweep._spec import ChunkVar
 
-__all__ = ["RubRegime", "RubFeatures", "RubRegimes", "classify_rub", "rub_features"]
+__all__ = ["RubRegime", "RubFeatures", "RubRegimes", "ContactSamples", "classify_rub", "rub_features"]
+
+
+class ContactSamples(NamedTuple):
+    """What a model with a clearance says about its contact at saved samples (all shape (n,) or
+    (n, 2)): gap vector ``w`` (m) and its rate ``dw`` (m/s), contact ``mode`` (0 free, +-1
+    sliding, 2 rolling), cumulative ``impacts``, largest normal impulse so far ``peak_impulse``
+    (N s), contact ``normal_force`` (N) and ``spin_speed`` (rad/s)."""
+
+    w: np.ndarray
+    dw: np.ndarray
+    mode: np.ndarray
+    impacts: np.ndarray
+    peak_impulse: np.ndarray
+    normal_force: np.ndarray
+    spin_speed: np.ndarray
 
 
 class RubRegime(enum.IntEnum):
@@ -80,26 +99,27 @@ class RubFeatures:
     peak_impulse: float
 
 
-def rub_features(model: JeffcottRub, ts, ys, params=None) -> RubFeatures:
-    """Reduce samples ``ys`` (shape (n, 9)) at times ``ts`` (shape (n,), n >= 2) to features.
+def rub_features(model: Any, ts, ys, params=None) -> RubFeatures:
+    """Reduce samples ``ys`` (shape (n, n_state)) at times ``ts`` (shape (n,), n >= 2) to features.
 
-    ``params`` (the packed vector, default ``model.to_array()``) lets a sweep vary parameters
-    of one model. The normal force at each sample comes from the model's compiled contact law.
+    ``model`` is any model with a clearance (``contact_samples``); ``params`` (the packed
+    vector, default ``model.to_array()``) lets a sweep vary parameters of one model. The normal
+    force at each sample comes from the model's compiled contact law.
     """
     ts = np.asarray(ts, dtype=float)
     ys = np.asarray(ys, dtype=float)
     p = model.to_array() if params is None else np.asarray(params, dtype=float)
-    mode = ys[:, _k.MODE]
+    cs = model.contact_samples(ts, ys, p)
+    mode = cs.mode
     contact = mode != 0.0
     span = ts[-1] - ts[0]
-    onsets = ys[-1, _k.N_IMP] - ys[0, _k.N_IMP]
-    x, y, vx, vy = ys[:, _k.X], ys[:, _k.Y], ys[:, _k.VX], ys[:, _k.VY]
+    onsets = cs.impacts[-1] - cs.impacts[0]
+    x, y, vx, vy = cs.w[:, 0], cs.w[:, 1], cs.dw[:, 0], cs.dw[:, 1]
     r2 = x * x + y * y
     omega = np.where(r2 > 0.0, (x * vy - y * vx) / np.where(r2 > 0.0, r2, 1.0), 0.0)
-    spin = p[_k.P_W]
+    spin = float(np.mean(cs.spin_speed))
     whirl_ratio = float(np.mean(omega) / spin) if spin != 0.0 else 0.0
-    forces = [_k.contact_forces(float(t), row, p)[0] for t, row in zip(ts[contact], ys[contact])]
-    peak = float(max(forces)) if forces else 0.0
+    peak = float(np.max(cs.normal_force[contact])) if np.any(contact) else 0.0
     cf = float(np.mean(contact))
     rf = float(np.mean(mode == 2.0))
     if cf == 0.0 and onsets == 0:
@@ -110,10 +130,10 @@ def rub_features(model: JeffcottRub, ts, ys, params=None) -> RubFeatures:
         regime = RubRegime.FULL_RUB
     else:
         regime = RubRegime.BACKWARD_ROLLING if rf >= 0.5 else RubRegime.BACKWARD_SLIDING
-    return RubFeatures(regime, float(onsets / span), cf, rf, whirl_ratio, peak, float(ys[-1, _k.P_MAX]))
+    return RubFeatures(regime, float(onsets / span), cf, rf, whirl_ratio, peak, float(cs.peak_impulse[-1]))
 
 
-def classify_rub(model: JeffcottRub, y0, t_end: float, window: float, n_samples: int = 400,
+def classify_rub(model: Any, y0, t_end: float, window: float, n_samples: int = 400,
                  control=None) -> RubFeatures:  # fmt: skip
     """Simulate ``model`` from ``y0`` to ``t_end`` and classify the last ``window`` seconds."""
     from rotorlab.integrate import SaveAt, StepControl, solve
@@ -126,40 +146,31 @@ def classify_rub(model: JeffcottRub, y0, t_end: float, window: float, n_samples:
     return rub_features(model, ts, sol.ys)
 
 
-#: coordinates a map can vary, their packed-parameter index and unit
-_COORDS = {
-    "spin_speed": (_k.P_W, "rad/s"),
-    "clearance": (_k.P_D, "m"),
-    "eccentricity": (_k.P_EPS, "m"),
-    "friction": (_k.P_MU, "1"),
-    "stator_stiffness": (_k.P_KS, "N/m"),
-    "restitution": (_k.P_E, "1"),
-}
-
-
 @dataclass(frozen=True, slots=True)
 class RubRegimes:
     """Per-point analysis of a sweep: simulate the rub model and classify its last window.
 
     Parameters
     ----------
-    model : JeffcottRub
-        The base model; a sweep varies any of ``spin_speed`` (rad/s), ``clearance`` (m),
+    model : JeffcottRub or Machine
+        The base model, any model with a clearance; a sweep varies any of its
+        ``rub_parameters`` (JeffcottRub: ``spin_speed`` (rad/s), ``clearance`` (m),
         ``eccentricity`` (m), ``friction``, ``stator_stiffness`` (N/m, elastic stator only) and
-        ``restitution``.
+        ``restitution``; Machine: see :meth:`rotorlab.models.Machine.rub_parameters`).
     t_end : float
         Simulated time (s).
     window : float
         Length of the classified window at the end (s), < ``t_end``.
     position, velocity : (float, float)
-        Initial state of every point (m, m/s); inside the clearance for a rigid stator.
+        Initial gap vector and its rate at every point (m, m/s; the model's ``gap_state``);
+        inside the clearance for a rigid stator.
     n_samples : int
         Samples in the window.
     rtol, atol : float
         Integrator tolerances.
     """
 
-    model: JeffcottRub
+    model: Any
     t_end: float
     window: float
     position: tuple[float, float] = (0.0, 0.0)
@@ -170,17 +181,18 @@ class RubRegimes:
 
     def __post_init__(self) -> None:
         o = "RubRegimes"
-        if not isinstance(self.model, JeffcottRub):
-            raise ValueError(f"{o}.model must be a JeffcottRub, got {type(self.model).__name__}")
+        if not callable(getattr(self.model, "contact_samples", None)) or not self.model.rub_parameters:
+            raise ValueError(f"{o}.model must be a model with a clearance (JeffcottRub, or a Machine "
+                             f"with a Clearance), got {type(self.model).__name__}")
         object.__setattr__(self, "t_end", _num(o, "t_end", self.t_end, unit="s"))
         object.__setattr__(self, "window", _num(o, "window", self.window, hi=self.t_end, hi_open=True, unit="s"))
         if int(self.n_samples) < 2:
             raise ValueError(f"{o}.n_samples must be >= 2, got {self.n_samples!r}")
-        self.model.initial_state(self.position, self.velocity)  # validates the start
+        self.model.gap_state(self.position, self.velocity)  # validates the start
 
     @property
     def coordinate_units(self) -> Mapping[str, str]:
-        return {name: unit for name, (_, unit) in _COORDS.items()}
+        return {name: unit for name, (_, unit) in self.model.rub_parameters.items()}
 
     def trailing_coords(self) -> dict[str, tuple[np.ndarray, dict[str, Any]]]:
         return {}
@@ -200,11 +212,9 @@ class RubRegimes:
         base = self.model.to_array()
         params = np.tile(base, (n, 1))
         for name, values in coords.items():
-            idx, _ = _COORDS[name]
-            if name == "stator_stiffness" and self.model.rotor.rigid_stator:
-                raise ValueError("RubRegimes: stator_stiffness can vary only with an elastic stator")
+            idx, _ = self.model.rub_parameters[name]
             params[:, idx] = np.asarray(values, dtype=float)
-        y0 = self.model.initial_state(self.position, self.velocity)
+        y0 = self.model.gap_state(self.position, self.velocity)
         ts = np.linspace(self.t_end - self.window, self.t_end, int(self.n_samples))
         ens = solve_ensemble(self.model, y0, (0.0, self.t_end), params=params, save_at=SaveAt(ts=ts),
                              control=StepControl(rtol=self.rtol, atol=self.atol), threads=threads)  # fmt: skip
@@ -225,6 +235,6 @@ class RubRegimes:
         res["status"] = ChunkVar((), np.asarray(ens.status, dtype=np.int8), {"units": "1"})
         return res
 
-    def with_model(self, model: JeffcottRub) -> RubRegimes:
+    def with_model(self, model: Any) -> RubRegimes:
         """The same analysis on another model."""
         return replace(self, model=model)

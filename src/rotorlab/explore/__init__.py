@@ -13,6 +13,7 @@ processes or a Dask cluster, checkpointed to a Zarr store.
 
 from rotorlab.explore._balancer import BalancerRegimes, balancer_labels
 from rotorlab.explore._basin import GridAxis, basin_fractions, basin_map, basin_stability, wilson_interval
+from rotorlab.explore._machine import MACHINE_LABELS, MachineRegimes
 from rotorlab.explore._mapper import DEFAULT_CHUNK, AbstractMapper, Feature, MapperAnalysis, label_since, map_starts
 from rotorlab.explore._torus import TORUS_LABELS, TorusRegimes
 
@@ -22,6 +23,8 @@ __all__ = [
     "DEFAULT_CHUNK",
     "Feature",
     "GridAxis",
+    "MACHINE_LABELS",
+    "MachineRegimes",
     "MapperAnalysis",
     "TORUS_LABELS",
     "TorusRegimes",

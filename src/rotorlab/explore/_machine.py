@@ -17,6 +17,7 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
+from typing import Any
 
 import numpy as np
 
@@ -57,6 +58,12 @@ class MachineRegimes:
         Ball angles for angle coordinates not given (rad); default equally spaced in each race.
     control : StepControl
         Integrator tolerances.
+    spec : rotorlab.io.MachineSpec, optional
+        The case's model spec the machine was built from: then any number of it is a coordinate
+        too, named ``model.<key path>`` (e.g. ``model.unbalances[0].magnitude``, SI); each value
+        rebuilds the machine from the spec with that key set (validated like the case file).
+    races : tuple of int, optional
+        The races of ``spec`` that take part (default all), as in ``model``.
     """
 
     model: Machine
@@ -66,6 +73,8 @@ class MachineRegimes:
     samples_per_window: int = 33
     base_angles: tuple[float, ...] | None = None
     control: StepControl = field(default_factory=lambda: StepControl(rtol=1e-8, atol=1e-10))
+    spec: Any = None
+    races: tuple[int, ...] | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.model, Machine):
@@ -101,7 +110,7 @@ class MachineRegimes:
         n = self.model.n_balls
         units = {f"psi_{i}": "rad" for i in range(1, n + 1)}
         units.update({f"dpsi_{i}": "rad/s" for i in range(1, n + 1)})
-        return {**units, **_PARAMS}
+        return _KeyUnits({**units, **_PARAMS}, self.spec)
 
     @property
     def window(self) -> float:
@@ -116,8 +125,29 @@ class MachineRegimes:
         k = np.linspace(-1.0, 0.0, self.samples_per_window)
         return np.unique(np.maximum(h[:, None] + self.window * k[None, :], 0.0))
 
+    def _rebuilt(self, keys: Mapping[str, float]) -> Machine:
+        """The machine rebuilt from ``spec`` with the ``model.<key path>`` values set."""
+        from rotorlab.io import CaseError, validate_case
+        from rotorlab.io._fields import plain_data
+        from rotorlab.io._machine_spec import build_machine
+
+        doc = {"name": "sweep-point", "model": plain_data(self.spec.model_dump(mode="python"))}
+        try:
+            spec = validate_case(doc, overrides={k: float(v) for k, v in keys.items()}).model
+        except CaseError as exc:
+            raise ValueError(f"at {', '.join(f'{k} = {v:g}' for k, v in keys.items())}: {exc}") from None
+        m = build_machine(spec)
+        if self.races is not None:
+            m = replace(m, races=tuple(m.races[i] for i in self.races))
+        m = m.with_drive(self.model.drive)
+        if m.layout != self.model.layout or not np.array_equal(m.basis, self.model.basis):
+            raise ValueError(f"{', '.join(keys)}: changes the machine's size or the modes it keeps (n_modes); "
+                             "a basin or sweep varies numbers that keep both")
+        return m
+
     def _variant(self, values: Mapping[str, float], masses=None) -> Machine:
-        m = self.model
+        keys = {k: v for k, v in values.items() if k.startswith("model.")}
+        m = self._rebuilt(keys) if keys else self.model
         if "spin_speed" in values:
             m = m.with_drive(ConstantSpeed(float(values["spin_speed"])))
         kw = {k[5:]: float(v) for k, v in values.items() if k in ("ball_mass", "ball_damping")}
@@ -134,7 +164,7 @@ class MachineRegimes:
         angles = np.stack([np.broadcast_to(coords.get(f"psi_{i + 1}", self.base_angles[i]), (n_pts,))
                            for i in range(nb)], axis=1)
         rates = np.stack([np.broadcast_to(coords.get(f"dpsi_{i + 1}", 0.0), (n_pts,)) for i in range(nb)], axis=1)
-        params = [k for k in _PARAMS if k in coords]
+        params = [k for k in _PARAMS if k in coords] + sorted(k for k in coords if k.startswith("model."))
         if params:
             keys = np.stack([coords[k] for k in params], axis=1)
             uniq, inverse = np.unique(keys, axis=0, return_inverse=True)
@@ -150,6 +180,33 @@ class MachineRegimes:
             P[sel] = model.to_array()
         return self.model, Y0, P
 
+    def _locked_response(self, p: np.ndarray) -> np.ndarray:
+        """Largest orbit radius per node of the unbalance response with the balls locked (m), from
+        one row of packed parameters alone (so that it holds for every variant of a chunk).
+
+        With ``H = M0^-1`` (balls locked on the structure) the packed ``H K``, ``H C``, ``H G``,
+        ``H B_u^T`` give ``(H K + i w H C + i w^2 H G - w^2 I) q = w^2 sum_u U_u e^(i phi_u)
+        H B_u^T (1, -i)`` (as :func:`rotorlab.analyses._machine.unbalance_amplitudes`, in the kept
+        modes).
+        """
+        lay = self.model.layout
+        o, nz = lay.offsets, lay.n_z
+        om = float(p[o["speed"] + 1])
+        HK = p[o["HK"]:o["HK"] + nz * nz].reshape(nz, nz)
+        HC = p[o["HC"]:o["HC"] + nz * nz].reshape(nz, nz)
+        HG = p[o["HG"]:o["HG"] + nz * nz].reshape(nz, nz) if lay.gyroscopic else np.zeros((nz, nz))
+        f = np.zeros(nz, dtype=complex)
+        n_races = len(self.model.races)
+        for u in range(len(self.model.unbalances)):
+            U, c, s = p[o["unbalances"] + 3 * u: o["unbalances"] + 3 * u + 3]
+            k = lay.station_HBT(n_races + u)
+            HBt = p[k:k + 2 * nz].reshape(nz, 2)
+            f += om * om * U * (c + 1j * s) * (HBt @ np.array([1.0, -1j]))
+        D = HK + 1j * om * (HC + om * HG) - om * om * np.eye(nz)
+        q = self.model.basis @ np.linalg.solve(D, f)
+        X, Y = q[0::4], q[1::4]
+        return np.sqrt(0.5 * (np.abs(X) ** 2 + np.abs(Y) ** 2) + 0.5 * np.abs(X * X + Y * Y))
+
     def _speed_and_masses(self, P: np.ndarray) -> np.ndarray:
         """Per trajectory: its spin speed and ball masses, read back from the packed parameters."""
         o = self.model.layout.offsets
@@ -158,7 +215,7 @@ class MachineRegimes:
                                P[:, o["balls"]:o["balls"] + 4 * nb:4]], axis=1)
 
     def features(self, sol, P: np.ndarray) -> dict[str, Feature]:
-        from rotorlab.analyses._machine import _wrap, unbalance_amplitudes
+        from rotorlab.analyses._machine import _wrap
 
         lay = self.model.layout
         nb = lay.n_balls
@@ -185,10 +242,8 @@ class MachineRegimes:
                 far = np.maximum(far, np.hypot(x[:, c] - mx, y[:, c] - my))
             amplitude[:, j] = far.max(axis=1)
             max_rate[:, j] = rate[:, cols].max(axis=1)
-        uniq, inverse = np.unique(sm, axis=0, return_inverse=True)
-        ref_u = np.array([unbalance_amplitudes(self._variant({"spin_speed": r[0]}, masses=r[1:]), r[0]).max()
-                          for r in uniq])
-        ref = ref_u[inverse.reshape(-1)]
+        uniq, inverse = np.unique(P, axis=0, return_inverse=True)
+        ref = np.array([self._locked_response(row).max() for row in uniq])[inverse.reshape(-1)]
         i_end = np.searchsorted(ts, h)
         out = {
             "amplitude": Feature(amplitude, "m", "largest vibration amplitude of any station over the window"),
@@ -214,3 +269,34 @@ class MachineRegimes:
                             float(features["max_rate"][i, j]), float(features["rotor_speed"][i]), nb)
             out[i, j] = index.get(text, index["other"])
         return out
+
+
+class _KeyUnits(dict):
+    """Coordinate units, plus the SI unit of any ``model.<key path>`` of ``spec`` when asked."""
+
+    def __init__(self, named: dict[str, str], spec: Any) -> None:
+        super().__init__(named)
+        self._spec = spec
+
+    def _key(self, name: Any) -> str | None:
+        if self._spec is None or not isinstance(name, str):
+            return None
+        from rotorlab.io._basin_specs import Coordinates
+
+        if name not in Coordinates({}, self._spec):
+            return None
+        from rotorlab.io._basin_specs import key_quantity
+
+        return key_quantity(name, type(self._spec)).dimension.si or "1"
+
+    def __contains__(self, name: Any) -> bool:
+        return super().__contains__(name) or self._key(name) is not None
+
+    def __missing__(self, name: Any) -> str:
+        unit = self._key(name)
+        if unit is None:
+            raise KeyError(name)
+        return unit
+
+    def get(self, name: Any, default: Any = None) -> Any:
+        return self[name] if name in self else default

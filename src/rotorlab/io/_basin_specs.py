@@ -25,7 +25,7 @@ import math
 import re
 from typing import Annotated, Any, Literal
 
-from pydantic import Field, PlainValidator, WithJsonSchema, model_validator
+from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
@@ -39,6 +39,7 @@ from rotorlab.io._fields import (
     quantity,
 )
 from rotorlab.io._jeffcott_specs import constant_spin_speed
+from rotorlab.io._units import DIMENSIONS, input_unit
 
 __all__ = [
     "TORUS_COORDINATES",
@@ -79,6 +80,14 @@ BALANCER_COORDINATES: dict[str, str] = {
     "ball_friction": "dimensionless",
 }
 
+#: Start coordinates of a machine's balancer besides ``psi_<i>`` and ``dpsi_<i>`` (every ball of
+#: every race; :class:`rotorlab.explore.MachineRegimes`).
+MACHINE_COORDINATES: dict[str, str] = {
+    "spin_speed": "angular_speed",
+    "ball_mass": "mass",
+    "ball_damping": "torque_damping",
+}
+
 _BALL_COORD = re.compile(r"^(d?)psi_([1-9][0-9]*)$")
 
 #: Lower bounds of the parameters among the coordinates: name -> ("gt" or "ge", 0).
@@ -94,8 +103,138 @@ def _bound_kw(name: str) -> dict[str, float]:
     return {} if kind is None else {kind: 0.0}
 
 
+#: Prefix of a coordinate that is a key path of the case's ``[model]`` table: a model whose spec
+#: sets ``sweeps_keys`` (a machine) varies any number of its model this way in basins and sweeps,
+#: e.g. ``model.unbalances[0].magnitude`` or ``model.structure.bearings[0].kxx``.
+KEY_PREFIX = "model."
+
+
+def _quantity_in(tp: Any, path: tuple[Any, ...], meta: tuple[Any, ...] = ()) -> _QuantityValidator | None:
+    """The quantity validator at ``path`` below the annotation ``tp`` (None if no number is there)."""
+    import types
+    import typing
+
+    from pydantic import BaseModel
+
+    if not path:
+        for m in meta:
+            if isinstance(getattr(m, "func", None), _QuantityValidator):
+                return m.func
+    origin = typing.get_origin(tp)
+    if origin is Annotated:
+        base, *more = typing.get_args(tp)
+        return _quantity_in(base, path, tuple(more) + tuple(meta))
+    if origin in (typing.Union, types.UnionType):
+        for arg in typing.get_args(tp):
+            found = _quantity_in(arg, path)
+            if found is not None:
+                return found
+        return None
+    if not path:
+        return None
+    head, rest = path[0], path[1:]
+    if origin is tuple and isinstance(head, int):
+        args = typing.get_args(tp)
+        item = args[0] if len(args) == 2 and args[1] is Ellipsis else (args[head] if head < len(args) else None)
+        return None if item is None else _quantity_in(item, rest)
+    if isinstance(tp, type) and issubclass(tp, BaseModel) and isinstance(head, str) and head in tp.model_fields:
+        info = tp.model_fields[head]
+        return _quantity_in(info.annotation, rest, tuple(info.metadata))
+    return None
+
+
+def key_quantity(name: str, spec: Any = None) -> _QuantityValidator | None:
+    """The quantity (unit, bounds) of the number a coordinate ``model.<key path>`` names.
+
+    Parameters
+    ----------
+    name : str
+        ``"model."`` and a key path as the error messages write it (``model.races[0].radius``).
+    spec : type, optional
+        A model spec class; default any registered model type that has that key.
+
+    Returns
+    -------
+    _QuantityValidator or None
+        None when the name is not such a key path or names no number.
+    """
+    if not name.startswith(KEY_PREFIX):
+        return None
+    from rotorlab.io._overrides import parse_key_path
+
+    try:
+        path = tuple(int(k) if str(k).isdigit() else k for k in parse_key_path(name[len(KEY_PREFIX):]))
+    except ValueError:
+        return None
+    if spec is None:
+        from rotorlab.io._schema import MODEL_SPECS
+
+        specs = list(MODEL_SPECS.values())
+    else:
+        specs = [spec]
+    for cls in specs:
+        found = _quantity_in(cls, path)
+        if found is not None:
+            return found
+    return None
+
+
+def _dimension_name(validator: _QuantityValidator) -> str:
+    return next(k for k, d in DIMENSIONS.items() if d is validator.dimension)
+
+
+class Coordinates(dict):
+    """The start coordinates of a model (name -> dimension) and, for a model whose spec sets
+    ``sweeps_keys``, every number of its ``[model]`` table as ``model.<key path>`` (looked up
+    when asked for; not listed)."""
+
+    def __init__(self, named: dict[str, str], model: Any) -> None:
+        super().__init__(named)
+        self._model = model
+
+    def _key(self, name: Any) -> str | None:
+        if not (isinstance(name, str) and getattr(self._model, "sweeps_keys", False)):
+            return None
+        found = key_quantity(name, type(self._model))
+        if found is None:
+            return None
+        from rotorlab.io._overrides import parse_key_path
+
+        value: Any = self._model.model_dump(mode="python")
+        for k in parse_key_path(name[len(KEY_PREFIX):]):  # the key must exist in this model
+            k = int(k) if str(k).isdigit() and isinstance(value, (list, tuple)) else k
+            if isinstance(k, int) and isinstance(value, (list, tuple)) and k < len(value):
+                value = value[k]
+            elif isinstance(k, str) and isinstance(value, dict) and k in value:
+                value = value[k]
+            else:
+                return None
+        return _dimension_name(found) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
+
+    def __contains__(self, name: Any) -> bool:
+        return super().__contains__(name) or self._key(name) is not None
+
+    def __missing__(self, name: Any) -> str:
+        dim = self._key(name)
+        if dim is None:
+            raise KeyError(name)
+        return dim
+
+
+def coordinates_text(known: Any) -> str:
+    """The names of ``known`` for messages, with the key paths a ``sweeps_keys`` model also takes."""
+    text = ", ".join(known)
+    if isinstance(known, Coordinates) and getattr(known._model, "sweeps_keys", False):
+        text += (", or any number of [model] as model.<key path> (e.g. model.unbalances[0].magnitude)"
+                 if text else "any number of [model] as model.<key path>")
+    return text
+
+
 def _any_dimension(name: str) -> str | None:
     """Dimension of a coordinate name of any model, or None if no model has it."""
+    found = key_quantity(name)
+    if found is not None:
+        return _dimension_name(found)
     if name in TORUS_COORDINATES:
         return TORUS_COORDINATES[name]
     if name in BALANCER_COORDINATES:
@@ -111,14 +250,14 @@ def coordinate_dimensions(model: Any) -> dict[str, str]:
 
     Parameters
     ----------
-    model : ToroidalBallSpec or rotorlab.io.JeffcottBallsSpec
+    model : rotorlab.io.AbstractModelSpec
         A validated ``[model]`` table.
 
     Returns
     -------
     dict of str to str
-        Coordinate name to a key of :data:`rotorlab.io.DIMENSIONS`; empty for a model whose
-        basins rotorlab cannot map.
+        Coordinate name to a key of :data:`rotorlab.io.DIMENSIONS` (the model spec's
+        ``start_coordinates()``); empty for a model whose basins rotorlab cannot map.
 
     Examples
     --------
@@ -126,15 +265,38 @@ def coordinate_dimensions(model: Any) -> dict[str, str]:
     ...        ball_radius=0.0125, spin_speed=140, offset=0.02)))[:4]
     ['alpha', 'ball_radius', 'dalpha', 'dpsi']
     """
-    kind = getattr(model, "type", None)
-    if kind == "toroidal_ball":
-        return dict(TORUS_COORDINATES)
-    if kind == "jeffcott_balls" and model.n_balls > 0:
-        out = {f"psi_{i}": "angle" for i in range(1, model.n_balls + 1)}
-        out.update({f"dpsi_{i}": "angular_speed" for i in range(1, model.n_balls + 1)})
-        out.update(BALANCER_COORDINATES)
-        return out
-    return {}
+    return Coordinates(model.start_coordinates(), model)
+
+
+def ball_coordinates(n_balls: int, parameters: dict[str, str]) -> dict[str, str]:
+    """The start coordinates of a balancer with ``n_balls`` balls: ``psi_<i>``, ``dpsi_<i>`` and
+    ``parameters`` (none without balls)."""
+    if n_balls == 0:
+        return {}
+    out = {f"psi_{i}": "angle" for i in range(1, n_balls + 1)}
+    out.update({f"dpsi_{i}": "angular_speed" for i in range(1, n_balls + 1)})
+    out.update(parameters)
+    return out
+
+
+def record_input_units(units: dict[str, str], given: list[tuple[str, list[Any]]]) -> dict[str, str]:
+    """Return ``units`` updated with the unit each given angle coordinate was written in.
+
+    Parameters
+    ----------
+    units : dict of str to str
+        Units recorded so far (a copy is returned).
+    given : list of (name, raw values)
+        Coordinates as written (numbers or strings with units); an angle given with a degree
+        unit in any of its values is recorded as ``"deg"``, otherwise as ``"rad"``; other
+        coordinates are not recorded.
+    """
+    out = dict(units)
+    for name, raws in given:
+        out.pop(name, None)
+        if _any_dimension(name) == "angle":
+            out[name] = next((u for u in map(input_unit, raws) if u), "rad")
+    return out
 
 
 def _known_names() -> str:
@@ -163,7 +325,7 @@ class _AxisValidator:
         ends = []
         for what, raw in (("start", start), ("stop", stop)):
             try:
-                ends.append(_QuantityValidator(dim, **_bound_kw(name))(raw))
+                ends.append((key_quantity(name) or _QuantityValidator(dim, **_bound_kw(name)))(raw))
             except PydanticCustomError as exc:
                 raise _error(f"{what}: {_detail(exc)}") from None
         if isinstance(count, bool) or not isinstance(count, (int, float)) or not float(count).is_integer() or count < 1:
@@ -195,7 +357,7 @@ class _FixedValidator:
                 raise _error(f"unknown coordinate {name!r}" + (f"; {hint}" if hint else "")
                              + f" (coordinates: {_known_names()})")  # fmt: skip
             try:
-                out[str(name)] = _QuantityValidator(dim, **_bound_kw(str(name)))(raw)
+                out[str(name)] = (key_quantity(str(name)) or _QuantityValidator(dim, **_bound_kw(str(name))))(raw)
             except PydanticCustomError as exc:
                 raise _error(f"{name}: {_detail(exc)}") from None
         return out
@@ -254,6 +416,10 @@ class ToroidalBallSpec(AbstractModelSpec):
         if issues:
             raise IssueGroup(issues)
         return self
+
+    def start_coordinates(self) -> dict[str, str]:
+        """Its state entries and parameters (:data:`TORUS_COORDINATES`)."""
+        return dict(TORUS_COORDINATES)
 
     def describe(self) -> str:
         """One line: geometry, speed and friction."""
@@ -323,6 +489,36 @@ class BasinSpec(AbstractAnalysisSpec):
     rtol: quantity("dimensionless", gt=0, lt=1) | None = Field(None, description="relative tolerance (-)")
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance (-)")
 
+    _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _record_input_units(cls, data: Any, handler: Any) -> BasinSpec:
+        """Keep the unit each angle of x, y and fixed was written in (see :attr:`input_units`)."""
+        spec = handler(data)
+        if isinstance(data, dict):
+            given = [(raw[0], raw[1:3]) for raw in (data.get("x"), data.get("y"))
+                     if isinstance(raw, (list, tuple)) and len(raw) == 4 and isinstance(raw[0], str)]
+            fixed = data.get("fixed")
+            given += [(str(name), [raw]) for name, raw in (fixed.items() if isinstance(fixed, dict) else ())]
+            spec._input_units = record_input_units({}, given)
+        return spec
+
+    @property
+    def input_units(self) -> dict[str, str]:
+        """Angle coordinate given to the unit it was written in: ``"deg"`` or ``"rad"`` (SI).
+
+        The values themselves are SI (radians); results and figures show these coordinates in
+        the unit the case file or command line gave them in.
+        """
+        return dict(self._input_units)
+
+    def with_input_units(self, units: dict[str, str]) -> BasinSpec:
+        """Return a copy whose :attr:`input_units` are ``units`` (for options given apart)."""
+        out = self.model_copy()
+        out._input_units = dict(units)
+        return out
+
     @model_validator(mode="after")
     def _check_axes(self) -> BasinSpec:
         issues = []
@@ -341,17 +537,17 @@ class BasinSpec(AbstractAnalysisSpec):
         known = coordinate_dimensions(model)
         if not known:
             what = "a jeffcott_balls model without balls" if kind == "jeffcott_balls" else f"model type {kind!r}"
-            return [Issue(("type",), f"basins need a toroidal_ball model or a jeffcott_balls model with "
+            return [Issue(("type",), f"basins need a toroidal_ball model or a jeffcott_balls or machine model with "
                                      f"balls, not {what}", self.type)]  # fmt: skip
         issues = []
         for key, axis in (("x", self.x), ("y", self.y)):
             if axis[0] not in known:
                 issues.append(Issue((key,), f"{axis[0]!r} is not a coordinate of this {kind} model "
-                                            f"(coordinates: {', '.join(known)})", list(axis)))  # fmt: skip
+                                            f"(coordinates: {coordinates_text(known)})", list(axis)))  # fmt: skip
         for name, value in self.fixed.items():
             if name not in known:
                 issues.append(Issue(("fixed", name), f"not a coordinate of this {kind} model "
-                                                     f"(coordinates: {', '.join(known)})", value))  # fmt: skip
+                                                     f"(coordinates: {coordinates_text(known)})", value))  # fmt: skip
         if kind == "toroidal_ball":
             issues += self._geometry_issues(model)
             for key in ("speed_ratio", "speed"):

@@ -284,6 +284,15 @@ class AbstractModelSpec(_Spec):
         """Return a one-line description of the model (shown by ``rotorlab validate``)."""
         return str(getattr(self, "type", type(self).__name__))
 
+    #: Whether basins and sweeps of this model may vary any number of its ``[model]`` table by
+    #: key path (``model.<key path>``; see :data:`rotorlab.io._basin_specs.KEY_PREFIX`).
+    sweeps_keys: ClassVar[bool] = False
+
+    def start_coordinates(self) -> dict[str, str]:
+        """The coordinates (state entries and parameters) a basin or sweep of this model varies,
+        name -> dimension; empty for a model without a regime mapper."""
+        return {}
+
     def linear_structure(self) -> AbstractModelSpec | None:
         """The linear rotor spec the linear analyses (``campbell``, ``modes``, ...) run on, or None.
 

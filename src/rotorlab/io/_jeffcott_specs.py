@@ -303,6 +303,12 @@ class JeffcottBallsSpec(AbstractModelSpec):
         """Return the ``[model.speed]`` profile, or None."""
         return self.speed
 
+    def start_coordinates(self) -> dict[str, str]:
+        """``psi_<i>``, ``dpsi_<i>`` and the rotor's and balls' parameters (none without balls)."""
+        from rotorlab.io._basin_specs import BALANCER_COORDINATES, ball_coordinates
+
+        return ball_coordinates(self.n_balls, BALANCER_COORDINATES)
+
     def steady_issues(self, analysis: AbstractAnalysisSpec) -> list[Issue]:
         """Check a steady-motion analysis: at least one ball, no Coulomb friction if it simulates."""
         if self.n_balls < 1:

@@ -21,6 +21,18 @@ Layout::
     phase = "0 deg"
     [model.gravity]
     vector = ["0 m/s^2", "-9.81 m/s^2", "0 m/s^2"]   # z is the shaft axis
+    [[model.clearances]]             # at most one: rotor-stator contact at a station
+    at = "rotor"
+    gap = "1 mm"
+    restitution = 0.5                # Newton's coefficient (impacts on a rigid or moving stator)
+    friction = 0.2
+    rotor_radius = "50 mm"           # its surface speed R_r Omega enters the slip
+    rest_speed = "1e-5 m/s"          # optional: chatter below it becomes sustained contact
+    conical = { half_angle = "30 deg", lever = "50 mm" }   # optional: a conical gap (seed 001)
+    center_at_rest = true            # optional: centre the stator where the station rests under
+                                     # gravity (or center = ["0 mm", "-16 mm"]; default: the axis)
+    stator = { stiffness = "1e6 N/m", damping = "100 N*s/m", mass = "10 kg" }
+                                     # optional (omitted: rigid); mass 0: massless elastic stator
     [model.drive]                    # a speed profile (constant, ramp, hill) or a motor
     profile = "motor"
     stall_torque = "2 N*m"
@@ -30,7 +42,7 @@ Layout::
 
 from __future__ import annotations
 
-from typing import Annotated, Literal, Union
+from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import Field, field_validator, model_validator
 
@@ -42,6 +54,7 @@ from rotorlab.io._linear_common import label
 from rotorlab.io._multibody_spec import MultibodySpec
 
 __all__ = ["MachineBallSpec", "RaceSpec", "MachineUnbalanceSpec", "GravitySpec", "MotorSpec",
+           "StatorSpec", "ConicalGapSpec", "ClearanceSpec",
            "MachineSpec", "build_machine", "MACHINE_STEADY_PARAMETERS"]
 
 #: Second parameters of a machine's stability chart (every ball of the chosen races takes the
@@ -146,6 +159,68 @@ class MachineUnbalanceSpec(_Station):
     phase: quantity("angle") = Field(0.0, description="angle from the reference (rad)")
 
 
+class StatorSpec(_Spec):
+    """An elastic stator: massless (contact stiffness and damping) or a housing with mass on an
+    elastic mounting (see :class:`rotorlab.models.ElasticStator`)."""
+
+    stiffness: quantity("stiffness", gt=0) = Field(description="stator stiffness k_s (N/m)")
+    damping: quantity("damping", ge=0) = Field(0.0, description="stator damping c_s (N*s/m)")
+    mass: quantity("mass", ge=0) = Field(0.0, description="housing mass m_s (kg); 0: massless stator")
+
+
+class ConicalGapSpec(_Spec):
+    """A conical gap: ``w = sin(half_angle) (x, y) + lever (phi_x, phi_y)``."""
+
+    half_angle: quantity("angle", gt=0, le=1.5707963267948966) = Field(
+        description="half angle of the cone (rad)")
+    lever: quantity("length") = Field(description="lever of the tilt at the contact (m)")
+
+
+class ClearanceSpec(_Station):
+    """A clearance between the rotor and a stator at a station (see :class:`rotorlab.models.Clearance`).
+
+    Parameters
+    ----------
+    node, at, position : int, str, float
+        Where (one of them); ``axial_offset`` moves the contact plane along +z.
+    gap : float
+        Radial clearance delta (m), > 0.
+    stator : StatorSpec, optional
+        Omitted: a rigid stator.
+    restitution, friction : float
+        Newton's restitution e in [0, 1]; Coulomb friction mu >= 0.
+    rotor_radius : float
+        Radius of the rotor's surface at the contact (m).
+    rest_speed : float
+        Rebound speed below which chatter becomes sustained contact (m/s).
+    conical : ConicalGapSpec, optional
+    center : (float, float), optional
+        Centre of the stator's circle (m); default the axis.
+    center_at_rest : bool
+        Centre it where the station rests under gravity instead.
+    """
+
+    gap: quantity("length", gt=0) = Field(description="radial clearance delta (m)")
+    stator: StatorSpec | None = Field(None, description="elastic stator (omitted: rigid)")
+    restitution: quantity("dimensionless", ge=0, le=1) = Field(0.5, description="restitution e (-)")
+    friction: quantity("dimensionless", ge=0) = Field(0.0, description="Coulomb friction mu (-)")
+    rotor_radius: quantity("length", ge=0) = Field(0.0, description="rotor radius R_r at the contact (m)")
+    rest_speed: quantity("velocity", gt=0) = Field(
+        1e-5, description="rebound speed below which chatter becomes sustained contact (m/s)")
+    conical: ConicalGapSpec | None = Field(None, description="conical gap (seed 001)")
+    center: tuple[quantity("length"), quantity("length")] | None = Field(
+        None, description="centre of the stator circle (m); default: the axis")
+    center_at_rest: bool = Field(False, description="centre the stator where the station rests "
+                                                    "under gravity")
+
+    @model_validator(mode="after")
+    def _one_center(self):
+        if self.center is not None and self.center_at_rest:
+            raise IssueGroup([Issue(("center_at_rest",), "give either center or center_at_rest = true, "
+                                                         "not both", self.center_at_rest)])
+        return self
+
+
 class GravitySpec(_Spec):
     """Gravity in the fixed frame, z along the shaft axis (m/s^2)."""
 
@@ -244,11 +319,14 @@ class MachineSpec(AbstractModelSpec):
     gravity: GravitySpec | None = Field(None, description="gravity")
     drive: _Drive = Field(description="spin-speed profile or motor")
     n_modes: integer(ge=1) | None = Field(None, description="modes of the structure kept")
+    clearances: tuple[ClearanceSpec, ...] = Field(
+        (), max_length=1, description="rotor-stator clearances (at most one)")
 
     @model_validator(mode="after")
     def _check_places(self):
         issues = []
-        for key, items in (("races", self.races), ("unbalances", self.unbalances)):
+        for key, items in (("races", self.races), ("unbalances", self.unbalances),
+                           ("clearances", self.clearances)):
             for i, it in enumerate(items):
                 node, bad, msg = self.structure.locate(it.node, it.at, it.position)
                 if node is None:
@@ -277,6 +355,20 @@ class MachineSpec(AbstractModelSpec):
 
         crit = structure_critical_speeds(build_machine(self))
         return float(crit[0]) if crit.size else None
+
+    sweeps_keys: ClassVar[bool] = True
+
+    @property
+    def balls(self) -> tuple[MachineBallSpec, ...]:
+        """Every ball, races in order."""
+        return tuple(b for r in self.races for b in r.balls)
+
+    def start_coordinates(self) -> dict[str, str]:
+        """``psi_<i>``, ``dpsi_<i>`` (every ball, races in order), ``spin_speed``, ``ball_mass``,
+        ``ball_damping`` (none without balls)."""
+        from rotorlab.io._basin_specs import MACHINE_COORDINATES, ball_coordinates
+
+        return ball_coordinates(self.n_balls, MACHINE_COORDINATES)
 
     def linear_structure(self) -> MultibodySpec | FeRotorSpec:
         """The structure (campbell, modes and the other linear analyses run on it)."""
@@ -320,9 +412,14 @@ class MachineSpec(AbstractModelSpec):
 
     def describe(self) -> str:
         drive = self.drive.profile
+        gap = ""
+        if self.clearances:
+            c = self.clearances[0]
+            kind = "rigid" if c.stator is None else ("housing" if c.stator.mass > 0 else "elastic")
+            gap = f"{c.gap * 1e3:.3g} mm clearance ({kind} stator), "
         return (f"machine: {self.structure.describe()}; {len(self.races)} race(s) with "
                 f"{self.n_balls} ball(s), {len(self.unbalances)} unbalance(s), "
-                f"{'gravity, ' if self.gravity else ''}drive {drive}")
+                f"{'gravity, ' if self.gravity else ''}{gap}drive {drive}")
 
 
 def build_machine(spec: MachineSpec):
@@ -349,4 +446,16 @@ def build_machine(spec: MachineSpec):
     drive = drives[d.profile]()
     gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)
     return Machine(structure, races=races, unbalances=unb, gravity=gravity, drive=drive,
-                   n_modes=spec.n_modes)
+                   n_modes=spec.n_modes, clearances=tuple(_clearance(spec, c) for c in spec.clearances))
+
+
+def _clearance(spec: MachineSpec, c: ClearanceSpec):
+    from rotorlab.models import Clearance, ElasticStator
+
+    stator = "rigid" if c.stator is None else ElasticStator(c.stator.stiffness, c.stator.damping,
+                                                             c.stator.mass)
+    conical = None if c.conical is None else (c.conical.half_angle, c.conical.lever)
+    return Clearance(spec.node_of(c), c.gap, stator, restitution=c.restitution, friction=c.friction,
+                     rotor_radius=c.rotor_radius, axial_offset=c.axial_offset, conical=conical,
+                     rest_speed=c.rest_speed,
+                     center="static" if c.center_at_rest else (c.center or (0.0, 0.0)))

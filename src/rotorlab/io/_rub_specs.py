@@ -87,14 +87,33 @@ class RubSpec(AbstractAnalysisSpec):
         return self
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """A rigid stator's rotor must start inside the clearance."""
+        """A rub_rotor, or a machine with a clearance, a constant speed and the rotor radius; a
+        rigid stator's rotor must start inside the clearance."""
+        if getattr(model, "type", None) == "machine":
+            return self._machine_issues(model)
         clearance = getattr(model, "clearance", None)
         if getattr(model, "type", None) != "rub_rotor":
-            return [Issue(("type",), "needs a rub_rotor model", self.type)]
+            return [Issue(("type",), "needs a rub_rotor model, or a machine with a clearance", self.type)]
         if model.stator_stiffness is None and self.initial_radius > clearance:
             return [Issue(("initial_radius",), f"must be <= the clearance ({clearance:g} m) with a rigid stator",
                           self.initial_radius)]  # fmt: skip
         return []
+
+    def _machine_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        if not model.clearances:
+            return [Issue(("type",), "needs a clearance on the machine ([[model.clearances]])", self.type)]
+        issues = []
+        if model.drive.profile != "constant":
+            issues.append(Issue(("type",), "needs a constant speed on the machine ([model.drive] "
+                                           f'profile = "constant"), got "{model.drive.profile}"', self.type))
+        c = model.clearances[0]
+        if c.rotor_radius <= 0.0:
+            issues.append(Issue(("type",), "needs the rotor radius at the contact "
+                                           "(model.clearances[0].rotor_radius > 0)", self.type))
+        if c.stator is None and self.initial_radius > c.gap:
+            issues.append(Issue(("initial_radius",), f"must be <= the clearance ({c.gap:g} m) with a rigid stator",
+                                self.initial_radius))  # fmt: skip
+        return issues
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""

@@ -90,6 +90,7 @@ from rotorlab.io._linear_analyses import (
     ModesSpec,
     UnbalanceResponseSpec,
 )
+from rotorlab.io._knock_spec import MachineKnockSpec
 from rotorlab.io._machine_spec import MachineSpec
 from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._rub_specs import JeffcottRubSpec, RubSpec
@@ -150,7 +151,7 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
                    JeffcottRubSpec)
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
-                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec)  # fmt: skip
+                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec, MachineKnockSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:

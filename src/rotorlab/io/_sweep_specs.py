@@ -20,7 +20,8 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from rotorlab.io._basin_specs import TORUS_COORDINATES, _any_dimension, coordinate_dimensions
+from rotorlab.io._basin_specs import (TORUS_COORDINATES, _any_dimension, coordinate_dimensions, coordinates_text,
+                                      key_quantity)
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, Unit, _error, _QuantityValidator, integer,
                                  quantity)  # fmt: skip
@@ -89,7 +90,10 @@ def sweep_coordinates(model: Any, kind: str) -> dict[str, str]:
     >>> list(sweep_coordinates(load_case("strautmanis-torus").model, "ic"))
     ['psi', 'alpha', 'dpsi', 'dalpha']
     """
-    return {n: d for n, d in coordinate_dimensions(model).items() if _is_state(n) == (kind == "ic")}
+    from rotorlab.io._basin_specs import Coordinates
+
+    named = {n: d for n, d in coordinate_dimensions(model).items() if _is_state(n) == (kind == "ic")}
+    return Coordinates(named, model) if kind == "param" else named
 
 
 def _allowed(kind: str) -> str:
@@ -118,7 +122,7 @@ class _AxesValidator:
             ends = []
             for what, raw in zip(("start", "stop"), entry[:2]):
                 try:
-                    ends.append(_QuantityValidator(dim)(raw))
+                    ends.append((key_quantity(str(name)) or _QuantityValidator(dim))(raw))
                 except PydanticCustomError as exc:
                     raise _error(f"{name} {what}: {(exc.context or {}).get('detail', exc.message())}") from None
             if len(entry) == 2:
@@ -223,7 +227,7 @@ class SweepSpec(AbstractAnalysisSpec):
                     issues.append(Issue((key, name), f"the model has {model.n_balls} ball(s)", name))
                 else:
                     issues.append(Issue((key, name), f"not a{'n initial condition' if key == 'ic' else ' parameter'}"
-                                                     f" of this {kind} model (allowed: {', '.join(known)})", name))
+                                                     f" of this {kind} model (allowed: {coordinates_text(known)})", name))
         for key in ("param", "ic"):
             for name, entry in getattr(self, key).items():
                 if self.sample is not None and len(entry) != 2:

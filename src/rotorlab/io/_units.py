@@ -26,7 +26,7 @@ from typing import Any
 
 from rotorlab.io._errors import CaseError, did_you_mean, format_value
 
-__all__ = ["Dimension", "DIMENSIONS", "ACCEPTED_UNITS", "to_si", "UnitError", "convert"]
+__all__ = ["Dimension", "DIMENSIONS", "ACCEPTED_UNITS", "to_si", "UnitError", "convert", "input_unit"]
 
 TWO_PI = 2.0 * math.pi
 
@@ -349,3 +349,31 @@ def to_si(value: Any, dimension: str, where: str) -> float:
         return convert(value, dimension)
     except UnitError as exc:
         raise CaseError(f"{where} = {format_value(value)}: {exc}") from None
+
+
+def input_unit(value: Any) -> str | None:
+    """Return ``"deg"`` when an angle was written in degrees, else None (SI, or not an angle).
+
+    What a user wrote is kept apart from the SI value so that results can be shown in the unit
+    the input was given in (a basin map over ball angles given in degrees is drawn in degrees)
+    without guessing it from the numbers.
+
+    Examples
+    --------
+    >>> input_unit("350 deg"), input_unit("90°"), input_unit("6.1 rad"), input_unit(6.1), input_unit("20 g")
+    ('deg', 'deg', None, None, None)
+    """
+    if not isinstance(value, str):
+        return None
+    try:
+        _, unit, _ = _parse(value.strip())
+    except UnitError:
+        return None
+    if unit is None:
+        return None
+    try:
+        factor = _registry().Quantity(1.0, unit).to("radian").magnitude
+    except Exception:  # pint's DimensionalityError: not an angle
+        return None
+    return "deg" if math.isclose(factor, math.pi / 180.0, rel_tol=1e-12) else None
+

@@ -18,6 +18,8 @@ from rotorlab.models._jeffcott_physics import Linearization
 from rotorlab.models._machine import (
     Ball,
     BallRace,
+    Clearance,
+    ElasticStator,
     Gravity,
     Machine,
     MachineLinearization,
@@ -34,4 +36,5 @@ __all__ += ["ToroidalBall", "WorkingPoint", "strautmanis_torus"]
 __all__ += ["BENCHMARK", "BenchmarkProblem"]
 __all__ += ["ImpactRotor", "CentrifugeRotor", "Housing", "StoneFeed", "StonePush", "StoneSequence",
             "krasnov_crusher", "stone_push"]
-__all__ += ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor"]
+__all__ += ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor",
+            "Clearance", "ElasticStator"]

@@ -1,4 +1,5 @@
-"""Attachments of the composed machine model: balls and races, unbalances, gravity, a motor.
+"""Attachments of the composed machine model: balls and races, unbalances, gravity, a motor, a
+clearance (rotor-stator contact).
 
 See :mod:`rotorlab.models._machine` for the model and its equations.
 """
@@ -10,7 +11,7 @@ from dataclasses import dataclass
 
 import numpy as np
 
-__all__ = ["Ball", "BallRace", "Unbalance", "Gravity", "Motor"]
+__all__ = ["Ball", "BallRace", "Unbalance", "Gravity", "Motor", "Clearance", "ElasticStator"]
 
 
 def _num(owner: str, name: str, value, unit: str, *, low: float | None = 0.0,
@@ -231,3 +232,133 @@ class Motor:
         if self.kind == "linear":
             return np.array([self.polar_inertia, self.torque, self.no_load_speed])
         return np.concatenate([[self.polar_inertia, 0.0, 0.0], self.torque[0], self.torque[1]])
+
+
+@dataclass(frozen=True, slots=True)
+class ElasticStator:
+    """A stator that yields: radial stiffness and damping, and optionally a mass of its own.
+
+    Parameters
+    ----------
+    stiffness : float
+        k_s (N/m), > 0. Massless stator: the contact stiffness, ``N = max(0, k_s p + c_s p')``
+        with the penetration ``p = |w| - delta``. With a mass: the stiffness of the housing's
+        mounting to the ground, isotropic; the rotor then strikes the housing rigidly.
+    damping : float
+        c_s (N s/m), >= 0, in the contact (massless) or in the mounting (with a mass).
+    mass : float
+        m_s (kg), >= 0: 0 is a massless stator; > 0 a moving housing (four states: its lateral
+        position and velocity).
+    """
+
+    stiffness: float
+    damping: float = 0.0
+    mass: float = 0.0
+
+    def __post_init__(self) -> None:
+        o = "ElasticStator"
+        object.__setattr__(self, "stiffness", _num(o, "stiffness", self.stiffness, "N/m", strict=True))
+        object.__setattr__(self, "damping", _num(o, "damping", self.damping, "N s/m"))
+        object.__setattr__(self, "mass", _num(o, "mass", self.mass, "kg"))
+
+
+CLEARANCE_KINDS = ("rigid", "elastic", "housing")
+
+
+@dataclass(frozen=True, slots=True)
+class Clearance:
+    """A clearance between the rotor and a stator at one station (rotor-stator contact).
+
+    The *gap vector* is ``w = B z`` (minus the housing's position with a moving housing): the
+    lateral displacement ``(x + a phi_x, y + a phi_y)`` of the station (a: ``axial_offset``) or,
+    for a conical gap (seed 001), ``w = sin(beta) (x, y) + l_P (phi_x, phi_y)``; contact when
+    ``|w| >= gap``. The contact law (:mod:`rotorlab._kernels.contact`): located impacts with
+    Newton restitution and a Coulomb impulse (stick within the friction cone, slip otherwise,
+    the rotor's surface speed ``R_r Omega`` in the slip), chatter turned into sustained contact,
+    sustained sliding (full rub) or rolling (backward whirl) contact, lift-off.
+
+    Parameters
+    ----------
+    node : int
+        Node (station) of the structure.
+    gap : float
+        delta, radial clearance (m), > 0.
+    stator : "rigid" or ElasticStator
+        A rigid stator (impacts), a massless elastic one (penalty contact, no impulses), or a
+        housing with mass on an elastic mounting (impacts on the moving housing).
+    restitution : float
+        e, Newton's restitution coefficient in [0, 1] (impacts only).
+    friction : float
+        mu, Coulomb friction coefficient (1), >= 0.
+    rotor_radius : float
+        R_r, radius of the rotor's surface at the contact (m), >= 0.
+    axial_offset : float
+        Axial distance of the contact plane from the node (m).
+    conical : (float, float), optional
+        ``(beta, l_P)``: half angle of a conical gap (rad, in (0, pi/2]) and lever of the tilt
+        (m); replaces ``axial_offset``.
+    rest_speed : float
+        Rebound speed (m/s), > 0, below which a pressed rotor's impacts count as accumulated
+        (chatter): one plastic impulse, then sustained contact (see :class:`rotorlab.contact.JeffcottRub`).
+    center : (float, float) or "static"
+        Centre of the stator's circle in the fixed frame (m), the gap vector being measured from
+        it; ``"static"``: where the station rests under gravity (the housing built around the
+        sagging rotor), see :meth:`rotorlab.models.Machine.clearance_center`.
+    """
+
+    node: int
+    gap: float
+    stator: object = "rigid"
+    restitution: float = 0.5
+    friction: float = 0.0
+    rotor_radius: float = 0.0
+    axial_offset: float = 0.0
+    conical: tuple[float, float] | None = None
+    rest_speed: float = 1e-5
+    center: tuple[float, float] | str = (0.0, 0.0)
+
+    def __post_init__(self) -> None:
+        o = "Clearance"
+        if isinstance(self.center, str):
+            if self.center != "static":
+                raise ValueError(f'{o}.center must be (x, y) (m) or "static", got {self.center!r}')
+        else:
+            c = tuple(self.center)
+            if len(c) != 2:
+                raise ValueError(f'{o}.center must be (x, y) (m) or "static", got {self.center!r}')
+            object.__setattr__(self, "center", tuple(_num(o, f"center[{i}]", v, "m", low=None)
+                                                     for i, v in enumerate(c)))
+        object.__setattr__(self, "node", _node(o, self.node))
+        object.__setattr__(self, "gap", _num(o, "gap", self.gap, "m", strict=True))
+        if not (self.stator == "rigid" or isinstance(self.stator, ElasticStator)):
+            raise ValueError(f"{o}.stator must be 'rigid' or an ElasticStator, got {self.stator!r}")
+        e = _num(o, "restitution", self.restitution, "1")
+        if e > 1.0:
+            raise ValueError(f"{o}.restitution must be in [0, 1], got {self.restitution!r}")
+        object.__setattr__(self, "restitution", e)
+        object.__setattr__(self, "friction", _num(o, "friction", self.friction, "1"))
+        object.__setattr__(self, "rotor_radius", _num(o, "rotor_radius", self.rotor_radius, "m"))
+        object.__setattr__(self, "axial_offset", _num(o, "axial_offset", self.axial_offset, "m", low=None))
+        object.__setattr__(self, "rest_speed", _num(o, "rest_speed", self.rest_speed, "m/s", strict=True))
+        if self.conical is not None:
+            c = tuple(self.conical)
+            if len(c) != 2:
+                raise ValueError(f"{o}.conical must be (half_angle, lever), got {self.conical!r}")
+            beta = _num(o, "conical[0]", c[0], "rad", strict=True)
+            if beta > math.pi / 2:
+                raise ValueError(f"{o}.conical[0] must be in (0, pi/2] (rad), got {c[0]!r}")
+            object.__setattr__(self, "conical", (beta, _num(o, "conical[1]", c[1], "m", low=None)))
+
+    @property
+    def kind(self) -> str:
+        """``"rigid"``, ``"elastic"`` (massless) or ``"housing"`` (with mass)."""
+        if self.stator == "rigid":
+            return "rigid"
+        return "housing" if self.stator.mass > 0.0 else "elastic"
+
+    def to_array(self) -> np.ndarray:
+        """``[delta, e, mu, R_r, v_rest, k_s, c_s, m_s]`` (SI; zeros for a rigid stator)."""
+        s = self.stator
+        ks, cs, ms = (0.0, 0.0, 0.0) if s == "rigid" else (s.stiffness, s.damping, s.mass)
+        return np.array([self.gap, self.restitution, self.friction, self.rotor_radius,
+                         self.rest_speed, ks, cs, ms])

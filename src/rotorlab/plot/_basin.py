@@ -38,20 +38,29 @@ def label_colors(labels) -> dict[str, str]:
     return out
 
 
-def _in_degrees(values) -> bool:
-    """Whether angles (rad) were given in degrees: every value a multiple of 0.5 degree."""
-    deg = np.degrees(np.asarray(values, dtype=float)) * 2.0
-    return bool(deg.size) and bool(np.all(np.abs(deg - np.round(deg)) < 1e-6))
+def _input_unit(ds, name: str) -> str | None:
+    """The unit coordinate ``name`` was given in, as recorded in ``attrs["input_units_<name>"]``.
+
+    A ball angle that was not given (a ball not varied, starting where the model puts it) is
+    shown in the unit of the ball angles that were given when they were all given in one unit,
+    so that one figure uses one unit.
+    """
+    unit = ds.attrs.get(f"input_units_{name}")
+    if unit is None and name.startswith("psi"):
+        given = {v for k, v in ds.attrs.items() if k.startswith("input_units_psi")}
+        unit = given.pop() if len(given) == 1 else None
+    return unit
 
 
 def _display(ds, name: str) -> tuple[float, str]:
     """Scale and unit to show coordinate ``name`` in: degrees for angles given in degrees.
 
-    Case files and the command line take angles in any unit and keep radians; a grid whose
-    ends are whole (or half) degrees was given in degrees, and is shown so.
+    Case files and the command line take angles in any unit and keep radians; the unit they
+    were written in is recorded with the result (``attrs["input_units_<name>"]``), never
+    guessed from the numbers.
     """
     units = ds[name].attrs.get("units", "")
-    if units == "rad" and _in_degrees(ds[name].values[[0, -1]] if ds[name].size else []):
+    if units == "rad" and _input_unit(ds, name) == "deg":
         return 180.0 / np.pi, "deg"
     return 1.0, units
 
@@ -71,7 +80,7 @@ def _start_values(ds) -> str:
             name = key[6:]
         else:
             continue
-        if name.startswith("psi") and _in_degrees([value]):
+        if _input_unit(ds, name) == "deg":
             parts.append(f"{_NAMES.get(name, name)} = {np.degrees(float(value)):g}°")
         else:
             parts.append(f"{_NAMES.get(name, name)} = {float(value):g}")
@@ -98,7 +107,7 @@ def basin_figure(ds: xarray.Dataset, *, horizon: float | None = None, title: str
     -------
     matplotlib.figure.Figure
         One panel; the legend gives each label's fraction of the grid. Angles given in
-        degrees (a grid whose ends are whole or half degrees) are drawn in degrees.
+        degrees (``attrs["input_units_<name>"] = "deg"``) are drawn in degrees.
     """
     from matplotlib.colors import BoundaryNorm, ListedColormap
     from matplotlib.figure import Figure

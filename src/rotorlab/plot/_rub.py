@@ -21,7 +21,7 @@ def rub_orbit_figure(ds: xarray.Dataset) -> Figure:
     from rotorlab.analyses._rub import _closed_form_for
 
     d = float(ds.attrs["clearance"])
-    fig = Figure(figsize=(5.6, 5.6), layout="constrained")
+    fig = Figure(figsize=(5.6, 6.2), layout="constrained")
     ax = fig.subplots()
     th = np.linspace(0.0, 2.0 * np.pi, 361)
     ax.plot(np.cos(th), np.sin(th), color="0.3", lw=1.5, label="clearance")
@@ -33,7 +33,7 @@ def rub_orbit_figure(ds: xarray.Dataset) -> Figure:
     ax.set_aspect("equal")
     ax.set_xlabel("x / clearance")
     ax.set_ylabel("y / clearance")
-    ax.legend(loc="upper right", fontsize="small")
+    fig.legend(loc="outside lower center", fontsize="small", frameon=False)  # below: the orbit fills the axes
     ax.set_title(f"{ds.attrs.get('name', 'rub')}: spin {ds.attrs['spin_speed']:.4g} rad/s")
     return fig
 

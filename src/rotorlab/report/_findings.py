@@ -230,6 +230,11 @@ def _modes(ds: xarray.Dataset, rows: Rows) -> Findings:
     zeta = [r["damping_ratio"] for r in rows if r["damping_ratio"] is not None]
     damping = ("undamped (every damping ratio is 0)" if zeta and max(map(abs, zeta)) == 0.0 else
                f"damping ratios {min(zeta):.3g} to {max(zeta):.3g}" if zeta else "damping ratios unknown")
+    if float(ds.attrs.get("speed", math.nan)) == 0.0:  # a rotor that does not spin has no whirl direction
+        pairs = sum(1 for a, b in zip(freqs[::2], freqs[1::2]) if abs(a - b) <= 1e-6 * max(abs(a), 1e-12))
+        shape = (f"at rest: no whirl direction; {pairs} pair(s) of equal frequency (x and y)" if pairs
+                 else "at rest: no whirl direction")
+        return Findings(f"natural frequencies {_list(freqs, '.4g')} Hz", (shape, damping))
     return Findings(f"natural frequencies {_list(freqs, '.4g')} Hz",
                     (", ".join(f"{n} {w}" for w, n in whirl.items()) + " whirl", damping))
 

@@ -78,10 +78,12 @@ def _simulate(rows: Rows):
 def _run_up(rows: Rows):
     stations = _stations(rows, "residual_amplitude")
     header = ("start", "final speed (rpm)", "critical speeds (rpm)", "passed", "captured at (rpm)",
-              *(f"residual vibration at {s} (mm)" for s in stations))
+              *(f"residual vibration at {s} (mm)" for s in stations),
+              *(f"without balancing at {s} (mm)" for s in stations), "outcome")
     body = [(str(r["ic"]), _g(r["final_speed_rpm"], 6), ", ".join(_g(w * _RPM, 5) for w in r["critical_speeds"]),
              str(r["passed"]), _g(None if r["captured_at"] is None else r["captured_at"] * _RPM, 5),
-             *(_mm(r["residual_amplitude"][s]) for s in stations)) for r in rows]
+             *(_mm(r["residual_amplitude"][s]) for s in stations),
+             *(_mm(r["reference_amplitude"][s]) for s in stations), r["outcome"]) for r in rows]
     return header, body
 
 
@@ -101,7 +103,8 @@ def machine_section(ds: Any, rows: Rows) -> str:
 
     header, body = machine_rows_table(ds, rows)
     races = ds.attrs.get("races")
-    note = f"<p>Races taking part: {escape(str(races) if races is not None else 'all')}.</p>"
+    which = "all" if races is None else ("none (no balancer)" if not races else ", ".join(map(str, races)))
+    note = f"<p>Races taking part: {escape(which)}.</p>"
     msg = ds.attrs.get("message")
     if msg:
         note += f"<p><strong>{escape(msg)}</strong></p>"
@@ -152,7 +155,7 @@ def _chart_findings(ds, rows):
     spans = _intervals([r["speed_rpm"] for r in rows], [r["stable"] for r in rows])
     if not spans:
         return Findings(f"The {kind} state is unstable at every speed checked: the balancer does not settle there.")
-    text = ", ".join(f"{a:.4g}-{b:.4g}" if a != b else f"{a:.4g}" for a, b in spans)
+    text = ", ".join(f"{a:.5g}-{b:.5g}" if a != b else f"{a:.5g}" for a, b in spans)
     return Findings(f"The {kind} state is stable from {text} rpm (exact eigenvalues; {sum(r['stable'] for r in rows)} "
                     f"of {len(rows)} speeds): " + ("the balancer balances there." if balanced else
                                                    "the balancer cannot cancel the unbalance."),
@@ -160,12 +163,14 @@ def _chart_findings(ds, rows):
 
 
 def _simulate_findings(ds, rows):
+    # the measure of the outcome: the largest vibration of any station against the largest
+    # unbalance response of any station (locked balls), per start
     ratios = []
     for r in rows:
-        for s, a in r["amplitude"].items():
-            ref = r["reference_amplitude"][s]
-            if a is not None and ref:
-                ratios.append(a / ref)
+        amp = [a for a in r["amplitude"].values() if a is not None]
+        ref = max((v for v in r["reference_amplitude"].values() if v is not None), default=0.0)
+        if amp and ref:
+            ratios.append(max(amp) / ref)
     worst = max(ratios) if ratios else float("nan")
     by: dict[str, list[int]] = {}
     for r in rows:
@@ -193,17 +198,24 @@ def _simulate_findings(ds, rows):
 
 def _run_up_findings(ds, rows):
     parts, numbers = [], []
+    verdicts = {"balanced": "the balancer balances", "not balanced": "the balancer does not balance",
+                "non-synchronous": "the balls keep circling (non-synchronous), not balanced",
+                "no balancer": "no balancer", "captured": "not balanced", "failed": "failed"}
     for r in rows:
         if r["captured_at"] is not None:
             parts.append(f"start {r['ic']}: captured below the critical speed {r['captured_at'] * _RPM:.4g} rpm "
                          f"(Sommerfeld effect), final speed {r['final_speed_rpm']:.4g} rpm")
         else:
-            parts.append(f"start {r['ic']}: passes {r['passed']} critical speed(s) and reaches "
-                         f"{r['final_speed_rpm']:.4g} rpm")
-        res = ", ".join(f"{s}: {_mm(v)} mm" for s, v in r["residual_amplitude"].items())
+            parts.append(f"start {r['ic']}: passes {r['passed']} critical speed(s), reaches "
+                         f"{r['final_speed_rpm']:.4g} rpm; {verdicts.get(r['outcome'], r['outcome'])}")
+        res = ", ".join(f"{s}: {_mm(v)} mm (without balancing {_mm(r['reference_amplitude'][s])} mm)"
+                        for s, v in r["residual_amplitude"].items())
         numbers.append(f"start {r['ic']}: residual vibration {res}")
-    n = int(ds.attrs.get("n_races", 1))
-    head = "Without a balancer: " if n == 0 else ""
+    good = [r["ic"] for r in rows if r["outcome"] == "balanced"]
+    head = ""
+    if any(r["outcome"] != "no balancer" for r in rows):
+        head = (f"The balancer balances from {'every start' if len(good) == len(rows) else 'no start' if not good else 'start(s) ' + ', '.join(map(str, good))} "
+                f"({len(good)} of {len(rows)}). ")
     return Findings(head + "; ".join(parts) + ".", tuple(numbers))
 
 

@@ -163,5 +163,7 @@ for _entry in (
                  lazy("rotorlab.cli._machine:machine_tables")),
     Presentation("rub", lazy("rotorlab.plot._rub:rub_figures"), lazy("rotorlab.report._rub:rub_section"),
                  lazy("rotorlab.report._rub:rub_findings"), lazy("rotorlab.cli._rub:rub_tables")),
+    Presentation("knock", lazy("rotorlab.report._knock:knock_figures"), lazy("rotorlab.report._knock:knock_section"),
+                 lazy("rotorlab.report._knock:knock_findings"), lazy("rotorlab.report._knock:knock_tables")),
 ):  # fmt: skip
     register_presentation(_entry)
