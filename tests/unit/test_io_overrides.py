@@ -147,3 +147,23 @@ def test_a_run_with_set_says_so_in_its_report_and_json(tmp_path):
     page = (out / "report.html").read_text(encoding="utf-8")
     assert "Keys set on top of the case file (--set): model.bearings[1].kxx = &quot;3 MN/m&quot;" in page
     assert "#   model.bearings[1].kxx = &quot;3 MN/m&quot;" in page  # the case-file text shown says so too
+
+
+def test_the_set_examples_of_the_readme_and_the_docs_are_valid():
+    # every documented command line with --set names keys that exist and values that validate
+    import re
+    import shlex
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    lines = [line for page in (root / "README.md", root / "docs" / "getting-started.md")
+             for block in re.findall(r"^```bash\n(.*?)^```", page.read_text(encoding="utf-8"), re.S | re.M)
+             for line in block.splitlines() if line.startswith("rotorlab ") and "--set" in line]
+    assert len(lines) >= 4
+    for line in lines:
+        argv = shlex.split(line)[1:]
+        case = argv[1]
+        sets = [argv[i + 1] for i, a in enumerate(argv) if a == "--set"]
+        result = runner.invoke(app, ["validate", case, *[x for s in sets for x in ("--set", s)]])
+        expected = 2 if "dsic_mass" in line else 0  # the docs' example of a typo
+        assert result.exit_code == expected, (line, result.output)
