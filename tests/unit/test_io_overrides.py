@@ -136,3 +136,14 @@ def test_validate_json_and_the_report_text_name_the_keys_set():
     text = load_case("autobalancer", overrides={"model.disc_mass": "2 kg"}).text
     assert text.startswith("# Keys set on top of the file below")
     assert '#   model.disc_mass = "2 kg"\n' in text and text.endswith(_text("autobalancer"))
+
+
+def test_a_run_with_set_says_so_in_its_report_and_json(tmp_path):
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["run", "friswell-rotor", "--out", str(out), "--json",
+                                 "--set", "model.bearings[1].kxx=3 MN/m"])
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["set"] == {"model.bearings[1].kxx": "3 MN/m"}
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert "Keys set on top of the case file (--set): model.bearings[1].kxx = &quot;3 MN/m&quot;" in page
+    assert "#   model.bearings[1].kxx = &quot;3 MN/m&quot;" in page  # the case-file text shown says so too
