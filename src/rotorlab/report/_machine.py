@@ -44,7 +44,7 @@ def _steady(rows: Rows):
     stations = _stations(rows, "amplitude")
     header = ("motion", "kind", "ball angles (deg)", "exact", "seed 003 (Hamilton)", "seed 002 (averaged)",
               "max Re(lambda) (1/s)", *(f"whirl at {s} (mm)" for s in stations))
-    body = [(str(r["motion"]), r["kind"] if r["exists"] else "none", _races(r["ball_angles_deg"]),
+    body = [(r.get("label", str(r["motion"])), r["kind"] if r["exists"] else "absent", _races(r["ball_angles_deg"]),
              r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"], _g(r["max_real_eigenvalue"]),
              *(_mm((r["amplitude"] or {}).get(s)) for s in stations)) for r in rows]
     return header, body
@@ -125,7 +125,7 @@ def _steady_findings(ds, rows):
     return Findings(f"{len(stable)} of {len(rows)} {'/'.join(kinds)} steady motion(s){at} are stable (exact "
                     "eigenvalues): the balancer " + ("balances there." if "balanced" in kinds else
                                                      "settles but cannot cancel the unbalance."),
-                    tuple(f"motion {r['motion']}: balls at {_races(r['ball_angles_deg'])} deg, "
+                    tuple(f"motion {r.get('label', r['motion'])}: balls at {_races(r['ball_angles_deg'])} deg, "
                           f"max Re(lambda) = {_g(r['max_real_eigenvalue'])} 1/s" for r in stable))
 
 
