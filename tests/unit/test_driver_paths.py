@@ -2,9 +2,10 @@
 scalar driver's numbers bit for bit on the models that use it.
 
 ``solve_ensemble(lanes="auto")`` (the default, used by every analysis) takes the lane driver for
-an ensemble of a model whose kernel is lane-friendly (``Kernels.vectorises``) with no active
-event; a single trajectory (``solve``) and models with active events (stick/slip, impacts) stay
-on the scalar driver, which is also the reference.
+every ensemble, events, resets and modes included (stick/slip of the toroidal ball, impacts of
+the crusher rotor, the rub model's contact modes); a single trajectory (``solve``) stays on the
+scalar driver, which is also the reference (``tests/unit/test_lanes_events.py`` compares them
+on every event model).
 """
 
 from __future__ import annotations
@@ -12,16 +13,18 @@ from __future__ import annotations
 import numpy as np
 import pytest
 
-from rotorlab.analyses import simulate
+from rotorlab.analyses import ImpactAnalysis, simulate
+from rotorlab.contact import JeffcottRub, RubRegimes, RubRotor
 from rotorlab.explore import BalancerRegimes, TorusRegimes, map_starts
 from rotorlab.integrate import StepControl, solve, solve_ensemble
 from rotorlab.integrate import _drivers
-from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, LinearRamp, RotorParams
+from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, LinearRamp, RotorParams, krasnov_crusher
 from rotorlab.models._toroidal_ball import strautmanis_torus
 
 ROTOR = RotorParams(disc_mass=1.0, eccentricity=1.5e-3, stiffness=16740.0, damping=13.32)
 BALL = BallParams(mass=0.03, radius=0.05, damping=2e-3)
 MODEL = JeffcottBalls(ROTOR, (BALL, BALL), speed=ConstantSpeed(251.3))
+RUB = RubRotor(mass=1.0, stiffness=1.0, clearance=1.0, damping=0.1, eccentricity=0.6, stator_stiffness=10.0)
 
 
 @pytest.fixture
@@ -49,11 +52,20 @@ def test_balancer_mapper_runs_on_lanes(used):
     assert used and set(used) == {_drivers.DEFAULT_LANES}
 
 
-def test_event_models_and_single_trajectories_stay_scalar(used):
+def test_event_models_run_on_lanes_single_trajectories_scalar(used):
+    # basin of the toroidal ball (stick/slip modes and events)
     mapper = TorusRegimes(strautmanis_torus(1e-4), t_end=0.05, n_horizons=1)
     map_starts(mapper, {"psi": [0.5, 1.0], "dpsi": [10.0, -10.0], "alpha": [0.1, 0.1]})
+    assert used == [_drivers.DEFAULT_LANES]
+    # sweep of the rub model (impacts, sustained contact)
+    rub = RubRegimes(JeffcottRub(RUB, spin_speed=1.2), t_end=2.0, window=1.0, position=(0.5, 0.0), n_samples=8)
+    rub.run_chunk({"spin_speed": np.array([1.2, 2.0])})
+    assert used[1:] == [_drivers.DEFAULT_LANES]
+    # sweep of the crusher rotor (stone pushes, impacts, sliding, terminal whirl event)
+    ImpactAnalysis(krasnov_crusher(), t_end=0.05).run_chunk({"stone_mass": np.array([0.5, 3.0])})
+    assert used[2:] == [_drivers.DEFAULT_LANES]
     solve(MODEL, MODEL.initial_state([0.0, 1.0]), (0.0, 0.01))
-    assert used == [None, None]  # stick/slip events need the scalar driver; so does one trajectory
+    assert used[3:] == [None]  # one trajectory: the scalar driver
 
 
 @pytest.mark.parametrize("frame", ["fixed", "rotating"])

@@ -137,14 +137,17 @@ def test_status_codes_match_scalar():
     assert set(ref.status) == {Status.MAX_STEPS}
 
 
-def test_events_must_be_off():
+def test_events_switched_off():
     ball = BouncingBall()
-    y0 = [[1.0, 0.0, 0.0]]
-    with pytest.raises(ValueError, match="active events"):
-        solve_ensemble(ball, y0, (0.0, 1.0), lanes=8)
-    ref = solve_ensemble(ball, y0, (0.0, 0.3), events=[], threads=1)
+    y0 = [[1.0, 0.0, 0.0], [0.5, 0.0, 0.0]]
+    ref = solve_ensemble(ball, y0, (0.0, 0.3), events=[], threads=1, lanes=None)
     got = solve_ensemble(ball, y0, (0.0, 0.3), events=[], threads=1, lanes=8)
     assert_same(got, ref)
+    assert np.all(got.stats[:, 3] == 0)
+    np.testing.assert_allclose(got.y_final[:, 0], [1.0 - 0.5 * 9.81 * 0.09, 0.5 - 0.5 * 9.81 * 0.09], rtol=1e-12)
+    y0 = [[0.2, 0.0, 0.0], [0.1, 0.0, 0.0]]  # no impact event: they fall through the floor
+    got = solve_ensemble(ball, y0, (0.0, 0.3), events=[], threads=1, lanes=8)
+    assert np.all(got.y_final[:, 0] < 0.0)
 
 
 @pytest.mark.parametrize("bad", [0, 1, 65, 2.5, True, "8"])

@@ -54,6 +54,16 @@ def test_rotorlab_run_writes_the_regime_and_the_closed_form_in_the_report(tmp_pa
     report = (out / "report.html").read_text()
     assert "closed form" in report and "Black (1968), Choy &amp; Padovan (1987)" in report
     assert (out / "full-rub_orbit.png").exists() and (out / "full-rub.nc").exists()
+    # the written result reads back into the same rows and figure (a one-branch list attribute comes
+    # back from NetCDF as a scalar)
+    from rotorlab.io import load_netcdf
+    from rotorlab.plot._rub import rub_orbit_figure
+
+    again = load_netcdf(out / "full-rub.nc")
+    rows = {r["quantity"]: r for r in summarize(again)}
+    assert rows["regime"]["source"] == "Black (1968), Choy & Padovan (1987)"
+    assert rows["whirl radius (mean)"]["closed_form"] == pytest.approx(full_rub(ROTOR, SPIN)[0].radius, rel=1e-12)
+    assert len(rub_orbit_figure(again).legends) == 1  # the legend below the orbit, not over it
 
 
 BAD = """

@@ -3,12 +3,17 @@
 In sliding contact the friction ``-f N e_perp`` drives the contact point backwards; the faster it
 whirls, the larger the normal force and the friction. Past a threshold nothing in the linear
 model limits it. The detection (contact point running backwards in the fixed frame faster than
-``whirl_limit``, default 2 omega0) must flag exactly the runs that run away without it.
+``whirl_limit``, by default the theory's rolling speed ``r_P sin(beta) omega0 / Delta`` where the
+slip the sliding law assumes vanishes: Black 1968, Crandall 1990) must flag exactly the runs that
+run away without it, and count their impacts the same whichever speed stops them.
 """
+
+import math
 
 from dataclasses import replace
 
 import numpy as np
+import pytest
 
 from rotorlab.analyses import impact_sweep
 from rotorlab.models import krasnov_crusher
@@ -31,6 +36,27 @@ def test_detection_flags_exactly_the_runs_that_run_away():
     # the others are identical runs
     assert np.array_equal(flagged.impacts.values[~stopped], free.impacts.values[~stopped])
     assert np.all(flagged.t_final.values[~stopped] == 10.0)
+    # the former empirical stop (2 omega0, tuned on 48 runs) flags the same runs, earlier, with the
+    # same impact counts: a sliding contact makes no impacts, so the count does not depend on the stop
+    early = impact_sweep(replace(base, housing=replace(base.housing, whirl_limit=2.0 * base.rotor.spin_speed)),
+                         [2.0, 3.0], **kw)  # fmt: skip
+    assert np.array_equal(early.whirl.values, flagged.whirl.values)
+    assert np.all(early.t_final.values[stopped] < flagged.t_final.values[stopped])
+    for name in ("impacts", "impacts_all", "slides"):
+        assert np.array_equal(early[name].values, flagged[name].values), name
+        assert np.array_equal(free[name].values, flagged[name].values), name
+
+
+def test_the_default_stop_is_the_rolling_speed_of_the_theory():
+    from rotorlab.contact import RubRotor, rolling_whirl
+
+    base = krasnov_crusher(translational=True)
+    h, w0 = base.housing, base.rotor.spin_speed
+    # translational model: w = sin(beta) u, so u whirls on |u| = Delta / sin(beta) and rolls at
+    # -(r_P / (Delta / sin(beta))) omega0, the rigid-stator rolling whirl of the closed forms
+    rigid = RubRotor(mass=1.0, stiffness=1.0, clearance=h.gap / math.sin(h.cone_angle), rotor_radius=h.radius)
+    assert h.rolling_whirl_speed(w0) == pytest.approx(-rolling_whirl(rigid, w0).whirl_speed, rel=1e-14)
+    assert base.to_array()[21] == h.rolling_whirl_speed(w0)  # P_WHIRL
 
 
 def test_without_friction_there_is_no_backward_whirl():

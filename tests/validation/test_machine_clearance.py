@@ -20,6 +20,7 @@ import pytest
 from rotorlab.contact import (
     JeffcottRub,
     RubRotor,
+    chatter_time,
     full_rub,
     grazing_speeds,
     no_rub_radius,
@@ -28,7 +29,7 @@ from rotorlab.contact import (
 from rotorlab.integrate import SaveAt, StepControl, solve
 from rotorlab.linear import LinearSystem
 from rotorlab.models import ConstantSpeed
-from rotorlab.models._machine import Clearance, ElasticStator, Machine, Unbalance
+from rotorlab.models._machine import Clearance, ElasticStator, Gravity, Machine, Unbalance
 
 TIGHT = StepControl(rtol=1e-10, atol=1e-13)
 BILLIARD = RubRotor(mass=2.0, stiffness=2.0 * (2 * math.pi * 5.0) ** 2, clearance=1e-3, rotor_radius=0.05)
@@ -101,6 +102,28 @@ def test_elastic_impacts_with_friction_lose_exactly_the_friction_work_on_the_mac
     gain = m.energy(y) - m.energy(y0)
     assert gain == pytest.approx(y[-4] - y[-5], rel=1e-7)
     assert gain > 10 * m.energy(y0)
+
+
+# ---- chatter: accumulation into sustained contact -----------------------------------------------
+
+
+def test_chatter_accumulates_at_the_nordmark_piiroinen_time_then_rests_on_the_stator():
+    e, g, h0 = 0.8, 10.0, 1e-6
+    rot = RubRotor(mass=1.0, stiffness=1.0, clearance=1e-3)
+    m = replace(jeffcott_machine(rot, 0.0, restitution=e), gravity=Gravity((g, 0.0, 0.0)))
+    y0 = _state(m, (rot.clearance - h0, 0.0))
+    sol = solve(m, y0, (0.0, 0.05), control=TIGHT, save_at=SaveAt(ts=np.linspace(0.01, 0.05, 5)),
+                max_events_recorded=1000)  # fmt: skip
+    assert sol.status.name == "SUCCESS", sol.status.message
+    a = g - rot.stiffness * rot.clearance / rot.mass  # pressing acceleration at the stator
+    v0 = math.sqrt(2 * (g * h0 - 0.5 * (rot.clearance**2 - (rot.clearance - h0) ** 2)))
+    t_inf = sol.event_times[0] + chatter_time(v0, a, e)
+    skipped = 2 * m.clearances[0].rest_speed / (a * (1 - e))
+    assert t_inf - skipped <= sol.event_times[-1] <= t_inf * (1 + 1e-6)
+    # impacts until the rebound speed e^j v0 of the j-th falls below rest_speed
+    assert len(sol.event_times) == math.ceil(math.log(m.clearances[0].rest_speed / v0) / math.log(e))
+    assert np.all(sol.ys[:, -1] == -1.0)  # sustained contact (sliding mode, no friction), never lifts off
+    assert np.allclose(sol.ys[:, X], rot.clearance, rtol=1e-9) and np.allclose(sol.ys[:, VX], 0.0, atol=1e-12)
 
 
 # ---- grazing, full rub, rolling whirl (elastic stator) -------------------------------------------

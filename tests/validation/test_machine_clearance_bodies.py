@@ -6,7 +6,8 @@ Invariants: the kinetic energy of a body with a constant mass matrix changes und
 ``P`` by ``P . (v- + v+) / 2`` (Stronge, *Impact Mechanics*, 2000, ch. 5), so e = 1 without
 friction conserves the energy exactly and e = 1 with friction loses exactly the friction work,
 whatever the bodies; a housing of mass m_s on k_s struck rigidly by a rotor rolling on it whirls at
-``-(R_r / delta) Omega`` with the radius of :func:`rotorlab.contact.rolling_whirl`.
+``-(R_r / delta) Omega`` with the radius of :func:`rotorlab.contact.rolling_whirl`, and past the
+coupled backward natural frequency, where no rolling whirl exists, locks there: dry whip.
 """
 
 from __future__ import annotations
@@ -17,7 +18,7 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from rotorlab.contact import RubRotor, rolling_whirl
+from rotorlab.contact import RubRotor, dry_whip_frequency, rolling_whirl
 from rotorlab.integrate import SaveAt, StepControl, solve
 from rotorlab.linear import LinearSystem
 from rotorlab.models import ConstantSpeed
@@ -89,6 +90,25 @@ def test_a_moving_housing_struck_by_a_rolling_rotor_whirls_on_the_closed_form_or
     assert np.allclose(np.abs(h), r - p.clearance, rtol=1e-6)
     assert np.allclose(np.abs(z - h), p.clearance, rtol=1e-9)
     assert np.allclose(np.unwrap(np.angle(z)), om * ts, atol=1e-6)
+
+
+def test_past_the_coupled_frequency_the_whirl_locks_there_dry_whip():
+    p = RubRotor(mass=1.0, stiffness=1.0, clearance=0.01, stator_stiffness=50.0, stator_mass=0.5,
+                 friction=0.3, rotor_radius=0.1)  # fmt: skip
+    w = 3.0  # rolling would need -(R/delta) Omega = -30 rad/s, far past sqrt((k + k_s) / (m + m_s))
+    assert rolling_whirl(p, w) is None
+    cl = Clearance(0, p.clearance, ElasticStator(p.stator_stiffness, 0.0, p.stator_mass),
+                   friction=p.friction, rotor_radius=p.rotor_radius)  # fmt: skip
+    m = Machine(_structure(p.mass, p.stiffness), unbalances=(Unbalance(0, 0.0),),
+                drive=ConstantSpeed(w), clearances=(cl,))  # fmt: skip
+    ts = np.linspace(20.0, 40.0, 2001)
+    sol = solve(m, m.initial_state(z=[0.009, 0.0, 0.0, 0.0], dz=[0.05, -0.05, 0.0, 0.0]), (0.0, 40.0),
+                control=TIGHT, save_at=SaveAt(ts=ts))  # fmt: skip
+    assert sol.status.name == "SUCCESS", sol.status.message
+    assert np.all(sol.ys[:, -1] != 0.0)  # permanent contact
+    z = sol.ys[:, 0] + 1j * sol.ys[:, 1]
+    whirl = np.polyfit(ts, np.unwrap(np.angle(z)), 1)[0]
+    assert whirl == pytest.approx(-dry_whip_frequency(p), rel=1e-3)
 
 
 def test_elastic_frictionless_impacts_on_a_moving_housing_conserve_the_energy_of_both():

@@ -7,8 +7,11 @@ Regimes (per run)
 -----------------
 ``none``: no impact with an approach speed >= ``Housing.count_speed``; ``rebounds``: impacts,
 sliding contact for less than ``sliding_fraction`` (default 2 %) of the run; ``sliding``: sliding
-for at least that fraction; ``backward_whirl``: a sliding contact ran into the self-feeding
-dry-friction backward whirl and the run was stopped there (the counts are those up to the stop);
+for at least that fraction; ``backward_whirl``: a sliding contact whirled backwards up to the
+rolling speed of the theory (:meth:`rotorlab.models.Housing.rolling_whirl_speed`), where the
+sliding law ends in the dry-friction backward whirl, and the run was stopped there (its impact
+counts are those of the whole run: a sliding contact makes no impacts, so they do not depend on
+the speed at which the stop is detected);
 ``failed``: the integrator gave up (status < 0).
 
 Energy (seed 001, Fig. 5)

@@ -448,10 +448,9 @@ def solve_ensemble(
         Step this many trajectories together per thread in SIMD lanes (lane driver of
         :mod:`rotorlab.integrate._lanes`; 8 suits AVX2 and AVX-512). Same numbers as the scalar
         driver, several times faster when the model's ``rhs`` vectorises (see that module's
-        "Lane-friendly kernels"). Needs all events off (``events=[]`` for a model that has
-        some). ``"auto"`` (default): 8 lanes when there are several trajectories, no active
-        event and the model declares a lane-friendly kernel (``Kernels.vectorises``), else the
-        scalar driver. ``None``: the scalar driver (the reference).
+        "Lane-friendly kernels"); events, reset maps and modes included. ``"auto"`` (default):
+        8 lanes when there are several trajectories, else the scalar driver. ``None``: the
+        scalar driver (the reference).
 
     Returns
     -------
@@ -513,9 +512,9 @@ def solve_ensemble(
     STATS = np.zeros((N, 4), dtype=np.int64)
     first_step = -1.0 if control.first_step is None else float(control.first_step)
     if isinstance(lanes, str) and lanes == "auto":
-        lanes = default_lanes(kernels, N, ev_act[:n_ev])
+        lanes = default_lanes(kernels, N)
     elif lanes is not None:
-        check_lanes(lanes, ev_act[:n_ev])
+        check_lanes(lanes)
     run = driver(kernels, lanes, serial=threads == 1)
     settings = Settings(
         t0, float(control.rtol), n_cont, first_step, float(control.max_step), int(control.max_steps)

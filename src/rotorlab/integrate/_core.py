@@ -74,6 +74,23 @@ def _own(kernel):
     return njit(**opts)(kernel.py_func)
 
 
+def with_kernels(fn, namespace):
+    """``fn`` (a compiled function of this template) compiled against the globals ``namespace``.
+
+    The lane driver (:mod:`rotorlab.integrate._lanes`) locates events and applies resets with
+    the functions of this module, bound to its own model's ``rhs``/``events``/``reset`` (the
+    template's globals here are placeholders): one source for both drivers, so that they use the
+    same arithmetic. Compiled without caching, as :func:`_own`: the caller's cache holds the code.
+    """
+    import types as _types
+
+    f = fn.py_func
+    bound = _types.FunctionType(f.__code__, namespace, f.__name__, f.__defaults__, f.__closure__)
+    opts = {k: v for k, v in fn.targetoptions.items() if k != "nopython"}
+    opts["cache"] = False
+    return njit(**opts)(bound)
+
+
 rhs = _own(rhs)
 events = _own(events)
 reset = _own(reset)
@@ -199,6 +216,134 @@ def _locate(k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, gb, ybuf, gbuf, from_zero
 
 
 @njit(cache=True, nogil=True)
+def _events_in_step(
+    n_ev, ev_dir, ev_act, p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
+    g_old, g_new, gbuf, s_ev, ybuf, ev_count, rec_t, rec_k, nrec,
+):  # fmt: skip
+    """Find the events of an accepted step from ``(t, y)`` to ``(tn, ynew)``; record them.
+
+    Every active event function is evaluated at ``tn`` (into ``g_new``) and compared with its
+    value ``g_old`` at ``t``; a sign change in the allowed direction is located on the dense
+    output. Events up to the earliest ``reset``/``stop`` event (the cut) are counted in
+    ``ev_count`` and recorded in ``rec_t``/``rec_k`` (from index ``nrec``), in time order.
+    Shared by the scalar and the lane driver (which calls it for one lane at a time), so both
+    locate events with the same arithmetic.
+
+    Returns
+    -------
+    s_cut : float
+        Fraction of the step at the cut (> 1: none).
+    k_cut : int
+        Event at the cut (-1: none).
+    nrec : int
+        Records written so far.
+    n_found : int
+        Events counted in this step.
+    """
+    s_cut = 2.0  # fraction of the step where a reset/stop event truncates it (>1: none)
+    k_cut = -1
+    n_found = 0
+    max_rec = rec_t.shape[0]
+    events(tn, ynew, p, g_new)
+    for k in range(n_ev):
+        s_ev[k] = 2.0
+        if ev_act[k] == ACT_OFF:
+            continue
+        ga = g_old[k]
+        from_zero = ga == 0.0
+        if from_zero:
+            # The step starts on the event surface (typically right after a reset): the
+            # zero at s = 0 is consumed, look for one of g(s)/s. Its sign at the start
+            # is probed at shrinking fractions of the step, so that a very short
+            # excursion (a tiny rebound) inside a long step is not missed.
+            for probe in _PROBES:
+                ga = _g_at(k, p, t, h, y, k1, k3, k4, k5, k6, k7, probe, ybuf, gbuf, True)
+                if _crosses(ga, g_new[k], ev_dir[k]):
+                    break
+        if _crosses(ga, g_new[k], ev_dir[k]):
+            if g_new[k] == 0.0:
+                s_ev[k] = 1.0
+            else:
+                s_ev[k] = _locate(
+                    k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, g_new[k], ybuf, gbuf, from_zero
+                )  # fmt: skip
+            if ev_act[k] != ACT_COUNT and s_ev[k] < s_cut:
+                s_cut = s_ev[k]
+                k_cut = k
+    # record events up to the cut, in time order
+    while True:
+        kmin = -1
+        smin = 2.0
+        for k in range(n_ev):
+            if s_ev[k] < smin and (s_ev[k] < s_cut or k == k_cut):
+                smin = s_ev[k]
+                kmin = k
+        if kmin < 0:
+            break
+        ev_count[kmin] += 1
+        n_found += 1
+        if nrec < max_rec:
+            rec_t[nrec] = t + smin * h
+            rec_k[nrec] = kmin
+            nrec += 1
+        s_ev[kmin] = 2.0
+        if kmin == k_cut:
+            break
+    return s_cut, k_cut, nrec, n_found
+
+
+@njit(cache=True, nogil=True)
+def _resolve_cut(
+    k_cut, s_cut, act, p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
+    ts, i_save, ys_out, ybuf, ytmp, g_old, t_last_reset, resets_without_progress,
+):  # fmt: skip
+    """End a step at its cut (event ``k_cut`` with action ``act`` at fraction ``s_cut``).
+
+    Saves the states in (t, te], then either stops there (``y`` = the state at ``te``) or
+    applies the reset map into ``y`` and restarts: ``k1`` and ``g_old`` are evaluated at the new
+    state. Shared by the scalar and the lane driver.
+
+    Returns
+    -------
+    status : int
+        ``SUCCESS`` to continue from ``(te, y)``, else how the trajectory ends there.
+    te : float
+        The event time, the trajectory's new time.
+    i_save, t_last_reset, resets_without_progress : int, float, int
+        Updated bookkeeping.
+    n_rhs : int
+        Right-hand side evaluations made.
+    """
+    n = y.shape[0]
+    te = t + s_cut * h if s_cut < 1.0 else tn
+    if s_cut < 1.0:
+        _dense(y, h, k1, k3, k4, k5, k6, k7, s_cut, ybuf)
+    else:
+        for i in range(n):
+            ybuf[i] = ynew[i]
+    i_save = _save_until(te, ybuf, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, ytmp)
+    if act == ACT_STOP:
+        for i in range(n):
+            y[i] = ybuf[i]
+        return EVENT_STOP, te, i_save, t_last_reset, resets_without_progress, 0
+    flag = reset(k_cut, te, ybuf, p, y)
+    if te - t_last_reset <= 8.0 * 2.220446049250313e-16 * max(1.0, abs(te)):
+        resets_without_progress += 1
+        if resets_without_progress > _MAX_RESETS_WITHOUT_PROGRESS:
+            return EVENT_LOOP, te, i_save, t_last_reset, resets_without_progress, 0
+    else:
+        resets_without_progress = 0
+    t_last_reset = te
+    if not _all_finite(y):
+        return NONFINITE, te, i_save, t_last_reset, resets_without_progress, 0
+    if flag != 0:
+        return EVENT_STOP, te, i_save, t_last_reset, resets_without_progress, 0
+    rhs(te, y, p, k1)
+    events(te, y, p, g_old)
+    return SUCCESS, te, i_save, t_last_reset, resets_without_progress, 1
+
+
+@njit(cache=True, nogil=True)
 def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     """Hairer's initial step heuristic (as SciPy's ``select_initial_step``, order 5 method)."""
     n = y0.shape[0]
@@ -282,6 +427,7 @@ def integrate_one(
     k6 = np.empty(n)
     k7 = np.empty(n)
     err = np.empty(n)
+    s_cut = 2.0
     g_old = np.empty(max(n_ev, 1))
     g_new = np.empty(max(n_ev, 1))
     gbuf = np.empty(max(n_ev, 1))
@@ -395,57 +541,13 @@ def integrate_one(
             break
 
         # ---- events in (t, tn] -------------------------------------------------------------
-        s_cut = 2.0  # fraction of the step where a reset/stop event truncates it (>1: none)
         k_cut = -1
         if n_ev > 0:
-            events(tn, ynew, p, g_new)
-            for k in range(n_ev):
-                s_ev[k] = 2.0
-                if ev_act[k] == ACT_OFF:
-                    continue
-                ga = g_old[k]
-                from_zero = ga == 0.0
-                if from_zero:
-                    # The step starts on the event surface (typically right after a reset): the
-                    # zero at s = 0 is consumed, look for one of g(s)/s. Its sign at the start
-                    # is probed at shrinking fractions of the step, so that a very short
-                    # excursion (a tiny rebound) inside a long step is not missed.
-                    for probe in _PROBES:
-                        ga = _g_at(
-                            k, p, t, h, y, k1, k3, k4, k5, k6, k7, probe, ybuf, gbuf, True
-                        )  # fmt: skip
-                        if _crosses(ga, g_new[k], ev_dir[k]):
-                            break
-                if _crosses(ga, g_new[k], ev_dir[k]):
-                    if g_new[k] == 0.0:
-                        s_ev[k] = 1.0
-                    else:
-                        s_ev[k] = _locate(
-                            k, p, t, h, y, k1, k3, k4, k5, k6, k7,
-                            ga, g_new[k], ybuf, gbuf, from_zero,
-                        )  # fmt: skip
-                    if ev_act[k] != ACT_COUNT and s_ev[k] < s_cut:
-                        s_cut = s_ev[k]
-                        k_cut = k
-            # record events up to the cut, in time order
-            while True:
-                kmin = -1
-                smin = 2.0
-                for k in range(n_ev):
-                    if s_ev[k] < smin and (s_ev[k] < s_cut or k == k_cut):
-                        smin = s_ev[k]
-                        kmin = k
-                if kmin < 0:
-                    break
-                ev_count[kmin] += 1
-                n_events_total += 1
-                if nrec < max_rec:
-                    rec_t[nrec] = t + smin * h
-                    rec_k[nrec] = kmin
-                    nrec += 1
-                s_ev[kmin] = 2.0
-                if kmin == k_cut:
-                    break
+            s_cut, k_cut, nrec, n_found = _events_in_step(
+                n_ev, ev_dir, ev_act, p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
+                g_old, g_new, gbuf, s_ev, ybuf, ev_count, rec_t, rec_k, nrec,
+            )  # fmt: skip
+            n_events_total += n_found
 
         if k_cut < 0:
             # ---- plain accepted step: save, advance ---------------------------------------
@@ -460,37 +562,11 @@ def integrate_one(
             continue
 
         # ---- truncated at a reset/stop event ----------------------------------------------
-        te = t + s_cut * h if s_cut < 1.0 else tn
-        if s_cut < 1.0:
-            _dense(y, h, k1, k3, k4, k5, k6, k7, s_cut, ybuf)
-        else:
-            for i in range(n):
-                ybuf[i] = ynew[i]
-        i_save = _save_until(te, ybuf, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, ytmp)
-        t = te
-        if ev_act[k_cut] == ACT_STOP:
-            for i in range(n):
-                y[i] = ybuf[i]
-            status = EVENT_STOP
-            break
-        flag = reset(k_cut, te, ybuf, p, y)
-        if te - t_last_reset <= 8.0 * 2.220446049250313e-16 * max(1.0, abs(te)):
-            resets_without_progress += 1
-            if resets_without_progress > _MAX_RESETS_WITHOUT_PROGRESS:
-                status = EVENT_LOOP
-                break
-        else:
-            resets_without_progress = 0
-        t_last_reset = te
-        if not _all_finite(y):
-            status = NONFINITE
-            break
-        if flag != 0:
-            status = EVENT_STOP
-            break
-        rhs(t, y, p, k1)
-        nfev += 1
-        events(t, y, p, g_old)
+        status, t, i_save, t_last_reset, resets_without_progress, n_rhs = _resolve_cut(
+            k_cut, s_cut, ev_act[k_cut], p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
+            ts, i_save, ys_out, ybuf, ytmp, g_old, t_last_reset, resets_without_progress,
+        )  # fmt: skip
+        nfev += n_rhs
 
     for i in range(n):
         y_final[i] = y[i]

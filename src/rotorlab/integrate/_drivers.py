@@ -19,34 +19,32 @@ from rotorlab.integrate._codegen import build
 
 __all__ = ["driver", "check_lanes", "default_lanes", "is_vectorised"]
 
-_ACT_OFF = 3  # rotorlab.integrate._core.ACT_OFF
 DEFAULT_LANES = 8  # a multiple of the SIMD width in doubles: 4 (AVX2), 8 (AVX-512)
 
 
-def default_lanes(kernels, n_traj, ev_act):
+def default_lanes(kernels, n_traj):
     """The lane width ``lanes="auto"`` chooses: :data:`DEFAULT_LANES` for an ensemble (more than
-    one trajectory) of a model whose kernel vectorises (``Kernels.vectorises``) with no active
-    event, else None (the scalar driver)."""
-    if n_traj > 1 and kernels.vectorises and not np.any(np.asarray(ev_act) != _ACT_OFF):
-        return DEFAULT_LANES
-    return None
+    one trajectory), else None (one trajectory: the scalar driver). Events, resets and modes run
+    on lanes too; a kernel that does not vectorise (``Kernels.vectorises`` False) gives the same
+    numbers there, at about scalar speed."""
+    return DEFAULT_LANES if n_traj > 1 else None
 
 
-def check_lanes(lanes, ev_act):
+def check_lanes(lanes):
     """Validate ``lanes=`` of :func:`rotorlab.integrate.solve_ensemble`.
 
     Raises
     ------
     ValueError
-        If ``lanes`` is not an integer in [2, 64] or an event is active.
+        If ``lanes`` is not an integer in [2, 64].
     """
     if isinstance(lanes, bool) or not isinstance(lanes, (int, np.integer)) or not 2 <= lanes <= 64:
         raise ValueError(f"lanes must be an integer in [2, 64] or None, got {lanes!r}")
-    if np.any(np.asarray(ev_act) != _ACT_OFF):
-        raise ValueError(
-            "lanes= runs without event location; this model has active events: pass events=[] "
-            "to switch them off, or lanes=None to use the scalar driver"
-        )
+
+
+def _roles(kernels):
+    """The model's kernels by the role a driver template binds them to."""
+    return {"rhs": kernels.rhs, "events": kernels.events, "reset": kernels.reset}
 
 
 def driver(kernels, lanes, serial):
@@ -62,12 +60,9 @@ def driver(kernels, lanes, serial):
         Run on the calling thread.
     """
     if lanes is None:
-        ns = build(
-            "rotorlab.integrate._core",
-            {"rhs": kernels.rhs, "events": kernels.events, "reset": kernels.reset},
-        )
+        ns = build("rotorlab.integrate._core", _roles(kernels))
         return ns["integrate_serial" if serial else "integrate_ensemble"]
-    ns = build("rotorlab.integrate._lanes", {"rhs": kernels.rhs}, {"LANES": int(lanes), "N_STATE": kernels.n_state})
+    ns = build("rotorlab.integrate._lanes", _roles(kernels), {"LANES": int(lanes), "N_STATE": kernels.n_state})
     return ns["integrate_lanes_serial" if serial else "integrate_lanes"]
 
 
@@ -95,7 +90,7 @@ def is_vectorised(kernels, lanes=8):
 
     from rotorlab.integrate._codegen import _in_memory
 
-    ns = _in_memory("rotorlab.integrate._lanes", {"rhs": kernels.rhs}, {"LANES": lanes, "N_STATE": kernels.n_state})
+    ns = _in_memory("rotorlab.integrate._lanes", _roles(kernels), {"LANES": lanes, "N_STATE": kernels.n_state})
     probe = ns["_probe"]
     W = np.zeros(ns["_W_SIZE"])
     PL = np.zeros(lanes)

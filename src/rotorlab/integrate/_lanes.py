@@ -15,7 +15,14 @@ the ensemble, taken from a counter shared by the worker threads (``atomicrmw add
 pull work dynamically, so a few long trajectories never leave a thread idle while another has a
 queue. This is the scheme of the benchmark's C reference ``dp5_simd.c`` (see ``bench/README.md``).
 
-No events: a model whose active events need locating keeps the scalar driver (``_core``).
+Events, reset maps and modes: after the vectorised accept/reject of a step, each lane whose step
+was accepted has its events located by the scalar driver's own functions
+(``_core._events_in_step``: the event functions at the step's end, a sign change located on the
+dense output; ``_core._resolve_cut``: save up to the event, then stop or apply the reset map),
+bound to this copy's kernels. A lane without an event costs one event evaluation and a few
+comparisons; a lane with one does its root finding and reset while the other lanes wait for at
+most that step, and then continues (or ends and is refilled) like any other. The same code on
+the same numbers gives the same event times, records and states as the scalar driver.
 Saving at given times uses the same quartic dense output as the scalar driver.
 
 Lane-friendly kernels
@@ -38,8 +45,8 @@ straight loop body. LLVM vectorises that loop when the kernel
 
 A kernel that breaks these rules still gives identical results on the lane path, only no faster
 than the scalar path. A model declares a kernel that follows them with ``Kernels(vectorises=True)``
-(``tests/unit/test_vectorise.py`` checks each); ``solve_ensemble`` then uses this driver by default
-for its event-free ensembles. :func:`rotorlab.integrate._drivers.is_vectorised` reports whether it vectorised.
+(``tests/unit/test_vectorise.py`` checks each). ``solve_ensemble`` uses this driver by default for
+every ensemble, events or not. :func:`rotorlab.integrate._drivers.is_vectorised` reports whether it vectorised.
 
 Why not a lane kernel ``rhs_lanes`` written by the model? It would be a second hand-written right
 side per model to keep in sync with the first; the loop above vectorises the existing one.
@@ -59,10 +66,13 @@ import numpy as np
 from numba import njit, prange, types
 from numba.extending import intrinsic
 
+from rotorlab.models._base import no_events as events  # @kernel events
+from rotorlab.models._base import no_reset as reset  # @kernel reset
 from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
+from rotorlab.integrate import _core
 from rotorlab.integrate._core import (
-    MAX_STEPS, NONFINITE, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NREJECT, STEP_UNDERFLOW, SUCCESS,
-    _all_finite, _dense,
+    ACT_OFF, MAX_STEPS, NONFINITE, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NREJECT, STEP_UNDERFLOW,
+    SUCCESS, _all_finite, _dense, _own, with_kernels,
 )  # fmt: skip
 from rotorlab.integrate._tableau import (
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65,
@@ -132,6 +142,18 @@ _DONE = -2
 # compiled here: numba's cache of the kernel's own dispatcher does not notice a change in a
 # function the kernel inlines (e.g. sincos), the generated copy's file name does (rotorlab.integrate._codegen).
 _rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func)
+
+# Events and resets: the scalar driver's own functions (rotorlab.integrate._core), bound to this
+# copy's kernels, called for one lane at a time after its accepted step. Same source, same
+# compiled kernels (_own), so the same event times, states and records bit for bit.
+_EV = dict(vars(_core))
+_EV.update(rhs=_own(rhs), events=_own(events), reset=_own(reset))
+for _name in ("_g_at", "_locate", "_events_in_step", "_resolve_cut"):
+    _EV[_name] = with_kernels(getattr(_core, _name), _EV)
+_events_at = _EV["events"]
+_events_in_step = _EV["_events_in_step"]
+_resolve_cut = _EV["_resolve_cut"]
+del _name
 
 
 @intrinsic
@@ -293,10 +315,11 @@ def _min_steps(W, Wi, nl):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")  # no ZeroDivisionError branch in the loops
-def _worker(counter, inputs, settings, outputs):
+def _worker(counter, inputs, settings, event_table, outputs):
     """Integrate trajectories taken from ``counter`` until none is left (one thread)."""
     Y0, P, T1, TS, atol = inputs
     t0, rtol, n_cont, first_step, max_step, max_steps = settings
+    n_ev, ev_dir, ev_act = event_table
     YS, YF, STATUS, TEND, EVC, RECT, RECK, STATS = outputs
     # LANES, but a run-time value: with a constant trip count this small, LLVM treats the loops
     # over lanes as "optimise for size" and will not emit the alias checks it needs to vectorise
@@ -321,6 +344,19 @@ def _worker(counter, inputs, settings, outputs):
     fbuf = np.empty(n)
     f1 = np.empty(n)
     ytmp = np.empty(n)
+    # events: each lane's event functions at its t, and its bookkeeping (as integrate_one's)
+    has_ev = False
+    for k in range(n_ev):
+        has_ev = has_ev or ev_act[k] != ACT_OFF
+    ne = max(n_ev, 1)
+    g_old = np.zeros(L * ne)
+    g_new = np.empty(ne)
+    gbuf = np.empty(ne)
+    s_ev = np.empty(ne)
+    n_rec = np.zeros(L, dtype=np.int64)
+    n_events = np.zeros(L, dtype=np.int64)
+    t_last_reset = np.full(L, -math.inf)
+    n_stalled = np.zeros(L, dtype=np.int64)
 
     while True:
         # ---- start of the step attempt in every lane: vectorised, then the rare cases --------
@@ -339,7 +375,7 @@ def _worker(counter, inputs, settings, outputs):
                         st = NONFINITE if W[_lnf + lane] != 0.0 else STEP_UNDERFLOW
                     else:
                         st = MAX_STEPS
-                    _finish(W, lane, j, st, YF, STATUS, TEND, STATS)
+                    _finish(W, lane, j, st, n_events[lane], YF, STATUS, TEND, STATS)
                     ids[lane] = _EMPTY
                     W[_live + lane] = 0.0
                 j = _fetch_add(counter, 1)
@@ -368,6 +404,14 @@ def _worker(counter, inputs, settings, outputs):
                 i_save[lane] = s
                 _rhs_inline(t0, ybuf, P[ip], fbuf)
                 nfev = 1.0
+                if has_ev:
+                    _events_at(t0, ybuf, P[ip], g_old[lane * ne : (lane + 1) * ne])
+                    for k in range(n_ev):
+                        EVC[j, k] = 0
+                n_rec[lane] = 0
+                n_events[lane] = 0
+                t_last_reset[lane] = -math.inf
+                n_stalled[lane] = 0
                 for i in range(n):
                     W[_K1 + i * L + lane] = fbuf[i]
                 ok = _all_finite(ybuf) and _all_finite(fbuf)
@@ -386,7 +430,7 @@ def _worker(counter, inputs, settings, outputs):
                 W[_nrej + lane] = 0.0
                 ids[lane] = j
                 if not ok:
-                    _finish(W, lane, j, NONFINITE, YF, STATUS, TEND, STATS)
+                    _finish(W, lane, j, NONFINITE, 0, YF, STATUS, TEND, STATS)
                     ids[lane] = _EMPTY
                     continue
                 W[_live + lane] = 1.0
@@ -491,6 +535,52 @@ def _worker(counter, inputs, settings, outputs):
             W[_nrej + lane] += 1.0 if live and not good else 0.0
             W[_new + lane] = 1.0 if take else new_flag
             W[_M + lane] = 1.0 if take else 0.0
+        # ---- events of the accepted steps, one lane at a time (the others wait this step) ---
+        if has_ev:
+            for lane in range(L):
+                if W[_M + lane] == 0.0:
+                    continue
+                j = ids[lane]
+                p = P[j if not shared else 0]
+                y = _lane(W, _Y + lane, n)
+                yn = _lane(W, _YN + lane, n)
+                k1 = _lane(W, _K1 + lane, n)
+                k3 = _lane(W, _K3 + lane, n)
+                k4 = _lane(W, _K4 + lane, n)
+                k5 = _lane(W, _K5 + lane, n)
+                k6 = _lane(W, _K6 + lane, n)
+                k7 = _lane(W, _K7 + lane, n)
+                g = g_old[lane * ne : (lane + 1) * ne]
+                t = W[_t + lane]
+                h = W[_h + lane]
+                tn = W[_tn + lane]
+                s_cut, k_cut, nr, n_found = _events_in_step(
+                    n_ev, ev_dir, ev_act, p, t, h, tn, y, yn, k1, k3, k4, k5, k6, k7,
+                    g, g_new, gbuf, s_ev, ybuf, EVC[j], RECT[j], RECK[j], n_rec[lane],
+                )  # fmt: skip
+                n_rec[lane] = nr
+                n_events[lane] += n_found
+                if k_cut < 0:
+                    for k in range(n_ev):
+                        g[k] = g_new[k]
+                    continue
+                # the step ends at the event: reset (y, k1, g written in place) or end here
+                its = j if TS.shape[0] > 1 else 0
+                st, te, i_s, t_lr, n_st, n_rhs = _resolve_cut(
+                    k_cut, s_cut, ev_act[k_cut], p, t, h, tn, y, yn, k1, k3, k4, k5, k6, k7,
+                    TS[its], i_save[lane], YS[j], ybuf, ytmp, g, t_last_reset[lane],
+                    n_stalled[lane],
+                )  # fmt: skip
+                i_save[lane] = i_s
+                t_last_reset[lane] = t_lr
+                n_stalled[lane] = n_st
+                W[_nfev + lane] += n_rhs
+                W[_t + lane] = te
+                W[_M + lane] = 0.0  # the advance below leaves this lane as it is now
+                if st != SUCCESS:
+                    _finish(W, lane, j, st, n_events[lane], YF, STATUS, TEND, STATS)
+                    ids[lane] = _EMPTY
+                    W[_live + lane] = 0.0
         if n_save > 0:  # save points in (t, tn] from the dense output of accepted steps
             for lane in range(L):
                 if W[_M + lane] != 0.0:
@@ -538,7 +628,7 @@ def _save(W, lane, j, TS, YS, i_save, ybuf):
 
 
 @njit(cache=True, nogil=True)
-def _finish(W, lane, j, status, YF, STATUS, TEND, STATS):
+def _finish(W, lane, j, status, n_events, YF, STATUS, TEND, STATS):
     """Write the outputs of trajectory ``j``, which ends in ``lane``."""
     for i in range(N_STATE):
         YF[j, i] = W[_Y + i * LANES + lane]
@@ -547,15 +637,14 @@ def _finish(W, lane, j, status, YF, STATUS, TEND, STATS):
     STATS[j, ST_NFEV] = int(W[_nfev + lane])
     STATS[j, ST_NACCEPT] = int(W[_nacc + lane])
     STATS[j, ST_NREJECT] = int(W[_nrej + lane])
-    STATS[j, ST_NEVENTS] = 0
+    STATS[j, ST_NEVENTS] = n_events
 
 
 @njit(cache=True, nogil=True, parallel=True)
 def integrate_lanes(inputs, settings, event_table, outputs, n_threads):
     """Integrate ``outputs.STATUS.shape[0]`` trajectories, ``LANES`` at a time on each of ``n_threads``.
 
-    The arguments are the groups of :mod:`rotorlab.integrate._driver_args` (the events must all
-    be off). ``inputs.atol`` must have ``N_STATE`` entries; ``n_threads`` is the number of worker
+    The arguments are the groups of :mod:`rotorlab.integrate._driver_args`. ``inputs.atol`` must have ``N_STATE`` entries; ``n_threads`` is the number of worker
     threads (numba's current number of threads at most: pass ``numba.get_num_threads()``, which
     cannot be called here without making the function uncacheable). Each trajectory writes only
     its own rows of the outputs, with the same numbers whatever the thread that integrated it.
@@ -564,11 +653,11 @@ def integrate_lanes(inputs, settings, event_table, outputs, n_threads):
     n_workers = max(1, min(n_threads, (N + LANES - 1) // LANES))
     counter = np.zeros(1, dtype=np.int64)
     for _ in prange(n_workers):
-        _worker(counter, inputs, settings, outputs)
+        _worker(counter, inputs, settings, event_table, outputs)
 
 
 @njit(cache=True, nogil=True)
 def integrate_lanes_serial(inputs, settings, event_table, outputs, n_threads):
     """Same as :func:`integrate_lanes` on the calling thread (``n_threads`` is ignored)."""
     counter = np.zeros(1, dtype=np.int64)
-    _worker(counter, inputs, settings, outputs)
+    _worker(counter, inputs, settings, event_table, outputs)

@@ -37,8 +37,8 @@ For implementers
    :func:`rotorlab._kernels._vmath.sincos` instead of ``math.sin``/``cos``, sizes such as the
    ball count from ``y.shape[0]``, which the lane driver makes a compile-time constant, no
    library calls, ``error_model="numpy"`` when a discarded arm may divide by zero) and declare
-   it with ``Kernels(..., vectorises=True)``: ensembles without active events then run on the
-   lane driver by default (same numbers). ``tests/unit/test_vectorise.py`` asserts that every
+   it with ``Kernels(..., vectorises=True)``. Every ensemble runs on the lane driver by default
+   (same numbers as the scalar driver, events included); a lane-friendly kernel makes it fast. ``tests/unit/test_vectorise.py`` asserts that every
    kernel so declared vectorises.
 """
 
@@ -129,8 +129,7 @@ class Kernels:
     event_specs : tuple of EventSpec
         One per event function, in the order ``events`` fills ``g``.
     vectorises : bool
-        True if ``rhs`` is lane-friendly (vectorised by the lane driver, checked by the tests):
-        event-free ensembles then use the lane driver by default.
+        True if ``rhs`` is lane-friendly (vectorised by the lane driver, checked by the tests).
     """
 
     rhs: Any

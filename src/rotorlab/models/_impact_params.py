@@ -116,7 +116,9 @@ class Housing:
     whirl_limit : float or None
         Backward angular speed (rad/s) of the contact point in the fixed frame during sliding
         above which the run is stopped and flagged as dry-friction backward whirl; ``None``
-        (default) takes twice the spin speed (see the module docstring).
+        (default) takes the theory's criterion, the rolling speed :meth:`rolling_whirl_speed`
+        where the slip the sliding law assumes vanishes (see the module docstring of
+        :mod:`rotorlab.models._impact_rotor`).
 
     Examples
     --------
@@ -152,6 +154,24 @@ class Housing:
             )
         if self.whirl_limit is not None:
             object.__setattr__(self, "whirl_limit", _num(o, "whirl_limit", self.whirl_limit, unit="rad/s"))
+
+    def rolling_whirl_speed(self, spin_speed: float) -> float:
+        """Backward whirl speed (rad/s) at which the rotor rolls on the housing without slip.
+
+        The contact point's lateral displacement whirls on a circle of radius ``Delta / sin(beta)``
+        (its gap component ``w`` on ``|w| = Delta``); rolling without slip needs its speed to
+        cancel the surface speed ``r_P omega0``: ``|omega_w| = r_P sin(beta) omega0 / Delta``,
+        the dry-friction backward whirl ``-(R / delta) Omega`` of Black (1968) and Crandall (1990)
+        on the cone (exact in the translational model, where ``w = sin(beta) u``).
+
+        Examples
+        --------
+        >>> import math
+        >>> h = Housing(0.625, -0.2, 4.5e-3, math.radians(90), 0.5, 0.2)
+        >>> round(h.rolling_whirl_speed(160.0), 6)
+        22222.222222
+        """
+        return self.radius * math.sin(self.cone_angle) * float(spin_speed) / self.gap
 
     def lever(self) -> float:
         """l_P = r_P cos(beta) + h_P sin(beta) (m), eq. (3.2)."""

@@ -85,15 +85,19 @@ When an impact would rebound slower than ``rest_speed`` (an accumulation of impa
 the rotor is put in sustained contact: P stays on the housing (|w| = Delta), the normal force is
 ``N = m* (e . w''_free + (|w'|^2 - (e . w')^2) / Delta)`` with friction ``f N`` along
 ``-e_perp``, and the rotor leaves the housing when N would pull (N = 0). The contact force and
-moment are those of (3.9) with S_n -> N. A sliding contact whose point runs *backwards* in the
-fixed frame faster than ``whirl_limit`` (default twice the spin speed) is the self-feeding
-dry-friction backward whirl: the run is stopped and flagged (the small-motion model stops being
-valid there). The friction force ``-f N e_perp`` drives the contact point backwards; the faster
-it whirls, the larger N (centripetal term) and the friction: once past a threshold nothing in
-the linear model limits it (the whirl speed grows to ~1e12 rad/s within a second). Evidence for
-the default: over 48 runs (1.5, 2, 3 kg, seeds 0-15, 10 s) the limits 2, 4 and 8 omega0 flag
-exactly the runs that blow up without a limit, stopping them shortly before; the limit omega0
-also flags 8 runs whose backward sliding dies out again.
+moment are those of (3.9) with S_n -> N. The friction force ``-f N e_perp`` assumes that the
+contact point slides forwards over the housing (the surface speed ``r_P omega0`` dwarfs the
+vibration). When a sliding contact whirls backwards, friction drives it further backwards; the
+faster it whirls, the larger N (centripetal term) and the friction, and nothing in the sliding
+law limits it (the whirl speed grows to ~1e12 rad/s within a second). The theory says where that
+law ends: at the backward whirl speed ``r_P sin(beta) omega0 / Delta``
+(:meth:`Housing.rolling_whirl_speed`) the slip vanishes and the rotor rolls on the housing, the
+dry-friction backward whirl ``-(R / delta) Omega`` (Black 1968, Crandall 1990; see
+:func:`rotorlab.contact.rolling_whirl`), which this sliding model cannot carry. The run is
+stopped there and flagged (``whirl_limit`` overrides the speed). The impacts counted are the
+same whichever speed the stop is detected at, since a sliding contact makes no impacts: over
+16 runs (2 and 3 kg, seed 0, 10 s) the former empirical limit 2 omega0, the rolling speed and no
+limit at all flag the same runs with the same counts (``tests/validation/test_impact_whirl.py``).
 
 Energy
 ------
@@ -254,7 +258,7 @@ class ImpactRotor:
         head[_k.P_TRANS] = 1.0 if r.translational else 0.0
         head[_k.P_VREST] = h.rest_speed
         head[_k.P_VCOUNT] = h.count_speed
-        head[_k.P_WHIRL] = 2.0 * w0 if h.whirl_limit is None else h.whirl_limit
+        head[_k.P_WHIRL] = h.rolling_whirl_speed(w0) if h.whirl_limit is None else h.whirl_limit
         head[_k.P_TAUEND] = push.tau_end
         # stones: t_n, m_n w0^2 R_q, cos(alpha_n), sin(alpha_n)
         n = len(seq)
