@@ -280,3 +280,14 @@ def test_sweep_over_any_number_of_the_model_by_key_path(tmp_path):
     bad = CliRunner().invoke(app, ["sweep", str(path), "--out", str(tmp_path / "b.zarr"), "--param",
                                    "model.structure.bodies[3].mass=1:2:2", "--ic", "psi_1=0.8:0.8:1"])
     assert bad.exit_code == 2 and "model.<key path>" in bad.output
+
+
+def test_steady_findings_say_whether_the_balancer_balances(planar):
+    from rotorlab.report._machine import machine_findings
+
+    verdicts = {}
+    for name in ("above", "below"):
+        ds = run_analysis(planar.model, planar.analysis(name))
+        verdicts[name] = machine_findings(ds, summarize(ds)).verdict
+    assert verdicts["above"].startswith("2 of 6") and "the balancer balances there" in verdicts["above"]
+    assert verdicts["below"].startswith("1 of 6") and "the balanced motion is unstable" in verdicts["below"]
