@@ -24,6 +24,9 @@ name = "planar-machine"
 
 [model]
 type = "machine"
+# the two translation modes (the tilt at sqrt(5 / 0.3) = 4.1 rad/s does not couple): the same
+# compiled kernel as the machines of test_machine_analyses.py
+n_modes = 2
 
 [model.structure]
 type = "multibody"
