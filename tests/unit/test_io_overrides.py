@@ -136,3 +136,34 @@ def test_validate_json_and_the_report_text_name_the_keys_set():
     text = load_case("autobalancer", overrides={"model.disc_mass": "2 kg"}).text
     assert text.startswith("# Keys set on top of the file below")
     assert '#   model.disc_mass = "2 kg"\n' in text and text.endswith(_text("autobalancer"))
+
+
+def test_a_run_with_set_says_so_in_its_report_and_json(tmp_path):
+    out = tmp_path / "out"
+    result = runner.invoke(app, ["run", "friswell-rotor", "--out", str(out), "--json",
+                                 "--set", "model.bearings[1].kxx=3 MN/m"])
+    assert result.exit_code == 0, result.output
+    assert json.loads(result.stdout)["set"] == {"model.bearings[1].kxx": "3 MN/m"}
+    page = (out / "report.html").read_text(encoding="utf-8")
+    assert "Keys set on top of the case file (--set): model.bearings[1].kxx = &quot;3 MN/m&quot;" in page
+    assert "#   model.bearings[1].kxx = &quot;3 MN/m&quot;" in page  # the case-file text shown says so too
+
+
+def test_the_set_examples_of_the_readme_and_the_docs_are_valid():
+    # every documented command line with --set names keys that exist and values that validate
+    import re
+    import shlex
+    from pathlib import Path
+
+    root = Path(__file__).resolve().parents[2]
+    lines = [line for page in (root / "README.md", root / "docs" / "getting-started.md")
+             for block in re.findall(r"^```bash\n(.*?)^```", page.read_text(encoding="utf-8"), re.S | re.M)
+             for line in block.splitlines() if line.startswith("rotorlab ") and "--set" in line]
+    assert len(lines) >= 4
+    for line in lines:
+        argv = shlex.split(line)[1:]
+        case = argv[1]
+        sets = [argv[i + 1] for i, a in enumerate(argv) if a == "--set"]
+        result = runner.invoke(app, ["validate", case, *[x for s in sets for x in ("--set", s)]])
+        expected = 2 if "dsic_mass" in line else 0  # the docs' example of a typo
+        assert result.exit_code == expected, (line, result.output)

@@ -251,3 +251,31 @@ def test_modes_findings_at_rest_name_no_whirl_direction():
     assert "forward" not in " ".join(found.numbers) and "backward" not in " ".join(found.numbers)
     found = presentation_of("modes").findings(spinning, summarize(spinning))
     assert found.numbers[0] in ("3 backward, 3 forward whirl", "3 forward, 3 backward whirl")
+
+
+def test_stability_chart_findings_name_the_balanced_motion_once_and_each_parameter_value():
+    # main+ and main- share their stable interval: it is said once; a side motion is not called
+    # balanced; with a second parameter the verdict names its values and each has its own line.
+    import xarray as xr
+
+    from rotorlab.report import presentation_of
+
+    def row(method, motion, a, b, **extra):
+        return {"method": method, "motion": motion, "start_rpm": a, "stop_rpm": b, **extra}
+
+    found = presentation_of("stability-chart").findings(xr.Dataset(attrs={"analysis": "stability-chart"}), [
+        row("exact", "main+", 1373.7, 3763.7), row("exact", "main-", 1373.7, 3763.7),
+        row("exact", "side 00", 188.2, 903.3), row("hamilton", "main+", 959.7, 3763.7)])
+    assert found.verdict == "balanced motion stable (exact) at 1374 to 3764 rpm"
+    assert found.numbers == ("by hamilton: 960 to 3764 rpm", "side motions (side 00) stable (exact) at 188 to 903 rpm")
+
+    ds = xr.Dataset(coords={"support_damping": ("support_damping", [0.0, 5.0, 10.0], {"units": "N s/m"})},
+                    attrs={"analysis": "stability-chart", "parameter": "support_damping"})
+    rows = [row("exact", "side 00", 188.0, 922.0, support_damping=0.0),
+            row("exact", "main+", 1449.0, 3764.0, support_damping=5.0),
+            row("exact", "main-", 1449.0, 3764.0, support_damping=5.0),
+            row("exact", "main+", 1355.0, 3764.0, support_damping=10.0)]
+    found = presentation_of("stability-chart").findings(ds, rows)
+    assert found.verdict == "balanced motion stable (exact) for support_damping = 5 to 10 N s/m (2 of 3 values)"
+    assert found.numbers == ("support_damping = 0 N s/m: nowhere", "support_damping = 5 N s/m: 1449 to 3764 rpm",
+                             "support_damping = 10 N s/m: 1355 to 3764 rpm")

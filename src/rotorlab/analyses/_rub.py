@@ -19,7 +19,8 @@ if TYPE_CHECKING:
 
     from rotorlab.contact import JeffcottRub, RubRotor
 
-__all__ = ["rub_model", "rub_quantities", "run_rub_analysis", "rub_rows", "rub_prediction"]
+__all__ = ["rub_model", "rub_quantities", "run_rub_analysis", "rub_rows", "rub_prediction", "run_rub_map",
+           "rub_map_rows", "rub_map_task_size"]
 
 
 def _rotor(case_model: Any) -> RubRotor:
@@ -203,4 +204,65 @@ def rub_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
     if mu_c is not None and np.isfinite(mu_c):
         rows.append({"quantity": "critical friction of the full rub", "measured": float(a["friction"]),
                      "closed_form": float(mu_c), "unit": "", "source": "Hurwitz criterion of the rub orbit"})  # fmt: skip
+    return rows
+
+
+def run_rub_map(case_model: Any, analysis: Any,
+                progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+    """Map the rub regimes over spin speed x the second axis on the sweep engine.
+
+    Every point is simulated from the same whirl (``initial_radius``, ``initial_whirl``) and its
+    last ``window`` classified (:class:`rotorlab.contact.RubRegimes`); the Dataset is the sweep's
+    (``regime`` and the features over ``spin_speed`` and the second axis) with
+    ``grazing_boundary`` (second-axis value at which the closed-form no-rub orbit just reaches the
+    clearance, at every speed) beside it.
+    """
+    from dataclasses import replace
+
+    from rotorlab.analyses._registry import MODEL_TYPES
+    from rotorlab.contact import RubRegimes, no_rub_radius
+    from rotorlab.sweep import GridAxis, Sweep, run_sweep
+
+    model = MODEL_TYPES[case_model.type].build(case_model)
+    axis = analysis.second_axis
+    r, w = analysis.initial_radius, analysis.initial_whirl
+    regimes = RubRegimes(model, t_end=analysis.t_end, window=analysis.window, position=(r, 0.0),
+                         velocity=(0.0, w * r), n_samples=analysis.samples)  # fmt: skip
+    axes = (GridAxis("spin_speed", *analysis.spin_speed), GridAxis(axis, *getattr(analysis, axis)))
+    total = analysis.spin_speed[2] * getattr(analysis, axis)[2]
+    report = None if progress is None else (lambda p: progress(p.done, p.total))
+    ds = run_sweep(Sweep(regimes, axes=axes), progress=report)
+    rotor = model.equivalent_rub_rotor()
+    speeds = ds.spin_speed.values
+    if axis == "clearance":  # the clearance the no-rub orbit just reaches
+        boundary = np.array([no_rub_radius(rotor, float(s)) for s in speeds])
+    else:  # the orbit radius is linear in the eccentricity: the one (or m e) that just reaches it
+        per_unit = np.array([no_rub_radius(replace(rotor, eccentricity=1.0), float(s)) for s in speeds])
+        boundary = rotor.clearance / per_unit * (rotor.mass if axis == "unbalance" else 1.0)
+    ds["grazing_boundary"] = (("spin_speed",), boundary, {"units": "m" if axis != "unbalance" else "kg m"})
+    ds.attrs.update({"name": analysis.name, "second_axis": axis, "points": int(total)})
+    return ds
+
+
+def rub_map_task_size(case_model: Any, analysis: Any) -> int:
+    """Points of a ``rub-map`` analysis (its progress-bar total)."""
+    return int(analysis.spin_speed[2] * getattr(analysis, analysis.second_axis)[2])
+
+
+def rub_map_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """One row per regime: how many points of the map are in it and where."""
+    from rotorlab.contact import RubRegime
+
+    codes = ds.regime.values.ravel()
+    axis = ds.attrs["second_axis"]
+    sp = np.broadcast_to(ds.spin_speed.values[:, None], ds.regime.shape).ravel()
+    sec = np.broadcast_to(ds[axis].values[None, :], ds.regime.shape).ravel()
+    rows = []
+    for r in RubRegime:
+        k = codes == int(r)
+        if not k.any():
+            continue
+        rows.append({"regime": r.label, "points": int(k.sum()), "share": float(k.mean()),
+                     "spin_speed_min": float(sp[k].min()), "spin_speed_max": float(sp[k].max()),
+                     f"{axis}_min": float(sec[k].min()), f"{axis}_max": float(sec[k].max())})
     return rows

@@ -10,7 +10,7 @@ Examples
 >>> from rotorlab.io import load_case
 >>> case = load_case("rub-jeffcott")
 >>> case.model.type, round(case.model.clearance, 6), [a.type for a in case.analyses]
-('rub_rotor', 0.001, ['rub'])
+('rub_rotor', 0.001, ['rub', 'rub-map'])
 """
 
 from __future__ import annotations
@@ -23,7 +23,7 @@ from pydantic import Field, model_validator
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, integer, quantity
 
-__all__ = ["JeffcottRubSpec", "RubSpec"]
+__all__ = ["JeffcottRubSpec", "RubSpec", "RubMapSpec"]
 
 
 class JeffcottRubSpec(AbstractModelSpec):
@@ -65,6 +65,24 @@ class JeffcottRubSpec(AbstractModelSpec):
                 f"{self.clearance * 1e3:.3g} mm clearance, {stator}, friction {self.friction:g}")  # fmt: skip
 
 
+def _machine_rub_issues(spec: AbstractAnalysisSpec, model: AbstractModelSpec) -> list[Issue]:
+    """A machine runs the rub analyses with a clearance, a constant speed and the rotor radius."""
+    if not model.clearances:
+        return [Issue(("type",), "needs a clearance on the machine ([[model.clearances]])", spec.type)]
+    issues = []
+    if model.drive.profile != "constant":
+        issues.append(Issue(("type",), "needs a constant speed on the machine ([model.drive] "
+                                       f'profile = "constant"), got "{model.drive.profile}"', spec.type))
+    c = model.clearances[0]
+    if c.rotor_radius <= 0.0:
+        issues.append(Issue(("type",), "needs the rotor radius at the contact "
+                                       "(model.clearances[0].rotor_radius > 0)", spec.type))
+    if c.stator is None and spec.initial_radius > c.gap:
+        issues.append(Issue(("initial_radius",), f"must be <= the clearance ({c.gap:g} m) with a rigid stator",
+                            spec.initial_radius))  # fmt: skip
+    return issues
+
+
 class RubSpec(AbstractAnalysisSpec):
     """Simulate the rotor in its clearance and classify what it does (:class:`rotorlab.contact.RubRegime`).
 
@@ -90,7 +108,7 @@ class RubSpec(AbstractAnalysisSpec):
         """A rub_rotor, or a machine with a clearance, a constant speed and the rotor radius; a
         rigid stator's rotor must start inside the clearance."""
         if getattr(model, "type", None) == "machine":
-            return self._machine_issues(model)
+            return _machine_rub_issues(self, model)
         clearance = getattr(model, "clearance", None)
         if getattr(model, "type", None) != "rub_rotor":
             return [Issue(("type",), "needs a rub_rotor model, or a machine with a clearance", self.type)]
@@ -99,22 +117,77 @@ class RubSpec(AbstractAnalysisSpec):
                           self.initial_radius)]  # fmt: skip
         return []
 
-    def _machine_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        if not model.clearances:
-            return [Issue(("type",), "needs a clearance on the machine ([[model.clearances]])", self.type)]
-        issues = []
-        if model.drive.profile != "constant":
-            issues.append(Issue(("type",), "needs a constant speed on the machine ([model.drive] "
-                                           f'profile = "constant"), got "{model.drive.profile}"', self.type))
-        c = model.clearances[0]
-        if c.rotor_radius <= 0.0:
-            issues.append(Issue(("type",), "needs the rotor radius at the contact "
-                                           "(model.clearances[0].rotor_radius > 0)", self.type))
-        if c.stator is None and self.initial_radius > c.gap:
-            issues.append(Issue(("initial_radius",), f"must be <= the clearance ({c.gap:g} m) with a rigid stator",
-                                self.initial_radius))  # fmt: skip
-        return issues
-
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""
         return f"rub regime over the last {self.window:g} s of {self.t_end:g} s"
+
+
+_AXIS_UNITS = {"clearance": "length", "eccentricity": "length", "unbalance": "unbalance"}
+
+
+class RubMapSpec(AbstractAnalysisSpec):
+    """A map of rub regimes over spin speed and a second parameter, on the sweep engine.
+
+    ``spin_speed = [start, stop, n]`` and exactly one of ``clearance``, ``eccentricity``
+    (``rub_rotor``) or ``unbalance`` (a ``machine`` with a clearance) as ``[start, stop, n]``;
+    every point is simulated from the same start and its last ``window`` classified
+    (:class:`rotorlab.contact.RubRegimes`), with the grazing boundary of the closed forms beside.
+    """
+
+    type: Literal["rub-map"] = "rub-map"
+    spin_speed: tuple[quantity("angular_speed", gt=0), quantity("angular_speed", gt=0), integer(ge=1)] = Field(
+        description="spin speeds [start, stop, count] (rad/s)")
+    clearance: tuple[quantity("length", gt=0), quantity("length", gt=0), integer(ge=1)] | None = Field(
+        None, description="clearances [start, stop, count] (m)")
+    eccentricity: tuple[quantity("length", ge=0), quantity("length", ge=0), integer(ge=1)] | None = Field(
+        None, description="unbalance eccentricities [start, stop, count] (m), rub_rotor")
+    unbalance: tuple[quantity("unbalance", ge=0), quantity("unbalance", ge=0), integer(ge=1)] | None = Field(
+        None, description="first unbalance m e [start, stop, count] (kg*m), machine")
+    t_end: quantity("time", gt=0) = Field(description="simulated time of every point (s)")
+    window: quantity("time", gt=0) = Field(description="classified window at the end of each run (s)")
+    initial_radius: quantity("length", ge=0) = Field(0.0, description="radius of the starting whirl (m)")
+    initial_whirl: quantity("angular_speed") = Field(0.0, description="angular speed of the starting whirl (rad/s)")
+    samples: integer(ge=2) = Field(200, description="samples in the window (-)")
+
+    @model_validator(mode="after")
+    def _check(self) -> RubMapSpec:
+        given = [k for k in _AXIS_UNITS if getattr(self, k) is not None]
+        issues = []
+        if len(given) != 1:
+            issues.append(Issue((), "give exactly one of clearance, eccentricity or unbalance as the second axis"
+                                + (f" (got {', '.join(given)})" if given else ""), show_value=False))
+        if self.window >= self.t_end:
+            issues.append(Issue(("window",), f"must be < t_end ({self.t_end:g} s)", self.window))
+        if issues:
+            raise IssueGroup(issues)
+        return self
+
+    @property
+    def second_axis(self) -> str:
+        """The name of the second axis."""
+        return next(k for k in _AXIS_UNITS if getattr(self, k) is not None)
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        """A rub_rotor (eccentricity or clearance), or a machine with a clearance and a constant
+        speed (unbalance or clearance)."""
+        kind = getattr(model, "type", None)
+        axis = self.second_axis
+        if kind == "rub_rotor":
+            if axis == "unbalance":
+                return [Issue(("unbalance",), "belongs to a machine: a rub_rotor varies its eccentricity",
+                              self.unbalance)]
+            return []
+        if kind == "machine":
+            issues = _machine_rub_issues(self, model)
+            if axis == "eccentricity":
+                issues.append(Issue(("eccentricity",), "belongs to a rub_rotor: a machine varies its "
+                                                       "unbalance", self.eccentricity))
+            elif axis == "unbalance" and not model.unbalances:
+                issues.append(Issue(("unbalance",), "needs an unbalance on the machine ([[model.unbalances]])",
+                                    self.unbalance))
+            return issues
+        return [Issue(("type",), "needs a rub_rotor model, or a machine with a clearance", self.type)]
+
+    def describe(self, model: AbstractModelSpec) -> str:
+        n = self.spin_speed[2] * getattr(self, self.second_axis)[2]
+        return f"rub-regime map over spin speed x {self.second_axis}: {n} points, {self.t_end:g} s each"

@@ -93,7 +93,7 @@ from rotorlab.io._linear_analyses import (
 from rotorlab.io._knock_spec import MachineKnockSpec
 from rotorlab.io._machine_spec import MachineSpec
 from rotorlab.io._multibody_spec import MultibodySpec
-from rotorlab.io._rub_specs import JeffcottRubSpec, RubSpec
+from rotorlab.io._rub_specs import JeffcottRubSpec, RubMapSpec, RubSpec
 from rotorlab.io._steady_specs import RunUpSpec, StabilityChartSpec, SteadySpec, VerifySpec
 from rotorlab.io._sweep_specs import SweepSpec
 
@@ -151,7 +151,8 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
                    JeffcottRubSpec)
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
-                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec, MachineKnockSpec)  # fmt: skip
+                     WorkingPointSpec, SweepSpec, ImpactsSpec, ImpactsSweepSpec, RubSpec, MachineKnockSpec,
+                     RubMapSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:

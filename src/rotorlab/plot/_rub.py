@@ -11,7 +11,7 @@ if TYPE_CHECKING:
     import xarray
     from matplotlib.figure import Figure
 
-__all__ = ["rub_orbit_figure", "rub_figures"]
+__all__ = ["rub_orbit_figure", "rub_figures", "rub_map_figure", "rub_map_figures"]
 
 
 def rub_orbit_figure(ds: xarray.Dataset) -> Figure:
@@ -41,3 +41,40 @@ def rub_orbit_figure(ds: xarray.Dataset) -> Figure:
 def rub_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
     """The figures of one ``rub`` result, by file stem."""
     return {f"{name}_orbit": rub_orbit_figure(ds)}
+
+
+def rub_map_figure(ds: xarray.Dataset) -> Figure:
+    """Regimes over spin speed x the second axis, with the closed-form grazing boundary."""
+    from matplotlib.colors import BoundaryNorm, ListedColormap
+    from matplotlib.figure import Figure
+    from matplotlib.patches import Patch
+
+    from rotorlab.contact import RubRegime
+
+    axis = ds.attrs["second_axis"]
+    codes = [int(r) for r in RubRegime]
+    colours = ["0.25", "0.92", "tab:orange", "tab:red", "tab:purple", "tab:brown"]
+    cmap = ListedColormap(colours)
+    norm = BoundaryNorm([c - 0.5 for c in codes] + [codes[-1] + 0.5], cmap.N)
+    fig = Figure(figsize=(6.4, 4.8), layout="constrained")
+    ax = fig.subplots()
+    x, y = ds.spin_speed.values, ds[axis].values
+    ax.pcolormesh(x, y, ds.regime.values.T.astype(float), cmap=cmap, norm=norm, shading="nearest")
+    ax.plot(x, ds.grazing_boundary.values, "k--", lw=1.2)
+    ax.set_ylim(y.min() - 0.5 * (np.ptp(y) / max(len(y) - 1, 1)), y.max() + 0.5 * (np.ptp(y) / max(len(y) - 1, 1)))
+    ax.set_xlabel("spin speed (rad/s)")
+    unit = ds[axis].attrs.get("units", "")
+    ax.set_ylabel(f"{axis} ({unit})" if unit else axis)
+    present = sorted({int(v) for v in np.unique(ds.regime.values)})
+    handles = [Patch(color=colours[codes.index(c)], label=RubRegime(c).label) for c in present]
+    from matplotlib.lines import Line2D
+
+    handles.append(Line2D([], [], color="k", ls="--", label="no-rub orbit reaches the clearance (closed form)"))
+    fig.legend(handles=handles, loc="outside lower center", ncols=2, fontsize="small")
+    ax.set_title(f"{ds.attrs.get('name', 'rub-map')}: rub regimes")
+    return fig
+
+
+def rub_map_figures(ds: xarray.Dataset, name: str) -> dict[str, Figure]:
+    """The figures of one ``rub-map`` result, by file stem."""
+    return {f"{name}_map": rub_map_figure(ds)}

@@ -139,14 +139,39 @@ def _motions(ds: xarray.Dataset, rows: Rows) -> Findings:
 
 
 def _chart(ds: xarray.Dataset, rows: Rows) -> Findings:
-    by = {m: [r for r in rows if r["method"] == m] for m in dict.fromkeys(r["method"] for r in rows)}
+    """Where the balanced (main) motions are stable by the exact eigenvalues, per value of the
+    chart's second parameter if it has one; the other methods and the side motions after."""
+    param = ds.attrs.get("parameter") or None
+    unit = ds[param].attrs.get("units", "") if param and param in ds.coords else ""
 
-    def spans(rs: Rows) -> str:
-        return ", ".join(f"{r['start_rpm']:.0f} to {r['stop_rpm']:.0f} rpm" for r in rs) or "none"
+    def spans(rs: Rows) -> str:  # main+ and main- share their intervals: each interval once
+        found = dict.fromkeys((round(r["start_rpm"]), round(r["stop_rpm"])) for r in rs)
+        return ", ".join(f"{a} to {b} rpm" for a, b in found) or "nowhere"
 
-    exact = by.get("exact", [])
-    return Findings(f"balanced motion stable (exact) at {spans(exact)}",
-                    tuple(f"by {m}: {spans(rs)}" for m, rs in by.items() if m != "exact"))
+    def main(rs: Rows, method: str) -> Rows:
+        return [r for r in rs if r["method"] == method and str(r["motion"]).startswith("main")]
+
+    methods = [m for m in dict.fromkeys(r["method"] for r in rows) if m != "exact"]
+    if param is None:
+        side = [r for r in rows if r["method"] == "exact" and not str(r["motion"]).startswith("main")]
+        numbers = [f"by {m}: {spans(main(rows, m))}" for m in methods]
+        if side:
+            names = ", ".join(dict.fromkeys(str(r["motion"]) for r in side))
+            numbers.append(f"side motions ({names}) stable (exact) at {spans(side)}")
+        return Findings(f"balanced motion stable (exact) at {spans(main(rows, 'exact'))}", tuple(numbers))
+    values = [float(v) for v in ds[param].values] if param in ds.coords else sorted({r[param] for r in rows})
+    per = {v: main([r for r in rows if r.get(param) == v], "exact") for v in values}
+    idx = [i for i, v in enumerate(values) if per[v]]
+    if not idx:
+        verdict = f"balanced motion stable (exact) for none of the {len(values)} values of {param}"
+    elif idx == list(range(idx[0], idx[-1] + 1)):  # one run of values: its ends
+        verdict = (f"balanced motion stable (exact) for {param} = {values[idx[0]]:.4g} to {values[idx[-1]]:.4g} "
+                   f"{unit} ({len(idx)} of {len(values)} values)").replace("  ", " ")
+    else:
+        verdict = (f"balanced motion stable (exact) for {len(idx)} of {len(values)} values of {param}: "
+                   f"{_list([values[i] for i in idx], '.4g')} {unit}").rstrip()
+    return Findings(verdict, tuple(f"{param} = {v:.4g} {unit}: {spans(rs)}".replace("  ", " ")
+                                   for v, rs in per.items()))
 
 
 def _verify(ds: xarray.Dataset, rows: Rows) -> Findings:

@@ -163,6 +163,8 @@ for _entry in (
                  lazy("rotorlab.cli._machine:machine_tables")),
     Presentation("rub", lazy("rotorlab.plot._rub:rub_figures"), lazy("rotorlab.report._rub:rub_section"),
                  lazy("rotorlab.report._rub:rub_findings"), lazy("rotorlab.cli._rub:rub_tables")),
+    Presentation("rub-map", lazy("rotorlab.plot._rub:rub_map_figures"), lazy("rotorlab.report._rub:rub_map_section"),
+                 lazy("rotorlab.report._rub:rub_map_findings"), lazy("rotorlab.report._rub:rub_map_tables")),
     Presentation("knock", lazy("rotorlab.report._knock:knock_figures"), lazy("rotorlab.report._knock:knock_section"),
                  lazy("rotorlab.report._knock:knock_findings"), lazy("rotorlab.report._knock:knock_tables")),
 ):  # fmt: skip

@@ -11,7 +11,7 @@ from rotorlab.report._findings import Findings
 if TYPE_CHECKING:
     import xarray
 
-__all__ = ["rub_section", "rub_findings"]
+__all__ = ["rub_section", "rub_findings", "rub_map_section", "rub_map_findings", "rub_map_tables"]
 
 Rows = Sequence[Mapping[str, Any]]
 
@@ -42,3 +42,39 @@ def rub_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
     numbers = tuple(f"{r['quantity']}: {_fmt(r['measured'])} (closed form {_fmt(r['closed_form'])}) {r['unit']}".rstrip()
                     for r in rows[1:3])  # fmt: skip
     return Findings(f"{rows[0]['measured']}; closed forms allow: {rows[0]['closed_form']}", numbers)
+
+
+def rub_map_section(ds: xarray.Dataset, rows: Rows) -> str:
+    """HTML: the regimes of the map, with how many points and where."""
+    from rotorlab.report._table import table
+
+    axis = ds.attrs["second_axis"]
+    unit = ds[axis].attrs.get("units", "")
+    body = [[r["regime"], r["points"], f"{100 * r['share']:.0f} %",
+             f"{r['spin_speed_min']:.4g} – {r['spin_speed_max']:.4g}",
+             f"{r[f'{axis}_min']:.4g} – {r[f'{axis}_max']:.4g}"] for r in rows]  # fmt: skip
+    head = (f"<p>{ds.attrs['points']} points over spin speed x {axis}; the dashed line of the map is "
+            "where the closed-form no-rub orbit just reaches the clearance (contact begins beyond it).</p>")
+    return head + table(["regime", "points", "share", "spin speed (rad/s)", f"{axis} ({unit})"], body, numeric={1, 2})
+
+
+def rub_map_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
+    """The regimes found and their shares."""
+    return Findings("regimes found: " + "; ".join(f"{r['regime']} ({100 * r['share']:.0f} %)" for r in rows))
+
+
+def rub_map_tables(results: Mapping[str, Any], rows: Mapping[str, Rows]) -> list[Any]:
+    """Rich tables for ``rotorlab run``: one per ``rub-map`` result."""
+    from rich.table import Table
+
+    out = []
+    for name, ds in results.items():
+        axis = ds.attrs["second_axis"]
+        t = Table(title=f"{name}: rub regimes over spin speed x {axis}", title_justify="left")
+        for col in ("regime", "points", "spin speed (rad/s)", axis):
+            t.add_column(col)
+        for r in rows[name]:
+            t.add_row(r["regime"], str(r["points"]), f"{r['spin_speed_min']:.4g} – {r['spin_speed_max']:.4g}",
+                      f"{r[f'{axis}_min']:.4g} – {r[f'{axis}_max']:.4g}")
+        out.append(t)
+    return out
