@@ -97,6 +97,7 @@ class Layout:
     gyroscopic: bool = False
     energy: bool = False
     clearance: str = ""
+    friction: bool = False
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "races", tuple(int(n) for n in self.races))
@@ -104,6 +105,8 @@ class Layout:
             raise ValueError(f"bad layout drive={self.drive!r} speed_kind={self.speed_kind!r}")
         if self.clearance not in ("", "rigid", "elastic", "housing"):
             raise ValueError(f"bad layout clearance={self.clearance!r}")
+        if self.friction and self.clearance:
+            raise ValueError("ball friction and a clearance together are not implemented")
 
     # ---- counts
     @property
@@ -158,12 +161,17 @@ class Layout:
         return 5 + (4 if self.clearance == "housing" else 0)
 
     @property
+    def i_modes(self) -> int:
+        """First stick/slip mode of the balls (one per ball, at the end, with friction)."""
+        return self.i_clearance + self.n_clearance_states
+
+    @property
     def n_discrete(self) -> int:
-        return 3 if self.clearance else 0
+        return (3 if self.clearance else 0) + (self.n_balls if self.friction else 0)
 
     @property
     def n_state(self) -> int:
-        return self.i_clearance + self.n_clearance_states
+        return self.i_modes + (self.n_balls if self.friction else 0)
 
     # ---- parameter offsets
     @property
@@ -184,6 +192,7 @@ class Layout:
             ("C", nz * nz if self.energy else 0),
             ("Ka", nz * nz if self.energy else 0),
             ("clearance", 11 if self.clearance else 0),
+            ("friction", self.n_balls if self.friction else 0),
         ]
         out, k = {}, 0
         for name, size in sizes:
@@ -214,7 +223,7 @@ class Layout:
         races = "x".join(str(n) for n in self.races) or "0"
         return (f"z{self.n_z}r{races}u{self.n_unbalance}{self.drive[0]}{self.speed_kind[0]}"
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
-                f"{'c' + self.clearance[0] if self.clearance else ''}")
+                f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}")
 
 
 def _sum(terms: list[str]) -> str:
@@ -228,11 +237,15 @@ def generate(lay: Layout) -> str:
     a = L.append
     a(f"    # sizes: n_z={nz}, races={lay.races}, unbalances={lay.n_unbalance}, drive={lay.drive}, "
       f"speed={lay.speed_kind}, energy={lay.energy}, clearance={lay.clearance or None}")
+    if lay.friction:
+        a("    forced = -1")
     corr = prefix(lay, L)
     if lay.clearance:
         from rotorlab._kernels import machine_contact as _mc
 
         L += _mc.rhs_contact_lines(lay, corr)
+    if lay.friction:
+        friction_torques(lay, L, corr)
     _tail(lay, L, corr)
     body = "\n".join(L)
     header = _HEADER.format(key=lay.key)
@@ -241,6 +254,8 @@ def generate(lay: Layout) -> str:
     src = header + body + "\n"
     if lay.clearance:
         src += _mc.extra_functions(lay, corr)
+    if lay.friction:
+        src += friction_functions(lay)
     return src
 
 
@@ -382,6 +397,9 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             terms += [f"U{u} * (-gx * euy{u} + gy * eux{u})" for u in range(nu)]
             terms += [f"-U{u} * (-euy{u} * ax{nr + u} + eux{u} * ay{nr + u})" for u in range(nu)]
             a(f"    q{i} = {_sum(terms)}")
+    if lay.friction:
+        friction_solve(lay, L, unknowns, t_vec, station)
+        return reactions(lay, L, "g", "x")
     # LDL^T (S symmetric positive definite: a Schur complement of the mass matrix)
     for j in range(n_s):
         a(f"    D{j} = S{j}_{j}" + "".join(f" - L{j}_{k} * L{j}_{k} * D{k}" for k in range(j)))
@@ -392,6 +410,154 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
         return []
     solve_lines(lay, L, "x", "q")
     return reactions(lay, L, "g", "x")
+
+
+def friction_solve(lay: Layout, L: list[str], unknowns, t_vec, station) -> None:
+    """Append the Schur system with the balls' stick/slip modes and its solution ``x``.
+
+    Ball b with friction arm ``kap_b`` (``coulomb l + rolling``, m) and mode ``md_b`` (the state
+    after the layout's clearance: -1 / +1 slipping with that sign of ``phi_b' - Omega``, 0 stuck;
+    always free when ``kap_b == 0``), exactly the law of :mod:`rotorlab._kernels.jeffcott_balls`:
+
+    - slipping: the race's torque ``-md_b kap_b N_b`` on the ball, with the normal force
+      ``N_b = m_b (l w_b^2 + e_b . (g - a_r))`` (``e_b = (cos phi_b, sin phi_b)``, ``a_r`` the
+      absolute acceleration of its station, linear in the unknowns: ``a_r = a0_r - sum_j E``),
+      which adds ``md kap m e_b . L_(r, s_j) t_j m l_j`` to row b (S is no longer symmetric) and
+      its reaction to the motor's row;
+    - stuck (``md_b == 0``, or ``forced == b`` in the trial solves of the events): the row becomes
+      ``x_b = Omega'`` (prescribed spin) or ``x_b - theta'' = 0`` (motor, whose row then takes the
+      ball's row: the holding torque is internal).
+
+    The system is solved by Gaussian elimination without pivoting (its diagonal is that of a
+    Schur complement of the mass matrix, or 1 on a stuck row), straight-line code as the LDL^T.
+    """
+    nb, br, o = lay.n_balls, lay.ball_race, lay.offsets
+    n_s = len(unknowns)
+    a = L.append
+    th = nb if lay.motor else -1
+
+    def S(i, j):
+        return f"S{max(i, j)}_{min(i, j)}"
+
+    def E(b, j):  # ml_j e_b . L_(r_b, s_j) t_j (or the unbalances' sum for theta)
+        kind, idx = unknowns[j]
+        if kind == "b":
+            pairs = [(f"ml{idx}", lay.pair_L(br[b], br[idx]), t_vec("b", idx))]
+        else:
+            pairs = [(f"U{u}", lay.pair_L(br[b], lay.n_races + u), t_vec("u", u))
+                     for u in range(lay.n_unbalance)]
+        terms = [f"{w} * (c{b} * (p[{k}] * {t[0]} + p[{k + 1}] * {t[1]}) + "
+                 f"s{b} * (p[{k + 2}] * {t[0]} + p[{k + 3}] * {t[1]}))" for w, k, t in pairs]
+        return f"({_sum(terms)})"
+
+    for b in range(nb):
+        r = br[b]
+        a(f"    kap{b} = p[{o['friction'] + b}]")
+        a(f"    kmd{b} = y[{lay.i_modes + b}]")
+        a(f"    kst{b} = 1.0 if ((kap{b} > 0.0 and kmd{b} == 0.0) or forced == {b}) else 0.0")
+        a(f"    ksg{b} = (1.0 - kst{b}) * kmd{b} * kap{b}")
+        a(f"    kms{b} = ksg{b} * p[{o['balls'] + 4 * b}]")
+        a(f"    kN0{b} = ml{b} * w{b} * w{b} + p[{o['balls'] + 4 * b}] * "
+          f"(c{b} * (gx - ax{r}) + s{b} * (gy - ay{r}))")
+    # rows of the balls: slip adds the friction, stuck replaces the row
+    for b in range(nb):
+        for j in range(n_s):
+            delta = "1.0" if j == b else ("-1.0" if j == th else "0.0")
+            a(f"    A{b}_{j} = (1.0 - kst{b}) * ({S(b, j)} + kms{b} * {E(b, j)}) + kst{b} * {delta}")
+        stuck_rhs = "0.0" if lay.motor else "dom"
+        a(f"    r{b} = (1.0 - kst{b}) * (q{b} - ksg{b} * kN0{b}) + kst{b} * {stuck_rhs}")
+    if lay.motor:
+        for j in range(n_s):
+            terms = [S(th, j)]
+            for b in range(nb):
+                terms.append(f"kst{b} * {S(b, j)} - kms{b} * {E(b, j)}")
+            a(f"    A{th}_{j} = " + " + ".join(terms))
+        a(f"    r{th} = q{th}" + "".join(f" + kst{b} * q{b} + ksg{b} * kN0{b}" for b in range(nb)))
+    for k in range(n_s):
+        for i in range(k + 1, n_s):
+            a(f"    fe = A{i}_{k} / A{k}_{k}")
+            for j in range(k + 1, n_s):
+                a(f"    A{i}_{j} -= fe * A{k}_{j}")
+            a(f"    r{i} -= fe * r{k}")
+    for i in reversed(range(n_s)):
+        a(f"    x{i} = (r{i}" + "".join(f" - A{i}_{j} * x{j}" for j in range(i + 1, n_s)) + f") / A{i}_{i}")
+
+
+def friction_torques(lay: Layout, L: list[str], corr, zdd: str = "out") -> None:
+    """Append ``tq{b}`` (the race's torque on ball b: friction, or the holding torque of a stuck
+    ball) and ``bd{b}`` (the friction bound ``kap_b N_b``, with ``w_b = Omega`` when stuck) from
+    the solution (the residual of the ball's equation, exact in every mode)."""
+    nz, br, o = lay.n_z, lay.ball_race, lay.offsets
+    a = L.append
+    for r in range(lay.n_races):
+        kb = lay.station_B(r)
+        # station acceleration a_r = a0_r - sum_s L_(r, s) g_s
+        for row, nm in ((0, "fax"), (1, "fay")):
+            terms = [f"a{'xy'[row]}{r}"]
+            for s, gx, gy in corr:
+                k = lay.pair_L(r, s) + 2 * row
+                terms.append(f"-(p[{k}] * {gx} + p[{k + 1}] * {gy})")
+            a(f"    {nm}{r} = " + " ".join(terms))
+    for b in range(lay.n_balls):
+        r = br[b]
+        m = f"p[{o['balls'] + 4 * b}]"
+        a(f"    tq{b} = J{b} * x{b} + cb{b} * rel{b} - ml{b} * (-s{b} * (gx - fax{r}) + c{b} * (gy - fay{r}))")
+        a(f"    wn{b} = kst{b} * om + (1.0 - kst{b}) * w{b}")
+        a(f"    bd{b} = kap{b} * (ml{b} * wn{b} * wn{b} + {m} * (c{b} * (gx - fax{r}) + s{b} * (gy - fay{r})))")
+
+
+def friction_functions(lay: Layout) -> str:
+    """Source of ``terms``, ``events`` and ``reset`` of the balls' stick/slip (friction layouts)."""
+    nb, im, n = lay.n_balls, lay.i_modes, lay.n_state
+    L: list[str] = []
+    corr = prefix(lay, L)
+    friction_torques(lay, L, corr)
+    for b in range(nb):
+        L.append(f"    buf[{2 * b}] = tq{b}")
+        L.append(f"    buf[{2 * b + 1}] = bd{b}")
+    src = (_DECO + "def terms(t, y, p, forced, buf):  # pragma: no cover - compiled\n"
+           '    """buf[2 b], buf[2 b + 1]: the race\'s torque on ball b and its friction bound."""\n'
+           + "\n".join(L) + "\n")
+    ev = [f"    terms(t, y, p, -1, g)"]
+    for b in range(nb):
+        ev += [f"    md = y[{im + b}]",
+               f"    if p[{lay.offsets['friction'] + b}] <= 0.0:",
+               f"        g[{2 * b}] = 1.0", f"        g[{2 * b + 1}] = 1.0",
+               "    elif md != 0.0:",
+               f"        g[{2 * b}] = (y[{lay.i_w + b}] - om) * md", f"        g[{2 * b + 1}] = 1.0",
+               "    else:",
+               f"        g[{2 * b + 1}] = g[{2 * b + 1}] - abs(g[{2 * b}])", f"        g[{2 * b}] = 1.0"]
+    spin = (f"    om = y[{lay.i_theta + 1}]" if lay.motor else
+            f"    om = spin_speed(t, p)")
+    src += (_DECO + "def events(t, y, p, g):  # pragma: no cover - compiled\n"
+            '    """Events per ball b: 2 b stick, 2 b + 1 slip (direction -1), as jeffcott_balls."""\n'
+            + spin + "\n" + "\n".join(ev) + "\n")
+    src += (_DECO + f'''def reset(k, t, y, p, y_new):  # pragma: no cover - compiled
+    """Stick or slip of ball k // 2 (trial solve with the ball stuck), relative speed set to 0."""
+    b = k // 2
+    terms(t, y, p, b, y_new)
+    tq = y_new[2 * b]
+    bd = y_new[2 * b + 1]
+    for i in range({n}):
+        y_new[i] = y[i]
+    if k % 2 == 0 and abs(tq) <= bd:
+        md = 0.0
+    elif tq <= 0.0:
+        md = 1.0
+    else:
+        md = -1.0
+    y_new[{im} + b] = md
+{spin.replace("    om", "    y_new[" + str(lay.i_w) + " + b]")}
+    return 0
+''')
+    src += (_DECO + f'''def spin_speed(t, p):  # pragma: no cover - compiled
+    theta, om, dom = profile(t, p, {lay.offsets['speed']})
+    return om
+''')
+    return src
+
+
+_DECO = '\n\n@njit(cache=True, nogil=True, error_model="numpy")\n'
 
 
 def solve_lines(lay: Layout, L: list[str], x: str, q: str, indent: str = "    ") -> None:
@@ -450,9 +616,13 @@ def _tail(lay: Layout, L: list[str], corr: list[tuple[int, str, str]]) -> None:
                 terms.append(f"U{u} * (-euy{u} * ({axu}) + eux{u} * ({ayu}))")
                 terms.append(f"-U{u} * (-gx * euy{u} + gy * eux{u})")
             terms += [f"-cb{b} * rel{b}" for b in range(nb)]
+            if lay.friction:  # the reaction of the races' torques on the balls
+                terms += [f"tq{b}" for b in range(nb)]
             a(f"    torque = {_sum(terms)}")
             a(f"    out[{ie}] = torque * om")
         diss = [f"cb{b} * rel{b} * rel{b}" for b in range(nb)]
+        if lay.friction:
+            diss += [f"-tq{b} * rel{b}" for b in range(nb)]
         kc, ka = o["C"], o["Ka"]
         diss += [f"v{i} * (p[{kc + nz * i + j}] * v{j} + p[{ka + nz * i + j}] * z{j})"
                  for i in range(nz) for j in range(nz)]
@@ -461,6 +631,9 @@ def _tail(lay: Layout, L: list[str], corr: list[tuple[int, str, str]]) -> None:
         from rotorlab._kernels import machine_contact as _mc
 
         L += _mc.rhs_tail_lines(lay)
+    if lay.friction:
+        for b in range(nb):
+            a(f"    out[{lay.i_modes + b}] = 0.0")
 
 
 _HEADER = '''"""Generated by rotorlab._kernels.machine_codegen for sizes {key}; do not edit."""

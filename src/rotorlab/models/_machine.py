@@ -186,13 +186,10 @@ class Machine:
                 if it.node >= nn:
                     raise ValueError(f"Machine.{what}[{i}].node must be < {nn} (the structure's "
                                      f"nodes), got {it.node}")
-        for i, r in enumerate(self.races):
-            for j, b in enumerate(r.balls):
-                if b.coulomb > 0 or b.rolling > 0:
-                    raise ValueError(
-                        f"Machine.races[{i}].balls[{j}]: Coulomb and rolling friction (stick-slip) "
-                        "are not implemented in the machine model yet; use coulomb = 0 and "
-                        "rolling = 0 here, or the jeffcott_balls model for a planar rotor")
+        if self.has_friction and self.clearances:
+            raise ValueError("Machine: ball friction (a Ball's coulomb or rolling > 0) together with a "
+                             "clearance is not implemented; set coulomb = 0 and rolling = 0, or "
+                             "remove the clearance")
         if self.n_modes is not None:
             k = self.n_modes
             if isinstance(k, bool) or not isinstance(k, (int, np.integer)) or not 1 <= k <= self.structure.n_dof:
@@ -214,6 +211,13 @@ class Machine:
         return isinstance(self.drive, Motor)
 
     @property
+    def has_friction(self) -> bool:
+        """True when some ball has Coulomb or rolling friction (the state then carries one
+        stick/slip mode per ball, and the kernel its events ``stick_<race>_<ball>``,
+        ``slip_<race>_<ball>``)."""
+        return any(b.coulomb > 0 or b.rolling > 0 for r in self.races for b in r.balls)
+
+    @property
     def layout(self) -> _cg.Layout:
         """Sizes and offsets of the states and parameters (a machine_codegen Layout)."""
         if "layout" not in self._cache:
@@ -225,7 +229,8 @@ class Machine:
                 speed_kind="constant" if self.is_motor else _SPEED_KIND[type(d)],
                 n_table=d.n_table if self.is_motor else 0,
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
-                clearance=self.clearances[0].kind if self.clearances else "")
+                clearance=self.clearances[0].kind if self.clearances else "",
+                friction=self.has_friction)
         return self._cache["layout"]
 
     @property
@@ -251,6 +256,13 @@ class Machine:
                     rhs=mod.rhs, n_state=self.n_state, n_discrete=self.layout.n_discrete,
                     events=mod.events, reset=mod.reset, vectorises=True,
                     event_specs=tuple(EventSpec(n, -1, "reset") for n in CLEARANCE_EVENTS))
+            elif self.has_friction:
+                specs = []
+                for name in self._ball_labels:
+                    specs += [EventSpec(f"stick_{name}", -1, "reset"), EventSpec(f"slip_{name}", -1, "reset")]
+                self._cache["kernels"] = Kernels(
+                    rhs=mod.rhs, n_state=self.n_state, n_discrete=self.layout.n_discrete,
+                    events=mod.events, reset=mod.reset, vectorises=True, event_specs=tuple(specs))
             else:
                 self._cache["kernels"] = Kernels(rhs=mod.rhs, n_state=self.n_state, vectorises=True)
         return self._cache["kernels"]
@@ -268,7 +280,7 @@ class Machine:
     def state_names(self) -> tuple[str, ...]:
         """Name of each state entry, in order."""
         zc = self.coordinate_names
-        balls = [f"{r + 1}_{b + 1}" for r, race in enumerate(self.races) for b in range(len(race.balls))]
+        balls = self._ball_labels
         names = list(zc) + [f"d{n}" for n in zc] + [f"phi_{b}" for b in balls] + [f"w_{b}" for b in balls]
         if self.is_motor:
             names += ["theta", "omega"]
@@ -278,7 +290,13 @@ class Machine:
             if self.clearances[0].kind == "housing":
                 names += ["x_housing", "y_housing", "vx_housing", "vy_housing"]
             names += ["contact_dissipated", "contact_drive_work", "impacts", "peak_impulse", "contact_mode"]
+        if self.has_friction:
+            names += [f"mode_{b}" for b in balls]
         return tuple(names)
+
+    @property
+    def _ball_labels(self) -> list[str]:
+        return [f"{r + 1}_{b + 1}" for r, race in enumerate(self.races) for b in range(len(race.balls))]
 
     # ------------------------------------------------------------------ structure reduction
     @property
@@ -393,6 +411,9 @@ class Machine:
         else:
             p[o["speed"]:o["speed"] + 6] = d.to_array()
         p[o["gravity"]:o["gravity"] + 2] = self.lateral_gravity
+        if lay.friction:  # friction arm of each ball: coulomb l + rolling (m)
+            p[o["friction"]:o["friction"] + lay.n_balls] = [
+                b.coulomb * r.radius + b.rolling for r in self.races for b in r.balls]
         m, l, J, c, _ = self._ball_arrays
         for b in range(lay.n_balls):
             p[o["balls"] + 4 * b: o["balls"] + 4 * b + 4] = (m[b], m[b] * l[b], J[b], c[b])
@@ -513,6 +534,37 @@ class Machine:
             y[lay.i_clearance:lay.i_clearance + 4] = np.asarray(housing, dtype=float).reshape(4)
         if self.clearances:
             self._clearance_initial(y, om)
+        if self.has_friction:
+            y = self.initial_modes(t0, y)
+        return y
+
+    def initial_modes(self, t: float, y) -> np.ndarray:
+        """Return a copy of state ``y`` with stick/slip modes consistent with it.
+
+        As :meth:`rotorlab.models.JeffcottBalls.initial_modes`: a ball with nonzero relative
+        speed slips in that direction; at zero relative speed it sticks if the race can hold it
+        (stuck balls first), otherwise it slips with the sign of its driving torque.
+        """
+        y = np.array(y, dtype=float)
+        if not self.has_friction:
+            return y
+        lay = self.layout
+        nb, im = lay.n_balls, lay.i_modes
+        om = self.spin(float(t), y)[1]
+        rel = y[lay.i_w:lay.i_w + nb] - om
+        arm = self.to_array()[lay.offsets["friction"]:lay.offsets["friction"] + nb]
+        y[im:im + nb] = np.where(rel > 0, 1.0, np.where(rel < 0, -1.0, 0.0))
+        y[im:im + nb][arm == 0.0] = 1.0
+        terms = _cg.kernel_module(lay).terms
+        buf = np.zeros(max(2 * nb, 1))
+        for _ in range(nb + 1):
+            terms(float(t), y, self.to_array(), -1, buf)
+            tq, bound = buf[0::2], buf[1::2]
+            bad = [i for i in np.flatnonzero(y[im:im + nb] == 0.0) if abs(tq[i]) > bound[i]]
+            if not bad:
+                break
+            worst = max(bad, key=lambda i: abs(tq[i]) - bound[i])
+            y[im + worst] = 1.0 if tq[worst] <= 0 else -1.0
         return y
 
     def _clearance_initial(self, y: np.ndarray, om: float) -> None:
@@ -804,11 +856,14 @@ class Machine:
 
         Needs an isotropic structure, no lateral gravity and a constant prescribed speed.
         """
-        return (self.structure.is_isotropic and not self.is_motor
+        return (self.structure.is_isotropic and not self.is_motor and not self.has_friction
                 and isinstance(self.drive, ConstantSpeed) and self.lateral_gravity == (0.0, 0.0))
 
     def why_no_rotating_frame(self) -> str | None:
         """The reason the co-rotating frame has no equilibria, or None if it has."""
+        if self.has_friction:
+            return ("the balls have Coulomb or rolling friction (stick-slip): steady motions are "
+                    "not equilibria of a smooth system; simulate instead")
         if not self.structure.is_isotropic:
             return ("the structure is anisotropic (its supports differ in x and y): the balls "
                     "and the rotor never reach a steady motion; simulate instead")

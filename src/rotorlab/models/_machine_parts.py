@@ -51,10 +51,11 @@ class Ball:
         Viscous damping c of its motion relative to the rotor: torque ``-c (phi' - Omega)``
         (N m s/rad), >= 0.
     coulomb : float
-        Coulomb friction coefficient (1), >= 0. Only 0 is implemented in ``machine`` (stick-slip
-        runs in ``jeffcott_balls``); a positive value is rejected by :class:`Machine`.
+        Coulomb friction coefficient (1), >= 0. With ``rolling`` it bounds the race's torque on
+        the ball by ``(coulomb l + rolling) N`` (N: the normal force of the race, l: its radius),
+        with stick-slip as in ``jeffcott_balls`` (whose ``friction`` f is ``coulomb`` here).
     rolling : float
-        Rolling-friction arm (m), >= 0; as ``coulomb``.
+        Rolling-friction arm (m), >= 0 (see ``coulomb``).
     """
 
     mass: float
