@@ -221,6 +221,12 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
 MACHINE = [
     ("mc-negative-race-radius", ["validate", FILE], ("washer-horizontal", 'radius = "0.27 m"', 'radius = "-0.27 m"'),
      ["model.races[0].radius", "> 0"]),
+    ("mc-negative-ball-coulomb", ["validate", FILE], ("washer-horizontal", 'damping = "0.05 N*m*s/rad", count = 2',
+                                                       'damping = "0.05 N*m*s/rad", coulomb = -0.1, count = 2'),
+     ["model.races[0].balls[0].coulomb", ">= 0", "-0.1"]),
+    ("mc-ball-rolling-wrong-unit", ["validate", FILE], ("washer-horizontal", 'damping = "0.05 N*m*s/rad", count = 2',
+                                                         'damping = "0.05 N*m*s/rad", rolling = "1 kg", count = 2'),
+     ["model.races[0].balls[0].rolling", "wrong dimension"]),
     ("mc-drive-profile-typo", ["validate", FILE], ("washer-horizontal", 'profile = "motor"', 'profile = "motorr"'),
      ["model.drive.profile", "motor"]),
     ("mc-gravity-wrong-unit", ["validate", FILE], ("washer-horizontal", '"-9.81 m/s^2"', '"-9.81 m/s"'),
@@ -313,6 +319,9 @@ KNOCK = [
      ["analysis[0].starts", ">= 1"]),
     ("mk-no-balls", ["run", FILE, "--out", "{d}/o"], ("washer-knock", "seed = 0", "seed = 0\nraces = []"),
      ["analysis[0]", "needs balls"]),
+    ("mk-friction-with-clearance", ["validate", FILE], ("washer-knock", 'damping = "0.05 N*m*s/rad", count = 2',
+                                                         'damping = "0.05 N*m*s/rad", coulomb = 0.1, count = 2'),
+     ["model.races[0].balls[0].coulomb", "must be 0 with a clearance", "0.1"]),
     ("mk-starts-absurd", ["run", FILE, "--out", "{d}/o"], ("washer-knock", "starts = 80", "starts = 1e12"),
      ["starts = 1000000000000", "memory"]),
 ]

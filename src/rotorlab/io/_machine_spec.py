@@ -15,6 +15,9 @@ Layout::
     radius = "40 mm"
     axial_offset = "0 mm"            # race plane from the node along +z
     balls = [{ mass = "5 g", damping = "2e-4 N*m*s/rad", count = 2 }]
+                                     # optional per ball: coulomb = 0.01 (friction coefficient)
+                                     # and rolling = "0.1 mm" (arm): stick-slip, torque bound
+                                     # (coulomb radius + rolling) N
     [[model.unbalances]]
     at = "rotor"
     magnitude = "50 g*mm"
@@ -110,15 +113,9 @@ class MachineBallSpec(_Spec):
     count: integer(ge=1) = Field(1, exclude=True, description="number of identical balls")
 
     @model_validator(mode="after")
-    def _no_friction_yet(self):
-        issues = [Issue((k,), "must be 0: Coulomb and rolling friction (stick-slip) are not yet "
-                              "in the machine model (use the jeffcott_balls model for them)",
-                        getattr(self, k))
-                  for k in ("coulomb", "rolling") if getattr(self, k) != 0.0]
+    def _count(self):
         if self.count > MAX_BALLS:
-            issues.append(Issue(("count",), _too_many_balls(self.count), self.count))
-        if issues:
-            raise IssueGroup(issues)
+            raise IssueGroup([Issue(("count",), _too_many_balls(self.count), self.count)])
         return self
 
 
@@ -331,6 +328,14 @@ class MachineSpec(AbstractModelSpec):
                 node, bad, msg = self.structure.locate(it.node, it.at, it.position)
                 if node is None:
                     issues.append(Issue((key, i, bad), msg, getattr(it, bad)))
+        if self.clearances:
+            for i, r in enumerate(self.races):
+                for j, b in enumerate(r.balls):
+                    for k in ("coulomb", "rolling"):
+                        if getattr(b, k) != 0.0:
+                            issues.append(Issue(("races", i, "balls", j, k), "must be 0 with a "
+                                                "clearance: ball friction (stick-slip) together with "
+                                                "rotor-stator contact is not implemented", getattr(b, k)))
         if self.n_modes is not None and self.n_modes > self.structure.n_dof:
             issues.append(Issue(("n_modes",), f"must be <= {self.structure.n_dof} (the "
                                               "structure's DOFs)", self.n_modes))
