@@ -98,8 +98,9 @@ class MachineBallSpec(_Spec):
     damping : float
         Viscous damping relative to the rotor (N*m*s/rad), >= 0.
     coulomb, rolling : float
-        Coulomb friction coefficient (-) and rolling-friction arm (m); must be 0 (stick-slip is
-        not yet in the machine model).
+        Coulomb friction coefficient (-) and rolling-friction arm (m), >= 0: stick-slip with the
+        race's torque bounded by ``(coulomb radius + rolling) N`` (see
+        :func:`rotorlab._kernels.machine_codegen.friction_solve`); 0 with a clearance.
     count : int
         Repeat this ball ``count`` times.
     """

@@ -15,7 +15,11 @@ f`` over the DOFs ``x, y, phi_x, phi_y`` of every node, optionally reduced to it
 - **a clearance** (:class:`Clearance`): rotor-stator contact at a station against a rigid stator,
   a massless elastic one or a moving housing, with located impacts, Newton restitution, Coulomb
   friction with the rotor's surface speed, chatter, sustained sliding or rolling contact and
-  lift-off (generated over the shared contact law, :mod:`rotorlab._kernels.machine_contact`).
+  lift-off (generated over the shared contact law, :mod:`rotorlab._kernels.machine_contact`);
+- **ball friction** (a :class:`Ball`'s ``coulomb`` and ``rolling``): stick-slip with the law of
+  ``jeffcott_balls``; one mode state per ball at the end of the state, events ``stick_<r>_<b>``,
+  ``slip_<r>_<b>`` and their reset maps (:func:`rotorlab._kernels.machine_codegen.friction_solve`);
+  the friction power ``-tau_b (phi_b' - Omega)`` counts as dissipated. Not with a clearance.
 
 Equations (fixed frame, always)
 -------------------------------
