@@ -1,0 +1,68 @@
+"""``steady`` on a machine with a clearance: a steady motion whose orbit at the clearance exceeds
+the gap does not exist without contact and is flagged, with the station, its radius and the gap.
+
+Closed forms (any rotor-dynamics text, e.g. Genta, *Dynamics of Rotating Systems* (2005), sec. 4.3):
+the unbalance response of the Jeffcott rotor ``r = U Omega^2 / |k - M Omega^2 + i c Omega|``;
+with one ball of mass m_b on a race of radius R that cannot cancel U, the ball rests in line with
+the rotor's displacement (its centrifugal force then has no tangential part), so with
+``H = Omega^2 / (k - (M + m_b) Omega^2 + i c Omega) = h e^{i alpha}`` and the ball on the side
+of the displacement, farthest from the axis (the stable side above the critical speed, where the
+displacement lags the unbalance by nearly pi), ``|rho - H m_b R| = h U``:
+``rho = h m_b R cos(alpha) + sqrt(h^2 U^2 - (h m_b R sin(alpha))^2)``.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from rotorlab.analyses._machine import CLEARANCE_STATUS, clearance_violation, machine_motions, machine_steady
+from rotorlab.linear import LinearSystem
+from rotorlab.models import ConstantSpeed
+from rotorlab.models._machine import Ball, BallRace, Clearance, Machine, Unbalance
+
+M, K, C, U = 2.0, 2.0e4, 20.0, 1e-4  # kg, N/m, N s/m, kg m: critical speed 100 rad/s
+
+
+def _machine(gap, races=(), speed=100.0):
+    s = LinearSystem(M=np.diag([M, M, 1.0, 1.0]), C=np.diag([C, C, 0.0, 0.0]), G=np.zeros((4, 4)),
+                     K=np.diag([K, K, 1.0, 1.0]))  # fmt: skip
+    return Machine(s, races=races, unbalances=(Unbalance(0, U),), drive=ConstantSpeed(speed),
+                   clearances=(Clearance(0, gap),))  # fmt: skip
+
+
+def test_unbalance_response_beyond_the_gap_is_flagged():
+    speeds = np.array([50.0, 100.0, 150.0])
+    radius = U * speeds**2 / np.abs(K - M * speeds**2 + 1j * C * speeds)  # 1.66e-5, 5e-4, 8.94e-5 m
+    gap = 1e-4
+    ds = machine_steady(_machine(gap), speeds)
+    assert np.allclose(ds.amplitude.values[:, 0], radius, rtol=1e-9)
+    hit = radius > gap
+    assert hit.tolist() == [False, True, False]
+    assert np.array_equal(ds.exists.values, ~hit)
+    assert np.array_equal(ds.status.values, np.where(hit, CLEARANCE_STATUS, 0))
+    msg = ds.attrs["message"]
+    assert "at 100 rad/s" in msg and "gap 0.0001 m" in msg and f"{radius[1]:.4g} m" in msg
+    assert repr(_machine(gap).structure.node_label[0]) in msg
+    # a gap just above the resonant radius: the motion exists
+    ok = machine_steady(_machine(radius[1] * 1.001), speeds)
+    assert ok.exists.values.all() and (ok.status.values == 0).all() and "message" not in ok.attrs
+
+
+def test_partly_balanced_motion_beyond_the_gap_is_flagged():
+    mb, rr, om = 0.02, 2e-3, 150.0  # capacity 4e-5 < U = 1e-4 kg m
+    race = (BallRace(0, rr, (Ball(mb, damping=1e-4),)),)
+    h = om**2 / (K - (M + mb) * om**2 + 1j * C * om)
+    a, al = abs(h), np.angle(h)
+    rho = a * mb * rr * math.cos(al) + math.sqrt((a * U) ** 2 - (a * mb * rr * math.sin(al)) ** 2)
+    m = _machine(0.9 * rho, race, om)
+    ds = machine_motions(m)
+    assert ds.kind.values.tolist() == ["partly balanced"]
+    assert ds.amplitude.values[0, 0] == pytest.approx(rho, rel=1e-7)
+    assert not ds.exists.values[0] and ds.verdict_exact.values[0] == "absent (exceeds the clearance)"
+    assert int(ds.status) == CLEARANCE_STATUS
+    assert f"{rho:.4g} m > gap {0.9 * rho:.4g} m" in ds.attrs["message"]
+    fits = machine_motions(_machine(1.1 * rho, race, om))
+    assert fits.exists.values[0] and int(fits.status) == 0
+    r, msg = clearance_violation(m, m.steady_state())
+    assert r == pytest.approx(rho, rel=1e-7) and msg is not None
