@@ -4,6 +4,7 @@ Usage::
 
     python bench/basin.py [--n 256] [--t-end 20] [--k 1e-5] [--form rolling]
                           [--scipy-n 32] [--threads 2] [--json] [--save basin.nc]
+                          [--scalar] [--repeats R]
 
 What it does:
 
@@ -159,6 +160,8 @@ def main(argv=None) -> dict:
     ap.add_argument("--threads", type=int, default=None, help="integrator threads (default: numba's)")
     ap.add_argument("--json", action="store_true", help="print the results as JSON")
     ap.add_argument("--save", default=None, help="write the basin Dataset to this NetCDF file")
+    ap.add_argument("--scalar", action="store_true", help="also run the grid on the scalar driver")
+    ap.add_argument("--repeats", type=int, default=1, help="interleaved rounds (default 1; the least CPU counts)")
     args = ap.parse_args(argv)
 
     model = strautmanis_torus(args.k, form=args.form)
@@ -168,9 +171,35 @@ def main(argv=None) -> dict:
     basin_map(TorusRegimes(model, t_end=1.0, n_horizons=1), GridAxis("psi", *PSI, 2), GridAxis("dpsi", *DPSI, 2),
               fixed=fixed, threads=args.threads)  # warm-up: compile or load the cached driver
 
-    c0, w0 = time.process_time(), time.perf_counter()
-    ds = basin_map(mapper, x, y, fixed=fixed, threads=args.threads)
-    cpu, wall = time.process_time() - c0, time.perf_counter() - w0
+    from rotorlab.integrate import _drivers
+
+    def run(lanes: bool):
+        """The basin on the lane driver (the default) or, for comparison, the scalar driver."""
+        real = _drivers.default_lanes
+        if not lanes:
+            _drivers.default_lanes = lambda kernels, n_traj: None
+        try:
+            c0, w0 = time.process_time(), time.perf_counter()
+            out = basin_map(mapper, x, y, fixed=fixed, threads=args.threads)
+            return out, time.process_time() - c0, time.perf_counter() - w0
+        finally:
+            _drivers.default_lanes = real
+
+    if args.scalar:  # warm-up of the scalar driver too
+        _drivers.default_lanes, real = (lambda kernels, n_traj: None), _drivers.default_lanes
+        basin_map(TorusRegimes(model, t_end=1.0, n_horizons=1), GridAxis("psi", *PSI, 2),
+                  GridAxis("dpsi", *DPSI, 2), fixed=fixed, threads=args.threads)  # fmt: skip
+        _drivers.default_lanes = real
+    cpu_scalar = []
+    cpu_lanes = []
+    for _ in range(args.repeats):  # interleaved rounds: the load of the machine hits both alike
+        ds, cpu, wall = run(True)
+        cpu_lanes.append(cpu)
+        if args.scalar:
+            ds_scalar, c_s, _ = run(False)
+            cpu_scalar.append(c_s)
+            assert np.array_equal(ds_scalar.outcome.values, ds.outcome.values)  # bit-identical drivers
+    cpu = min(cpu_lanes)
     n_traj = args.n * args.n
 
     labels = ds.outcome.values.ravel()
@@ -187,6 +216,10 @@ def main(argv=None) -> dict:
         "grid": f"{args.n}x{args.n}", "t_end_s": args.t_end, "k_m": args.k, "form": args.form,
         "trajectories": n_traj, "cpu_s": cpu, "wall_s": wall,
         "rotorlab_traj_per_cpu_s": n_traj / cpu,
+        "rotorlab_cpu_s_rounds": cpu_lanes,
+        "scalar_driver_traj_per_cpu_s": n_traj / min(cpu_scalar) if cpu_scalar else None,
+        "scalar_cpu_s_rounds": cpu_scalar,
+        "load_average": list(__import__("os").getloadavg()),
         "scipy_trajectories": int(subset.size), "scipy_cpu_s": cpu_ivp,
         "scipy_traj_per_cpu_s": subset.size / cpu_ivp,
         "rotorlab_subset_traj_per_cpu_s": None,
@@ -213,6 +246,10 @@ def main(argv=None) -> dict:
         print(f"basin {res['grid']}, t_end = {args.t_end:g} s, k = {args.k:g} m, form = {args.form}")
         print(f"  rotorlab : {n_traj} trajectories, {cpu:.1f} CPU-s ({wall:.1f} s wall): "
               f"{res['rotorlab_traj_per_cpu_s']:.1f} traj/CPU-s, mean {res['mean_steps']:.0f} steps")
+        if cpu_scalar:
+            print(f"  scalar driver: {res['scalar_driver_traj_per_cpu_s']:.1f} traj/CPU-s "
+                  f"(lanes / scalar = {res['rotorlab_traj_per_cpu_s'] / res['scalar_driver_traj_per_cpu_s']:.2f})")
+        print(f"  load average {res['load_average']}")
         print(f"  solve_ivp: {subset.size} trajectories, {cpu_ivp:.1f} CPU-s: "
               f"{res['scipy_traj_per_cpu_s']:.3f} traj/CPU-s, mean {res['scipy_mean_nfev']:.0f} nfev")
         print(f"  ratio {res['ratio']:.0f}x (whole grid vs subset), {res['ratio_same_subset']:.0f}x (same subset)")

@@ -159,6 +159,10 @@ def test_three_ball_basin_says_where_the_third_ball_starts():
     assert "psi_3 = 240°" in title and "disc_mass" not in title
     ds.attrs.update(input_units_psi_1="rad", input_units_psi_2="rad")
     assert "psi_3 = 4.18879" in basin_figure(ds).axes[0].get_title()
+    # a fixed value is shown with its SI unit (attrs units_<name>, from the coordinate's dimension)
+    ds.attrs.update(fixed_rolling_friction=1e-4, units_rolling_friction="m", fixed_ball_friction=0.1)
+    title = basin_figure(ds).axes[0].get_title()
+    assert "rolling_friction = 0.0001 m" in title and "ball_friction = 0.1," in title + ","
 
 
 def test_the_unit_an_angle_was_written_in_is_recorded_from_the_case_and_the_command_line():

@@ -24,6 +24,9 @@ name = "planar-machine"
 
 [model]
 type = "machine"
+# the two translation modes (the tilt at sqrt(5 / 0.3) = 4.1 rad/s does not couple): the same
+# compiled kernel as the machines of test_machine_analyses.py
+n_modes = 2
 
 [model.structure]
 type = "multibody"
@@ -125,10 +128,17 @@ def test_campbell_and_modes_of_a_machine_are_those_of_its_structure():
     np.testing.assert_allclose(np.array(doc["frequency_hz"]) * 2 * np.pi, expect, rtol=1e-12)
 
 
-def test_steady_balanced_angles_are_the_jeffcott_closed_form_with_the_seeds_verdicts(planar):
-    above = summarize(run_analysis(planar.model, planar.analysis("above")))
-    # two mirror balanced motions, the balls at 30 deg (the unbalance) + pi -+ ... = 30 +- 104.48
-    assert len(above) == 2 and all(r["kind"] == "balanced" and r["exists"] for r in above)
+def test_steady_motions_of_the_planar_machine_are_the_seeds_with_their_verdicts(planar):
+    rows = summarize(run_analysis(planar.model, planar.analysis("above")))
+    # seed 002's four motions of two balls: two mirror balanced ones (the balls at 30 deg, the
+    # unbalance, + pi -+ 75.5 deg) and the side motions (balls on the line through the unbalance)
+    assert [r["label"] for r in rows] == ["main+", "main-", "side 00", "side 01", "side 10", "side 11"]
+    assert all(r["exists"] for r in rows)
+    above = [r for r in rows if r["kind"] == "balanced"]
+    assert len(above) == 2
+    for r in rows[2:]:  # the machine finds each side motion again; all three verdicts: unstable
+        assert (r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"]) == ("unstable",) * 3
+        assert r["max_real_eigenvalue"] > 0
     for r in above:
         (angles,) = r["ball_angles_deg"].values()
         rel = [((a - 30.0 + 180.0) % 360.0) - 180.0 for a in angles]
@@ -137,8 +147,15 @@ def test_steady_balanced_angles_are_the_jeffcott_closed_form_with_the_seeds_verd
         # above p all three verdicts say stable (seed 002 averaged, seed 003 Hamilton, exact)
         assert (r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"]) == ("stable",) * 3
         assert r["max_real_eigenvalue"] < -1e-4  # every mode damped (tilt included)
-    below = summarize(run_analysis(planar.model, planar.analysis("below")))
-    assert 0.8 < P and all(r["verdict_exact"] == "unstable" and r["verdict_averaged"] == "unstable" for r in below)
+    # below p = 0.98 rad/s (seed 002): the balanced motions are unstable and the one with both
+    # balls on the unbalance's side ("side 00") is stable, by the seeds' verdicts and exactly
+    below = {r["label"]: r for r in summarize(run_analysis(planar.model, planar.analysis("below")))}
+    assert 0.8 < P
+    for label, verdict in (("main+", "unstable"), ("main-", "unstable"), ("side 00", "stable")):
+        r = below[label]
+        assert (r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"]) == (verdict,) * 3
+    (side,) = below["side 00"]["ball_angles_deg"].values()
+    assert side[0] == pytest.approx(side[1], abs=1e-9)
 
 
 def test_no_steady_motion_on_anisotropic_supports_exits_2_naming_why(tmp_path):
@@ -266,3 +283,14 @@ def test_sweep_over_any_number_of_the_model_by_key_path(tmp_path):
     bad = CliRunner().invoke(app, ["sweep", str(path), "--out", str(tmp_path / "b.zarr"), "--param",
                                    "model.structure.bodies[3].mass=1:2:2", "--ic", "psi_1=0.8:0.8:1"])
     assert bad.exit_code == 2 and "model.<key path>" in bad.output
+
+
+def test_steady_findings_say_whether_the_balancer_balances(planar):
+    from rotorlab.report._machine import machine_findings
+
+    verdicts = {}
+    for name in ("above", "below"):
+        ds = run_analysis(planar.model, planar.analysis(name))
+        verdicts[name] = machine_findings(ds, summarize(ds)).verdict
+    assert verdicts["above"].startswith("2 of 6") and "the balancer balances there" in verdicts["above"]
+    assert verdicts["below"].startswith("1 of 6") and "the balanced motion is unstable" in verdicts["below"]

@@ -16,6 +16,7 @@ from rotorlab.models._base import Kernels
 from rotorlab.models._jeffcott_balls import _kernels_for
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
+from rotorlab.models._toroidal_ball import strautmanis_torus
 
 pytestmark = pytest.mark.skipif(
     not any(ll.get_host_cpu_features().get(f) for f in ("avx", "sse2", "neon")),
@@ -29,6 +30,7 @@ def _declared():
     for frame in ("fixed", "rotating"):
         for n in (1, 2, 3):  # the ball count is a compile-time constant of each lane copy
             out.append((f"jeffcott_balls {frame} n={n}", _kernels_for(frame, n, False, True)))
+    out.append(("toroidal_ball", strautmanis_torus(1e-5).kernels))
     return out
 
 

@@ -54,18 +54,20 @@ Stick/slip
 Events (direction -1): ``0 stick_psi`` g = psi' mode_psi while rolling (1.0 while stuck);
 ``1 slip_psi`` g = B_psi - |F_psi| while stuck (1.0 while rolling); ``2 stick_alpha`` and
 ``3 slip_alpha`` likewise; ``4 lift_off`` g = N (counted only: the model assumes contact).
-Sines and cosines are ``math.sin``/``math.cos``: with :func:`rotorlab._kernels._vmath.sincos`
-(about 10 % faster here) the parallel and the serial driver gave results differing in the last
-bits, which would break the bit-identity of ensembles across thread counts.
+Sines and cosines come from :func:`rotorlab._kernels._vmath.sincos` and there is no loop, so the
+right-hand side is lane-friendly (it vectorises in the lane driver, see
+``tests/unit/test_vectorise.py``; the stuck/rolling choices are selects). ``sincos`` uses no fused
+multiply-add, so the scalar and the lane driver and any thread count give the same bits
+(``tests/unit/test_lanes_events.py``).
 The reset sets the rate exactly to zero and sticks when ``|F| <= B`` (evaluated at zero rate),
 else rolls with ``mode = sign(F)``; leaving stick (``slip_*``) always rolls with ``sign(F)``. It
 writes the event time into ``t_switch``. Because the mass matrix is diagonal, the holding force
 of one direction does not depend on the acceleration of the other.
 """
 
-import math
-
 from numba import njit
+
+from rotorlab._kernels._vmath import sincos
 
 
 __all__ = [
@@ -109,10 +111,8 @@ def _terms(psi, alpha, dpsi, dalpha, p):
     om = p[P_OMEGA]
     a = p[P_R1] - p[P_RB]
     inv_a = p[P_INV_A]
-    sa = math.sin(alpha)
-    ca = math.cos(alpha)
-    sp = math.sin(psi)
-    cp = math.cos(psi)
+    sa, ca = sincos(alpha)
+    sp, cp = sincos(psi)
     rho = p[P_R] + p[P_CRHO] * a * sa
     inv_rho = 1.0 / rho
     w = om + dpsi
@@ -121,7 +121,7 @@ def _terms(psi, alpha, dpsi, dalpha, p):
     f_psi = (_FIVE_SEVENTHS * eo2 * sp - a * ca * dalpha * (2.0 * p[P_CREL] * dpsi + p[P_CCOR] * om)) * inv_rho
     f_alpha = (rho * ca * (p[P_CREL] * dpsi * dpsi + p[P_CCOR] * om * dpsi + _FIVE_SEVENTHS * om * om)
                - _FIVE_SEVENTHS * (eo2 * ca * cp + p[P_G] * sa)) * inv_a  # fmt: skip
-    nk = p[P_KR] * max(normal, 0.0)
+    nk = p[P_KR] * (0.0 if normal <= 0.0 else normal)  # max(normal, 0), NaN kept, as a select
     return f_psi, f_alpha, nk * inv_rho, nk * p[P_FALPHA] * inv_a, normal
 
 
@@ -166,18 +166,11 @@ def events(t, y, p, g):
     dpsi = 0.0 if m_psi == 0.0 else y[I_DPSI]
     dalpha = 0.0 if m_alpha == 0.0 else y[I_DALPHA]
     f_psi, f_alpha, b_psi, b_alpha, normal = _terms(y[I_PSI], y[I_ALPHA], dpsi, dalpha, p)
-    if m_psi == 0.0:
-        g[0] = 1.0
-        g[1] = b_psi - abs(f_psi)
-    else:
-        g[0] = dpsi * m_psi
-        g[1] = 1.0
-    if m_alpha == 0.0:
-        g[2] = 1.0
-        g[3] = b_alpha - abs(f_alpha)
-    else:
-        g[2] = dalpha * m_alpha
-        g[3] = 1.0
+    # selects, not branches: the lane driver evaluates this for all lanes in one vector loop
+    g[0] = 1.0 if m_psi == 0.0 else dpsi * m_psi
+    g[1] = b_psi - abs(f_psi) if m_psi == 0.0 else 1.0
+    g[2] = 1.0 if m_alpha == 0.0 else dalpha * m_alpha
+    g[3] = b_alpha - abs(f_alpha) if m_alpha == 0.0 else 1.0
     g[4] = normal
 
 

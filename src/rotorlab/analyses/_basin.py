@@ -210,7 +210,8 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
         ``release_dpsi``, ``release_dalpha``; seed 004 Fig. 5) with attrs ``release_stuck``
         and ``release_settle_time`` (s).
         ``attrs["name"]`` is the analysis name; a basin also has ``value_<name>``, the value
-        of every coordinate that is not varied (fixed, or the model's; SI), and
+        of every coordinate that is not varied (fixed, or the model's; SI) with its SI unit in
+        ``units_<name>`` (none for a dimensionless one), and
         ``input_units_<name>`` (``"deg"``) for every coordinate the case gave in degrees
         (:attr:`rotorlab.io.BasinSpec.input_units`; figures show it in that unit).
 
@@ -237,8 +238,14 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
     ds.attrs["name"] = analysis.name
     ds.attrs["model"] = str(case_model.type)
     if analysis.type == "basin":
+        from rotorlab.io import DIMENSIONS, coordinate_dimensions
+
+        dims = coordinate_dimensions(case_model)
         for key, value in _effective_values(case_model, analysis, mapper).items():
             ds.attrs[f"value_{key}"] = value
+            unit = DIMENSIONS[dims[key]].si if dims.get(key) in DIMENSIONS else ""
+            if unit:
+                ds.attrs[f"units_{key}"] = unit  # the SI unit of that value, for titles
         for key, unit in analysis.input_units.items():  # what the input was written in, for display
             ds.attrs[f"input_units_{key}"] = unit
     return ds

@@ -513,8 +513,7 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
     exact = ["absent"] * n
     hamilton = ["n/a"] * n
     averaged = ["n/a"] * n
-    exists = np.asarray([True] * len(ys) or [False])
-    hits: list[str] = []
+    states = list(ys)
     for j, y in enumerate(ys):
         lin = machine.linearize(y)
         angles[j] = _wrap(y[2 * nz:2 * nz + nb])
@@ -522,30 +521,61 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
         lam[j] = float(lin.eigenvalues.real.max())
         stable[j] = lin.is_stable
         exact[j] = "stable" if stable[j] else "unstable"
-        _, hit = clearance_violation(machine, y)
-        if hit is not None:
-            exists[j], stable[j], exact[j] = False, False, "absent (exceeds the clearance)"
-            hits.append(f"motion {j}: {hit}")
-    if hits:
-        message = "; ".join(hits) if message is None else message + "; " + "; ".join(hits)
     note = SEED_VERDICTS_NOTE
-    limit = jeffcott_limit(machine) if ys else None
+    limit = jeffcott_limit(machine) if message is None else None
+    labels = [f"{k} {j}" for j, k in enumerate(kinds)] or ["none"]
     if limit is not None:
+        # the planar single-mass rotor: every steady motion of seeds 002/003 (balanced and side
+        # motions), each found again in the machine (root solve from the seeds' motion) and judged
+        # by the machine's own eigenvalues, with the seeds' two verdicts beside
         from rotorlab.steady import analyze_steady
 
         jb, phase = limit
         doc = analyze_steady(jb).to_dict()
         note = "the machine is the planar single-mass rotor of seeds 002/003: their verdicts are given"
-        for j in range(len(ys)):
-            for mo in doc["motions"]:
-                if mo["ball_angles"] is not None and np.max(np.abs(_wrap(np.asarray(mo["ball_angles"]) + phase
-                                                                          - angles[j]))) < 1e-5:
-                    hamilton[j], averaged[j] = mo["verdicts"]["hamilton"], mo["verdicts"]["averaged"]
-                    break
+        n = len(doc["motions"])
+        angles, amp = np.full((n, nb), np.nan), np.full((n, machine.structure.n_nodes), np.nan)
+        lam, stable = np.full(n, np.nan), np.zeros(n, bool)
+        exact, hamilton, averaged, kinds, labels, exists = [], [], [], [], [], []
+        states = []
+        for j, mo in enumerate(doc["motions"]):
+            y = None
+            if mo["exists"]:
+                d = (mo["amplitude"] or 0.0) * np.exp(1j * ((mo["phase"] or 0.0) + phase))
+                y = _equilibrium_near(machine, np.array([d.real, d.imag, 0.0, 0.0]),
+                                      np.asarray(mo["ball_angles"]) + phase)
+            exists.append(y is not None)
+            states.append(y)
+            if y is not None:
+                lin = machine.linearize(y)
+                angles[j] = _wrap(y[2 * nz:2 * nz + nb])
+                amp[j] = machine.station_amplitudes(machine.rotating_to_fixed(y))
+                lam[j] = float(lin.eigenvalues.real.max())
+                stable[j] = lin.is_stable
+            exact.append(("stable" if stable[j] else "unstable") if y is not None else "absent")
+            hamilton.append(mo["verdicts"]["hamilton"] if mo["exists"] else "absent")
+            averaged.append(mo["verdicts"]["averaged"] if mo["exists"] else "absent")
+            kinds.append("balanced" if mo["kind"] == "main" else str(mo["kind"]))
+            labels.append(str(mo["label"]))
+        ys = [True] * sum(exists)  # found at least one
+        exists_arr = np.asarray(exists)
+    else:
+        exists_arr = np.asarray([True] * len(ys) or [False])
+        n = max(len(ys), 1)
+    # a motion computed without contact whose orbit reaches past the clearance does not exist
+    hits: list[str] = []
+    for j, y in enumerate(states):
+        hit = None if y is None else clearance_violation(machine, y)[1]
+        if hit is not None:
+            exists_arr[j], stable[j], exact[j] = False, False, "absent (exceeds the clearance)"
+            hits.append(f"motion {labels[j] if j < len(labels) else j}: {hit}")
+    if hits:
+        message = "; ".join(hits) if message is None else message + "; " + "; ".join(hits)
     ds = xr.Dataset(
         {
             "kind": (("motion",), np.asarray(kinds or ["none"], dtype=str)),
-            "exists": (("motion",), exists),
+            "label": (("motion",), np.asarray(labels, dtype=str)),
+            "exists": (("motion",), exists_arr),
             "ball_angle": (("motion", "ball"), angles, {"units": "rad"}),
             "amplitude": (("motion", "station"), amp, {"units": "m"}),
             "max_real_eigenvalue": (("motion",), lam, {"units": "1/s"}),
@@ -553,14 +583,40 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
             "verdict_exact": (("motion",), np.asarray(exact, dtype=str)),
             "verdict_hamilton": (("motion",), np.asarray(hamilton, dtype=str)),
             "verdict_averaged": (("motion",), np.asarray(averaged, dtype=str)),
-            "status": ((), np.int64(0 if exists.any() else CLEARANCE_STATUS if hits else NO_STEADY_STATUS)),
+            "status": ((), np.int64(0 if exists_arr.any() else CLEARANCE_STATUS if hits else NO_STEADY_STATUS)),
         },
-        coords={"motion": np.arange(n), "station": list(machine.structure.node_label), **_ball_coords(machine)},
+        coords={"motion": np.arange(len(labels)), "station": list(machine.structure.node_label),
+                **_ball_coords(machine)},
         attrs={"analysis": "steady", "model": "machine", "seed_verdicts": note,
                "speed": float(machine.drive.speed) if hasattr(machine.drive, "speed") else math.nan,
                **({"message": message} if message else {})},
     )
     return ds
+
+
+def _equilibrium_near(machine, q, psi):
+    """The co-rotating equilibrium near node displacements ``q`` (full structure coordinates, m)
+    and ball angles ``psi`` (rad), or None (SciPy's hybrid Powell method on the rotating-frame
+    accelerations, as :meth:`Machine.steady_state`)."""
+    from scipy.optimize import root
+
+    nz, nb = machine.n_coordinates, machine.n_balls
+
+    def state(x):
+        y = np.zeros(2 * nz + 2 * nb)
+        y[:nz], y[2 * nz:2 * nz + nb] = x[:nz], x[nz:]
+        return y
+
+    def residual(x):
+        f = machine.rotating_rhs(state(x))
+        return np.concatenate([f[nz:2 * nz], f[2 * nz + nb:]])
+
+    z0 = np.linalg.lstsq(machine.basis, np.asarray(q, float), rcond=None)[0]
+    sol = root(residual, np.concatenate([z0, psi]), method="hybr", options={"xtol": 1e-13})
+    om = float(machine.drive.speed)
+    scale = max(sum(u.mass_eccentricity for u in machine.unbalances) / max(machine.structure.total_mass, 1e-300),
+                1e-300)
+    return state(sol.x) if np.max(np.abs(residual(sol.x))) <= 1e-9 * scale * max(1.0, om * om) else None
 
 
 # --------------------------------------------------------------------------- case files
@@ -771,7 +827,7 @@ def _steady_rows(ds) -> list[dict[str, Any]]:
     for j in range(ds.sizes["motion"]):
         exists = bool(ds.exists.values[j])
         rows.append({
-            "motion": int(j), "kind": str(ds.kind.values[j]), "exists": exists,
+            "motion": int(j), "label": str(ds.label.values[j]), "kind": str(ds.kind.values[j]), "exists": exists,
             "speed": _num(ds.attrs.get("speed", math.nan)),
             "ball_angles_deg": _per_race(ds, ds.ball_angle.values[j]) if exists else None,
             "amplitude": _per_station(ds, ds.amplitude.values[j]) if exists else None,

@@ -222,8 +222,8 @@ def _events_in_step(
 ):  # fmt: skip
     """Find the events of an accepted step from ``(t, y)`` to ``(tn, ynew)``; record them.
 
-    Every active event function is evaluated at ``tn`` (into ``g_new``) and compared with its
-    value ``g_old`` at ``t``; a sign change in the allowed direction is located on the dense
+    Every active event function, evaluated by the caller at ``tn`` (``g_new``), is compared with
+    its value ``g_old`` at ``t``; a sign change in the allowed direction is located on the dense
     output. Events up to the earliest ``reset``/``stop`` event (the cut) are counted in
     ``ev_count`` and recorded in ``rec_t``/``rec_k`` (from index ``nrec``), in time order.
     Shared by the scalar and the lane driver (which calls it for one lane at a time), so both
@@ -244,7 +244,6 @@ def _events_in_step(
     k_cut = -1
     n_found = 0
     max_rec = rec_t.shape[0]
-    events(tn, ynew, p, g_new)
     for k in range(n_ev):
         s_ev[k] = 2.0
         if ev_act[k] == ACT_OFF:
@@ -543,6 +542,7 @@ def integrate_one(
         # ---- events in (t, tn] -------------------------------------------------------------
         k_cut = -1
         if n_ev > 0:
+            events(tn, ynew, p, g_new)
             s_cut, k_cut, nrec, n_found = _events_in_step(
                 n_ev, ev_dir, ev_act, p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
                 g_old, g_new, gbuf, s_ev, ybuf, ev_count, rec_t, rec_k, nrec,

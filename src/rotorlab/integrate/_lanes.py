@@ -151,6 +151,7 @@ _EV.update(rhs=_own(rhs), events=_own(events), reset=_own(reset))
 for _name in ("_g_at", "_locate", "_events_in_step", "_resolve_cut"):
     _EV[_name] = with_kernels(getattr(_core, _name), _EV)
 _events_at = _EV["events"]
+_events_inline = njit(inline="always", nogil=True, error_model="numpy")(events.py_func)
 _events_in_step = _EV["_events_in_step"]
 _resolve_cut = _EV["_resolve_cut"]
 del _name
@@ -217,6 +218,18 @@ def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
         _rhs_inline(
             W[row_t + lane], _lane(W, row_y + lane, N_STATE), _lane(PL, lane, n_par),
             _lane(W, row_k + lane, N_STATE),
+        )  # fmt: skip
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def _events_lanes(W, row_t, row_y, G, PL, nl, ne):
+    """``G[:, l] = events(t[l], Y[:, l], p[:, l])`` for every lane (``G`` lane-interleaved, ``ne``
+    rows): the event functions at the end of every lane's step in one loop, which vectorises
+    when the model's ``events`` is lane-friendly (as :func:`_rhs_lanes`)."""
+    n_par = PL.shape[0] // LANES
+    for lane in range(nl):
+        _events_inline(
+            W[row_t + lane], _lane(W, row_y + lane, N_STATE), _lane(PL, lane, n_par), _lane(G, lane, ne),
         )  # fmt: skip
 
 
@@ -350,6 +363,7 @@ def _worker(counter, inputs, settings, event_table, outputs):
         has_ev = has_ev or ev_act[k] != ACT_OFF
     ne = max(n_ev, 1)
     g_old = np.zeros(L * ne)
+    g_end = np.zeros(L * ne)  # the event functions at the end of each lane's step, lane-interleaved
     g_new = np.empty(ne)
     gbuf = np.empty(ne)
     s_ev = np.empty(ne)
@@ -537,9 +551,12 @@ def _worker(counter, inputs, settings, event_table, outputs):
             W[_M + lane] = 1.0 if take else 0.0
         # ---- events of the accepted steps, one lane at a time (the others wait this step) ---
         if has_ev:
+            _events_lanes(W, _tn, _YN, g_end, PL, nl, ne)
             for lane in range(L):
                 if W[_M + lane] == 0.0:
                     continue
+                for k in range(n_ev):
+                    g_new[k] = g_end[k * L + lane]
                 j = ids[lane]
                 p = P[j if not shared else 0]
                 y = _lane(W, _Y + lane, n)

@@ -108,6 +108,7 @@ _KERNELS = Kernels(
     events=_k.events,
     reset=_k.reset,
     event_specs=tuple(EventSpec(name, -1, "count" if name == "lift_off" else "reset") for name in EVENT_NAMES),
+    vectorises=True,
 )
 
 

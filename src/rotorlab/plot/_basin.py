@@ -83,7 +83,8 @@ def _start_values(ds) -> str:
         if _input_unit(ds, name) == "deg":
             parts.append(f"{_NAMES.get(name, name)} = {np.degrees(float(value)):g}°")
         else:
-            parts.append(f"{_NAMES.get(name, name)} = {float(value):g}")
+            unit = ds.attrs.get(f"units_{name}", "")
+            parts.append(f"{_NAMES.get(name, name)} = {float(value):g} {unit}".rstrip())
     return ", ".join(dict.fromkeys(parts))
 
 

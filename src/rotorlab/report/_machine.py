@@ -44,7 +44,7 @@ def _steady(rows: Rows):
     stations = _stations(rows, "amplitude")
     header = ("motion", "kind", "ball angles (deg)", "exact", "seed 003 (Hamilton)", "seed 002 (averaged)",
               "max Re(lambda) (1/s)", *(f"whirl at {s} (mm)" for s in stations))
-    body = [(str(r["motion"]), r["kind"] if r["exists"] else "none", _races(r["ball_angles_deg"]),
+    body = [(r.get("label", str(r["motion"])), r["kind"] if r["exists"] else "absent", _races(r["ball_angles_deg"]),
              r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"], _g(r["max_real_eigenvalue"]),
              *(_mm((r["amplitude"] or {}).get(s)) for s in stations)) for r in rows]
     return header, body
@@ -108,6 +108,8 @@ def machine_section(ds: Any, rows: Rows) -> str:
     msg = ds.attrs.get("message")
     if msg:
         note += f"<p><strong>{escape(msg)}</strong></p>"
+    if ds.attrs.get("seed_verdicts"):
+        note += f"<p>Seed verdicts: {escape(str(ds.attrs['seed_verdicts']))}.</p>"
     return note + table(header, body, numeric=set(range(len(header))))
 
 
@@ -122,10 +124,15 @@ def _steady_findings(ds, rows):
     if not stable:
         return Findings(f"None of the {len(rows)} {'/'.join(kinds)} steady motion(s){at} is stable (exact "
                         "eigenvalues): the balancer does not settle there.")
+    if any(r["kind"] == "balanced" for r in stable):
+        what = "the balancer balances there."
+    elif "balanced" in kinds:
+        what = "the balanced motion is unstable: the balls settle where they do not balance."
+    else:
+        what = "the balancer settles but cannot cancel the unbalance."
     return Findings(f"{len(stable)} of {len(rows)} {'/'.join(kinds)} steady motion(s){at} are stable (exact "
-                    "eigenvalues): the balancer " + ("balances there." if "balanced" in kinds else
-                                                     "settles but cannot cancel the unbalance."),
-                    tuple(f"motion {r['motion']}: balls at {_races(r['ball_angles_deg'])} deg, "
+                    f"eigenvalues): {what}",
+                    tuple(f"motion {r.get('label', r['motion'])}: balls at {_races(r['ball_angles_deg'])} deg, "
                           f"max Re(lambda) = {_g(r['max_real_eigenvalue'])} 1/s" for r in stable))
 
 
