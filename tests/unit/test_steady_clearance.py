@@ -73,3 +73,14 @@ def test_side_motions_beyond_the_gap_are_flagged():
     assert machine_motions(_machine(1.1 * rho[1], race, om)).exists.values.all()
     r, msg = clearance_violation(m, m.steady_state())
     assert min(abs(r - rho)) < 1e-7 * rho[1] and (msg is not None) == (r > gap)
+
+
+def test_report_findings_name_the_motion_beyond_the_gap():
+    from rotorlab.analyses import summarize
+    from rotorlab.report._machine import machine_findings
+
+    race = (BallRace(0, 2e-3, (Ball(0.02, damping=1e-4),)),)
+    ds = machine_motions(_machine(9e-5, race, 150.0))  # between the side motions' 5.3e-5 and 1.2e-4 m
+    ds.attrs["model_type"] = "machine"  # as run_analysis sets it
+    found = machine_findings(ds, summarize(ds))
+    assert "has radius" in found.verdict and "gap 9e-05 m" in found.verdict, found
