@@ -359,7 +359,8 @@ stop = "1000 rpm"
     with pytest.raises(CaseError) as info:
         parse_case(text)
     assert info.value.problems == (
-        'analysis[0]: needs a linear rotor model ([model] type "multibody" or "fe_rotor"), but '
+        'analysis[0]: needs a linear rotor model ([model] type "multibody" or "fe_rotor") or a model '
+        'built on one (machine), but '
         'the case\'s model is "jeffcott_balls"',)
 
 

@@ -14,6 +14,21 @@ counts are those of the whole run: a sliding contact makes no impacts, so they d
 the speed at which the stop is detected);
 ``failed``: the integrator gave up (status < 0).
 
+These are the general rub regimes of :mod:`rotorlab.contact` (:class:`~rotorlab.contact.RubRegime`,
+same codes): ``none`` is no contact, ``rebounds`` intermittent impacts, ``sliding`` sustained
+contact (full rub), ``backward_whirl`` the rolling backward whirl; the decision is the shared
+:func:`rotorlab.contact.regime_codes` under :data:`SEED001_RULE`. Where the seed's rule differs
+from the window rule of a rub map (:data:`rotorlab.contact.WINDOW_RULE`): it judges a whole run
+with stones, not a window in a steady state, so
+
+- ``sliding`` is not a full annular rub in permanent contact: a run is ``sliding`` once 2 % of
+  it was spent in sustained contact, impacts between the episodes included; and the seed's
+  sliding law assumes the contact point slides forwards (friction along ``-e_perp``), so its
+  whirl ratio is not measured (NaN: the run is never labelled backward from it);
+- contacts slower than ``count_speed`` (uncounted chatter) do not make a run ``rebounds``;
+- ``backward_whirl`` is the run stopped at the onset of rolling (whirl ratio -whirl speed /
+  omega0 < 0, rolling fraction 1), whatever fraction of it was in contact.
+
 Energy (seed 001, Fig. 5)
 -------------------------
 ``energy_stones``: what the motor spends on accelerating the stones (``m_n omega0^2 R_q^2 W``,
@@ -31,6 +46,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rotorlab._kernels import impact_rotor as _k
+from rotorlab.contact._regimes import RegimeRule, regime_codes
 
 if TYPE_CHECKING:
     import xarray
@@ -42,6 +58,8 @@ __all__ = [
     "REGIMES",
     "SEED001_TABLE",
     "SLIDING_FRACTION",
+    "SEED001_RULE",
+    "impact_features",
     "SWEEP_PARAMS",
     "classify_impacts",
     "impact_model",
@@ -83,9 +101,39 @@ def stacked_params(models: Sequence[ImpactRotor]) -> np.ndarray:
     return out
 
 
+#: The shared regime rule (:func:`rotorlab.contact.regime_codes`) for a whole seed-001 run.
+SEED001_RULE = RegimeRule(sustained_fraction=SLIDING_FRACTION, impacts_in_sustained=True,
+                          uncounted_contact_is_impact=False, backward_at_stop=True)  # fmt: skip
+
+
+def impact_features(impacts, sliding_time, duration, whirl) -> dict[str, np.ndarray]:
+    """The rub features (:mod:`rotorlab.contact._regimes`) of seed-001 runs from their records.
+
+    ``impact_rate`` = counted impacts / duration (1/s); ``contact_fraction`` = time in sliding
+    contact / duration; ``whirl_ratio`` = -1 (backward, its sign: the run was stopped at the
+    onset of the rolling backward whirl) where ``whirl``, else NaN (the seed's sliding law
+    assumes forward sliding and the whirl is not measured); ``rolling_fraction`` = 1 where
+    stopped at rolling, else 0 (the seed has no rolling contact).
+    """
+    impacts, sliding_time, duration, whirl = np.broadcast_arrays(
+        *(np.asarray(a, dtype=float) for a in (impacts, sliding_time, duration, whirl))
+    )
+    stopped = whirl > 0
+    return {
+        "impact_rate": impacts / duration,
+        "contact_fraction": sliding_time / duration,
+        "whirl_ratio": np.where(stopped, -1.0, np.nan),
+        "rolling_fraction": np.where(stopped, 1.0, 0.0),
+    }
+
+
 def classify_impacts(impacts, sliding_time, duration, whirl, status,
                      sliding_fraction: float = SLIDING_FRACTION) -> np.ndarray:  # fmt: skip
     """Regime codes (0 none, 1 rebounds, 2 sliding, 3 backward_whirl, -1 failed) of runs.
+
+    The features of :func:`impact_features` classified by :func:`rotorlab.contact.regime_codes`
+    under :data:`SEED001_RULE` (with ``sliding_fraction``); the codes are those of
+    :class:`rotorlab.contact.RubRegime` (see the module docstring for the mapping).
 
     Parameters
     ----------
@@ -109,14 +157,10 @@ def classify_impacts(impacts, sliding_time, duration, whirl, status,
     >>> classify_impacts([0, 5, 50, 9, 3], [0, 0, 1.0, 0.1, 0], 10.0, [0, 0, 0, 1, 0], [0, 0, 0, 1, -2])
     array([ 0,  1,  2,  3, -1])
     """
-    impacts, sliding_time, duration, whirl, status = np.broadcast_arrays(
-        *(np.asarray(a, dtype=float) for a in (impacts, sliding_time, duration, whirl, status))
-    )
-    code = np.where(impacts > 0, 1, 0)
-    code = np.where(sliding_time >= sliding_fraction * duration, 2, code)
-    code = np.where((impacts == 0) & (sliding_time == 0), 0, code)
-    code = np.where(whirl > 0, 3, code)
-    return np.where(status < 0, -1, code).astype(np.int64)
+    f = impact_features(impacts, sliding_time, duration, whirl)
+    rule = SEED001_RULE if sliding_fraction == SLIDING_FRACTION else replace(SEED001_RULE, sustained_fraction=float(sliding_fraction))
+    return regime_codes(np.asarray(impacts, dtype=float), f["contact_fraction"], f["whirl_ratio"],
+                        f["rolling_fraction"], status, rule)  # fmt: skip
 
 
 def _label(code: int) -> str:

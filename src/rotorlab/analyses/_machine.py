@@ -23,10 +23,14 @@ import numpy as np
 
 __all__ = ["machine_simulate", "machine_steady", "machine_motions", "machine_run_up", "locked_structure",
            "orbit_amplitude", "machine_model", "machine_quantities", "machine_analysis_types",
-           "jeffcott_limit", "structure_critical_speeds", "unbalance_amplitudes", "NO_STEADY_STATUS"]
+           "jeffcott_limit", "structure_critical_speeds", "unbalance_amplitudes", "NO_STEADY_STATUS", "CLEARANCE_STATUS",
+           "clearance_violation"]
 
 #: Status of a steady analysis on a machine without co-rotating equilibria.
 NO_STEADY_STATUS = 3
+#: Status of a steady motion whose orbit at a clearance exceeds the gap (it cannot exist without
+#: contact; simulate the rub instead).
+CLEARANCE_STATUS = 4
 #: Balls moving relative to the rotor faster than this fraction of its speed in the final window
 #: of a simulation have not synchronised ("non-synchronous").
 NON_SYNCHRONOUS_RATE = 1e-2
@@ -51,6 +55,35 @@ def _outcome(status: int, amplitude, reference, max_rate: float, speed: float, n
 
 def _wrap(a):
     return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+
+
+def clearance_violation(machine, y_rotating) -> tuple[float, str | None]:
+    """Whether a steady motion fits inside the machine's clearance.
+
+    The steady motion is computed without contact; in the fixed frame the clearance point runs on
+    the circle ``w(t) = R(Omega t) B z_r - c`` (``z_r`` the co-rotating coordinates, ``c`` the
+    stator's centre; a moving housing rests at its centre without contact), so its largest
+    distance from the stator's centre is ``|B z_r| + |c|``. Where that exceeds the gap the motion
+    does not exist as computed: the rotor would touch its stator.
+
+    Returns
+    -------
+    radius : float
+        ``|B z_r| + |c|`` (m), NaN without a clearance.
+    message : str or None
+        Names the station, the radius and the gap when the radius exceeds the gap.
+    """
+    if not machine.clearances:
+        return math.nan, None
+    c = machine.clearances[0]
+    nz = machine.n_coordinates
+    w = machine.gap_matrix(c) @ np.asarray(y_rotating, dtype=float)[:nz]
+    radius = float(math.hypot(w[0], w[1]) + math.hypot(*machine.clearance_center))
+    if radius <= c.gap:
+        return radius, None
+    label = machine.structure.node_label[c.node]
+    return radius, (f"the steady orbit at the clearance station {label!r} has radius {radius:.4g} m > gap "
+                    f"{c.gap:.4g} m: this motion does not exist without contact (simulate the rub instead)")
 
 
 def locked_structure(machine):
@@ -239,7 +272,9 @@ def machine_steady(machine, speeds, *, ball_angles=None):
         radius per node (m); ``ball_angle`` (speed, ball) (rad); ``max_real_eigenvalue`` (speed) (1/s) of the linearised co-rotating equations;
         ``stable`` (speed); ``status`` (speed): 0, or ``NO_STEADY_STATUS`` with
         ``attrs["message"]`` when the machine has no co-rotating equilibria (anisotropic
-        structure, gravity across the axis) - simulate it instead.
+        structure, gravity across the axis) - simulate it instead; ``CLEARANCE_STATUS`` (and
+        ``exists`` false) where the orbit at the machine's clearance exceeds the gap
+        (:func:`clearance_violation`, named in ``attrs["message"]``).
     """
     import xarray as xr
 
@@ -258,6 +293,7 @@ def machine_steady(machine, speeds, *, ball_angles=None):
     status = np.zeros(om.size, np.int64)
     probe = machine.with_drive(ConstantSpeed(float(om[0])))
     message = probe.why_no_rotating_frame()
+    hits: list[str] = []
     if message is not None:
         status[:] = NO_STEADY_STATUS
     else:
@@ -278,8 +314,14 @@ def machine_steady(machine, speeds, *, ball_angles=None):
             stable[i] = lin.is_stable
             amp = m.station_amplitudes(m.rotating_to_fixed(y))
             amplitude[i] = amp
-        if not exists.any():
+            _, hit = clearance_violation(m, y)
+            if hit is not None:
+                exists[i], stable[i], status[i] = False, False, CLEARANCE_STATUS
+                hits.append(f"at {w:.6g} rad/s {hit}")
+        if not exists.any() and not hits:
             message = "no steady motion found at any speed (the equilibrium solver did not converge)"
+        elif hits:
+            message = "; ".join(hits)
     ds = xr.Dataset(
         {
             "exists": (("speed",), exists),
@@ -428,7 +470,11 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
         (motion, ball) (rad, from the rotor's reference direction), ``amplitude`` (motion,
         station) whirl radius (m), ``max_real_eigenvalue`` (1/s), ``stable``,
         ``verdict_exact``, ``verdict_hamilton``, ``verdict_averaged``; ``status`` (0, or
-        :data:`NO_STEADY_STATUS` with ``attrs["message"]`` when there is no co-rotating frame).
+        :data:`NO_STEADY_STATUS` with ``attrs["message"]`` when there is no co-rotating frame,
+        or :data:`CLEARANCE_STATUS` when every motion's orbit at the clearance exceeds the gap).
+        A motion whose orbit exceeds the gap (:func:`clearance_violation`) has ``exists`` false,
+        verdict "absent (exceeds the clearance)", and ``attrs["message"]`` names the station, the
+        radius and the gap.
     """
     import xarray as xr
     from scipy.optimize import least_squares
@@ -467,6 +513,7 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
     exact = ["absent"] * n
     hamilton = ["n/a"] * n
     averaged = ["n/a"] * n
+    states = list(ys)
     for j, y in enumerate(ys):
         lin = machine.linearize(y)
         angles[j] = _wrap(y[2 * nz:2 * nz + nb])
@@ -490,6 +537,7 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
         angles, amp = np.full((n, nb), np.nan), np.full((n, machine.structure.n_nodes), np.nan)
         lam, stable = np.full(n, np.nan), np.zeros(n, bool)
         exact, hamilton, averaged, kinds, labels, exists = [], [], [], [], [], []
+        states = []
         for j, mo in enumerate(doc["motions"]):
             y = None
             if mo["exists"]:
@@ -497,6 +545,7 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
                 y = _equilibrium_near(machine, np.array([d.real, d.imag, 0.0, 0.0]),
                                       np.asarray(mo["ball_angles"]) + phase)
             exists.append(y is not None)
+            states.append(y)
             if y is not None:
                 lin = machine.linearize(y)
                 angles[j] = _wrap(y[2 * nz:2 * nz + nb])
@@ -513,6 +562,15 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
     else:
         exists_arr = np.asarray([True] * len(ys) or [False])
         n = max(len(ys), 1)
+    # a motion computed without contact whose orbit reaches past the clearance does not exist
+    hits: list[str] = []
+    for j, y in enumerate(states):
+        hit = None if y is None else clearance_violation(machine, y)[1]
+        if hit is not None:
+            exists_arr[j], stable[j], exact[j] = False, False, "absent (exceeds the clearance)"
+            hits.append(f"motion {labels[j] if j < len(labels) else j}: {hit}")
+    if hits:
+        message = "; ".join(hits) if message is None else message + "; " + "; ".join(hits)
     ds = xr.Dataset(
         {
             "kind": (("motion",), np.asarray(kinds or ["none"], dtype=str)),
@@ -525,7 +583,7 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
             "verdict_exact": (("motion",), np.asarray(exact, dtype=str)),
             "verdict_hamilton": (("motion",), np.asarray(hamilton, dtype=str)),
             "verdict_averaged": (("motion",), np.asarray(averaged, dtype=str)),
-            "status": ((), np.int64(0 if ys else NO_STEADY_STATUS)),
+            "status": ((), np.int64(0 if exists_arr.any() else CLEARANCE_STATUS if hits else NO_STEADY_STATUS)),
         },
         coords={"motion": np.arange(len(labels)), "station": list(machine.structure.node_label),
                 **_ball_coords(machine)},

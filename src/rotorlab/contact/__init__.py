@@ -5,7 +5,16 @@ See :mod:`rotorlab.contact._theory` for the physics and references (Black 1968; 
 """
 
 from rotorlab.contact._model import JeffcottRub
-from rotorlab.contact._regimes import RubFeatures, RubRegime, RubRegimes, classify_rub, rub_features
+from rotorlab.contact._regimes import (
+    WINDOW_RULE,
+    RegimeRule,
+    RubFeatures,
+    RubRegime,
+    RubRegimes,
+    classify_rub,
+    regime_codes,
+    rub_features,
+)
 from rotorlab.contact._theory import (
     RollingWhirl,
     RubBranch,
@@ -30,6 +39,9 @@ __all__ = [
     "RubFeatures",
     "RubRegime",
     "RubRegimes",
+    "RegimeRule",
+    "WINDOW_RULE",
+    "regime_codes",
     "classify_rub",
     "rub_features",
     "RubRotor",

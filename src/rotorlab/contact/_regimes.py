@@ -24,7 +24,10 @@ Regimes (:class:`RubRegime`): no contact; intermittent impacts (contact begun an
 window); full rub (contact in every sample, whirling forward); backward whirl in permanent
 contact, rolling (stick in most samples: the theory's ``omega_w = -R_r Omega / r``) or sliding.
 The backward-whirl label is thus the theory's criterion (permanent contact whirling backwards)
-rather than a speed threshold.
+rather than a speed threshold. The decision from the features is :func:`regime_codes` under a
+:class:`RegimeRule`: :data:`WINDOW_RULE` here, and seed 001's whole-run rule
+(:data:`rotorlab.analyses._impacts.SEED001_RULE`, whose labels ``none, rebounds, sliding,
+backward_whirl`` are the codes 0-3 of :class:`RubRegime`).
 
 :class:`RubRegimes` runs this at every point of a :class:`rotorlab.sweep.Sweep` (speed x
 clearance, speed x unbalance, ... maps); :func:`classify_rub` is the same reduction for one
@@ -43,7 +46,8 @@ import numpy as np
 from rotorlab.models._checks import check_number as _num
 from rotorlab.sweep._spec import ChunkVar
 
-__all__ = ["RubRegime", "RubFeatures", "RubRegimes", "ContactSamples", "classify_rub", "rub_features"]
+__all__ = ["RubRegime", "RubFeatures", "RubRegimes", "ContactSamples", "RegimeRule", "WINDOW_RULE",
+           "regime_codes", "classify_rub", "rub_features"]
 
 
 class ContactSamples(NamedTuple):
@@ -99,6 +103,68 @@ class RubFeatures:
     peak_impulse: float
 
 
+@dataclass(frozen=True, slots=True)
+class RegimeRule:
+    """How features become a regime (:func:`regime_codes`); one rule per kind of record.
+
+    Parameters
+    ----------
+    sustained_fraction : float
+        Contact fraction from which the contact is sustained (full rub or backward whirl).
+    impacts_in_sustained : bool
+        Whether contacts begun in the record still allow "sustained" (a whole run with
+        episodes of sliding between impacts) or not (a window in permanent contact).
+    uncounted_contact_is_impact : bool
+        Whether contact without a counted onset (contact already at the window's start, or
+        impacts below a counting speed) makes the record intermittent.
+    backward_at_stop : bool
+        Whether a backward whirl ratio alone gives the backward-whirl regime (a run stopped at
+        the onset of the backward whirl), or only in sustained contact.
+    """
+
+    sustained_fraction: float = 1.0
+    impacts_in_sustained: bool = False
+    uncounted_contact_is_impact: bool = True
+    backward_at_stop: bool = False
+
+
+#: The rule of a simulated window (:func:`rub_features`): full rub and backward whirl need contact
+#: in every sample and no contact begun in the window; any other contact is intermittent.
+WINDOW_RULE = RegimeRule()
+
+
+def regime_codes(onsets, contact_fraction, whirl_ratio, rolling_fraction, status=0,
+                 rule: RegimeRule = WINDOW_RULE) -> np.ndarray:  # fmt: skip
+    """Regime codes (:class:`RubRegime`) from the features of records (array_like, broadcast).
+
+    No contact; intermittent impacts where contacts began (``onsets > 0``) or, under
+    ``rule.uncounted_contact_is_impact``, any contact; sustained contact where the contact
+    fraction reaches ``rule.sustained_fraction`` (and no contact began, unless
+    ``rule.impacts_in_sustained``): full rub, or backward whirl where ``whirl_ratio <= 0``
+    (rolling if ``rolling_fraction >= 0.5``, else sliding); under ``rule.backward_at_stop`` a
+    ``whirl_ratio <= 0`` gives the backward whirl without the contact fraction (NaN: not
+    measured, never backward); failed where ``status < 0``.
+
+    Examples
+    --------
+    >>> regime_codes([0, 3, 0, 0], [0.0, 0.4, 1.0, 1.0], [0.0, 0.1, 0.2, -0.3], [0, 0, 0, 0.9]).tolist()
+    [0, 1, 2, 3]
+    """
+    onsets, cf, wr, rf, status = np.broadcast_arrays(
+        *(np.asarray(a, dtype=float) for a in (onsets, contact_fraction, whirl_ratio, rolling_fraction, status))
+    )
+    code = np.full(onsets.shape, int(RubRegime.NO_CONTACT), dtype=np.int64)
+    intermittent = (onsets > 0) | ((cf > 0) & rule.uncounted_contact_is_impact)
+    code[intermittent] = int(RubRegime.IMPACTS)
+    sustained = ((cf > 0) | (onsets > 0)) & (cf >= rule.sustained_fraction) & ((onsets == 0) | rule.impacts_in_sustained)
+    code[sustained] = int(RubRegime.FULL_RUB)
+    with np.errstate(invalid="ignore"):
+        backward = (wr <= 0) & (sustained | rule.backward_at_stop)
+    code[backward] = np.where(rf[backward] >= 0.5, int(RubRegime.BACKWARD_ROLLING), int(RubRegime.BACKWARD_SLIDING))
+    code[status < 0] = int(RubRegime.FAILED)
+    return code
+
+
 def rub_features(model: Any, ts, ys, params=None) -> RubFeatures:
     """Reduce samples ``ys`` (shape (n, n_state)) at times ``ts`` (shape (n,), n >= 2) to features.
 
@@ -122,14 +188,7 @@ def rub_features(model: Any, ts, ys, params=None) -> RubFeatures:
     peak = float(np.max(cs.normal_force[contact])) if np.any(contact) else 0.0
     cf = float(np.mean(contact))
     rf = float(np.mean(mode == 2.0))
-    if cf == 0.0 and onsets == 0:
-        regime = RubRegime.NO_CONTACT
-    elif cf < 1.0 or onsets > 0:
-        regime = RubRegime.IMPACTS
-    elif whirl_ratio > 0.0:
-        regime = RubRegime.FULL_RUB
-    else:
-        regime = RubRegime.BACKWARD_ROLLING if rf >= 0.5 else RubRegime.BACKWARD_SLIDING
+    regime = RubRegime(int(regime_codes(onsets, cf, whirl_ratio, rf)))
     return RubFeatures(regime, float(onsets / span), cf, rf, whirl_ratio, peak, float(cs.peak_impulse[-1]))
 
 

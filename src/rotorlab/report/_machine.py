@@ -121,9 +121,11 @@ def _steady_findings(ds, rows):
     kinds = sorted({r["kind"] for r in rows if r["exists"]})
     speed = rows[0]["speed"] if rows else None
     at = f" at {speed * _RPM:.5g} rpm" if speed else ""
+    # motions that would pass the clearance (analyses._machine.clearance_violation) are named too
+    beyond = f" Beyond the clearance: {msg}." if msg and "clearance" in str(msg) else ""
     if not stable:
         return Findings(f"None of the {len(rows)} {'/'.join(kinds)} steady motion(s){at} is stable (exact "
-                        "eigenvalues): the balancer does not settle there.")
+                        f"eigenvalues): the balancer does not settle there.{beyond}")
     if any(r["kind"] == "balanced" for r in stable):
         what = "the balancer balances there."
     elif "balanced" in kinds:
@@ -131,7 +133,7 @@ def _steady_findings(ds, rows):
     else:
         what = "the balancer settles but cannot cancel the unbalance."
     return Findings(f"{len(stable)} of {len(rows)} {'/'.join(kinds)} steady motion(s){at} are stable (exact "
-                    f"eigenvalues): {what}",
+                    f"eigenvalues): {what}{beyond}",
                     tuple(f"motion {r.get('label', r['motion'])}: balls at {_races(r['ball_angles_deg'])} deg, "
                           f"max Re(lambda) = {_g(r['max_real_eigenvalue'])} 1/s" for r in stable))
 
