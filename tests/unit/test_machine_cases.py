@@ -61,10 +61,14 @@ def test_bad_machine_input_names_the_key_path():
     with pytest.raises(CaseError) as err:
         parse_case(bad)
     assert "races[0]" in str(err.value) and "must be < 1" in str(err.value)
-    bad = text.replace('damping = "0.05 N*m*s/rad", count = 2', 'damping = "0.05 N*m*s/rad", coulomb = 0.1, count = 2')
+    bad = text.replace('damping = "0.05 N*m*s/rad", count = 2', 'damping = "0.05 N*m*s/rad", coulomb = -0.1, count = 2')
     with pytest.raises(CaseError) as err:
         parse_case(bad)
-    assert "coulomb" in str(err.value) and "not yet in the machine model" in str(err.value)
+    assert "model.races[0].balls[0].coulomb" in str(err.value) and ">= 0" in str(err.value)
+    good = text.replace('damping = "0.05 N*m*s/rad", count = 2',
+                        'damping = "0.05 N*m*s/rad", coulomb = 0.1, rolling = "1 mm", count = 2')
+    balls = parse_case(good).model.races[0].balls
+    assert [(b.coulomb, b.rolling) for b in balls] == [(0.1, 1e-3)] * 2
 
 
 def test_cli_validate_bad_machine_case_exits_2(tmp_path):
