@@ -294,3 +294,15 @@ def test_steady_findings_say_whether_the_balancer_balances(planar):
         verdicts[name] = machine_findings(ds, summarize(ds)).verdict
     assert verdicts["above"].startswith("2 of 6") and "the balancer balances there" in verdicts["above"]
     assert verdicts["below"].startswith("1 of 6") and "the balanced motion is unstable" in verdicts["below"]
+
+
+def test_simulate_findings_without_balls_name_no_ball_angles():
+    """A start without a balancer has no balls: its findings line says so and shows no ball
+    angles (it printed "final ball angles - deg")."""
+    from rotorlab.report._machine import _simulate_findings
+
+    rows = [{"ic": 0, "outcome": "no balancer", "amplitude": {"rotor": 1.04e-3},
+             "reference_amplitude": {"rotor": 1.0e-3}, "final_ball_angles_deg": {}}]
+    found = _simulate_findings(None, rows)
+    assert found.numbers == ("largest vibration / unbalance response 1.04", "start 0: no balancer")
+    assert "104 %" in found.verdict

@@ -131,7 +131,8 @@ def _steady_findings(ds, rows):
     elif "balanced" in kinds:
         what = "the balanced motion is unstable: the balls settle where they do not balance."
     else:
-        what = "the balancer settles but cannot cancel the unbalance."
+        what = ("the balls settle in a partly balanced state: they cannot cancel the unbalance at every "
+                "station (see the whirl per station).")
     return Findings(f"{len(stable)} of {len(rows)} {'/'.join(kinds)} steady motion(s){at} are stable (exact "
                     f"eigenvalues): {what}{beyond}",
                     tuple(f"motion {r.get('label', r['motion'])}: balls at {_races(r['ball_angles_deg'])} deg, "
@@ -167,7 +168,8 @@ def _chart_findings(ds, rows):
     text = ", ".join(f"{a:.5g}-{b:.5g}" if a != b else f"{a:.5g}" for a, b in spans)
     return Findings(f"The {kind} state is stable from {text} rpm (exact eigenvalues; {sum(r['stable'] for r in rows)} "
                     f"of {len(rows)} speeds): " + ("the balancer balances there." if balanced else
-                                                   "the balancer cannot cancel the unbalance."),
+                                                   "the balls settle in a partly balanced state: they cannot cancel the unbalance "
+                                                   "at every station (see the whirl per station)."),
                     (f"stable at {text} rpm",))
 
 
@@ -201,8 +203,9 @@ def _simulate_findings(ds, rows):
             f"{k} from start(s) {', '.join(map(str, v))}" for k, v in by.items()) +
             f" (vibration up to {100 * worst:.3g} % of the unbalance response).")
     return Findings(verdict, (f"largest vibration / unbalance response {worst:.3g}",
-                              *(f"start {r['ic']}: {r['outcome']}, final ball angles "
-                                f"{_races(r['final_ball_angles_deg'])} deg" for r in rows)))
+                              *(f"start {r['ic']}: {r['outcome']}" + (f", final ball angles "
+                                f"{_races(r['final_ball_angles_deg'])} deg" if r["outcome"] != "no balancer" else "")
+                                for r in rows)))
 
 
 def _run_up_findings(ds, rows):
