@@ -163,6 +163,9 @@ DAMAGE = {
                             "'label' has lost its attribute '_dims'"),
     "marks-resized": (lambda s: _edit_json(s / "_done" / "zarr.json", lambda d: d.update(shape=[5])),
                       "completion marks"),
+    "input-units-not-deg-or-rad": (lambda s: _edit_json(s / "zarr.json",
+                                                        lambda d: d["attributes"].update(input_units={"psi": "grad"})),
+                                   "'input_units'"),
     "shape-not-n-points": (lambda s: _edit_json(s / "zarr.json", lambda d: d["attributes"].update(shape=[5])),
                            "'shape' [5]"),
 }

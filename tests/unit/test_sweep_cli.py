@@ -224,3 +224,23 @@ ic = { psi_1 = [0, 1, 2] }
 sample = 10
 t_end = 1
 """, origin="test")
+
+
+def test_show_draws_ball_angles_in_the_unit_the_sweep_was_given(tmp_path):
+    """``--ic psi_1=0deg:300deg:N`` is stored in radians (SI) with the unit it was written in;
+    ``open_sweep`` returns it as ``input_units_psi_1`` and the basin map is drawn in degrees
+    (issue 13: basin maps were drawn in radians although the input was in degrees)."""
+    from rotorlab.plot import sweep_figures
+
+    base = ["sweep", "autobalancer", "--speed-ratio", "2", "--t-end", "0.2", "--chunk", "9"]
+    deg = invoke(*base, "--ic", "psi_1=0deg:300deg:3", "--ic", "psi_2=0:5:3", "--out", str(tmp_path / "d.zarr"))
+    assert deg.exit_code == 0, deg.output
+    ds = open_sweep(tmp_path / "d.zarr")
+    assert ds.psi_1.values[-1] == pytest.approx(np.radians(300))  # SI inside
+    assert ds.attrs["input_units_psi_1"] == "deg" and ds.attrs["input_units_psi_2"] == "rad"
+    ax = sweep_figures(ds)["basin"].axes[0]
+    labels = ax.get_xlabel() + " | " + ax.get_ylabel()
+    assert "deg" in labels and "rad" in labels, labels
+    assert max(ax.get_xlim() + ax.get_ylim()) > 250  # 300 deg drawn as degrees, not 5.2 rad
+    shown = invoke("show", str(tmp_path / "d.zarr"), "--figures", str(tmp_path / "f"))
+    assert shown.exit_code == 0, shown.output and (tmp_path / "f" / "basin.png").exists()

@@ -10,6 +10,8 @@ store is touched (bad input: exit 2, nothing written).
 
 from __future__ import annotations
 
+import dataclasses
+
 import math
 from pathlib import Path
 from typing import Annotated, Any, Optional
@@ -262,6 +264,12 @@ def sweep_command(
             sweep = build_sweep(loaded.model, spec, axes=axes or None, sample=sample, seed=seed, t_end=t_end)
         except ValueError as exc:
             raise BadInput(str(exc)) from None
+        from rotorlab.io._basin_specs import record_input_units
+
+        # the unit each angle was written in, for figures (``rotorlab show`` draws it in that unit)
+        given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (ic or ())]
+        shown = {k: v for k, v in record_input_units({}, given).items() if k in sweep.varied}
+        sweep = dataclasses.replace(sweep, input_units=shown)
         size = chunk if chunk is not None else (None if resume and out.exists() else spec.chunk)
         where = executor.describe()
         shape = " x ".join(str(s) for s in sweep.shape)

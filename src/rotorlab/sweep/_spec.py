@@ -130,6 +130,11 @@ class Sweep:
         An explicit point list instead of axes (one dimension, ``points.dim``).
     fixed : mapping of str to float
         Values of further coordinates, shared by all points (SI).
+    input_units : mapping of str to str
+        The unit an angle coordinate was written in, ``"deg"`` or ``"rad"`` (the values are SI
+        either way). Only for display: results carry it as ``attrs["input_units_<name>"]`` and
+        figures draw that coordinate in it; it is not part of :meth:`describe`, so it does not
+        change what a resume checks.
 
     Examples
     --------
@@ -146,6 +151,7 @@ class Sweep:
     sample: Sample | None = None
     points: Points | None = None
     fixed: Mapping[str, float] = dataclasses.field(default_factory=dict)
+    input_units: Mapping[str, str] = dataclasses.field(default_factory=dict)
 
     def __post_init__(self) -> None:
         if not isinstance(self.analysis, AbstractPointAnalysis):
@@ -179,6 +185,12 @@ class Sweep:
         for name in (*varied, *fixed):
             if name not in known:
                 raise ValueError(f"unknown coordinate {name!r}; this analysis accepts: {', '.join(known)}")
+        units = {str(k): str(v) for k, v in dict(self.input_units or {}).items()}
+        for name, unit in units.items():
+            if name not in (*varied, *fixed) or unit not in ("deg", "rad"):
+                raise ValueError(f"input_units[{name!r}] = {unit!r}: must name a varied or fixed coordinate "
+                                 "and be 'deg' or 'rad'")  # fmt: skip
+        object.__setattr__(self, "input_units", units)
         from rotorlab._memory import check_memory
 
         shape = " x ".join(str(s) for s in self.shape)
@@ -244,6 +256,10 @@ class Sweep:
             points = (self.sample or self.points).describe()
         return {"points": points, "fixed": dict(sorted(self.fixed.items())),
                 "analysis": describe_value(self.analysis)}  # fmt: skip
+
+    def display_attrs(self) -> dict[str, str]:
+        """Result attributes ``input_units_<name>`` (see ``input_units``)."""
+        return {f"input_units_{k}": v for k, v in self.input_units.items()}
 
     def fingerprint(self) -> str:
         """SHA-256 of the canonical JSON of :meth:`describe`."""

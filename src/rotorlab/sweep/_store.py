@@ -163,8 +163,10 @@ class MemorySink:
     def dataset(self) -> Any:
         flat = {name: (dims, arr, attrs) for name, (dims, arr, attrs) in self.vars.items()}
         sw = self.sweep
-        return assemble(sw.dims, sw.shape, bool(sw.axes), sw.coordinates(), sw.fixed, sw.analysis.trailing_coords(),
-                        flat, sw.analysis.result_attrs(), sw.analysis.coordinate_units)  # fmt: skip
+        ds = assemble(sw.dims, sw.shape, bool(sw.axes), sw.coordinates(), sw.fixed, sw.analysis.trailing_coords(),
+                      flat, sw.analysis.result_attrs(), sw.analysis.coordinate_units)  # fmt: skip
+        ds.attrs.update(sw.display_attrs())
+        return ds
 
 
 def assemble(dims, shape, grid: bool, coords, fixed, trailing, flat, attrs, units) -> Any:
@@ -317,6 +319,7 @@ class ZarrSink:
                 "chunk_size": self.chunk_size, "n_chunks": n_chunks, "runs": 1,
                 "result_attrs": sweep.analysis.result_attrs(), "coordinate_units": dict(units),
                 "grid": bool(sweep.axes), "fixed": dict(sweep.fixed), "variables": [],
+                "input_units": dict(sweep.input_units),
             }))  # fmt: skip
             self.group.attrs["rotorlab_sweep"] = LAYOUT_VERSION
             os.rename(self.path, final)
@@ -477,6 +480,9 @@ def _check_layout(group: Any, attrs: dict[str, Any], path: Path) -> None:
     for key in ("n_points", "chunk_size", "n_chunks", "runs"):
         if not is_int(attrs.get(key)) or attrs[key] < (0 if key == "runs" else 1):
             damaged(f"attribute {key!r} is {_short(attrs.get(key))}, not a positive integer")
+    shown = attrs.get("input_units", {})  # display only; absent in stores written before it was recorded
+    if not isinstance(shown, dict) or not all(v in ("deg", "rad") for v in shown.values()):
+        damaged(f"attribute 'input_units' is {_short(shown)}, not a mapping of coordinates to 'deg' or 'rad'")
     dims, shape = attrs["dims"], attrs["shape"]
     if not dims or not all(isinstance(d, str) for d in dims) or len(shape) != len(dims):
         damaged(f"attributes 'dims' {_short(dims)} and 'shape' {_short(shape)} do not match")
@@ -619,4 +625,6 @@ def open_sweep(path: Any, *, partial: bool = False) -> Any:
     ds = assemble(dims, shape, bool(info["grid"]), coords, info["fixed"], trailing, flat, info["result_attrs"],
                   info["coordinate_units"])  # fmt: skip
     ds.attrs.update(sweep=json.dumps(info["sweep"]), fingerprint=info["fingerprint"], complete=int(info["complete"]))
+    # (absent in stores written before it was recorded; checked by _check_layout)
+    ds.attrs.update({f"input_units_{k}": v for k, v in info.get("input_units", {}).items()})
     return ds
