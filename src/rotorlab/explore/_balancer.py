@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rotorlab._kernels import jeffcott_balls as _jk
-from rotorlab.explore._mapper import Feature
+from rotorlab.explore._mapper import Feature, ball_coordinate_units, window_save_times
 from rotorlab.integrate import Status, StepControl
 from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls
 
@@ -129,9 +129,7 @@ class BalancerRegimes:
 
     @property
     def coordinate_units(self) -> Mapping[str, str]:
-        n = self.model.n_balls
-        units = {f"psi_{i}": "rad" for i in range(1, n + 1)}
-        units.update({f"dpsi_{i}": "rad/s" for i in range(1, n + 1)})
+        units = ball_coordinate_units(self.model.n_balls)
         return {**units, "spin_speed": "rad/s", **_ROTOR_UNITS, **_BALL_UNITS}
 
     @property
@@ -143,9 +141,7 @@ class BalancerRegimes:
         return self.t_end * np.arange(1, self.n_horizons + 1) / self.n_horizons
 
     def save_times(self) -> np.ndarray:
-        h = self.horizons()
-        k = np.linspace(-1.0, 0.0, self.samples_per_window)
-        return np.unique(np.maximum(h[:, None] + self.window * k[None, :], 0.0))
+        return window_save_times(self.horizons(), self.window, self.samples_per_window)
 
     def _variant(self, values: Mapping[str, float]) -> JeffcottBalls:
         rotor = replace(self.model.rotor, **{k: v for k, v in values.items() if k in _ROTOR_UNITS})

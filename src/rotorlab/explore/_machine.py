@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab.explore._mapper import Feature
+from rotorlab.explore._mapper import Feature, ball_coordinate_units, window_save_times
 from rotorlab.integrate import StepControl
 from rotorlab.models import ConstantSpeed, Machine
 
@@ -107,9 +107,7 @@ class MachineRegimes:
 
     @property
     def coordinate_units(self) -> Mapping[str, str]:
-        n = self.model.n_balls
-        units = {f"psi_{i}": "rad" for i in range(1, n + 1)}
-        units.update({f"dpsi_{i}": "rad/s" for i in range(1, n + 1)})
+        units = ball_coordinate_units(self.model.n_balls)
         return _KeyUnits({**units, **_PARAMS}, self.spec)
 
     @property
@@ -121,9 +119,7 @@ class MachineRegimes:
         return self.t_end * np.arange(1, self.n_horizons + 1) / self.n_horizons
 
     def save_times(self) -> np.ndarray:
-        h = self.horizons()
-        k = np.linspace(-1.0, 0.0, self.samples_per_window)
-        return np.unique(np.maximum(h[:, None] + self.window * k[None, :], 0.0))
+        return window_save_times(self.horizons(), self.window, self.samples_per_window)
 
     def _rebuilt(self, keys: Mapping[str, float]) -> Machine:
         """The machine rebuilt from ``spec`` with the ``model.<key path>`` values set."""

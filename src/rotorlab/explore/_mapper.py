@@ -72,6 +72,19 @@ class AbstractMapper(Protocol):
     def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray: ...
 
 
+def ball_coordinate_units(n_balls: int) -> dict[str, str]:
+    """Start coordinates of ``n_balls`` balls: angles ``psi_i`` (rad) and rates ``dpsi_i`` (rad/s)."""
+    units = {f"psi_{i}": "rad" for i in range(1, n_balls + 1)}
+    units.update({f"dpsi_{i}": "rad/s" for i in range(1, n_balls + 1)})
+    return units
+
+
+def window_save_times(horizons: np.ndarray, window: float, samples_per_window: int) -> np.ndarray:
+    """Save times: ``samples_per_window`` evenly spaced times over the window ending at each horizon."""
+    k = np.linspace(-1.0, 0.0, samples_per_window)
+    return np.unique(np.maximum(horizons[:, None] + window * k[None, :], 0.0))
+
+
 def _check_coords(mapper: AbstractMapper, coords: Mapping[str, Any]) -> tuple[dict[str, np.ndarray], int]:
     if not isinstance(mapper, AbstractMapper):
         raise TypeError(f"mapper must implement AbstractMapper, got {type(mapper).__name__}")
