@@ -492,12 +492,6 @@ def _spans(values: Sequence[float], mask: Sequence[bool]) -> str:
     >>> _spans([10.0, 20.0, 30.0, 40.0, 50.0], [True, True, False, True, False])
     '10-20, 40'
     """
-    runs: list[list[float]] = []
-    prev = False
-    for v, m in zip(values, mask):
-        if m and prev:
-            runs[-1][1] = v
-        elif m:
-            runs.append([v, v])
-        prev = m
-    return ", ".join(f"{a:g}" if a == b else f"{a:g}-{b:g}" for a, b in runs)
+    from rotorlab.analyses._outcome import true_runs
+
+    return ", ".join(f"{a:g}" if a == b else f"{a:g}-{b:g}" for a, b in true_runs(values, mask))

@@ -153,3 +153,22 @@ def classify(status: int, status_message: str, final_amplitude: float, reference
     if np.all(near_zero | near_pi):
         return f"side ({_degrees_label(np.where(near_zero, 0.0, math.pi))})"
     return f"steady ({_degrees_label(angles)})"
+
+
+def true_runs(values, mask) -> list[tuple[float, float]]:
+    """The runs of consecutive ``values`` where ``mask`` holds, as ``(first, last)`` pairs.
+
+    Examples
+    --------
+    >>> true_runs([10.0, 20.0, 30.0, 40.0, 50.0], [True, True, False, True, False])
+    [(10.0, 20.0), (40.0, 40.0)]
+    """
+    runs: list[list[float]] = []
+    prev = False
+    for v, m in zip(values, mask):
+        if m and prev:
+            runs[-1][1] = v
+        elif m:
+            runs.append([v, v])
+        prev = bool(m)
+    return [(a, b) for a, b in runs]

@@ -139,18 +139,6 @@ def _steady_findings(ds, rows):
                           f"max Re(lambda) = {_g(r['max_real_eigenvalue'])} 1/s" for r in stable))
 
 
-def _intervals(speeds, flags) -> list[tuple[float, float]]:
-    out: list[list[float]] = []
-    prev = False
-    for w, f in zip(speeds, flags):
-        if f and prev:
-            out[-1][1] = w
-        elif f:
-            out.append([w, w])
-        prev = f
-    return [(a, b) for a, b in out]
-
-
 def _chart_findings(ds, rows):
     msg = ds.attrs.get("message")
     if msg and not any(r["exists"] for r in rows):
@@ -162,7 +150,9 @@ def _chart_findings(ds, rows):
                         f"and {param[0]} (exact eigenvalues).", (f"{stable} of {len(rows)} points stable",))
     balanced = all(r["balanced"] for r in rows if r["exists"])
     kind = "balanced" if balanced else "steady (partly balanced)"
-    spans = _intervals([r["speed_rpm"] for r in rows], [r["stable"] for r in rows])
+    from rotorlab.analyses._outcome import true_runs
+
+    spans = true_runs([r["speed_rpm"] for r in rows], [r["stable"] for r in rows])
     if not spans:
         return Findings(f"The {kind} state is unstable at every speed checked: the balancer does not settle there.")
     text = ", ".join(f"{a:.5g}-{b:.5g}" if a != b else f"{a:.5g}" for a, b in spans)
