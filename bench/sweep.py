@@ -1,27 +1,31 @@
-"""Benchmark: overhead of the sweep machinery on the 256 x 256 autobalancer grid of the benchmark
-(:data:`rotorlab.models.BENCHMARK`).
+"""Benchmark: the `rotorlab sweep` user path on the benchmark autobalancer grid against dp5_simd.c,
+and the CPU cost of ``--workers`` (issues 7 and 11).
 
 Usage::
 
-    python bench/sweep.py [--n 256] [--revolutions 2000] [--workers 2] [--chunk 1024] [--json]
+    python bench/sweep.py [--n 32] [--n-small 16] [--revolutions 2000] [--workers 2] [--chunk 256]
+                          [--repeats 2] [--c-dir ../shared/bench] [--skip-cli] [--json]
 
-What it does (the benchmark problem, :data:`rotorlab.models.BENCHMARK`: a nondimensional Jeffcott rotor with
-two balls, M = 1, m = 0.02, R = 1, eps = 0.01, k = 1, c = 0.02, beta = 0.01, Omega = 2.5, the
-ball angles on an n x n grid over [0, 2 pi)^2, rtol 1e-8, atol 1e-10, 2000 revolutions):
+The problem (:data:`rotorlab.models.BENCHMARK`: nondimensional Jeffcott rotor with two balls,
+M = 1, m = 0.02, R = 1, eps = 0.01, k = 1, c = 0.02, beta = 0.01, Omega = 2.5, rtol 1e-8,
+atol 1e-10, 2000 revolutions) written as a case file with a ``sweep`` analysis
+(``jeffcott_balls``, ``ic = {psi_1, psi_2}`` on an n x n grid over [0, 2 pi)). n must divide 256:
+the grid is then a sub-grid of the one of ``../shared/bench`` (psi_i = phi_i at t = 0), and
+``dp5_simd.c`` runs on exactly the same trajectories. In each of ``--repeats`` interleaved rounds,
+all CPU time (user + system, all threads):
 
-1. writes that problem as a case file with a ``sweep`` analysis (``jeffcott_balls``, the grid
-   as ``ic = {psi_1, psi_2}``) into a temporary folder;
-2. **baseline**: the in-process ensemble: the same trajectories (the mapper's start states and
-   save times) in one :func:`rotorlab.integrate.solve_ensemble` call on ``--workers`` threads;
-3. **sweep**: ``rotorlab sweep CASE --workers N --out STORE.zarr`` as a subprocess (the whole
-   command: Python start-up, the Dask LocalCluster, workers loading the compiled integrator,
-   the chunks, features and labels, the Zarr store), and ``run_sweep`` in-process with a store;
-4. prints wall times, the overhead ``sweep / baseline - 1`` (target < 10%), the physics check
-   (every off-diagonal point balanced, the diagonal not), and that the sweep's final amplitudes
-   equal the baseline's bit for bit.
+1. ``dp5_simd.c`` (built as ``bench/ensemble.py`` does, OMP_NUM_THREADS = --workers; its own
+   getrusage figure), unless ``--c-dir`` is missing (then it says so);
+2. ``run_sweep`` in this process, in memory (the user path without workers; ``time.process_time``);
+3. the lane driver alone (``solve_ensemble``, the mapper's starts and save times) on 1 thread and
+   on --workers threads;
+4. ``rotorlab sweep CASE --out STORE`` as subprocesses, without and with ``--workers`` (CPU of the
+   command and all its children via ``getrusage(RUSAGE_CHILDREN)``), on the n and the --n-small
+   grid: CPU = fixed + points x per-point gives the start-up and per-point cost of each.
 
-Compilation is excluded from the baseline (a warm-up runs first) and from the sweep only as far
-as the on-disk cache allows (workers load it). Machines are noisy: compare ratios from one run.
+Prints medians, trajectories per CPU-second, the ratios, the physics check (every off-diagonal
+start balanced, the diagonal not) and that the sweep's labels agree with the ensemble's final
+amplitudes. Compilation is excluded by a warm-up (subprocesses load the on-disk cache).
 """
 
 from __future__ import annotations
