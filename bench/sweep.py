@@ -128,6 +128,24 @@ def _cli(case_file: Path, store: Path, workers: int | None, env: dict) -> tuple[
     return cpu, wall, json.loads(res.stdout)
 
 
+def _idle_cluster(workers: int, seconds: float) -> dict:
+    """CPU cost of an idle local Dask cluster (the one ``--workers`` starts): scheduler and client in
+    this process, nannies and workers as children, per wall-second of waiting."""
+    from dask.distributed import Client, LocalCluster
+
+    c0, k0 = time.process_time(), _cpu_children()
+    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+    client = Client(cluster)
+    c1 = time.process_time()
+    time.sleep(seconds)
+    idle_self = time.process_time() - c1
+    client.close()
+    cluster.close()
+    return {"idle_seconds": seconds, "startup_self_cpu_s": round(c1 - c0, 3),
+            "idle_self_cpu_s_per_s": round(idle_self / seconds, 4),
+            "children_cpu_s_total": round(_cpu_children() - k0, 3)}  # fmt: skip
+
+
 def _median(xs: list[float]) -> float:
     return float(np.median(xs)) if xs else float("nan")
 
@@ -144,8 +162,14 @@ def main(argv: list[str] | None = None) -> int:
     ap.add_argument("--skip-cli", action="store_true", help="only the in-process figures (items 1 and 3)")
     ap.add_argument("--c-dir", type=Path, default=None,
                     help="folder of dp5_simd.c (default ../shared/bench beside the repository)")
+    ap.add_argument("--idle-cluster", type=float, default=0.0, metavar="SECONDS",
+                    help="only measure an idle --workers cluster for SECONDS (run twice, e.g. 2 and 30, "
+                         "and difference the children's CPU)")
     ap.add_argument("--json", action="store_true")
     args = ap.parse_args(argv)
+    if args.idle_cluster:
+        print(json.dumps(_idle_cluster(args.workers, args.idle_cluster)))
+        return 0
     sys.path.insert(0, str(SRC))
     sys.path.insert(0, str(HERE))
     from rotorlab.integrate import SaveAt, solve_ensemble
