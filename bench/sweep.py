@@ -5,6 +5,7 @@ Usage::
 
     python bench/sweep.py [--n 32] [--n-small 16] [--revolutions 2000] [--workers 2] [--chunk 256]
                           [--repeats 2] [--c-dir ../shared/bench] [--skip-cli] [--json]
+    python bench/sweep.py --idle-cluster SECONDS   # CPU of an idle --workers cluster only
 
 The problem (:data:`rotorlab.models.BENCHMARK`: nondimensional Jeffcott rotor with two balls,
 M = 1, m = 0.02, R = 1, eps = 0.01, k = 1, c = 0.02, beta = 0.01, Omega = 2.5, rtol 1e-8,
