@@ -70,7 +70,7 @@ def test_at_most_one_clearance_per_machine():
 @pytest.mark.skipif(not any(ll.get_host_cpu_features().get(f) for f in ("avx", "sse2", "neon")),
                     reason="no SIMD unit known to LLVM on this CPU")
 def test_the_machine_kernel_with_a_clearance_vectorises_in_the_lane_driver():
-    """Events run on the scalar driver today; the kernel is ready for the lane driver's events."""
+    """The clearance kernel vectorises in the lane driver (events run on lanes too)."""
     from rotorlab.integrate._drivers import is_vectorised
     from rotorlab.linear import LinearSystem
     from rotorlab.models import ConstantSpeed, Machine, Unbalance
