@@ -363,6 +363,13 @@ class MachineSpec(AbstractModelSpec):
         return float(crit[0]) if crit.size else None
 
     sweeps_keys: ClassVar[bool] = True
+    rub_map_axis: ClassVar[str] = "unbalance"  # what a rub-map varies besides speed and clearance
+
+    def rub_issues(self, spec: AbstractAnalysisSpec) -> list[Issue]:
+        """What the rub analyses need of a machine: a clearance, a constant speed, the rotor radius."""
+        from rotorlab.io._rub_specs import _machine_rub_issues
+
+        return _machine_rub_issues(spec, self)
 
     @property
     def balls(self) -> tuple[MachineBallSpec, ...]:

@@ -16,7 +16,7 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Literal
+from typing import ClassVar, Literal
 
 from pydantic import Field, model_validator
 
@@ -38,6 +38,14 @@ class JeffcottRubSpec(AbstractModelSpec):
     stator_stiffness: quantity("stiffness", gt=0) | None = Field(
         None, description="radial stiffness k_s of the stator (N/m); omit for a rigid stator"
     )
+    rub_map_axis: ClassVar[str] = "eccentricity"  # what a rub-map varies besides speed and clearance
+
+    def rub_issues(self, spec: AbstractAnalysisSpec) -> list[Issue]:
+        """What the rub analyses need of this model: a rigid stator's rotor starts inside the clearance."""
+        if self.stator_stiffness is None and spec.initial_radius > self.clearance:
+            return [Issue(("initial_radius",), f"must be <= the clearance ({self.clearance:g} m) with a rigid "
+                          "stator", spec.initial_radius)]  # fmt: skip
+        return []
     stator_damping: quantity("damping", ge=0) = Field(0.0, description="radial damping c_s of the stator (N*s/m)")
     friction: quantity("dimensionless", ge=0) = Field(0.0, description="Coulomb friction mu at the stator (-)")
     rotor_radius: quantity("length", gt=0) = Field(description="rotor radius R_r at the contact (m)")
@@ -83,6 +91,14 @@ def _machine_rub_issues(spec: AbstractAnalysisSpec, model: AbstractModelSpec) ->
     return issues
 
 
+def _model_rub_issues(spec: AbstractAnalysisSpec, model: AbstractModelSpec) -> list[Issue]:
+    """The model's own ``rub_issues`` hook; a model without one has no clearance to rub in."""
+    hook = getattr(model, "rub_issues", None)
+    if hook is None:
+        return [Issue(("type",), "needs a rub_rotor model, or a machine with a clearance", spec.type)]
+    return list(hook(spec))
+
+
 class RubSpec(AbstractAnalysisSpec):
     """Simulate the rotor in its clearance and classify what it does (:class:`rotorlab.contact.RubRegime`).
 
@@ -107,15 +123,7 @@ class RubSpec(AbstractAnalysisSpec):
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """A rub_rotor, or a machine with a clearance, a constant speed and the rotor radius; a
         rigid stator's rotor must start inside the clearance."""
-        if getattr(model, "type", None) == "machine":
-            return _machine_rub_issues(self, model)
-        clearance = getattr(model, "clearance", None)
-        if getattr(model, "type", None) != "rub_rotor":
-            return [Issue(("type",), "needs a rub_rotor model, or a machine with a clearance", self.type)]
-        if model.stator_stiffness is None and self.initial_radius > clearance:
-            return [Issue(("initial_radius",), f"must be <= the clearance ({clearance:g} m) with a rigid stator",
-                          self.initial_radius)]  # fmt: skip
-        return []
+        return _model_rub_issues(self, model)
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""
@@ -170,23 +178,15 @@ class RubMapSpec(AbstractAnalysisSpec):
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """A rub_rotor (eccentricity or clearance), or a machine with a clearance and a constant
         speed (unbalance or clearance)."""
-        kind = getattr(model, "type", None)
-        axis = self.second_axis
-        if kind == "rub_rotor":
-            if axis == "unbalance":
-                return [Issue(("unbalance",), "belongs to a machine: a rub_rotor varies its eccentricity",
-                              self.unbalance)]
-            return []
-        if kind == "machine":
-            issues = _machine_rub_issues(self, model)
-            if axis == "eccentricity":
-                issues.append(Issue(("eccentricity",), "belongs to a rub_rotor: a machine varies its "
-                                                       "unbalance", self.eccentricity))
-            elif axis == "unbalance" and not model.unbalances:
-                issues.append(Issue(("unbalance",), "needs an unbalance on the machine ([[model.unbalances]])",
-                                    self.unbalance))
-            return issues
-        return [Issue(("type",), "needs a rub_rotor model, or a machine with a clearance", self.type)]
+        issues = _model_rub_issues(self, model)
+        axis, own = self.second_axis, getattr(model, "rub_map_axis", None)
+        if own is not None and axis != "clearance" and axis != own:
+            issues.append(Issue((axis,), f"does not apply: a {model.type} model varies its {own}",
+                                getattr(self, axis)))
+        elif axis == "unbalance" and own == axis and not model.unbalances:
+            issues.append(Issue(("unbalance",), "needs an unbalance on the machine ([[model.unbalances]])",
+                                self.unbalance))
+        return issues
 
     def describe(self, model: AbstractModelSpec) -> str:
         n = self.spin_speed[2] * getattr(self, self.second_axis)[2]
