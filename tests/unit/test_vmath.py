@@ -1,4 +1,4 @@
-"""``rotorlab._kernels._vmath``: accuracy of ``sincos`` (in ulps), special values, ``fma``."""
+"""``rotorlab._kernels._vmath``: accuracy of ``sincos`` and ``inv_fifth_root`` (in ulps), special values, ``fma``."""
 
 import math
 from fractions import Fraction
@@ -7,7 +7,7 @@ import numpy as np
 import pytest
 from numba import njit
 
-from rotorlab._kernels._vmath import SINCOS_LIMIT, fma, sincos
+from rotorlab._kernels._vmath import SINCOS_LIMIT, fma, inv_fifth_root, sincos
 
 LONG_DOUBLE_OK = np.finfo(np.longdouble).nmant >= 63  # x87 80-bit or IEEE quad
 
@@ -106,3 +106,53 @@ def test_fma_is_exactly_rounded():
         exact = float(Fraction(a) * Fraction(b) + Fraction(c))
         assert f(a, b, c) == exact == fma(a, b, c)
     assert f(0.1, 10.0, -1.0) == float(Fraction(0.1) * 10 - 1) != 0.1 * 10.0 - 1.0
+
+
+@njit(cache=True)
+def _inv_fifth_root_many(x, out):
+    for i in range(x.shape[0]):
+        out[i] = inv_fifth_root(x[i])
+
+
+# log-uniform arguments over the whole positive range: subnormals, [1e-300, 1e-10], the
+# controller's working range (error norms 6e-6 .. 2e3) and beyond, up to the largest double
+LOG_RANGES = [(-744.4, -708.4), (-690.0, -23.0), (-12.0, 8.0), (8.0, 709.7)]
+
+
+@pytest.mark.skipif(not LONG_DOUBLE_OK, reason="needs an extended-precision long double")
+@pytest.mark.parametrize("lo, hi", LOG_RANGES)
+def test_inv_fifth_root_error_below_1p1_ulp(lo, hi):
+    """Against x^(-1/5) in extended precision (the exponent -1/5 rounded to 64 bits: its error,
+    below 2^-66 |ln x| <= 1e-17 relative, is 0.05 ulp at most); and mostly correctly rounded."""
+    rng = np.random.default_rng(int(abs(lo)))
+    x = np.exp(rng.uniform(lo, hi, 200_000))
+    x = x[x > 0.0]
+    got = np.empty_like(x)
+    _inv_fifth_root_many(x, got)
+    ref = np.power(x.astype(np.longdouble), np.longdouble(-1) / np.longdouble(5))
+    ulp = np.spacing(np.abs(ref.astype(np.float64))).astype(np.longdouble)
+    err = np.abs((got.astype(np.longdouble) - ref) / ulp).astype(np.float64)
+    assert err.max() < 1.1
+    assert np.mean(got == ref.astype(np.float64)) > 0.8
+
+
+def test_inv_fifth_root_exact_cases_and_special_values():
+    """Exact fifth powers give exact roots; the closed form y^5 x = 1 holds to round-off."""
+    for k in range(-200, 200, 7):  # x = 2^(5k): root 2^-k exactly
+        assert inv_fifth_root(2.0 ** (5 * k)) == 2.0**-k
+    for v in (3.0, 7.0, 10.0, 0.1):
+        assert inv_fifth_root(v**-5) == pytest.approx(v, rel=2.3e-16)
+    assert inv_fifth_root(1e-10) == 100.0
+    assert inv_fifth_root(0.0) == math.inf
+    assert inv_fifth_root(math.inf) == 0.0
+    assert math.isnan(inv_fifth_root(-1.0)) and math.isnan(inv_fifth_root(math.nan))
+    rng = np.random.default_rng(8)
+    for x in [5e-324, 1e-320, 2.2250738585072014e-308, 1.7976931348623157e308, *np.exp(rng.uniform(-700, 700, 200))]:
+        y = Fraction(inv_fifth_root(float(x)))
+        assert abs(float(y**5 * Fraction(float(x))) - 1.0) < 5 * 1.1 * 2.0**-52  # 1.1 ulp <= 1.1 2^-52 relative
+
+
+def test_inv_fifth_root_python_equals_compiled():
+    rng = np.random.default_rng(9)
+    for x in np.exp(rng.uniform(-744, 709, 300)):
+        assert inv_fifth_root.py_func(float(x)) == inv_fifth_root(float(x))

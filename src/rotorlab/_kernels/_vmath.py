@@ -46,6 +46,7 @@ The polynomial coefficients are those of fdlibm (``k_sin.c``, ``k_cos.c``), whic
 """
 
 import math
+import struct
 from fractions import Fraction
 
 import numpy as np
@@ -53,7 +54,7 @@ from llvmlite import ir
 from numba import njit, types
 from numba.extending import lower_builtin, type_callable
 
-__all__ = ["SINCOS_LIMIT", "fma", "sincos"]
+__all__ = ["SINCOS_LIMIT", "fma", "inv_fifth_root", "sincos"]
 
 _INV_PIO2 = 6.36619772367581382433e-01  # 2/pi
 # pi/2 = _PIO2_1 + _PIO2_2 + _PIO2_3 to about 160 bits (each the rounded remainder)
@@ -166,3 +167,121 @@ def sincos(x):
     s = s if ok else math.nan
     c = c if ok else math.nan
     return s, c
+
+
+def _bits(x):
+    """The bits of the float64 ``x`` as an int64 (compiled: one ``bitcast``, which vectorises)."""
+    return struct.unpack("<q", struct.pack("<d", float(x)))[0]
+
+
+def _from_bits(i):
+    """The float64 whose bits are the int64 ``i`` (the inverse of :func:`_bits`)."""
+    return struct.unpack("<d", struct.pack("<q", int(i)))[0]
+
+
+@type_callable(_bits)
+def _type_bits(context):
+    def typer(x):
+        if isinstance(x, types.Float):
+            return types.int64
+
+    return typer
+
+
+@lower_builtin(_bits, types.Float)
+def _lower_bits(context, builder, sig, args):
+    v = context.cast(builder, args[0], sig.args[0], types.float64)
+    return builder.bitcast(v, ir.IntType(64))
+
+
+@type_callable(_from_bits)
+def _type_from_bits(context):
+    def typer(i):
+        if isinstance(i, types.Integer):
+            return types.float64
+
+    return typer
+
+
+@lower_builtin(_from_bits, types.Integer)
+def _lower_from_bits(context, builder, sig, args):
+    v = context.cast(builder, args[0], sig.args[0], types.int64)
+    return builder.bitcast(v, ir.DoubleType())
+
+
+# m^(-1/5) on [1, 2]: least-squares Chebyshev fit of degree 5 (numpy.polynomial), relative error
+# 6.4e-6; two Newton steps then bring it below round-off (6.4e-6 -> 1.2e-10 -> 5e-20).
+_R0 = 1.4333795578199562
+_R1 = -0.8355689744039465
+_R2 = 0.6306800658548697
+_R3 = -0.2967737016068341
+_R4 = 0.07656749556066474
+_R5 = -0.008290818997922842
+_TWO54 = 2.0**54
+_MANT = (1 << 52) - 1
+_ONE_BITS = 1023 << 52
+
+
+@njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def inv_fifth_root(x):
+    """Return ``x ** (-1/5)`` within 1.1 ulp, in arithmetic that LLVM can vectorise.
+
+    The step-size factor of the Dormand–Prince 5(4) controller, ``err ** (-1/5)``: both drivers
+    of :mod:`rotorlab.integrate` call this function (one vector computation per step for all
+    lanes in the lane driver; ``**`` would be a scalar ``pow`` call per lane), so they agree bit
+    for bit. Written here because numba has no vector ``pow`` without Intel SVML (see the module
+    docstring).
+
+    Parameters
+    ----------
+    x : float
+        ``x >= 0``.
+
+    Returns
+    -------
+    float
+        ``x ** (-1/5)``: ``inf`` at 0, 0 at ``inf``, NaN for ``x < 0`` or NaN.
+
+    Notes
+    -----
+    ``x = m 2^e`` (``1 <= m < 2``, subnormals scaled by ``2^54`` first) from the bits of ``x``;
+    ``e = 5 q + r`` with ``r`` in 0..4; ``y ~ (m 2^r)^(-1/5)`` from a degree-5 polynomial in
+    ``m`` times ``2^(-r/5)``, refined by two Newton steps ``y += y (1 - u y^5) / 5`` on
+    ``u = m 2^r`` (exact), then scaled by ``2^-q`` (exact). Accuracy
+    (``tests/unit/test_vmath.py``): below 1.1 ulp against an extended-precision reference over
+    the whole positive range, subnormals included (1.06 measured over 1.6 million arguments;
+    the rounding of the last Newton residual, about 0.6 ulp, plus the final rounding), and the
+    correctly rounded result in about 87 % of cases. It is not ``x ** -0.2``: the double nearest
+    -1/5 is not -1/5, so that differs from the fifth root by up to ``7e-15`` relative at the
+    ends of the range.
+    Branch-free (selects only); no fused multiply-add, so vectorised and scalar code give the
+    same bits.
+
+    Examples
+    --------
+    >>> from rotorlab._kernels._vmath import inv_fifth_root
+    >>> float(inv_fifth_root(32.0)), float(inv_fifth_root(1e-10))
+    (0.5, 100.0)
+    """
+    tiny = x < 2.2250738585072014e-308
+    xs = x * _TWO54 if tiny else x
+    b = _bits(xs)
+    e = (b >> 52) - (1023 + 54 if tiny else 1023)
+    m = _from_bits((b & _MANT) | _ONE_BITS)
+    ef = float(e)
+    q = np.floor(ef * 0.2)
+    r = ef - 5.0 * q
+    # 2^r and 2^(-r/5) for r = 0..4 by selects (a table lookup would be a gather)
+    p2 = 1.0 if r == 0.0 else (2.0 if r == 1.0 else (4.0 if r == 2.0 else (8.0 if r == 3.0 else 16.0)))
+    c = (1.0 if r == 0.0 else (0.8705505632961241 if r == 1.0 else (0.7578582832551990 if r == 2.0
+         else (0.6597539553864471 if r == 3.0 else 0.5743491774985174))))  # fmt: skip
+    u = m * p2
+    y = c * (_R0 + m * (_R1 + m * (_R2 + m * (_R3 + m * (_R4 + m * _R5)))))
+    for _ in range(2):
+        y2 = y * y
+        y = y + y * (1.0 - u * (y2 * y2 * y)) * 0.2
+    scale = _from_bits((1023 - np.int64(q)) << 52)
+    res = y * scale
+    res = math.inf if x == 0.0 else res
+    res = 0.0 if x == math.inf else res
+    return res if x >= 0.0 else math.nan

@@ -66,6 +66,7 @@ import numpy as np
 from numba import njit, prange, types
 from numba.extending import intrinsic
 
+from rotorlab._kernels._vmath import inv_fifth_root
 from rotorlab.models._base import no_events as events  # @kernel events
 from rotorlab.models._base import no_reset as reset  # @kernel reset
 from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
@@ -79,7 +80,7 @@ from rotorlab.integrate._tableau import (
     B1, B3, B4, B5, B6,
     C2, C3, C4, C5,
     E1, E3, E4, E5, E6, E7,
-    ERROR_EXPONENT, MAX_FACTOR, MIN_FACTOR, SAFETY,
+    MAX_FACTOR, MIN_FACTOR, SAFETY,
 )  # fmt: skip
 
 LANES = 8  # @const LANES
@@ -523,12 +524,12 @@ def _worker(counter, inputs, settings, event_table, outputs):
         for k in range(L, n * nl):
             W[_Q + k] += W[_Q + k - L]
 
-        # ---- accept or reject in every lane (as integrate_one; vectorised but for pow) -------
+        # ---- accept or reject in every lane (as integrate_one; vectorised) -----------------
         for lane in range(nl):
             W[_en + lane] = math.sqrt(W[_Q + (n - 1) * L + lane] / n_cont)
-        for lane in range(L):
+        for lane in range(nl):  # err^(-1/5) of all lanes in one vector computation
             en = W[_en + lane]
-            W[_pw + lane] = en**ERROR_EXPONENT if en > 0.0 else 1.0
+            W[_pw + lane] = inv_fifth_root(en) if en > 0.0 else 1.0
         for lane in range(nl):
             live = W[_live + lane] != 0.0
             en = W[_en + lane]
