@@ -282,7 +282,7 @@ def summarize_impact_sweep(runs: xarray.Dataset, model: ImpactRotor, *, param: s
     data = {k: (("value", "sequence"), v, {"units": _UNITS[k], "description": _DESCRIPTIONS[k]})
             for k, v in sc.items()}  # fmt: skip
     for name in ("impacts", "eta", "sliding_time"):
-        arr = sc[name].astype(float)
+        arr = np.where(sc["regime"] < 0, np.nan, sc[name].astype(float))  # a failed run has no value
         q = np.nanquantile(arr, [0.25, 0.5, 0.75], axis=1) if np.isfinite(arr).any() else np.full((3, values.size), np.nan)
         for tag, row in zip(("q25", "median", "q75"), q):
             data[f"{name}_{tag}"] = (("value",), row, {"units": _UNITS[name], "description": f"{tag} over sequences"})
