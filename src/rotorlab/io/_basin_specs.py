@@ -23,7 +23,7 @@ from __future__ import annotations
 
 import math
 import re
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
@@ -88,7 +88,8 @@ MACHINE_COORDINATES: dict[str, str] = {
     "ball_damping": "torque_damping",
 }
 
-_BALL_COORD = re.compile(r"^(d?)psi_([1-9][0-9]*)$")
+#: The angle ``psi_<i>`` or rate ``dpsi_<i>`` of ball i (i = 1, 2, ...) among start coordinates.
+BALL_COORDINATE = re.compile(r"^(d?)psi_([1-9][0-9]*)$")
 
 #: Lower bounds of the parameters among the coordinates: name -> ("gt" or "ge", 0).
 COORDINATE_BOUNDS: dict[str, str] = {
@@ -239,7 +240,7 @@ def _any_dimension(name: str) -> str | None:
         return TORUS_COORDINATES[name]
     if name in BALANCER_COORDINATES:
         return BALANCER_COORDINATES[name]
-    m = _BALL_COORD.match(name)
+    m = BALL_COORDINATE.match(name)
     if m:
         return "angular_speed" if m.group(1) else "angle"
     return None
@@ -421,6 +422,20 @@ class ToroidalBallSpec(AbstractModelSpec):
         """Its state entries and parameters (:data:`TORUS_COORDINATES`)."""
         return dict(TORUS_COORDINATES)
 
+    spins_at_own_speed: ClassVar[bool] = True
+
+    def basin_issues(self, spec: AbstractAnalysisSpec) -> list[Issue]:
+        """ball_radius < tube_radius < ring_radius at every start of the basin ``spec``."""
+        issues = []
+        for small, large in (("ball_radius", "tube_radius"), ("tube_radius", "ring_radius")):
+            lo_s, hi_s, loc_s = spec.value_range(self, small)
+            lo_l, hi_l, loc_l = spec.value_range(self, large)
+            if hi_s >= lo_l and (loc_s or loc_l):
+                loc = loc_s or loc_l
+                issues.append(Issue(loc, f"{small} must stay < {large} at every start (largest {small} "
+                                         f"{hi_s:g} m, smallest {large} {lo_l:g} m)", show_value=False))  # fmt: skip
+        return issues
+
     def describe(self) -> str:
         """One line: geometry, speed and friction."""
         rpm = self.spin_speed * 60.0 / (2.0 * math.pi)
@@ -536,9 +551,8 @@ class BasinSpec(AbstractAnalysisSpec):
         kind = getattr(model, "type", None)
         known = coordinate_dimensions(model)
         if not known:
-            what = "a jeffcott_balls model without balls" if kind == "jeffcott_balls" else f"model type {kind!r}"
             return [Issue(("type",), f"basins need a toroidal_ball model or a jeffcott_balls or machine model with "
-                                     f"balls, not {what}", self.type)]  # fmt: skip
+                                     f"balls, not {model.without_regimes()}", self.type)]  # fmt: skip
         issues = []
         for key, axis in (("x", self.x), ("y", self.y)):
             if axis[0] not in known:
@@ -548,11 +562,11 @@ class BasinSpec(AbstractAnalysisSpec):
             if name not in known:
                 issues.append(Issue(("fixed", name), f"not a coordinate of this {kind} model "
                                                      f"(coordinates: {coordinates_text(known)})", value))  # fmt: skip
-        if kind == "toroidal_ball":
-            issues += self._geometry_issues(model)
+        issues += model.basin_issues(self)
+        if model.spins_at_own_speed:
             for key in ("speed_ratio", "speed"):
                 if getattr(self, key) is not None:
-                    issues.append(Issue((key,), "applies to a rotor with balls only; a toroidal_ball "
+                    issues.append(Issue((key,), f"applies to a rotor with balls only; a {kind} "
                                                 "spins at its model's spin_speed (vary or fix spin_speed)",
                                         getattr(self, key)))  # fmt: skip
         else:
@@ -563,8 +577,9 @@ class BasinSpec(AbstractAnalysisSpec):
                                         "speed or speed_ratio (or vary spin_speed)", show_value=False))  # fmt: skip
         return issues
 
-    def _range(self, model: AbstractModelSpec, name: str) -> tuple[float, float, tuple[str, ...]]:
-        """Smallest and largest value of a model parameter over the starts, and where it is set."""
+    def value_range(self, model: AbstractModelSpec, name: str) -> tuple[float, float, tuple[str, ...]]:
+        """Smallest and largest value of a model parameter over the starts, and where it is set
+        (the key path of ``x``, ``y`` or ``fixed``; empty when the model's own value is used)."""
         for key, axis in (("x", self.x), ("y", self.y)):
             if axis[0] == name:
                 return axis[1], axis[2], (key,)
@@ -572,18 +587,6 @@ class BasinSpec(AbstractAnalysisSpec):
             return self.fixed[name], self.fixed[name], ("fixed", name)
         value = float(getattr(model, name))
         return value, value, ()
-
-    def _geometry_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """ball_radius < tube_radius < ring_radius at every start (toroidal ball)."""
-        issues = []
-        for small, large in (("ball_radius", "tube_radius"), ("tube_radius", "ring_radius")):
-            lo_s, hi_s, loc_s = self._range(model, small)
-            lo_l, hi_l, loc_l = self._range(model, large)
-            if hi_s >= lo_l and (loc_s or loc_l):
-                loc = loc_s or loc_l
-                issues.append(Issue(loc, f"{small} must stay < {large} at every start (largest {small} "
-                                         f"{hi_s:g} m, smallest {large} {lo_l:g} m)", show_value=False))  # fmt: skip
-        return issues
 
     def spin_speed(self, model: AbstractModelSpec) -> float | None:
         """Constant spin speed of a rotor with balls (rad/s): ``speed``, ``speed_ratio * p``, the
