@@ -32,7 +32,7 @@ from rotorlab.cli._sweep_common import (
 
 
 def _names(known: Any) -> str:
-    from rotorlab.io._basin_specs import coordinates_text
+    from rotorlab.io._coordinates import coordinates_text
 
     return coordinates_text(known)
 
@@ -266,7 +266,7 @@ def sweep_command(
             sweep = build_sweep(model, spec, axes=axes or None, sample=sample, seed=seed, t_end=t_end)
         except ValueError as exc:
             raise BadInput(str(exc)) from None
-        from rotorlab.io._basin_specs import record_input_units
+        from rotorlab.io._coordinates import record_input_units
 
         # the unit each angle was written in, for figures (``rotorlab show`` draws it in that unit)
         given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (ic or ())]

@@ -285,7 +285,7 @@ class AbstractModelSpec(_Spec):
         return str(getattr(self, "type", type(self).__name__))
 
     #: Whether basins and sweeps of this model may vary any number of its ``[model]`` table by
-    #: key path (``model.<key path>``; see :data:`rotorlab.io._basin_specs.KEY_PREFIX`).
+    #: key path (``model.<key path>``; see :data:`rotorlab.io._coordinates.KEY_PREFIX`).
     sweeps_keys: ClassVar[bool] = False
 
     def start_coordinates(self) -> dict[str, str]:

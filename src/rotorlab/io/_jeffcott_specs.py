@@ -305,13 +305,13 @@ class JeffcottBallsSpec(AbstractModelSpec):
 
     def start_coordinates(self) -> dict[str, str]:
         """``psi_<i>``, ``dpsi_<i>`` and the rotor's and balls' parameters (none without balls)."""
-        from rotorlab.io._basin_specs import BALANCER_COORDINATES, ball_coordinates
+        from rotorlab.io._coordinates import BALANCER_COORDINATES, ball_coordinates
 
         return ball_coordinates(self.n_balls, BALANCER_COORDINATES)
 
     def missing_coordinate(self, name: str) -> str | None:
         """``has <n> ball(s)`` for the angle or rate of a ball the model does not have."""
-        from rotorlab.io._basin_specs import BALL_COORDINATE
+        from rotorlab.io._coordinates import BALL_COORDINATE
 
         return f"has {self.n_balls} ball(s)" if BALL_COORDINATE.match(name) else None
 

@@ -19,8 +19,8 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from rotorlab.io._basin_specs import (BALL_COORDINATE, TORUS_COORDINATES, _any_dimension, coordinate_dimensions,
-                                      coordinates_text, key_quantity)
+from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, _any_dimension, coordinate_dimensions,
+                                     coordinates_text, key_quantity)
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, Unit, _error, _QuantityValidator, integer,
                                  quantity)  # fmt: skip
@@ -88,7 +88,7 @@ def sweep_coordinates(model: Any, kind: str) -> dict[str, str]:
     >>> list(sweep_coordinates(load_case("strautmanis-torus").model, "ic"))
     ['psi', 'alpha', 'dpsi', 'dalpha']
     """
-    from rotorlab.io._basin_specs import Coordinates
+    from rotorlab.io._coordinates import Coordinates
 
     named = {n: d for n, d in coordinate_dimensions(model).items() if _is_state(n) == (kind == "ic")}
     return Coordinates(named, model) if kind == "param" else named
