@@ -122,3 +122,23 @@ def test_the_check_fails_a_run_that_creates_energy():
         assert f"after {int(yf[k.N_ALL])} impacts" in note
     assert f"the stones supplied {yf[k.W_ST]:.4g} J" in notes[1] and "J created (tolerance" in notes[1]
 
+
+
+def test_a_failed_run_is_shown_failed_in_the_report_and_the_sweep():
+    """A run the integrator cannot finish (stones of 1e300 kg overflow the state at the first
+    stone, t = 0.035 s) is labelled failed with the integrator's message in the run table; in a
+    sweep it is counted in the 'failed' column, in no regime, and left out of the medians."""
+    from rotorlab.analyses import impact_run, impact_sweep, sweep_summary
+    from rotorlab.report._impacts import impact_section
+
+    ds = impact_run(krasnov_crusher(stone_mass=1e300), t_end=0.1, n_save=10)
+    assert ds.attrs["regime"] == "failed" and int(ds.status) == Status.NONFINITE
+    html = impact_section(ds)
+    assert "Failed: state or derivative became non-finite" in html
+    sw = impact_sweep(krasnov_crusher(), [0.7, 1e300], n_sequences=2, t_end=0.1, threads=1)
+    rows = sweep_summary(sw)["rows"]
+    assert rows[0]["regimes"] == {"none": 2, "rebounds": 0, "sliding": 0, "backward_whirl": 0, "failed": 0}
+    assert rows[1]["regimes"]["failed"] == 2 and sum(rows[1]["regimes"].values()) == 2
+    assert rows[0]["impacts_median"] == 0 and rows[1]["impacts_median"] is None
+    table = impact_section(sw)
+    assert "<th>failed</th>" in table
