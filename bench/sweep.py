@@ -132,10 +132,12 @@ def _cli(case_file: Path, store: Path, workers: int | None, env: dict) -> tuple[
 def _idle_cluster(workers: int, seconds: float) -> dict:
     """CPU cost of an idle local Dask cluster (the one ``--workers`` starts): scheduler and client in
     this process, nannies and workers as children, per wall-second of waiting."""
-    from dask.distributed import Client, LocalCluster
+    from dask.distributed import Client
+
+    from rotorlab.sweep._executors import local_cluster
 
     c0, k0 = time.process_time(), _cpu_children()
-    cluster = LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None)
+    cluster = local_cluster(workers)
     client = Client(cluster)
     c1 = time.process_time()
     time.sleep(seconds)

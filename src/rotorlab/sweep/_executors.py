@@ -109,6 +109,34 @@ class LocalProcesses:
         return f"{self.workers} local processes"
 
 
+# Dask settings of the LocalCluster that --workers starts: its diagnostics poll several times a
+# second in every process (the statistical profiler samples each worker's stack every 10 ms, the
+# event-loop "tick" monitor runs every 20 ms, the system monitor every 0.5 s), which an idle
+# 2-worker cluster measured as ~0.1 CPU-s per wall-second (bench/README.md). Nobody looks at them
+# here (no dashboard), so they are slowed down or off. The memory monitor (pausing and restarting
+# a worker that runs out of memory) keeps its default.
+_QUIET = {
+    "distributed.worker.profile.enabled": False,
+    "distributed.admin.tick.interval": "1s",
+    "distributed.admin.tick.limit": "10s",
+    "distributed.admin.system-monitor.interval": "5s",
+}
+
+
+def local_cluster(workers: int):
+    """The ``LocalCluster`` of :class:`DaskExecutor` (and of ``bench/sweep.py --idle-cluster``):
+    ``workers`` single-threaded worker processes, no dashboard, quiet diagnostics (``_QUIET``,
+    passed to the worker processes by their nannies)."""
+    import logging
+
+    import dask
+    from distributed import LocalCluster
+
+    with dask.config.set(_QUIET):
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
+                            silence_logs=logging.ERROR)  # fmt: skip
+
+
 @dataclass(frozen=True)
 class DaskExecutor:
     """Run the chunks as tasks on a Dask cluster (``dask.distributed``).
@@ -149,9 +177,7 @@ class DaskExecutor:
 
     def imap(self, fn: Callable, analysis: Any, tasks: Iterable[Task]) -> Iterator[Any]:
         """Submit every task, then yield results as they finish."""
-        import logging
-
-        from distributed import Client, LocalCluster, as_completed
+        from distributed import Client, as_completed
 
         owned: list[Any] = []
         threads = self.threads
@@ -165,8 +191,7 @@ class DaskExecutor:
             owned.append(client)
         else:
             n = self.workers or 2
-            cluster = LocalCluster(n_workers=n, threads_per_worker=1, processes=True, dashboard_address=None,
-                                   silence_logs=logging.ERROR)  # fmt: skip
+            cluster = local_cluster(n)
             owned.append(cluster)
             client = Client(cluster)
             owned.insert(0, client)
