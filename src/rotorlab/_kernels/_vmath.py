@@ -33,13 +33,9 @@ Cody–Waite reduction ``r + rr = x - k pi/2``, ``k = round(2 x / pi)``, with pi
 26-bit parts and a 53-bit tail so that every product ``k * part`` is exact for ``|k| <= 2^26 + 1``;
 the subtractions are Knuth's TwoSum, so ``r + rr`` is the reduced argument to about 1e-30
 absolute. Then the minimax polynomials of fdlibm's ``__kernel_sin``/``__kernel_cos`` on
-``[-pi/4, pi/4]`` with the tail ``rr``, and the quadrant ``k mod 4`` applied by selects. Called
-on its own, no fused multiply-add is used beyond the explicit ``fma`` calls (numba does not
-contract ``a*b + c`` without ``fastmath``), so the result is the same bit for bit whether the code
-is vectorised or not, on any IEEE machine. Inlined into a model kernel that the integrator's
-drivers compile (with contraction, :data:`rotorlab.integrate._core.CONTRACT`), its ``a*b + c``
-are fused too, in both drivers alike (the accuracy bounds above are for the uncontracted code;
-contraction removes roundings).
+``[-pi/4, pi/4]`` with the tail ``rr``, and the quadrant ``k mod 4`` applied by selects. No fused
+multiply-add is used (numba does not contract ``a*b + c`` without ``fastmath``), so the result is
+the same bit for bit whether the code is vectorised or not, on any IEEE machine.
 
 The polynomial coefficients are those of fdlibm (``k_sin.c``, ``k_cos.c``), which carry this notice:
 

@@ -1,6 +1,6 @@
 """Compiled core of the integrator: one Dormand–Prince 5(4) trajectory with events and resets.
 
-Everything here is ``@njit(cache=True, nogil=True, fastmath=CONTRACT)`` and works on float64 arrays only. The
+Everything here is ``@njit(cache=True, nogil=True)`` and works on float64 arrays only. The
 model's kernels are the module globals ``rhs``, ``events`` and ``reset`` bound by the three
 import lines marked ``# @kernel``: :mod:`rotorlab.integrate._codegen` compiles a copy of this
 module per model with those lines pointing at the model's kernels (so numba can cache it across
@@ -56,14 +56,6 @@ ACT_STOP = 1
 ACT_COUNT = 2
 ACT_OFF = 3
 
-# Floating-point flags of every compiled function of both drivers and of the model's kernels as
-# they compile them: contraction of a * b + c into one fused multiply-add (one rounding instead of
-# two), nothing else (no reassociation, no "no NaN" assumption: results stay those of IEEE
-# arithmetic in the written order). Both drivers compile the same expressions with the same
-# flags, so they agree bit for bit (tests/unit/test_lanes.py, test_lanes_events.py); results
-# differ from an uncontracted build by round-off (bench/README.md).
-CONTRACT = {"contract"}  # a set: numba takes a set (not a frozenset) or a dict
-
 # indices into the per-trajectory stats vector
 ST_NFEV = 0
 ST_NACCEPT = 1
@@ -82,15 +74,7 @@ def _own(kernel):
     """
     opts = {k: v for k, v in kernel.targetoptions.items() if k != "nopython"}
     opts["cache"] = False
-    opts["fastmath"] = _with_contract(opts.get("fastmath"))
     return njit(**opts)(kernel.py_func)
-
-
-def _with_contract(fastmath):
-    """A kernel's own ``fastmath`` flags plus ``contract`` (the drivers' :data:`CONTRACT`)."""
-    if fastmath is True:
-        return True
-    return set(fastmath or ()) | set(CONTRACT)
 
 
 def with_kernels(fn, namespace):
@@ -118,7 +102,7 @@ _MAX_RESETS_WITHOUT_PROGRESS = 1000
 _PROBES = (1e-7, 1e-10, 1e-13)  # step fractions probing an event function that starts at zero
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _dense(y, h, k1, k3, k4, k5, k6, k7, s, out):
     """State at ``t + s h`` from the quartic continuous extension of the last step."""
     s2 = s * s
@@ -136,7 +120,7 @@ def _dense(y, h, k1, k3, k4, k5, k6, k7, s, out):
         )
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _save_until(t_end, y_end, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, buf):
     """Write the states at the save times in (t, t_end] of the last step; return the next index.
 
@@ -156,25 +140,18 @@ def _save_until(t_end, y_end, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_ou
     return i_save
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
-def _rms_scaled(v, a, b, atol, rtol, n_cont, k7):
-    """RMS over the continuous components of ``v / (atol + rtol max(|a|, |b|))``.
-
-    Each square is ``q * q + k7[i] * 0.0``, the lane driver's expression: with contraction it
-    becomes ``fma(q, q, 0.0)`` (``q * q`` rounded once) in both drivers, where ``acc += q * q``
-    would fuse into ``fma(q, q, acc)`` here only. ``k7[i] * 0.0`` is 0 for a finite ``k7[i]``.
-    """
+@njit(cache=True, nogil=True)
+def _rms_scaled(v, a, b, atol, rtol, n_cont):
+    """RMS over the continuous components of ``v / (atol + rtol max(|a|, |b|))``."""
     acc = 0.0
     for i in range(n_cont):
-        ya = abs(a[i])
-        yb = abs(b[i])
-        sc = atol[i] + rtol * (yb if yb > ya else ya)
+        sc = atol[i] + rtol * max(abs(a[i]), abs(b[i]))
         q = v[i] / sc
-        acc += q * q + k7[i] * 0.0
+        acc += q * q
     return math.sqrt(acc / n_cont)
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _all_finite(v):
     for i in range(v.shape[0]):
         if not math.isfinite(v[i]):
@@ -182,7 +159,7 @@ def _all_finite(v):
     return True
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _crosses(ga, gb, direction):
     """True if the event function changes sign from ``ga`` to ``gb`` in the allowed direction."""
     if direction <= 0 and ga > 0.0 and gb <= 0.0:
@@ -192,7 +169,7 @@ def _crosses(ga, gb, direction):
     return False
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _g_at(k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zero):
     """Event function ``k`` at fraction ``s`` of the step (divided by ``s`` if ``from_zero``)."""
     _dense(y, h, k1, k3, k4, k5, k6, k7, s, ybuf)
@@ -200,7 +177,7 @@ def _g_at(k, p, t, h, y, k1, k3, k4, k5, k6, k7, s, ybuf, gbuf, from_zero):
     return gbuf[k] / s if from_zero else gbuf[k]
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _locate(k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, gb, ybuf, gbuf, from_zero):
     """Locate the zero of event ``k`` in the step (Illinois method on the dense output).
 
@@ -241,7 +218,7 @@ def _locate(k, p, t, h, y, k1, k3, k4, k5, k6, k7, ga, gb, ybuf, gbuf, from_zero
     return sb
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _events_in_step(
     n_ev, ev_dir, ev_act, p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
     g_old, g_new, gbuf, s_ev, ybuf, ev_count, rec_t, rec_k, nrec,
@@ -317,7 +294,7 @@ def _events_in_step(
     return s_cut, k_cut, nrec, n_found
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _resolve_cut(
     k_cut, s_cut, act, p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
     ts, i_save, ys_out, ybuf, ytmp, g_old, t_last_reset, resets_without_progress,
@@ -368,7 +345,7 @@ def _resolve_cut(
     return SUCCESS, te, i_save, t_last_reset, resets_without_progress, 1
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     """Hairer's initial step heuristic (as SciPy's ``select_initial_step``, order 5 method)."""
     n = y0.shape[0]
@@ -401,7 +378,7 @@ def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     return min(100.0 * h0, h1, interval)
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def integrate_one(
     n_ev, y0, p, t0, t1, ts, rtol, atol, n_cont, first_step, max_step,
     max_steps, ev_dir, ev_act, ys_out, y_final, ev_count, rec_t, rec_k, stats,
@@ -542,7 +519,7 @@ def integrate_one(
                 err[i] = h * (
                     E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]
                 )
-            err_norm = _rms_scaled(err, y, ynew, atol, rtol, n_cont, k7)
+            err_norm = _rms_scaled(err, y, ynew, atol, rtol, n_cont)
             if not math.isfinite(err_norm) or not _all_finite(k7):
                 last_nonfinite = True
                 habs *= MIN_FACTOR
@@ -603,7 +580,7 @@ def integrate_one(
     return status, t
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT, parallel=True)
+@njit(cache=True, nogil=True, parallel=True)
 def integrate_ensemble(inputs, settings, event_table, outputs, n_threads):
     """Integrate ``outputs.STATUS.shape[0]`` trajectories in parallel (see :func:`integrate_one`).
 
@@ -617,14 +594,14 @@ def integrate_ensemble(inputs, settings, event_table, outputs, n_threads):
         _one_of_many(i, inputs, settings, event_table, outputs)
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def integrate_serial(inputs, settings, event_table, outputs, n_threads):
     """Same as :func:`integrate_ensemble` on the calling thread."""
     for i in range(outputs.STATUS.shape[0]):
         _one_of_many(i, inputs, settings, event_table, outputs)
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _one_of_many(i, inputs, settings, ev, out):
     i = np.int64(i)  # the prange index may arrive unsigned; mixing it with int64 gives float64
     iy = i if inputs.Y0.shape[0] > 1 else np.int64(0)

@@ -72,7 +72,7 @@ from rotorlab.models._base import no_reset as reset  # @kernel reset
 from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
 from rotorlab.integrate import _core
 from rotorlab.integrate._core import (
-    ACT_OFF, CONTRACT, MAX_STEPS, NONFINITE, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NREJECT, STEP_UNDERFLOW,
+    ACT_OFF, MAX_STEPS, NONFINITE, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NREJECT, STEP_UNDERFLOW,
     SUCCESS, _all_finite, _dense, _own, with_kernels,
 )  # fmt: skip
 from rotorlab.integrate._tableau import (
@@ -142,7 +142,7 @@ _DONE = -2
 # evaluations (start of a trajectory) use it too, so that everything this module computes is
 # compiled here: numba's cache of the kernel's own dispatcher does not notice a change in a
 # function the kernel inlines (e.g. sincos), the generated copy's file name does (rotorlab.integrate._codegen).
-_rhs_inline = njit(inline="always", nogil=True, error_model="numpy", fastmath=CONTRACT)(rhs.py_func)
+_rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func)
 
 # Events and resets: the scalar driver's own functions (rotorlab.integrate._core), bound to this
 # copy's kernels, called for one lane at a time after its accepted step. Same source, same
@@ -152,7 +152,7 @@ _EV.update(rhs=_own(rhs), events=_own(events), reset=_own(reset))
 for _name in ("_g_at", "_locate", "_events_in_step", "_resolve_cut"):
     _EV[_name] = with_kernels(getattr(_core, _name), _EV)
 _events_at = _EV["events"]
-_events_inline = njit(inline="always", nogil=True, error_model="numpy", fastmath=CONTRACT)(events.py_func)
+_events_inline = njit(inline="always", nogil=True, error_model="numpy")(events.py_func)
 _events_in_step = _EV["_events_in_step"]
 _resolve_cut = _EV["_resolve_cut"]
 del _name
@@ -209,7 +209,7 @@ def _fetch_add(typingctx, counter, delta):
 # sincos's polynomial) in registers or hoists them out of the step loop instead of reloading
 # them in every call. Measured at one thread, 256 trajectories of the benchmark: 0.234 -> 0.215
 # CPU-s on its kernel, 0.83 -> 0.73 on jeffcott_balls in the rotating frame (same bits).
-@njit(cache=True, nogil=True, fastmath=CONTRACT, error_model="numpy", inline="always")
+@njit(cache=True, nogil=True, error_model="numpy", inline="always")
 def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
     """``K[:, l] = rhs(t[l], Y[:, l], p[:, l])`` for every lane, rows of the workspace ``W``.
 
@@ -227,7 +227,7 @@ def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
         )  # fmt: skip
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy")
 def _events_lanes(W, row_t, row_y, G, PL, nl, ne):
     """``G[:, l] = events(t[l], Y[:, l], p[:, l])`` for every lane (``G`` lane-interleaved, ``ne``
     rows): the event functions at the end of every lane's step in one loop, which vectorises
@@ -239,13 +239,13 @@ def _events_lanes(W, row_t, row_y, G, PL, nl, ne):
         )  # fmt: skip
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy")
 def _probe(W, PL, nl):
     """One stage's kernel call as the worker makes it (constant rows): see :func:`rotorlab.integrate._drivers.is_vectorised`."""
     _rhs_lanes(W, _tt, _T, _K2, PL, nl)
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     """Hairer's initial step; arithmetic identical to ``_core._initial_step`` (kept in sync by
     ``tests/unit/test_lanes.py``, which compares both drivers bit for bit)."""
@@ -279,7 +279,7 @@ def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     return min(100.0 * h0, h1, interval)
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT, inline="always", error_model="numpy")
+@njit(cache=True, nogil=True, inline="always", error_model="numpy")
 def _prologue(W, lane, max_step, max_steps):
     """Start of a step attempt in one lane (as integrate_one's loops); sets the verdict ``_code``.
 
@@ -318,7 +318,7 @@ def _prologue(W, lane, max_step, max_steps):
     W[_habs + lane] = abs(h) if live else habs
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _min_steps(W, Wi, nl):
     """``W[_ms + l] = 10 * abs(np.nextafter(t, inf) - t)`` for every lane, vectorised.
 
@@ -333,7 +333,7 @@ def _min_steps(W, Wi, nl):
         W[_ms + lane] = 10.0 * abs(W[_ms + lane] - W[_t + lane])
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT, error_model="numpy")  # no ZeroDivisionError branch in the loops
+@njit(cache=True, nogil=True, error_model="numpy")  # no ZeroDivisionError branch in the loops
 def _worker(counter, inputs, settings, event_table, outputs):
     """Integrate trajectories taken from ``counter`` until none is left (one thread)."""
     Y0, P, T1, TS, atol = inputs
@@ -624,7 +624,7 @@ def _worker(counter, inputs, settings, event_table, outputs):
             W[_K1 + k] = k7 if a else k1
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _save(W, lane, j, TS, YS, i_save, ybuf):
     """Write the save points of trajectory ``j`` in (t, tn] of the accepted step of ``lane``."""
     n = N_STATE
@@ -650,7 +650,7 @@ def _save(W, lane, j, TS, YS, i_save, ybuf):
     i_save[lane] = s
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def _finish(W, lane, j, status, n_events, YF, STATUS, TEND, STATS):
     """Write the outputs of trajectory ``j``, which ends in ``lane``."""
     for i in range(N_STATE):
@@ -663,7 +663,7 @@ def _finish(W, lane, j, status, n_events, YF, STATUS, TEND, STATS):
     STATS[j, ST_NEVENTS] = n_events
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT, parallel=True)
+@njit(cache=True, nogil=True, parallel=True)
 def integrate_lanes(inputs, settings, event_table, outputs, n_threads):
     """Integrate ``outputs.STATUS.shape[0]`` trajectories, ``LANES`` at a time on each of ``n_threads``.
 
@@ -679,7 +679,7 @@ def integrate_lanes(inputs, settings, event_table, outputs, n_threads):
         _worker(counter, inputs, settings, event_table, outputs)
 
 
-@njit(cache=True, nogil=True, fastmath=CONTRACT)
+@njit(cache=True, nogil=True)
 def integrate_lanes_serial(inputs, settings, event_table, outputs, n_threads):
     """Same as :func:`integrate_lanes` on the calling thread (``n_threads`` is ignored)."""
     counter = np.zeros(1, dtype=np.int64)
