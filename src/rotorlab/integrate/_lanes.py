@@ -138,9 +138,9 @@ _DONE = -2
 
 # The model's kernel inlined at numba-IR level: LLVM does not inline a separately compiled
 # dispatcher of this size, and a call is opaque to the loop vectoriser. error_model="numpy"
-# removes the division-by-zero branches (an exit from the loop) of the inlined code. The scalar
-# evaluations (start of a trajectory) use it too, so that everything this module computes is
-# compiled here: numba's cache of the kernel's own dispatcher does not notice a change in a
+# removes the division-by-zero branches (an exit from the loop) of the inlined code. Everything
+# this module computes is compiled here (the scalar evaluations use _core's own copy, _rhs_once
+# below, compiled without a cache of its own): numba's cache of the kernel's own dispatcher does not notice a change in a
 # function the kernel inlines (e.g. sincos), the generated copy's file name does (rotorlab.integrate._codegen).
 _rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func)
 
@@ -152,6 +152,11 @@ _EV.update(rhs=_own(rhs), events=_own(events), reset=_own(reset))
 for _name in ("_g_at", "_locate", "_events_in_step", "_resolve_cut"):
     _EV[_name] = with_kernels(getattr(_core, _name), _EV)
 _events_at = _EV["events"]
+# The scalar evaluations (a trajectory's first slope, the initial step's trial slope) call the
+# scalar driver's own compiled kernel (one compiled copy, the same bits as _core's): inlining
+# them would make numba type and LLVM optimise the kernel twice more per driver for two calls
+# per trajectory.
+_rhs_once = _EV["rhs"]
 _events_inline = njit(inline="always", nogil=True, error_model="numpy")(events.py_func)
 _events_in_step = _EV["_events_in_step"]
 _resolve_cut = _EV["_resolve_cut"]
@@ -266,7 +271,7 @@ def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
     h0 = min(h0, interval)
     for i in range(n):
         ytmp[i] = y0[i] + h0 * f0[i]
-    _rhs_inline(t0 + h0, ytmp, p, f1)
+    _rhs_once(t0 + h0, ytmp, p, f1)
     d2 = 0.0
     for i in range(n_cont):
         sc = atol[i] + abs(y0[i]) * rtol
@@ -422,7 +427,7 @@ def _worker(counter, inputs, settings, event_table, outputs):
                         YS[j, s, i] = ybuf[i]
                     s += 1
                 i_save[lane] = s
-                _rhs_inline(t0, ybuf, P[ip], fbuf)
+                _rhs_once(t0, ybuf, P[ip], fbuf)
                 nfev = 1.0
                 if has_ev:
                     _events_at(t0, ybuf, P[ip], g_old[lane * ne : (lane + 1) * ne])
@@ -468,42 +473,49 @@ def _worker(counter, inputs, settings, event_table, outputs):
             W[_H + lane] = W[_h + lane]
         for k in range(L, n * nl):
             W[_H + k] = W[_H + k - L]
-        for k in range(n * nl):
-            W[_T + k] = W[_Y + k] + W[_H + k] * (A21 * W[_K1 + k])
-        for lane in range(nl):
-            W[_tt + lane] = W[_t + lane] + C2 * W[_h + lane]
-        _rhs_lanes(W, _tt, _T, _K2, PL, nl)
-        for k in range(n * nl):
-            W[_T + k] = W[_Y + k] + W[_H + k] * (A31 * W[_K1 + k] + A32 * W[_K2 + k])
-        for lane in range(nl):
-            W[_tt + lane] = W[_t + lane] + C3 * W[_h + lane]
-        _rhs_lanes(W, _tt, _T, _K3, PL, nl)
-        for k in range(n * nl):
-            W[_T + k] = W[_Y + k] + W[_H + k] * (
-                A41 * W[_K1 + k] + A42 * W[_K2 + k] + A43 * W[_K3 + k]
-            )
-        for lane in range(nl):
-            W[_tt + lane] = W[_t + lane] + C4 * W[_h + lane]
-        _rhs_lanes(W, _tt, _T, _K4, PL, nl)
-        for k in range(n * nl):
-            W[_T + k] = W[_Y + k] + W[_H + k] * (
-                A51 * W[_K1 + k] + A52 * W[_K2 + k] + A53 * W[_K3 + k] + A54 * W[_K4 + k]
-            )
-        for lane in range(nl):
-            W[_tt + lane] = W[_t + lane] + C5 * W[_h + lane]
-        _rhs_lanes(W, _tt, _T, _K5, PL, nl)
-        for k in range(n * nl):
-            W[_T + k] = W[_Y + k] + W[_H + k] * (
-                A61 * W[_K1 + k] + A62 * W[_K2 + k] + A63 * W[_K3 + k] + A64 * W[_K4 + k]
-                + A65 * W[_K5 + k]
-            )  # fmt: skip
-        _rhs_lanes(W, _tn, _T, _K6, PL, nl)
-        for k in range(n * nl):
-            W[_YN + k] = W[_Y + k] + W[_H + k] * (
-                B1 * W[_K1 + k] + B3 * W[_K3 + k] + B4 * W[_K4 + k] + B5 * W[_K5 + k]
-                + B6 * W[_K6 + k]
-            )  # fmt: skip
-        _rhs_lanes(W, _tn, _YN, _K7, PL, nl)
+        # The six stages in one loop with a single call site of the kernel: inlined once, so numba
+        # types and LLVM optimises the kernel once per driver, not once per stage (six literal
+        # row offsets made six copies: ~6x the compile time of a lane driver). Each stage's
+        # argument is the same expression as before (same bits); the stage index is uniform
+        # over the lanes, so the branches cost nothing per lane.
+        for s in range(6):
+            if s == 0:
+                for k in range(n * nl):
+                    W[_T + k] = W[_Y + k] + W[_H + k] * (A21 * W[_K1 + k])
+                for lane in range(nl):
+                    W[_tt + lane] = W[_t + lane] + C2 * W[_h + lane]
+            elif s == 1:
+                for k in range(n * nl):
+                    W[_T + k] = W[_Y + k] + W[_H + k] * (A31 * W[_K1 + k] + A32 * W[_K2 + k])
+                for lane in range(nl):
+                    W[_tt + lane] = W[_t + lane] + C3 * W[_h + lane]
+            elif s == 2:
+                for k in range(n * nl):
+                    W[_T + k] = W[_Y + k] + W[_H + k] * (
+                        A41 * W[_K1 + k] + A42 * W[_K2 + k] + A43 * W[_K3 + k]
+                    )
+                for lane in range(nl):
+                    W[_tt + lane] = W[_t + lane] + C4 * W[_h + lane]
+            elif s == 3:
+                for k in range(n * nl):
+                    W[_T + k] = W[_Y + k] + W[_H + k] * (
+                        A51 * W[_K1 + k] + A52 * W[_K2 + k] + A53 * W[_K3 + k] + A54 * W[_K4 + k]
+                    )
+                for lane in range(nl):
+                    W[_tt + lane] = W[_t + lane] + C5 * W[_h + lane]
+            elif s == 4:
+                for k in range(n * nl):
+                    W[_T + k] = W[_Y + k] + W[_H + k] * (
+                        A61 * W[_K1 + k] + A62 * W[_K2 + k] + A63 * W[_K3 + k] + A64 * W[_K4 + k]
+                        + A65 * W[_K5 + k]
+                    )  # fmt: skip
+            else:
+                for k in range(n * nl):
+                    W[_YN + k] = W[_Y + k] + W[_H + k] * (
+                        B1 * W[_K1 + k] + B3 * W[_K3 + k] + B4 * W[_K4 + k] + B5 * W[_K5 + k]
+                        + B6 * W[_K6 + k]
+                    )  # fmt: skip
+            _rhs_lanes(W, _tn if s >= 4 else _tt, _YN if s == 5 else _T, _K2 + s * NL, PL, nl)
 
         # ---- error norm (RMS over the continuous states, as _core._rms_scaled) --------------
         # Summed over the states in the same order, by a recurrence at distance L (the last
