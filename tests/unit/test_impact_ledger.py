@@ -76,14 +76,14 @@ def test_the_ledger_closes(mass, restitution, friction, t_end):
         assert yf[k.E_FRIC] > 0.0 and yf[k.W_DRIVE] > 0.0
 
 
-@pytest.mark.parametrize(("mass", "t_stop"), [(3.0, 0.1621), (50.0, 0.0997)])
-def test_restitution_one_rolls_into_the_backward_whirl_without_creating_energy(mass, t_stop):
+@pytest.mark.parametrize("mass", [3.0, 50.0])
+def test_restitution_one_rolls_into_the_backward_whirl_without_creating_energy(mass):
     """Issue 16's restitution-1 cases (3 kg and 50 kg stones). Seed 001's impulse (friction
     always along -e_perp) pushed the backward whirl past rolling: 1.4 million impacts, 2e6 m
     through the housing. On the shared law the friction impulse sticks once the slip of P
     vanishes: P rolls on the housing (the dry-friction backward whirl of Black 1968 and Crandall
-    1990), where the run stops, flagged. The vibration energy there (about 1.3e7 J) is below what
-    the drive supplied through friction less its heat: no energy created, no penetration; the
+    1990), where the run stops, flagged. The vibration energy there (1.3e7 J, at least the 2.3e6 J
+    that rolling takes) is below what the drive supplied through friction less its heat: no energy created, no penetration; the
     scalar and lane drivers give the same bits, the same status and the same (empty) note."""
     model = krasnov_crusher(stone_mass=mass, restitution=1.0).with_stones(0.2, 0)
     lanes = _run(model, 0.2)
@@ -91,7 +91,9 @@ def test_restitution_one_rolls_into_the_backward_whirl_without_creating_energy(m
     assert np.array_equal(lanes.y_final, scalar.y_final) and np.array_equal(lanes.t_final, scalar.t_final)
     assert lanes.status.tolist() == scalar.status.tolist() == [Status.EVENT_STOP] and lanes.notes == scalar.notes == ("",)
     yf = lanes.y_final[0]
-    assert yf[k.WHIRL] == 1.0 and lanes.t_final[0] == pytest.approx(t_stop, abs=1e-4)
+    # stopped within the 0.2 s (0.162 s after 1124 impacts with 3 kg, 0.0997 s after 322 with 50 kg
+    # when written; the onset after hundreds of grazing impacts moves with round-off, so not pinned)
+    assert yf[k.WHIRL] == 1.0 and lanes.t_final[0] < 0.2 and 10 < yf[k.N_ALL] < 1e5
     p = model.to_array()
     w = model.gap_vector(yf)
     e1, e2 = w / np.hypot(*w)
@@ -99,7 +101,10 @@ def test_restitution_one_rolls_into_the_backward_whirl_without_creating_energy(m
     assert k.whirl_speed(yf, p) < -model.housing.rolling_whirl_speed(model.rotor.spin_speed)  # backward
     e, led, scale = _ledger(model, yf)
     gain = e - yf[k.E_0]
-    assert 1e7 < gain < yf[k.W_ST] + yf[k.W_DRIVE] - yf[k.E_FRIC]
+    # rolling: P's vibration speed is r_P omega0 = 100 m/s backwards, which takes at least the
+    # kinetic energy (r_P omega0)^2 / (2 w_tt) (w_tt: P's tangential Delassus entry) = 2.3e6 J
+    v_roll = model.housing.radius * model.rotor.spin_speed
+    assert 0.999 * v_roll**2 / (2.0 * k.delassus(p)[2]) < gain < yf[k.W_ST] + yf[k.W_DRIVE] - yf[k.E_FRIC]
     assert abs(e - led) < 1e-6 * scale
     assert yf[k.PEN_MAX] < 1e-12
 
@@ -122,3 +127,23 @@ def test_the_check_fails_a_run_that_creates_energy():
         assert f"after {int(yf[k.N_ALL])} impacts" in note
     assert f"the stones supplied {yf[k.W_ST]:.4g} J" in notes[1] and "J created (tolerance" in notes[1]
 
+
+
+def test_a_failed_run_is_shown_failed_in_the_report_and_the_sweep():
+    """A run the integrator cannot finish (stones of 1e300 kg overflow the state at the first
+    stone, t = 0.035 s) is labelled failed with the integrator's message in the run table; in a
+    sweep it is counted in the 'failed' column, in no regime, and left out of the medians."""
+    from rotorlab.analyses import impact_run, impact_sweep, sweep_summary
+    from rotorlab.report._impacts import impact_section
+
+    ds = impact_run(krasnov_crusher(stone_mass=1e300), t_end=0.1, n_save=10)
+    assert ds.attrs["regime"] == "failed" and int(ds.status) == Status.NONFINITE
+    html = impact_section(ds)
+    assert "Failed: state or derivative became non-finite" in html
+    sw = impact_sweep(krasnov_crusher(), [0.7, 1e300], n_sequences=2, t_end=0.1, threads=1)
+    rows = sweep_summary(sw)["rows"]
+    assert rows[0]["regimes"] == {"none": 2, "rebounds": 0, "sliding": 0, "backward_whirl": 0, "failed": 0}
+    assert rows[1]["regimes"]["failed"] == 2 and sum(rows[1]["regimes"].values()) == 2
+    assert rows[0]["impacts_median"] == 0 and rows[1]["impacts_median"] is None
+    table = impact_section(sw)
+    assert "<th>failed</th>" in table
