@@ -13,6 +13,7 @@ from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -21,7 +22,6 @@ __all__ = ["Findings", "simulation_findings", "basin_findings", "steady_findings
            "linear_findings"]  # fmt: skip
 
 Rows = Sequence[Mapping[str, Any]]
-_RPM = 60.0 / (2.0 * math.pi)
 _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
 
 
