@@ -10,6 +10,7 @@ import numpy as np
 import pytest
 
 from rotorlab.analyses import run_analysis
+from rotorlab.analyses._rub import rub_prediction
 from rotorlab.contact import JeffcottRub, RubRotor, full_rub, no_rub_radius
 from rotorlab.contact._regimes import RubRegime, RubRegimes
 from rotorlab.io import load_case, parse_case
@@ -80,8 +81,6 @@ def _machine(p: RubRotor, speed: float) -> Machine:
 
 
 def test_a_speed_by_clearance_map_of_the_machine_puts_each_regime_where_the_closed_forms_do():
-    from rotorlab.analyses._rub import rub_prediction
-
     speeds, clearances = [0.5, 1.5, 1.5], [1.0, 1.0, 1.2]
     points = Points({"spin_speed": speeds, "clearance": clearances}, dim="point")
     ds = run_sweep(Sweep(RubRegimes(_machine(RUB, 1.5), t_end=300.0, window=40.0), points=points))
@@ -111,3 +110,45 @@ def test_a_machine_map_names_its_coordinates_and_refuses_others():
         Sweep(RubRegimes(m, t_end=2.0, window=1.0), points=Points({"eccentricity": [1.0]}))
     with pytest.raises(ValueError, match="RubRegimes.model must be a model with a clearance"):
         RubRegimes(replace(m, clearances=()), t_end=2.0, window=1.0)
+
+
+# the machine case over spin speed x unbalance: below the critical speed (316 rad/s) no rub branch
+# coexists with the no-rub orbit, so every cell has one closed-form regime; polar inertia 0 (no
+# gyroscopic coupling) gives the kernel layout the map above already compiled
+MAP_CASE = MACHINE_CASE.replace('polar_inertia = "0.1 kg*m^2"', 'polar_inertia = "0 kg*m^2"') + """
+[[analysis]]
+type = "rub-map"
+name = "unbalance-map"
+spin_speed = ["200 rad/s", "300 rad/s", 3]
+unbalance = ["2 kg*mm", "18 kg*mm", 9]
+t_end = "1 s"
+window = "0.1 s"
+samples = 100
+"""
+
+
+def test_a_speed_by_unbalance_map_changes_regime_at_the_grazing_unbalance_and_rubs_on_the_closed_form_branch():
+    case = parse_case(MAP_CASE)
+    ds = run_analysis(case.model, case.analysis("unbalance-map"))
+    m, k, c, delta = 10.0, 1e6, 316.227766, 1e-3
+    rotor = RubRotor(mass=m, stiffness=k, clearance=delta, damping=c, stator_stiffness=1e7, friction=0.02,
+                     rotor_radius=0.05)  # fmt: skip
+    assert ds.regime.shape == (3, 9) and np.all(ds.status.values == 0)
+    units = ds.unbalance.values
+    for i, w in enumerate(ds.spin_speed.values):
+        # grazing: the no-rub orbit U w^2 / |k - m w^2 + i c w| (Jeffcott) equals the clearance
+        grazing = delta * abs(k - m * w**2 + 1j * c * w) / w**2
+        assert ds.grazing_boundary.values[i] == pytest.approx(grazing, rel=1e-9)
+        labels = [RubRegime(int(r)) for r in ds.regime.values[i]]
+        assert labels == [RubRegime.NO_CONTACT if u < grazing else RubRegime.FULL_RUB for u in units], (w, labels)
+        for j, u in enumerate(units):
+            allowed = rub_prediction(replace(rotor, eccentricity=u / m), float(w))["regimes"]
+            assert [labels[j].label] == allowed
+            if labels[j] == RubRegime.FULL_RUB:  # the rub settles on the closed-form branch
+                (branch,) = full_rub(replace(rotor, eccentricity=u / m), float(w))
+                assert ds.peak_force.values[i, j] == pytest.approx(branch.normal_force, rel=2e-3), (w, u)
+                assert ds.whirl_ratio.values[i, j] == pytest.approx(1.0, abs=1e-3)
+            else:
+                assert ds.peak_force.values[i, j] == 0.0
+    # the boundary falls between cells at each speed, and moves with speed as the closed form does
+    assert [int((ds.regime.values[i] == RubRegime.NO_CONTACT).sum()) for i in range(3)] == [7, 3, 0]
