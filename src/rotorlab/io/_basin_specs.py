@@ -385,18 +385,12 @@ class WorkingPointSpec(AbstractAnalysisSpec):
     """
 
     type: Literal["working-point"] = "working-point"
+    model_types: ClassVar[tuple[str, ...]] = ("toroidal_ball",)
     psi_span: quantity("angle", gt=0, le=math.pi) = Field(math.pi, description="half-width of the psi range (rad)")
     points: integer(ge=3) = Field(361, description="points of the restoring-force curve")
     start: tuple[quantity("angle"), quantity("angle"), quantity("angular_speed"), quantity("angular_speed")] = Field(
         (2.0, 0.0, 0.0, 0.0), description="[psi, alpha, dpsi, dalpha] of the phase-portrait trajectory (rad, rad/s)")
     t_end: quantity("time", gt=0) = Field(10.0, description="simulated time of the trajectory (s)")
-
-    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Only for a toroidal_ball model."""
-        if getattr(model, "type", None) != "toroidal_ball":
-            return [Issue(("type",), f"needs a toroidal_ball model, not {getattr(model, 'type', None)!r}",
-                          self.type)]  # fmt: skip
-        return []
 
     def describe(self, model: AbstractModelSpec) -> str:
         """One line."""

@@ -18,7 +18,7 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, ValidationInfo, WithJsonSchema, field_validator, model_validator
 
@@ -160,6 +160,9 @@ class ImpactRotorSpec(AbstractModelSpec):
 class _ImpactAnalysis(AbstractAnalysisSpec):
     """Common keys of the impact analyses: duration, seed, tolerances and parameter overrides."""
 
+    model_types: ClassVar[tuple[str, ...]] = ("impact_rotor",)
+    wrong_model_message: ClassVar[str] = "needs an impact_rotor model (this case has '{kind}')"
+
     t_end: quantity("time", gt=0) = Field(10.0, description="duration of a run (s)")
     seed: integer(ge=0) = Field(0, description="seed of the (first) stone sequence (-)")
     stone_mass: quantity("mass", gt=0) | None = Field(None, description="stone mass of this analysis (kg)")
@@ -178,12 +181,6 @@ class _ImpactAnalysis(AbstractAnalysisSpec):
         keys = ("stone_mass", "interval", "internal_friction", "restitution", "friction")
         return {k: getattr(self, k) for k in keys if getattr(self, k) is not None}
 
-    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check that the model is an ``impact_rotor``."""
-        if getattr(model, "type", None) != "impact_rotor":
-            return [Issue(("type",), f"needs an impact_rotor model (this case has '{getattr(model, 'type', '?')}')",
-                          self.type)]  # fmt: skip
-        return []
 
 
 class ImpactsSpec(_ImpactAnalysis):

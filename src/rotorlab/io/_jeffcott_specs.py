@@ -387,6 +387,8 @@ class SimulateSpec(AbstractAnalysisSpec):
     )
 
     type: Literal["simulate"] = "simulate"
+    #: A rotor with balls: the jeffcott_balls start-ups, or the machine's own simulate.
+    model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls", "machine")
     speed_ratio: quantity("dimensionless", gt=0) | None = Field(
         None, description="speed as a multiple of the critical speed (-)"
     )
@@ -454,8 +456,9 @@ class SimulateSpec(AbstractAnalysisSpec):
         return tuple(itertools.product(angles, repeat=n_balls))
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check ball-angle rows against the number of balls and that a spin speed exists."""
-        issues = model.race_issues(self.races)
+        """Check the model type, ball-angle rows against the number of balls and that a spin
+        speed exists."""
+        issues = super().case_issues(model) or model.race_issues(self.races)
         if issues:
             return issues
         n = model.balls_in(self.races)
