@@ -73,8 +73,11 @@ def rub_map_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
     a = ds.attrs
     numbers = ()
     if "closed_form_decided" in a:
+        rest = int(a["points"]) - int(a["closed_form_decided"])
         numbers = (f"at the {a['closed_form_decided']} points where the closed forms allow one regime, the map "
-                   f"shows it at {a['closed_form_agree']}",)  # fmt: skip
+                   f"shows it at {a['closed_form_agree']}"
+                   + (f"; at the other {rest} they allow several (coexistence: the map shows where the runs "
+                      "land) or none, or the run failed" if rest else ""),)  # fmt: skip
     return Findings("regimes found: " + "; ".join(f"{r['regime']} ({100 * r['share']:.0f} %)" for r in rows), numbers)
 
 
