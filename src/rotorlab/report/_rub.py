@@ -64,7 +64,10 @@ def rub_map_section(ds: xarray.Dataset, rows: Rows) -> str:
              f"{r['spin_speed_min']:.4g} – {r['spin_speed_max']:.4g}",
              f"{r[f'{axis}_min']:.4g} – {r[f'{axis}_max']:.4g}"] for r in rows]  # fmt: skip
     head = (f"<p>{ds.attrs['points']} points over spin speed x {axis}; the dashed line of the map is "
-            "where the closed-form no-rub orbit just reaches the clearance (contact begins beyond it).</p>")
+            "where the closed-form no-rub orbit just reaches the clearance: on its contact side no orbit clear of "
+            "the stator exists. On its other side the rotor may still rub where a full-rub branch coexists with "
+            "the no-rub orbit (above the critical speed); there the map shows where the run from the common "
+            "start lands.</p>")
     return head + table(["regime", "points", "share", "spin speed (rad/s)", f"{axis} ({unit})"], body, numeric={1, 2})
 
 
