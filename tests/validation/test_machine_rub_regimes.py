@@ -9,13 +9,14 @@ from dataclasses import replace
 import numpy as np
 import pytest
 
-from rotorlab.analyses import run_analysis
+from rotorlab.analyses import run_analysis, summarize
 from rotorlab.analyses._rub import rub_prediction
 from rotorlab.contact import JeffcottRub, RubRotor, full_rub, no_rub_radius
 from rotorlab.contact._regimes import RubRegime, RubRegimes
 from rotorlab.io import load_case, parse_case
 from rotorlab.linear import LinearSystem
 from rotorlab.models import Clearance, ConstantSpeed, ElasticStator, Machine, Unbalance
+from rotorlab.report._rub import rub_findings
 from rotorlab.sweep import Points, Sweep, run_sweep
 
 RUB = RubRotor(mass=1.0, stiffness=1.0, clearance=1.0, damping=0.1, eccentricity=0.6, stator_stiffness=10.0,
@@ -62,7 +63,8 @@ window = "0.1 s"
 
 def test_the_rub_analysis_of_a_machine_case_gives_the_jeffcott_case_and_its_closed_form():
     machine = parse_case(MACHINE_CASE)
-    a = run_analysis(machine.model, machine.analyses[0]).attrs
+    ds = run_analysis(machine.model, machine.analyses[0])
+    a = ds.attrs
     ref = load_case("rub-jeffcott")
     b = run_analysis(ref.model, ref.analyses[0]).attrs
     assert a["status"] == 0 and a["regime"] == b["regime"] == RubRegime.FULL_RUB
@@ -71,6 +73,15 @@ def test_the_rub_analysis_of_a_machine_case_gives_the_jeffcott_case_and_its_clos
     assert a["mean_radius"] == pytest.approx(radius, rel=1e-4)
     assert a["peak_force"] == pytest.approx(b["peak_force"], rel=1e-6)
     assert a["whirl_ratio"] == pytest.approx(1.0, abs=1e-4)
+    # the report's box: the contact force beside its closed form, and the stability verdict from
+    # the critical friction (0.048 > 0.02: stable, and the run indeed stays on the branch)
+    verdict, radius_line, whirl_line, force_line, friction_line = (lambda f: (f.verdict, *f.numbers))(
+        rub_findings(ds, summarize(ds)))
+    assert verdict == "full rub (forward); closed forms allow: full rub (forward)"
+    assert force_line.startswith("contact normal force (peak): ") and force_line.endswith(" N")
+    assert a["friction"] < a["critical_friction"] == pytest.approx(0.0484, abs=5e-4)
+    assert friction_line.startswith("friction 0.02 is below the critical 0.048")
+    assert "full rub is stable" in friction_line
 
 
 def _machine(p: RubRotor, speed: float) -> Machine:
@@ -152,3 +163,7 @@ def test_a_speed_by_unbalance_map_changes_regime_at_the_grazing_unbalance_and_ru
                 assert ds.peak_force.values[i, j] == 0.0
     # the boundary falls between cells at each speed, and moves with speed as the closed form does
     assert [int((ds.regime.values[i] == RubRegime.NO_CONTACT).sum()) for i in range(3)] == [7, 3, 0]
+    assert ds.attrs["closed_form_decided"] == ds.attrs["closed_form_agree"] == 27
+    # the fine line the figure draws passes through the map's own grazing values
+    fine = ds.grazing_curve.sel(curve_speed=ds.spin_speed.values).values
+    assert np.array_equal(fine, ds.grazing_boundary.values) and ds.sizes["curve_speed"] >= 201

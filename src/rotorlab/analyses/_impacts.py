@@ -7,9 +7,10 @@ Regimes (per run)
 -----------------
 ``none``: no impact with an approach speed >= ``Housing.count_speed``; ``rebounds``: impacts,
 sliding contact for less than ``sliding_fraction`` (default 2 %) of the run; ``sliding``: sliding
-for at least that fraction; ``backward_whirl``: a sliding contact whirled backwards up to the
-rolling speed of the theory (:meth:`rotorlab.models.Housing.rolling_whirl_speed`), where the
-sliding law ends in the dry-friction backward whirl, or an impact's friction impulse stuck (the
+for at least that fraction; ``backward_whirl``: a sliding contact whirled backwards until the
+slip of P vanished (the theory's criterion; without tilt the rolling speed
+:meth:`rotorlab.models.Housing.rolling_whirl_speed`), where the sliding law ends in the
+dry-friction backward whirl, or an impact's friction impulse stuck (the
 slip of P stopped: P rolls on the housing, reached through impacts, e.g. with restitution 1), and
 the run was stopped there (its impact
 counts are those of the whole run: a sliding contact makes no impacts, so they do not depend on
