@@ -234,7 +234,8 @@ class Machine:
                 n_table=d.n_table if self.is_motor else 0,
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
                 clearance=self.clearances[0].kind if self.clearances else "",
-                friction=self.has_friction)
+                friction=self.has_friction,
+                tilt=any(np.any(self.tilt_matrix(r.node) != 0.0) for r in self.races))
         return self._cache["layout"]
 
     @property
@@ -350,6 +351,17 @@ class Machine:
         e[1, 4 * node + 3] = axial_offset
         return e @ self.basis
 
+    def tilt_matrix(self, node: int) -> np.ndarray:
+        """T, shape (2, n_z): the tilt ``(phi_x, phi_y)`` of a node (where its races tilt)."""
+        return self.basis[4 * node + 2:4 * node + 4, :]
+
+    @property
+    def _packed_stations(self) -> list[np.ndarray]:
+        """The stations packed in ``p``: :attr:`_stations`, then with a tilting race (layout
+        ``tilt``) the tilt ``T_r`` of each race's node."""
+        extra = [self.tilt_matrix(r.node) for r in self.races] if self.layout.tilt else []
+        return self._stations + extra
+
     @property
     def _stations(self) -> list[np.ndarray]:
         return [self.station_matrix(r.node, r.axial_offset) for r in self.races] + \
@@ -427,8 +439,10 @@ class Machine:
         red = self.reduced
         H = np.linalg.inv(self._m0())
         H = 0.5 * (H + H.T)
-        st = self._stations
+        st = self._packed_stations
         nz = lay.n_z
+        if lay.tilt:  # D_b = m_b l_b^2: the ball's inertia about its race's diameters
+            p[o["tilt"]:o["tilt"] + lay.n_balls] = m * l * l
         for s, B in enumerate(st):
             k = lay.station_B(s)
             p[k:k + 2 * nz] = B.ravel()
@@ -606,6 +620,16 @@ class Machine:
             Mf[:nz, nz + b] = col
             Mf[nz + b, :nz] = col
             Mf[nz + b, nz + b] = J[b]
+        if lay.tilt:  # rigid ball kinematics on a tilting race (module docstring)
+            z = y[:nz]
+            for b in range(nb):
+                T = self.tilt_matrix(self.races[race[b]].node)
+                ph = T @ z
+                tau = T.T @ np.array([math.cos(phi[b]), math.sin(phi[b])])
+                Mf[:nz, :nz] += m[b] * l[b] ** 2 * np.outer(tau, tau)
+                col = 0.5 * J[b] * (T.T @ np.array([ph[1], -ph[0]]))
+                Mf[:nz, nz + b] += col
+                Mf[nz + b, :nz] += col
         if self.is_motor:
             th = y[lay.i_theta]
             w = np.zeros(nz)
