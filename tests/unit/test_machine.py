@@ -161,6 +161,12 @@ def test_mass_matrix_symmetric_positive_definite_and_consistent_with_rhs():
     phi, w = y[lay.i_phi:lay.i_phi + nb], y[lay.i_w:lay.i_w + nb]
     om = y[lay.i_theta + 1]
     Q = -c * (w - om) + m * l * (0.0 * -np.sin(phi) + -0.5 * np.cos(phi))
+    # the races tilt with the rotor: the ball's velocity term m l^2 (e_b . phi') (t_b . phi')
+    # (rigid ball kinematics, rotorlab.models._machine; Rodrigues et al. 2008 eq. (13) plus the
+    # second-order term of test_rcfw_reference._axial_term)
+    dphi = y[nz + 2:nz + 4]
+    Q += m * l**2 * (np.cos(phi) * dphi[0] + np.sin(phi) * dphi[1]) * (-np.sin(phi) * dphi[0] + np.cos(phi) * dphi[1])
+    assert lay.tilt and m.max() * (dphi @ dphi) > 1e-8  # far above the tolerance below
     np.testing.assert_allclose(row, Q, atol=1e-13)
 
 

@@ -88,10 +88,11 @@ class Layout:
         :mod:`rotorlab._kernels.machine_contact`.
     friction : bool
         The balls have Coulomb or rolling friction (stick-slip modes).
-    tilt : bool
-        Some race can tilt: its balls follow the tilting race plane (rigid ball kinematics, see
-        :mod:`rotorlab.models._machine`); adds a tilt station per race and one axial unknown per
-        ball to the Schur system.
+    tilt : tuple of int
+        Empty, or (when some race can tilt) per race the number of its node among the races'
+        distinct nodes: the balls follow the tilting race plane (rigid ball kinematics, see
+        :mod:`rotorlab.models._machine`); adds a tilt station per distinct node and one axial
+        unknown per ball to the Schur system.
     """
 
     n_z: int
@@ -104,10 +105,13 @@ class Layout:
     energy: bool = False
     clearance: str = ""
     friction: bool = False
-    tilt: bool = False
+    tilt: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "races", tuple(int(n) for n in self.races))
+        object.__setattr__(self, "tilt", tuple(int(k) for k in self.tilt))
+        if self.tilt and (len(self.tilt) != len(self.races) or sorted(set(self.tilt)) != list(range(self.n_tilt))):
+            raise ValueError(f"bad layout tilt={self.tilt!r} for races={self.races!r}")
         if self.drive not in DRIVE_KINDS or self.speed_kind not in SPEED_KINDS:
             raise ValueError(f"bad layout drive={self.drive!r} speed_kind={self.speed_kind!r}")
         if self.clearance not in ("", "rigid", "elastic", "housing"):
@@ -131,12 +135,26 @@ class Layout:
     @property
     def n_all_stations(self) -> int:
         """Stations with packed B, H B^T and pair matrices: the lateral ones, then (with
-        ``tilt``) one tilt station per race, whose ``B`` is the race node's tilt ``T_r``."""
-        return self.n_stations + (self.n_races if self.tilt else 0)
+        ``tilt``) one tilt station per distinct race node, whose ``B`` is that node's tilt ``T``."""
+        return self.n_stations + self.n_tilt
+
+    @property
+    def n_tilt(self) -> int:
+        """Distinct nodes of the races (tilt stations), 0 without ``tilt``."""
+        return max(self.tilt) + 1 if self.tilt else 0
 
     def tilt_station(self, r: int) -> int:
         """Index of the tilt station of race ``r`` (``tilt`` layouts)."""
-        return self.n_stations + r
+        return self.n_stations + self.tilt[r]
+
+    @property
+    def tilt_stations(self) -> list[int]:
+        """The tilt stations, in order."""
+        return [self.n_stations + k for k in range(self.n_tilt)]
+
+    def tilt_balls(self, ts: int) -> list[int]:
+        """The balls whose race sits on tilt station ``ts``."""
+        return [b for b in range(self.n_balls) if self.tilt_station(self.ball_race[b]) == ts]
 
     @property
     def n_schur(self) -> int:
@@ -248,7 +266,7 @@ class Layout:
         return (f"z{self.n_z}r{races}u{self.n_unbalance}{self.drive[0]}{self.speed_kind[0]}"
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
                 f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
-                f"{'a' if self.tilt else ''}")
+                f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}")
 
 
 def _sum(terms: list[str]) -> str:
@@ -354,8 +372,8 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             a(f"    fy{s} = U{u} * (om * om * euy{u} - dom * eux{u})")
         stations_force.append((s, f"fx{s}", f"fy{s}"))
     if lay.tilt:  # the balls' velocity terms on their tilting races (moments on phi_r)
-        for r in range(nr):
-            ts, bs = lay.tilt_station(r), [b for b in range(nb) if br[b] == r]
+        for ts in lay.tilt_stations:
+            r, bs = ts, lay.tilt_balls(ts)
             a(f"    fx{ts} = -({_sum([f'w{b} * (D{b} * (tp{b} * c{b} - ep{b} * s{b}) + J{b} * tvy{r})' for b in bs])})")
             a(f"    fy{ts} = -({_sum([f'w{b} * (D{b} * (tp{b} * s{b} + ep{b} * c{b}) - J{b} * tvx{r})' for b in bs])})")
             stations_force.append((ts, f"fx{ts}", f"fy{ts}"))
@@ -374,7 +392,7 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             a(f"    h{i} += p[{k}] * {fx} + p[{k + 1}] * {fy}")
     # ---- a0_s = B_s h for the stations that enter the Schur system
     need = list(range(nr)) + ([nr + u for u in range(nu)] if lay.motor else [])
-    need += [lay.tilt_station(r) for r in range(nr)] if lay.tilt else []
+    need += lay.tilt_stations
     for s in need:
         kb = lay.station_B(s)
         a(f"    ax{s} = {_sum([f'p[{kb + j}] * h{j}' for j in range(nz)])}")
@@ -462,12 +480,12 @@ def tilt_lines(lay: Layout, L: list[str]) -> None:
     ``(nx, ny) = J_b / 2 (phi_y, -phi_x)`` (rigid ball kinematics, :mod:`rotorlab.models._machine`)."""
     nz, br, o = lay.n_z, lay.ball_race, lay.offsets
     a = L.append
-    for r in range(lay.n_races):
-        kb = lay.station_B(lay.tilt_station(r))
+    for r in lay.tilt_stations:  # named by the tilt station
+        kb = lay.station_B(r)
         for name, row, src in (("tx", 0, "z"), ("ty", 1, "z"), ("tvx", 0, "v"), ("tvy", 1, "v")):
             a(f"    {name}{r} = {_sum([f'p[{kb + row * nz + j}] * {src}{j}' for j in range(nz)])}")
     for b in range(lay.n_balls):
-        r = br[b]
+        r = lay.tilt_station(br[b])
         a(f"    D{b} = p[{o['tilt'] + b}]")
         a(f"    ep{b} = c{b} * tvx{r} + s{b} * tvy{r}")
         a(f"    tp{b} = c{b} * tvy{r} - s{b} * tvx{r}")
@@ -498,10 +516,25 @@ def tilt_schur(lay: Layout, L: list[str], unknowns) -> None:
         a(f"    mty{b} = ml{b} * c{b}")
     lds = [loads(lay, k, i) for k, i in unknowns]
     used = sorted({s for ld in lds for s, _, _ in ld})
+    # B_s H B_s2^T = B_s (H B_s2^T) from the packed B and H B^T that the kernel reads anyway
+    # (for s <= s2; the other half by symmetry): fewer distinct loads of p than reading the
+    # packed pairs, which keeps the lane loop within LLVM's runtime alias-check budget
+    nz = lay.n_z
+    for i1, s1 in enumerate(used):
+        for s2 in used[i1:]:
+            kb, kh = lay.station_B(s1), lay.station_HBT(s2)
+            for k in range(4):
+                row, col = divmod(k, 2)
+                a(f"    Lv{s1}_{s2}_{k} = " + _sum([f"p[{kb + row * nz + j}] * p[{kh + 2 * j + col}]"
+                                                   for j in range(nz)]))
+
+    def lv(s1, s2, k):
+        return f"Lv{s1}_{s2}_{k}" if s1 <= s2 else f"Lv{s2}_{s1}_{2 * (k % 2) + k // 2}"
+
     for j, ld in enumerate(lds):
         for s in used:
             for row, nm in ((0, "Px"), (1, "Py")):
-                terms = [f"p[{lay.pair_L(s, s2) + 2 * row}] * {vx} + p[{lay.pair_L(s, s2) + 2 * row + 1}] * {vy}"
+                terms = [f"{lv(s, s2, 2 * row)} * {vx} + {lv(s, s2, 2 * row + 1)} * {vy}"
                          for s2, vx, vy in ld]
                 a(f"    {nm}{j}_{s} = {_sum(terms)}")
     km = lay.offsets["motor"]
@@ -633,7 +666,7 @@ def friction_torques(lay: Layout, L: list[str], corr, zdd: str = "out") -> None:
     the solution (the residual of the ball's equation, exact in every mode)."""
     nz, br, o = lay.n_z, lay.ball_race, lay.offsets
     a = L.append
-    for r in list(range(lay.n_races)) + ([lay.tilt_station(q) for q in range(lay.n_races)] if lay.tilt else []):
+    for r in list(range(lay.n_races)) + lay.tilt_stations:
         # station acceleration a_r = a0_r - sum_s L_(r, s) g_s
         for row, nm in ((0, "fax"), (1, "fay")):
             terms = [f"a{'xy'[row]}{r}"]
@@ -731,8 +764,8 @@ def reactions(lay: Layout, L: list[str], g: str, x: str, indent: str = "    ") -
             corr.append((nr + u, f"{g}x{nr + u}", f"{g}y{nr + u}"))
     if lay.tilt:  # the balls' moments on their races' tilt: n_b phi_b'' + e_b mu_b
         i0 = nb + (1 if lay.motor else 0)
-        for r in range(nr):
-            ts, bs = lay.tilt_station(r), [b for b in range(nb) if br[b] == r]
+        for ts in lay.tilt_stations:
+            bs = lay.tilt_balls(ts)
             L.append(f"{indent}{g}x{ts} = {_sum([f'nx{b} * {x}{b} + c{b} * {x}{i0 + b}' for b in bs])}")
             L.append(f"{indent}{g}y{ts} = {_sum([f'ny{b} * {x}{b} + s{b} * {x}{i0 + b}' for b in bs])}")
             corr.append((ts, f"{g}x{ts}", f"{g}y{ts}"))

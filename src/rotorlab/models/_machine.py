@@ -235,7 +235,7 @@ class Machine:
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
                 clearance=self.clearances[0].kind if self.clearances else "",
                 friction=self.has_friction,
-                tilt=any(np.any(self.tilt_matrix(r.node) != 0.0) for r in self.races))
+                tilt=self._tilt_numbers())
         return self._cache["layout"]
 
     @property
@@ -351,6 +351,14 @@ class Machine:
         e[1, 4 * node + 3] = axial_offset
         return e @ self.basis
 
+    def _tilt_numbers(self) -> tuple[int, ...]:
+        """Per race the number of its node among the races' distinct nodes, or () when no race
+        can tilt (the layout's ``tilt``)."""
+        if not any(np.any(self.tilt_matrix(r.node) != 0.0) for r in self.races):
+            return ()
+        nodes = list(dict.fromkeys(r.node for r in self.races))
+        return tuple(nodes.index(r.node) for r in self.races)
+
     def tilt_matrix(self, node: int) -> np.ndarray:
         """T, shape (2, n_z): the tilt ``(phi_x, phi_y)`` of a node (where its races tilt)."""
         return self.basis[4 * node + 2:4 * node + 4, :]
@@ -359,7 +367,8 @@ class Machine:
     def _packed_stations(self) -> list[np.ndarray]:
         """The stations packed in ``p``: :attr:`_stations`, then with a tilting race (layout
         ``tilt``) the tilt ``T_r`` of each race's node."""
-        extra = [self.tilt_matrix(r.node) for r in self.races] if self.layout.tilt else []
+        nodes = list(dict.fromkeys(r.node for r in self.races)) if self.layout.tilt else []
+        extra = [self.tilt_matrix(n) for n in nodes]
         return self._stations + extra
 
     @property
