@@ -294,6 +294,10 @@ def test_builtin_case_simulations(rcfw_case):
     bal = res["fig11-iii-balancing"]
     assert (bal.status == 0).all()
     assert float(bal.amplitude.max()) < 2e-3 * alone
-    np.testing.assert_allclose(np.abs(bal.final_ball_angle.values), 2 * np.pi / 3, atol=2e-3)
+    # the first start ends within 4e-4 rad of the balanced angles; the second (each race's balls
+    # together, a large initial couple) is still ~2e-3 rad away at 1600 s, closing at the slowest
+    # eigenvalue's rate Re = -0.0034 1/s
+    np.testing.assert_allclose(np.abs(bal.final_ball_angle.values[0]), 2 * np.pi / 3, atol=5e-4)
+    np.testing.assert_allclose(np.abs(bal.final_ball_angle.values[1]), 2 * np.pi / 3, atol=3e-3)
     unstable = res["fig11-ii-unstable"]
     assert float(unstable.amplitude.min()) > 5 * _rotor_alone(2.5, ref.EPS)

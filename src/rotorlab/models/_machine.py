@@ -7,6 +7,8 @@ f`` over the DOFs ``x, y, phi_x, phi_y`` of every node, optionally reduced to it
 
 - **ball races** (:class:`BallRace`): balls of mass m_b at radius l about the race centre, which
   moves with the node as ``r_c = B z = (x + a phi_x, y + a phi_y)`` (a: axial offset of the race);
+  the race plane tilts with its node (``phi = T z``) and a ball follows it, axially too (rigid
+  ball kinematics, as Rodrigues, Champneys, Friswell & Wilson 2008);
 - **unbalances** (:class:`Unbalance`): ``U = m e`` at ``theta + beta`` at a station;
 - **gravity** (:class:`Gravity`): its lateral part loads the structure, the balls and, through
   the unbalances, the drive;
@@ -30,7 +32,7 @@ angle phi_b, race r) and ``e_u, t_u`` likewise at ``theta + beta_u``, the kineti
         + 1/2 J_b phi_b'^2] + 1/2 J theta'^2 + sum_u U_u theta' t_u . B_u z'
 
 (``J_b = m_b l_b^2 + J_c``; J the polar inertia of a motor-driven rotor; the unbalance masses are
-part of ``M_s``). Lagrange's equations give ::
+part of ``M_s``), plus the terms of a ball on a *tilting* race (below). Lagrange's equations give ::
 
     M0 z'' + sum_b m_b l_b B_r^T t_b phi_b'' + sum_u U B_u^T t_u theta''
         = -K z - (C + Omega G) z' + f_g + sum_b m_b l_b phi_b'^2 B_r^T e_b + sum_u U theta'^2 B_u^T e_u
@@ -38,10 +40,29 @@ part of ``M_s``). Lagrange's equations give ::
     J theta'' + sum_u U t_u . B_u z'' = T(Omega) + sum_b c_b (phi_b' - Omega) + sum_u U g . t_u
 
 with ``M0 = M_s + sum_r m_r B_r^T B_r`` (m_r: ball mass of race r) and ``f_g`` the weights of the
-structure (``M_s`` times the rigid translation along g) and of the balls. The ball axial
-displacement that a tilt causes is of second order and left out (balls move in their race plane),
-as in the two-plane balancer literature. With a prescribed spin the last equation is not solved:
-theta'' is known and the torque it needs is the drive torque.
+structure (``M_s`` times the rigid translation along g) and of the balls. With a prescribed spin
+the last equation is not solved: theta'' is known and the torque it needs is the drive torque.
+
+Rigid ball kinematics on a tilting race: the ball sits at the body point ``(l e(phi_b), a)`` of
+the race, turned with its node by the rotation vector ``(-phi_y, phi_x, 0)`` (``phi = T_r z``, the
+node's tilt); ``phi_b`` is measured in the tilted race plane. To second order in the small
+motions (the truncation of Rodrigues et al. 2008, Section 2.3.2) this moves the ball axially by
+``-l e_b . phi`` and turns the race plane about its normal at the rate ``(phi_y phi_x' - phi_x
+phi_y') / 2``, which adds to T ::
+
+    sum_b [1/2 m_b l_b^2 (e_b . phi')^2 + 1/2 J_b phi_b' (phi_y phi_x' - phi_x phi_y')]
+
+(the ball's own inertia J_c turns with the race normal too). Its terms in the equations: the
+structure gains the mass ``m_b l_b^2 T^T e_b e_b^T T`` and the force ``-T^T [m_b l_b^2 phi_b'
+((t_b . phi') e_b + (e_b . phi') t_b) + J_b phi_b' (phi_y', -phi_x')]``, the ball its coupling
+``J_b / 2 (phi_y, -phi_x) . T z''`` and the force ``m_b l_b^2 (e_b . phi') (t_b . phi')``. The
+structure's equilibria and the balanced state are unchanged (the terms vanish at rest); they
+change the stability of the balanced state (its primary region's onset, Fig. 5(a) of the paper)
+and the motion. The rank-one mass terms enter the elimination below as one extra unknown per
+ball, ``mu_b = m_b l_b^2 e_b . T z''`` (its row ``e_b . T z'' - mu_b / (m_b l_b^2) = 0``), so
+that ``M0`` stays constant; the Schur complement is then symmetric quasi-definite (positive
+block of the ball and spin accelerations, negative block of the mu_b) and the unrolled LDL^T
+needs no pivoting.
 
 Solution of the mass-matrix system: with ``H = M0^-1`` (constant, precomputed) the structure
 accelerations are eliminated, leaving the Schur complement ``S = diag(J_b, J) - X^T H X``
