@@ -11,25 +11,16 @@ from scipy.integrate import solve_ivp
 
 from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, LinearRamp, RotorParams
 
+from _jeffcott_strategies import ball_sets  # tests/property/_jeffcott_strategies.py
+from _jeffcott_strategies import rotors as jeffcott_rotors
+
 SETTINGS = settings(max_examples=15, deadline=None)
 
-rotors = st.builds(
-    RotorParams,
-    disc_mass=st.floats(0.5, 3.0),
-    eccentricity=st.floats(0.0, 5e-3),
-    stiffness=st.floats(100.0, 1000.0),
-    damping=st.floats(0.0, 2.0),
-)
+rotors = jeffcott_rotors(eccentricity=(0.0, 5e-3), damping=(0.0, 2.0))
 
 
-@st.composite
-def balls(draw, min_size=1, max_size=4):
-    n = draw(st.integers(min_size, max_size))
-    out = []
-    for _ in range(n):
-        m, l = draw(st.floats(0.01, 0.1)), draw(st.floats(0.05, 0.15))
-        out.append(BallParams(m, l, inertia=m * l * l * draw(st.floats(1.0, 2.0)), damping=draw(st.floats(0.0, 5e-3))))
-    return tuple(out)
+def balls(min_size=1, max_size=4):
+    return ball_sets(min_size, max_size, damping=(0.0, 5e-3))
 
 
 speeds = st.one_of(

@@ -9,28 +9,19 @@ from hypothesis import assume, given, settings
 from hypothesis import strategies as st
 
 from rotorlab.integrate import SaveAt, StepControl, solve
-from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, RotorParams
+from rotorlab.models import ConstantSpeed, JeffcottBalls, RotorParams
 from rotorlab.steady import analyze_steady, averaged_jacobian, find_steady_motions, hessian_f
+
+from _jeffcott_strategies import ball_sets  # tests/property/_jeffcott_strategies.py
+from _jeffcott_strategies import rotors as jeffcott_rotors
 
 SETTINGS = settings(max_examples=15, deadline=None)
 
-rotors = st.builds(
-    RotorParams,
-    disc_mass=st.floats(0.5, 3.0),
-    eccentricity=st.floats(1e-4, 5e-3),
-    stiffness=st.floats(100.0, 1000.0),
-    damping=st.floats(0.0, 5.0),
-)
+rotors = jeffcott_rotors(eccentricity=(1e-4, 5e-3), damping=(0.0, 5.0))
 
 
-@st.composite
-def balls(draw, min_size=2, max_size=3):
-    n = draw(st.integers(min_size, max_size))
-    out = []
-    for _ in range(n):
-        m, l = draw(st.floats(0.01, 0.1)), draw(st.floats(0.05, 0.15))
-        out.append(BallParams(m, l, inertia=m * l * l * draw(st.floats(1.0, 2.0)), damping=draw(st.floats(1e-4, 5e-3))))
-    return tuple(out)
+def balls(min_size=2, max_size=3):
+    return ball_sets(min_size, max_size, damping=(1e-4, 5e-3))
 
 
 def _by_angles(motions, angles):

@@ -4,8 +4,9 @@ The impulse of (3.9) as printed (Krasnov, Tovstik & Tovstik 2003, reconstructed 
 ``rotorlab.models._impact_rotor``): ``S_n = (1 + k) m* v``, ``u'+ = u'- - (S_n/m)(sin(beta) e + f
 e_perp)``, ``t'+ = t'- - (S_n/A1)(l_P e + f h_P e_perp)``. On random states the seed's reset equals
 it, and so does ``newton_coulomb_impulse`` with the Delassus entries of P (``B M^-1 B^T`` of the
-contact point's velocity map) to round-off. (The kernel keeps its own arithmetic: see the note in
-``rotorlab._kernels.impact_rotor``.)
+contact point's velocity map) to round-off: the kernel's impact reset *is* that shared function
+(see the note in ``rotorlab._kernels.impact_rotor``), so this checks the shared law against the
+printed map.
 """
 
 import math

@@ -140,6 +140,32 @@ def test_full_rub_from_rest_lands_on_the_closed_form_branch():
     assert np.allclose(lag, branch.phase, atol=1e-4)
 
 
+def test_the_no_rub_orbit_and_the_full_rub_coexist_where_the_closed_form_says_so():
+    """Below the fold and above the upper grazing speed (e = 0.3, Omega = 2) the closed form has
+    the no-rub orbit inside the clearance and two full-rub branches, the upper one stable
+    (frictionless), the lower a saddle (test_contact_theory.py). In simulation both attractors
+    are reached: from rest the rotor never touches the stator (the transient stays below twice the
+    orbit radius 0.40 < delta) and settles on the no-rub radius; started on the upper branch it
+    stays there, pressing the stator, with the closed-form radius and phase."""
+    w = 2.0
+    p = replace(RUB, eccentricity=0.3)
+    hi, lo = full_rub(p, w)
+    r0 = no_rub_radius(p, w)
+    assert r0 < p.clearance < lo.radius < hi.radius
+    model = JeffcottRub(p, w)
+    ts = np.linspace(280.0, 300.0, 81)
+    rest = _run(model, model.initial_state(), 300.0, ts)
+    assert rest.event_counts["contact"] == 0
+    assert np.allclose(np.hypot(rest.ys[:, 0], rest.ys[:, 1]), r0, rtol=1e-5)  # transient: 0.4 exp(-0.05 t)
+    z0 = hi.radius * np.exp(-1j * hi.phase)
+    v0 = 1j * w * z0
+    rub = _run(model, model.initial_state((z0.real, z0.imag), (v0.real, v0.imag)), 300.0, ts)
+    assert rub.event_counts["lift_off"] == 0
+    assert np.allclose(np.hypot(rub.ys[:, 0], rub.ys[:, 1]), hi.radius, rtol=1e-6)
+    lag = np.angle(np.exp(1j * w * ts) / (rub.ys[:, 0] + 1j * rub.ys[:, 1]))
+    assert np.allclose(lag, hi.phase, atol=1e-5)
+
+
 @pytest.mark.parametrize("fac", [0.7, 1.4])
 def test_full_rub_leaves_the_branch_at_the_growth_rate_above_critical_friction(fac):
     w = 1.5

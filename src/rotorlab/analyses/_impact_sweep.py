@@ -15,6 +15,7 @@ the chunk size, the executor or the number of threads.
 from __future__ import annotations
 
 import math
+import warnings
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
@@ -282,8 +283,10 @@ def summarize_impact_sweep(runs: xarray.Dataset, model: ImpactRotor, *, param: s
     data = {k: (("value", "sequence"), v, {"units": _UNITS[k], "description": _DESCRIPTIONS[k]})
             for k, v in sc.items()}  # fmt: skip
     for name in ("impacts", "eta", "sliding_time"):
-        arr = sc[name].astype(float)
-        q = np.nanquantile(arr, [0.25, 0.5, 0.75], axis=1) if np.isfinite(arr).any() else np.full((3, values.size), np.nan)
+        arr = np.where(sc["regime"] < 0, np.nan, sc[name].astype(float))  # a failed run has no value
+        with warnings.catch_warnings():  # a value whose runs all failed has no quantiles (NaN), as meant
+            warnings.simplefilter("ignore", RuntimeWarning)
+            q = np.nanquantile(arr, [0.25, 0.5, 0.75], axis=1) if np.isfinite(arr).any() else np.full((3, values.size), np.nan)
         for tag, row in zip(("q25", "median", "q75"), q):
             data[f"{name}_{tag}"] = (("value",), row, {"units": _UNITS[name], "description": f"{tag} over sequences"})
     frac = np.stack([(sc["regime"] == c).mean(axis=1) for c in range(len(REGIMES))], axis=1)

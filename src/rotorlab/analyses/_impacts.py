@@ -7,9 +7,12 @@ Regimes (per run)
 -----------------
 ``none``: no impact with an approach speed >= ``Housing.count_speed``; ``rebounds``: impacts,
 sliding contact for less than ``sliding_fraction`` (default 2 %) of the run; ``sliding``: sliding
-for at least that fraction; ``backward_whirl``: a sliding contact whirled backwards up to the
-rolling speed of the theory (:meth:`rotorlab.models.Housing.rolling_whirl_speed`), where the
-sliding law ends in the dry-friction backward whirl, and the run was stopped there (its impact
+for at least that fraction; ``backward_whirl``: a sliding contact whirled backwards until the
+slip of P vanished (the theory's criterion; without tilt the rolling speed
+:meth:`rotorlab.models.Housing.rolling_whirl_speed`), where the sliding law ends in the
+dry-friction backward whirl, or an impact's friction impulse stuck (the
+slip of P stopped: P rolls on the housing, reached through impacts, e.g. with restitution 1), and
+the run was stopped there (its impact
 counts are those of the whole run: a sliding contact makes no impacts, so they do not depend on
 the speed at which the stop is detected);
 ``failed``: the integrator gave up (status < 0).
@@ -172,8 +175,11 @@ def _scalars(models: Sequence[ImpactRotor], sol: Any) -> dict[str, np.ndarray]:
     tf = sol.t_final
     sliding = yf[:, _k.T_SLIDE] + np.where(yf[:, _k.MODE] != 0.0, tf - yf[:, _k.T_START], 0.0)
     e_st = np.array([m.stone_energy(t) for m, t in zip(models, tf)])
-    e_fr = np.array([m.housing.friction * m.housing.radius * m.rotor.spin_speed for m in models])
-    e_fr = e_fr * (yf[:, _k.S_SUM] + yf[:, _k.INT_N])
+    # the drive's work against friction at the housing: at the impulses (W_DRIVE, -P_t r_P omega0)
+    # and in sliding (f N r_P omega0); f r_P omega0 (sum S_n + int N dt) while P slides forwards
+    slide = np.array([m.housing.friction * m.housing.radius * m.rotor.spin_speed for m in models])
+    e_fr = yf[:, _k.W_DRIVE] + slide * yf[:, _k.INT_N]
+    e_vib = np.array([m.fixed_energy(y) for m, y in zip(models, yf)])
     with np.errstate(divide="ignore", invalid="ignore"):
         eta = np.where(e_st > 0, e_fr / e_st, np.nan)
     return {
@@ -186,6 +192,8 @@ def _scalars(models: Sequence[ImpactRotor], sol: Any) -> dict[str, np.ndarray]:
         "energy_stones": e_st,
         "energy_friction": e_fr,
         "energy_restitution": yf[:, _k.E_REST],
+        "energy_vibration": e_vib - yf[:, _k.E_0],
+        "work_stones": yf[:, _k.W_ST],
         "eta": eta,
         "whirl": yf[:, _k.WHIRL].astype(np.int64),
         "t_final": tf,
@@ -197,7 +205,7 @@ def _scalars(models: Sequence[ImpactRotor], sol: Any) -> dict[str, np.ndarray]:
 _UNITS = {
     "impacts": "1", "impacts_all": "1", "slides": "1", "sliding_time": "s", "max_penetration": "m",
     "max_approach_speed": "m/s", "energy_stones": "J", "energy_friction": "J",
-    "energy_restitution": "J", "eta": "1", "whirl": "1", "t_final": "s", "status": "1",
+    "energy_restitution": "J", "energy_vibration": "J", "work_stones": "J", "eta": "1", "whirl": "1", "t_final": "s", "status": "1",
     "n_steps": "1", "regime": "1",
 }  # fmt: skip
 _DESCRIPTIONS = {
@@ -210,6 +218,8 @@ _DESCRIPTIONS = {
     "energy_stones": "motor energy spent on accelerating stones",
     "energy_friction": "motor energy spent against friction at the housing",
     "energy_restitution": "energy lost in the normal direction by restitution",
+    "energy_vibration": "vibration energy gained in the fixed frame (end minus start)",
+    "work_stones": "work of the stone forces on the rotor's vibration",
     "eta": "energy_friction / energy_stones (seed 001, Fig. 5)",
     "whirl": "1: stopped by a self-feeding dry-friction backward whirl",
     "t_final": "time the run ended",
@@ -223,7 +233,7 @@ def _control(rtol: float, atol: float):
     from rotorlab.integrate import StepControl
 
     scale = np.ones(_k.N_STATE)
-    scale[_k.INT_N] = 1e30  # the contact-impulse integral does not steer the step size
+    scale[[_k.INT_N, _k.W_ST, _k.W_NC]] = 1e30  # the integrals of the ledger do not steer the step size
     return StepControl(rtol=rtol, atol=tuple(atol * scale))
 
 
@@ -329,6 +339,13 @@ def impact_run(model: ImpactRotor, t_end: float = 10.0, *, seed: int | None = 0,
     ds.attrs.update({"analysis": "impacts", "regime": _label(code), "seed": -1 if seed is None else int(seed)})
     if sol.notes and sol.notes[0]:
         ds.attrs["status_detail"] = sol.notes[0]
+    elif int(sc["status"]) < 0:
+        from rotorlab.integrate import Status
+
+        ds.attrs["status_detail"] = Status(int(sc["status"])).message
+    elif int(sc["whirl"]):
+        ds.attrs["status_detail"] = (f"stopped at t = {float(sc['t_final']):.6g} s at the onset of the dry-friction backward "
+                                     "whirl (P rolls on the housing); the model cannot carry it beyond")  # fmt: skip
     return ds
 
 
@@ -358,11 +375,14 @@ def impact_summary(ds: xarray.Dataset) -> dict[str, Any]:
         "energy_ratio": _num(ds.eta.values),
         "energy_stones_J": float(ds.energy_stones),
         "energy_friction_J": float(ds.energy_friction),
+        "energy_vibration_J": float(ds.energy_vibration),
+        "work_stones_J": float(ds.work_stones),
         "max_penetration_m": float(ds.max_penetration),
         "max_approach_speed_m_s": float(ds.max_approach_speed),
         "backward_whirl": bool(int(ds.whirl)),
         "t_final_s": float(ds.t_final),
         "status": int(ds.status),
+        "status_detail": str(ds.attrs.get("status_detail", "")),
         "seed": int(ds.attrs["seed"]),
         "stone_mass_kg": float(ds.attrs["stone_mass"]),
         "n_stones": int(ds.sizes["stone"]),

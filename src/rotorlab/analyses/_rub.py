@@ -215,12 +215,14 @@ def run_rub_map(case_model: Any, analysis: Any,
     last ``window`` classified (:class:`rotorlab.contact.RubRegimes`); the Dataset is the sweep's
     (``regime`` and the features over ``spin_speed`` and the second axis) with
     ``grazing_boundary`` (second-axis value at which the closed-form no-rub orbit just reaches the
-    clearance, at every speed) beside it.
+    clearance, at every speed) beside it; ``attrs["closed_form_decided"]`` counts the finished
+    points where the closed forms (:func:`rub_prediction`) allow a single regime and
+    ``attrs["closed_form_agree"]`` those of them where the map shows that regime.
     """
     from dataclasses import replace
 
     from rotorlab.analyses._registry import MODEL_TYPES
-    from rotorlab.contact import RubRegimes, no_rub_radius
+    from rotorlab.contact import RubRegime, RubRegimes, no_rub_radius
     from rotorlab.sweep import GridAxis, Sweep, run_sweep
 
     model = MODEL_TYPES[case_model.type].build(case_model)
@@ -240,7 +242,19 @@ def run_rub_map(case_model: Any, analysis: Any,
         per_unit = np.array([no_rub_radius(replace(rotor, eccentricity=1.0), float(s)) for s in speeds])
         boundary = rotor.clearance / per_unit * (rotor.mass if axis == "unbalance" else 1.0)
     ds["grazing_boundary"] = (("spin_speed",), boundary, {"units": "m" if axis != "unbalance" else "kg m"})
-    ds.attrs.update({"name": analysis.name, "second_axis": axis, "points": int(total)})
+    # where the closed forms allow a single regime, does the map show it?
+    decided = agree = 0
+    for i, s in enumerate(speeds):
+        for j, v in enumerate(ds[axis].values):
+            v = float(v)
+            at = {"clearance": {"clearance": v}, "eccentricity": {"eccentricity": v},
+                  "unbalance": {"eccentricity": v / rotor.mass}}[axis]  # fmt: skip
+            allowed = rub_prediction(replace(rotor, **at), float(s))["regimes"]
+            if len(allowed) == 1 and int(ds.status.values[i, j]) >= 0:
+                decided += 1
+                agree += RubRegime(int(ds.regime.values[i, j])).label == allowed[0]
+    ds.attrs.update({"name": analysis.name, "second_axis": axis, "points": int(total),
+                     "closed_form_decided": decided, "closed_form_agree": agree})  # fmt: skip
     return ds
 
 

@@ -32,12 +32,12 @@ from rotorlab.cli._output import (
     status,
     stdout,
 )
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["app", "main"]
 
 DEFAULT_CASE = "autobalancer"
 DEFAULT_OUT = "rotorlab-out"
-_RPM = 60.0 / (2.0 * math.pi)
 
 app = typer.Typer(
     name="rotorlab",

@@ -20,7 +20,7 @@ from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
 
 
 def _names(known: Any) -> str:
-    from rotorlab.io._basin_specs import coordinates_text
+    from rotorlab.io._coordinates import coordinates_text
 
     return coordinates_text(known)
 
@@ -65,7 +65,7 @@ def _fixed(values: list[str] | None, known: dict[str, str]) -> dict[str, float]:
 
 def _input_units(base: Any, x: str | None, y: str | None, fix: list[str] | None) -> dict[str, str]:
     """The units the coordinates were written in: the case's, then those of --x, --y and --fix."""
-    from rotorlab.io._basin_specs import record_input_units
+    from rotorlab.io._coordinates import record_input_units
 
     given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (x, y) if t]
     given += [(t.partition("=")[0].strip(), [t.partition("=")[2].strip()]) for t in fix or ()]

@@ -29,17 +29,16 @@ from rotorlab.cli._sweep_common import (
     run_with_bar,
     stability_line,
 )
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 
 def _names(known: Any) -> str:
-    from rotorlab.io._basin_specs import coordinates_text
+    from rotorlab.io._coordinates import coordinates_text
 
     return coordinates_text(known)
 
 
 __all__ = ["sweep_command", "parse_axis"]
-
-_RPM = 60.0 / (2.0 * math.pi)
 
 def parse_axis(option: str, text: str, kind: str, sample: bool,
                dimensions: dict[str, str] | None = None) -> tuple[str, tuple]:  # fmt: skip
@@ -222,23 +221,25 @@ def sweep_command(
         from rotorlab.io import SweepSpec
         from rotorlab.io._sweep_specs import sweep_coordinates
 
-        kind = getattr(loaded.model, "type", None)
-        if not sweep_coordinates(loaded.model, "ic"):
+        model = loaded.model
+        kind = getattr(model, "type", None)
+        if not sweep_coordinates(model, "ic"):
             raise BadInput(f"case {loaded.name}: rotorlab sweep runs models with a regime mapper (a jeffcott_balls "
                            f"model with balls, or a toroidal_ball model), this case's model is '{kind}'")  # fmt: skip
         for option, texts, what in (("--param", param, "param"), ("--ic", ic, "ic")):
-            known = sweep_coordinates(loaded.model, what)
+            known = sweep_coordinates(model, what)
             for text in texts or ():
                 name = text.partition("=")[0].strip()
                 if name in known:
                     continue
-                if kind == "jeffcott_balls" and what == "ic":
-                    raise BadInput(f"--ic {name}: the model of {loaded.name} has {loaded.model.n_balls} ball(s)")
+                reason = model.missing_coordinate(name)
+                if reason is not None:
+                    raise BadInput(f"{option} {name}: the model of {loaded.name} {reason}")
                 raise BadInput(f"{option} = {text}: {name!r} is not a{' parameter' if what == 'param' else 'n initial'}"
                                f"{'' if what == 'param' else ' condition'} of this {kind} model (allowed: "
                                f"{_names(known)})")  # fmt: skip
-        if kind == "toroidal_ball" and (speed_rpm is not None or speed_ratio is not None):
-            raise BadInput(f"--speed-{'rpm' if speed_rpm is not None else 'ratio'}: a toroidal_ball spins at its "
+        if model.spins_at_own_speed and (speed_rpm is not None or speed_ratio is not None):
+            raise BadInput(f"--speed-{'rpm' if speed_rpm is not None else 'ratio'}: a {kind} spins at its "
                            "model's spin_speed; vary it with --param spin_speed=A:B:N")  # fmt: skip
         spec = find_analysis(loaded, "sweep", analysis)
 
@@ -246,14 +247,14 @@ def sweep_command(
         if speed_rpm is not None:
             update.update(speed=speed_rpm / _RPM, speed_ratio=None)
         if speed_ratio is not None:
-            if loaded.model.critical_speed() is None:
+            if model.critical_speed() is None:
                 raise BadInput("--speed-ratio: the model has no critical speed; give --speed-rpm")
             update.update(speed_ratio=speed_ratio, speed=None)
         if spec is None:
             if not axes:
                 raise BadInput(f"case {loaded.name} has no sweep analysis: give --param and/or --ic")
-            profile = loaded.model.speed_profile() if kind == "jeffcott_balls" else None
-            if kind == "jeffcott_balls" and not update and (
+            profile = model.speed_profile()
+            if not (model.spins_at_own_speed or update) and (
                     profile is None or not profile.is_constant or profile.final_speed == 0):
                 raise BadInput(f"case {loaded.name} has no constant speed: give --speed-rpm or --speed-ratio")
             spec = SweepSpec(name="sweep", revolutions=200.0, t_end=None)
@@ -261,10 +262,10 @@ def sweep_command(
         from rotorlab.analyses._sweep import build_sweep
 
         try:
-            sweep = build_sweep(loaded.model, spec, axes=axes or None, sample=sample, seed=seed, t_end=t_end)
+            sweep = build_sweep(model, spec, axes=axes or None, sample=sample, seed=seed, t_end=t_end)
         except ValueError as exc:
             raise BadInput(str(exc)) from None
-        from rotorlab.io._basin_specs import record_input_units
+        from rotorlab.io._coordinates import record_input_units
 
         # the unit each angle was written in, for figures (``rotorlab show`` draws it in that unit)
         given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (ic or ())]

@@ -13,14 +13,8 @@ Examples
 20.0
 """
 
-from rotorlab.io._basin_specs import (
-    BALANCER_COORDINATES,
-    TORUS_COORDINATES,
-    BasinSpec,
-    ToroidalBallSpec,
-    WorkingPointSpec,
-    coordinate_dimensions,
-)
+from rotorlab.io._basin_specs import BasinSpec, ToroidalBallSpec, WorkingPointSpec
+from rotorlab.io._coordinates import BALANCER_COORDINATES, TORUS_COORDINATES, coordinate_dimensions
 from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, validate_case
 from rotorlab.io._errors import CaseError, Issue
 from rotorlab.io._overrides import apply_overrides, parse_key_path, parse_override

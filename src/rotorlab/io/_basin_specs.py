@@ -1,5 +1,8 @@
 """Case-file specs of the toroidal ball balancer (seed 004) and of the basin analyses.
 
+The start coordinates a basin may vary (names, dimensions, ``model.<key path>``) are in
+:mod:`rotorlab.io._coordinates`; their names are re-exported here.
+
 ``[model] type = "toroidal_ball"`` is one ball rolling in a torus offset from the rotation axis
 (:class:`rotorlab.models.ToroidalBall`). ``[[analysis]] type = "basin"`` maps a 2-D grid (or a
 seeded random sample) of start coordinates to regimes with :mod:`rotorlab.explore`, for the
@@ -22,12 +25,28 @@ Examples
 from __future__ import annotations
 
 import math
-import re
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
+from rotorlab.io._coordinates import (  # noqa: F401 - re-exported: this module's names before the split
+    BALANCER_COORDINATES,
+    BALL_COORDINATE,
+    COORDINATE_BOUNDS,
+    KEY_PREFIX,
+    MACHINE_COORDINATES,
+    TORUS_COORDINATES,
+    Coordinates,
+    _any_dimension,
+    _bound_kw,
+    _known_names,
+    ball_coordinates,
+    coordinate_dimensions,
+    coordinates_text,
+    key_quantity,
+    record_input_units,
+)
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
 from rotorlab.io._fields import (
     AbstractAnalysisSpec,
@@ -39,269 +58,15 @@ from rotorlab.io._fields import (
     quantity,
 )
 from rotorlab.io._jeffcott_specs import constant_spin_speed
-from rotorlab.io._units import DIMENSIONS, input_unit
 
 __all__ = [
-    "TORUS_COORDINATES",
+    "TORUS_COORDINATES",  # these three live in rotorlab.io._coordinates
     "BALANCER_COORDINATES",
     "coordinate_dimensions",
     "ToroidalBallSpec",
     "BasinSpec",
     "WorkingPointSpec",
 ]
-
-#: Start coordinates of a toroidal-ball basin (state entries and parameters): name -> dimension.
-#: The names and units are those of :class:`rotorlab.explore.TorusRegimes`.
-TORUS_COORDINATES: dict[str, str] = {
-    "psi": "angle",
-    "alpha": "angle",
-    "dpsi": "angular_speed",
-    "dalpha": "angular_speed",
-    "ring_radius": "length",
-    "tube_radius": "length",
-    "ball_radius": "length",
-    "spin_speed": "angular_speed",
-    "offset": "length",
-    "rolling_friction": "length",
-    "gravity": "acceleration",
-}
-
-#: Start coordinates of a balancer basin besides the ball angles ``psi_<i>`` and rates
-#: ``dpsi_<i>`` (i = 1..n): name -> dimension (:class:`rotorlab.explore.BalancerRegimes`).
-BALANCER_COORDINATES: dict[str, str] = {
-    "spin_speed": "angular_speed",
-    "disc_mass": "mass",
-    "eccentricity": "length",
-    "stiffness": "stiffness",
-    "damping": "damping",
-    "ball_mass": "mass",
-    "ball_radius": "length",
-    "ball_damping": "torque_damping",
-    "ball_friction": "dimensionless",
-}
-
-#: Start coordinates of a machine's balancer besides ``psi_<i>`` and ``dpsi_<i>`` (every ball of
-#: every race; :class:`rotorlab.explore.MachineRegimes`).
-MACHINE_COORDINATES: dict[str, str] = {
-    "spin_speed": "angular_speed",
-    "ball_mass": "mass",
-    "ball_damping": "torque_damping",
-}
-
-_BALL_COORD = re.compile(r"^(d?)psi_([1-9][0-9]*)$")
-
-#: Lower bounds of the parameters among the coordinates: name -> ("gt" or "ge", 0).
-COORDINATE_BOUNDS: dict[str, str] = {
-    "ring_radius": "gt", "tube_radius": "gt", "ball_radius": "gt", "spin_speed": "gt", "offset": "ge",
-    "rolling_friction": "ge", "gravity": "ge", "disc_mass": "gt", "eccentricity": "ge", "stiffness": "gt",
-    "damping": "ge", "ball_mass": "gt", "ball_damping": "ge", "ball_friction": "ge",
-}  # fmt: skip
-
-
-def _bound_kw(name: str) -> dict[str, float]:
-    kind = COORDINATE_BOUNDS.get(name)
-    return {} if kind is None else {kind: 0.0}
-
-
-#: Prefix of a coordinate that is a key path of the case's ``[model]`` table: a model whose spec
-#: sets ``sweeps_keys`` (a machine) varies any number of its model this way in basins and sweeps,
-#: e.g. ``model.unbalances[0].magnitude`` or ``model.structure.bearings[0].kxx``.
-KEY_PREFIX = "model."
-
-
-def _quantity_in(tp: Any, path: tuple[Any, ...], meta: tuple[Any, ...] = ()) -> _QuantityValidator | None:
-    """The quantity validator at ``path`` below the annotation ``tp`` (None if no number is there)."""
-    import types
-    import typing
-
-    from pydantic import BaseModel
-
-    if not path:
-        for m in meta:
-            if isinstance(getattr(m, "func", None), _QuantityValidator):
-                return m.func
-    origin = typing.get_origin(tp)
-    if origin is Annotated:
-        base, *more = typing.get_args(tp)
-        return _quantity_in(base, path, tuple(more) + tuple(meta))
-    if origin in (typing.Union, types.UnionType):
-        for arg in typing.get_args(tp):
-            found = _quantity_in(arg, path)
-            if found is not None:
-                return found
-        return None
-    if not path:
-        return None
-    head, rest = path[0], path[1:]
-    if origin is tuple and isinstance(head, int):
-        args = typing.get_args(tp)
-        item = args[0] if len(args) == 2 and args[1] is Ellipsis else (args[head] if head < len(args) else None)
-        return None if item is None else _quantity_in(item, rest)
-    if isinstance(tp, type) and issubclass(tp, BaseModel) and isinstance(head, str) and head in tp.model_fields:
-        info = tp.model_fields[head]
-        return _quantity_in(info.annotation, rest, tuple(info.metadata))
-    return None
-
-
-def key_quantity(name: str, spec: Any = None) -> _QuantityValidator | None:
-    """The quantity (unit, bounds) of the number a coordinate ``model.<key path>`` names.
-
-    Parameters
-    ----------
-    name : str
-        ``"model."`` and a key path as the error messages write it (``model.races[0].radius``).
-    spec : type, optional
-        A model spec class; default any registered model type that has that key.
-
-    Returns
-    -------
-    _QuantityValidator or None
-        None when the name is not such a key path or names no number.
-    """
-    if not name.startswith(KEY_PREFIX):
-        return None
-    from rotorlab.io._overrides import parse_key_path
-
-    try:
-        path = tuple(int(k) if str(k).isdigit() else k for k in parse_key_path(name[len(KEY_PREFIX):]))
-    except ValueError:
-        return None
-    if spec is None:
-        from rotorlab.io._schema import MODEL_SPECS
-
-        specs = list(MODEL_SPECS.values())
-    else:
-        specs = [spec]
-    for cls in specs:
-        found = _quantity_in(cls, path)
-        if found is not None:
-            return found
-    return None
-
-
-def _dimension_name(validator: _QuantityValidator) -> str:
-    return next(k for k, d in DIMENSIONS.items() if d is validator.dimension)
-
-
-class Coordinates(dict):
-    """The start coordinates of a model (name -> dimension) and, for a model whose spec sets
-    ``sweeps_keys``, every number of its ``[model]`` table as ``model.<key path>`` (looked up
-    when asked for; not listed)."""
-
-    def __init__(self, named: dict[str, str], model: Any) -> None:
-        super().__init__(named)
-        self._model = model
-
-    def _key(self, name: Any) -> str | None:
-        if not (isinstance(name, str) and getattr(self._model, "sweeps_keys", False)):
-            return None
-        found = key_quantity(name, type(self._model))
-        if found is None:
-            return None
-        from rotorlab.io._overrides import parse_key_path
-
-        value: Any = self._model.model_dump(mode="python")
-        for k in parse_key_path(name[len(KEY_PREFIX):]):  # the key must exist in this model
-            k = int(k) if str(k).isdigit() and isinstance(value, (list, tuple)) else k
-            if isinstance(k, int) and isinstance(value, (list, tuple)) and k < len(value):
-                value = value[k]
-            elif isinstance(k, str) and isinstance(value, dict) and k in value:
-                value = value[k]
-            else:
-                return None
-        return _dimension_name(found) if isinstance(value, (int, float)) and not isinstance(value, bool) else None
-
-    def __contains__(self, name: Any) -> bool:
-        return super().__contains__(name) or self._key(name) is not None
-
-    def __missing__(self, name: Any) -> str:
-        dim = self._key(name)
-        if dim is None:
-            raise KeyError(name)
-        return dim
-
-
-def coordinates_text(known: Any) -> str:
-    """The names of ``known`` for messages, with the key paths a ``sweeps_keys`` model also takes."""
-    text = ", ".join(known)
-    if isinstance(known, Coordinates) and getattr(known._model, "sweeps_keys", False):
-        text += (", or any number of [model] as model.<key path> (e.g. model.unbalances[0].magnitude)"
-                 if text else "any number of [model] as model.<key path>")
-    return text
-
-
-def _any_dimension(name: str) -> str | None:
-    """Dimension of a coordinate name of any model, or None if no model has it."""
-    found = key_quantity(name)
-    if found is not None:
-        return _dimension_name(found)
-    if name in TORUS_COORDINATES:
-        return TORUS_COORDINATES[name]
-    if name in BALANCER_COORDINATES:
-        return BALANCER_COORDINATES[name]
-    m = _BALL_COORD.match(name)
-    if m:
-        return "angular_speed" if m.group(1) else "angle"
-    return None
-
-
-def coordinate_dimensions(model: Any) -> dict[str, str]:
-    """Return the start coordinates a basin of ``model`` accepts, with their dimensions.
-
-    Parameters
-    ----------
-    model : rotorlab.io.AbstractModelSpec
-        A validated ``[model]`` table.
-
-    Returns
-    -------
-    dict of str to str
-        Coordinate name to a key of :data:`rotorlab.io.DIMENSIONS` (the model spec's
-        ``start_coordinates()``); empty for a model whose basins rotorlab cannot map.
-
-    Examples
-    --------
-    >>> sorted(coordinate_dimensions(ToroidalBallSpec(ring_radius=0.2, tube_radius=0.015,
-    ...        ball_radius=0.0125, spin_speed=140, offset=0.02)))[:4]
-    ['alpha', 'ball_radius', 'dalpha', 'dpsi']
-    """
-    return Coordinates(model.start_coordinates(), model)
-
-
-def ball_coordinates(n_balls: int, parameters: dict[str, str]) -> dict[str, str]:
-    """The start coordinates of a balancer with ``n_balls`` balls: ``psi_<i>``, ``dpsi_<i>`` and
-    ``parameters`` (none without balls)."""
-    if n_balls == 0:
-        return {}
-    out = {f"psi_{i}": "angle" for i in range(1, n_balls + 1)}
-    out.update({f"dpsi_{i}": "angular_speed" for i in range(1, n_balls + 1)})
-    out.update(parameters)
-    return out
-
-
-def record_input_units(units: dict[str, str], given: list[tuple[str, list[Any]]]) -> dict[str, str]:
-    """Return ``units`` updated with the unit each given angle coordinate was written in.
-
-    Parameters
-    ----------
-    units : dict of str to str
-        Units recorded so far (a copy is returned).
-    given : list of (name, raw values)
-        Coordinates as written (numbers or strings with units); an angle given with a degree
-        unit in any of its values is recorded as ``"deg"``, otherwise as ``"rad"``; other
-        coordinates are not recorded.
-    """
-    out = dict(units)
-    for name, raws in given:
-        out.pop(name, None)
-        if _any_dimension(name) == "angle":
-            out[name] = next((u for u in map(input_unit, raws) if u), "rad")
-    return out
-
-
-def _known_names() -> str:
-    return ", ".join([*TORUS_COORDINATES, *(k for k in BALANCER_COORDINATES if k not in TORUS_COORDINATES),
-                      "psi_<i>", "dpsi_<i>"])  # fmt: skip
 
 
 def _detail(exc: PydanticCustomError) -> str:
@@ -421,6 +186,20 @@ class ToroidalBallSpec(AbstractModelSpec):
         """Its state entries and parameters (:data:`TORUS_COORDINATES`)."""
         return dict(TORUS_COORDINATES)
 
+    spins_at_own_speed: ClassVar[bool] = True
+
+    def basin_issues(self, spec: AbstractAnalysisSpec) -> list[Issue]:
+        """ball_radius < tube_radius < ring_radius at every start of the basin ``spec``."""
+        issues = []
+        for small, large in (("ball_radius", "tube_radius"), ("tube_radius", "ring_radius")):
+            lo_s, hi_s, loc_s = spec.value_range(self, small)
+            lo_l, hi_l, loc_l = spec.value_range(self, large)
+            if hi_s >= lo_l and (loc_s or loc_l):
+                loc = loc_s or loc_l
+                issues.append(Issue(loc, f"{small} must stay < {large} at every start (largest {small} "
+                                         f"{hi_s:g} m, smallest {large} {lo_l:g} m)", show_value=False))  # fmt: skip
+        return issues
+
     def describe(self) -> str:
         """One line: geometry, speed and friction."""
         rpm = self.spin_speed * 60.0 / (2.0 * math.pi)
@@ -536,9 +315,8 @@ class BasinSpec(AbstractAnalysisSpec):
         kind = getattr(model, "type", None)
         known = coordinate_dimensions(model)
         if not known:
-            what = "a jeffcott_balls model without balls" if kind == "jeffcott_balls" else f"model type {kind!r}"
             return [Issue(("type",), f"basins need a toroidal_ball model or a jeffcott_balls or machine model with "
-                                     f"balls, not {what}", self.type)]  # fmt: skip
+                                     f"balls, not {model.without_regimes()}", self.type)]  # fmt: skip
         issues = []
         for key, axis in (("x", self.x), ("y", self.y)):
             if axis[0] not in known:
@@ -548,11 +326,11 @@ class BasinSpec(AbstractAnalysisSpec):
             if name not in known:
                 issues.append(Issue(("fixed", name), f"not a coordinate of this {kind} model "
                                                      f"(coordinates: {coordinates_text(known)})", value))  # fmt: skip
-        if kind == "toroidal_ball":
-            issues += self._geometry_issues(model)
+        issues += model.basin_issues(self)
+        if model.spins_at_own_speed:
             for key in ("speed_ratio", "speed"):
                 if getattr(self, key) is not None:
-                    issues.append(Issue((key,), "applies to a rotor with balls only; a toroidal_ball "
+                    issues.append(Issue((key,), f"applies to a rotor with balls only; a {kind} "
                                                 "spins at its model's spin_speed (vary or fix spin_speed)",
                                         getattr(self, key)))  # fmt: skip
         else:
@@ -563,8 +341,9 @@ class BasinSpec(AbstractAnalysisSpec):
                                         "speed or speed_ratio (or vary spin_speed)", show_value=False))  # fmt: skip
         return issues
 
-    def _range(self, model: AbstractModelSpec, name: str) -> tuple[float, float, tuple[str, ...]]:
-        """Smallest and largest value of a model parameter over the starts, and where it is set."""
+    def value_range(self, model: AbstractModelSpec, name: str) -> tuple[float, float, tuple[str, ...]]:
+        """Smallest and largest value of a model parameter over the starts, and where it is set
+        (the key path of ``x``, ``y`` or ``fixed``; empty when the model's own value is used)."""
         for key, axis in (("x", self.x), ("y", self.y)):
             if axis[0] == name:
                 return axis[1], axis[2], (key,)
@@ -572,18 +351,6 @@ class BasinSpec(AbstractAnalysisSpec):
             return self.fixed[name], self.fixed[name], ("fixed", name)
         value = float(getattr(model, name))
         return value, value, ()
-
-    def _geometry_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """ball_radius < tube_radius < ring_radius at every start (toroidal ball)."""
-        issues = []
-        for small, large in (("ball_radius", "tube_radius"), ("tube_radius", "ring_radius")):
-            lo_s, hi_s, loc_s = self._range(model, small)
-            lo_l, hi_l, loc_l = self._range(model, large)
-            if hi_s >= lo_l and (loc_s or loc_l):
-                loc = loc_s or loc_l
-                issues.append(Issue(loc, f"{small} must stay < {large} at every start (largest {small} "
-                                         f"{hi_s:g} m, smallest {large} {lo_l:g} m)", show_value=False))  # fmt: skip
-        return issues
 
     def spin_speed(self, model: AbstractModelSpec) -> float | None:
         """Constant spin speed of a rotor with balls (rad/s): ``speed``, ``speed_ratio * p``, the

@@ -285,13 +285,31 @@ class AbstractModelSpec(_Spec):
         return str(getattr(self, "type", type(self).__name__))
 
     #: Whether basins and sweeps of this model may vary any number of its ``[model]`` table by
-    #: key path (``model.<key path>``; see :data:`rotorlab.io._basin_specs.KEY_PREFIX`).
+    #: key path (``model.<key path>``; see :data:`rotorlab.io._coordinates.KEY_PREFIX`).
     sweeps_keys: ClassVar[bool] = False
 
     def start_coordinates(self) -> dict[str, str]:
         """The coordinates (state entries and parameters) a basin or sweep of this model varies,
         name -> dimension; empty for a model without a regime mapper."""
         return {}
+
+    #: Whether the model always spins at its own ``spin_speed`` (a toroidal ball): its basins and
+    #: sweeps take no ``speed`` or ``speed_ratio`` (they vary or fix ``spin_speed`` instead).
+    spins_at_own_speed: ClassVar[bool] = False
+
+    def missing_coordinate(self, name: str) -> str | None:
+        """Why this model has no start coordinate ``name``, where it can say so better than by
+        listing the coordinates it has (``"has 2 ball(s)"`` for ``psi_3``); None otherwise."""
+        return None
+
+    def without_regimes(self) -> str:
+        """What this model is, for a message saying that basins and sweeps cannot map it."""
+        return f"model type {getattr(self, 'type', None)!r}"
+
+    def basin_issues(self, spec: AbstractAnalysisSpec) -> list[Issue]:
+        """Check a ``basin`` analysis' starts against this model, beyond the names of its
+        coordinates (a toroidal ball: its sizes stay ordered at every start)."""
+        return []
 
     def linear_structure(self) -> AbstractModelSpec | None:
         """The linear rotor spec the linear analyses (``campbell``, ``modes``, ...) run on, or None.

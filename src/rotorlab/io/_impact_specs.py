@@ -69,8 +69,8 @@ class HousingSpec(_Spec):
     rest_speed: quantity("velocity", gt=0) = Field(1e-4, description="rebound speed turning chatter into sliding (m/s)")
     count_speed: quantity("velocity", gt=0) = Field(1e-3, description="approach speed from which impacts count (m/s)")
     whirl_limit: quantity("angular_speed", gt=0) | None = Field(
-        None, description="backward whirl speed that stops a run (rad/s); default the rolling speed "
-                          "r_P sin(beta) omega0 / gap, where the slip vanishes"
+        None, description="backward whirl speed that stops a run (rad/s); default: the run stops where the "
+                          "slip of P over the housing vanishes (without tilt at r_P sin(beta) omega0 / gap)"
     )
 
     @model_validator(mode="after")

@@ -305,9 +305,19 @@ class JeffcottBallsSpec(AbstractModelSpec):
 
     def start_coordinates(self) -> dict[str, str]:
         """``psi_<i>``, ``dpsi_<i>`` and the rotor's and balls' parameters (none without balls)."""
-        from rotorlab.io._basin_specs import BALANCER_COORDINATES, ball_coordinates
+        from rotorlab.io._coordinates import BALANCER_COORDINATES, ball_coordinates
 
         return ball_coordinates(self.n_balls, BALANCER_COORDINATES)
+
+    def missing_coordinate(self, name: str) -> str | None:
+        """``has <n> ball(s)`` for the angle or rate of a ball the model does not have."""
+        from rotorlab.io._coordinates import BALL_COORDINATE
+
+        return f"has {self.n_balls} ball(s)" if BALL_COORDINATE.match(name) else None
+
+    def without_regimes(self) -> str:
+        """A rotor with balls has a regime mapper; this one has no balls."""
+        return "a jeffcott_balls model without balls"
 
     def steady_issues(self, analysis: AbstractAnalysisSpec) -> list[Issue]:
         """Check a steady-motion analysis: at least one ball, no Coulomb friction if it simulates."""

@@ -38,14 +38,6 @@ class JeffcottRubSpec(AbstractModelSpec):
     stator_stiffness: quantity("stiffness", gt=0) | None = Field(
         None, description="radial stiffness k_s of the stator (N/m); omit for a rigid stator"
     )
-    rub_map_axis: ClassVar[str] = "eccentricity"  # what a rub-map varies besides speed and clearance
-
-    def rub_issues(self, spec: AbstractAnalysisSpec) -> list[Issue]:
-        """What the rub analyses need of this model: a rigid stator's rotor starts inside the clearance."""
-        if self.stator_stiffness is None and spec.initial_radius > self.clearance:
-            return [Issue(("initial_radius",), f"must be <= the clearance ({self.clearance:g} m) with a rigid "
-                          "stator", spec.initial_radius)]  # fmt: skip
-        return []
     stator_damping: quantity("damping", ge=0) = Field(0.0, description="radial damping c_s of the stator (N*s/m)")
     friction: quantity("dimensionless", ge=0) = Field(0.0, description="Coulomb friction mu at the stator (-)")
     rotor_radius: quantity("length", gt=0) = Field(description="rotor radius R_r at the contact (m)")
@@ -54,6 +46,14 @@ class JeffcottRubSpec(AbstractModelSpec):
         1e-5, description="rebound speed below which chatter becomes sustained contact (m/s)"
     )
     spin_speed: quantity("angular_speed", ge=0) = Field(description="spin speed Omega (rad/s)")
+    rub_map_axis: ClassVar[str] = "eccentricity"  # what a rub-map varies besides speed and clearance
+
+    def rub_issues(self, spec: AbstractAnalysisSpec) -> list[Issue]:
+        """What the rub analyses need of this model: a rigid stator's rotor starts inside the clearance."""
+        if self.stator_stiffness is None and spec.initial_radius > self.clearance:
+            return [Issue(("initial_radius",), f"must be <= the clearance ({self.clearance:g} m) with a rigid "
+                          "stator", spec.initial_radius)]  # fmt: skip
+        return []
 
     @model_validator(mode="after")
     def _check_stator(self) -> JeffcottRubSpec:
@@ -99,7 +99,31 @@ def _model_rub_issues(spec: AbstractAnalysisSpec, model: AbstractModelSpec) -> l
     return list(hook(spec))
 
 
-class RubSpec(AbstractAnalysisSpec):
+class _RubRunSpec(AbstractAnalysisSpec):
+    """What the rub analyses share: the run, its classified window and the starting whirl.
+
+    Every run starts on a circular whirl of radius ``initial_radius`` at ``initial_whirl`` (rad/s,
+    < 0 backward); the last ``window`` seconds of ``t_end`` are classified from ``samples``
+    samples. The model must have a clearance to rub in (its ``rub_issues`` hook).
+    """
+
+    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
+    window: quantity("time", gt=0) = Field(description="classified window at the end of the run (s)")
+    initial_radius: quantity("length", ge=0) = Field(0.0, description="radius of the starting whirl (m)")
+    initial_whirl: quantity("angular_speed") = Field(0.0, description="angular speed of the starting whirl (rad/s)")
+
+    def _window_issues(self) -> list[Issue]:
+        if self.window >= self.t_end:
+            return [Issue(("window",), f"must be < t_end ({self.t_end:g} s)", self.window)]
+        return []
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        """A rub_rotor, or a machine with a clearance, a constant speed and the rotor radius; a
+        rigid stator's rotor must start inside the clearance."""
+        return _model_rub_issues(self, model)
+
+
+class RubSpec(_RubRunSpec):
     """Simulate the rotor in its clearance and classify what it does (:class:`rotorlab.contact.RubRegime`).
 
     The start is a circular whirl of radius ``initial_radius`` at ``initial_whirl`` (rad/s, < 0
@@ -108,22 +132,14 @@ class RubSpec(AbstractAnalysisSpec):
     """
 
     type: Literal["rub"] = "rub"
-    t_end: quantity("time", gt=0) = Field(description="simulated time (s)")
-    window: quantity("time", gt=0) = Field(description="classified window at the end of the run (s)")
-    initial_radius: quantity("length", ge=0) = Field(0.0, description="radius of the starting whirl (m)")
-    initial_whirl: quantity("angular_speed") = Field(0.0, description="angular speed of the starting whirl (rad/s)")
     samples: integer(ge=2) = Field(400, description="samples in the window (-)")
 
     @model_validator(mode="after")
     def _check_window(self) -> RubSpec:
-        if self.window >= self.t_end:
-            raise IssueGroup([Issue(("window",), f"must be < t_end ({self.t_end:g} s)", self.window)])
+        issues = self._window_issues()
+        if issues:
+            raise IssueGroup(issues)
         return self
-
-    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """A rub_rotor, or a machine with a clearance, a constant speed and the rotor radius; a
-        rigid stator's rotor must start inside the clearance."""
-        return _model_rub_issues(self, model)
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""
@@ -133,7 +149,7 @@ class RubSpec(AbstractAnalysisSpec):
 _AXIS_UNITS = {"clearance": "length", "eccentricity": "length", "unbalance": "unbalance"}
 
 
-class RubMapSpec(AbstractAnalysisSpec):
+class RubMapSpec(_RubRunSpec):
     """A map of rub regimes over spin speed and a second parameter, on the sweep engine.
 
     ``spin_speed = [start, stop, n]`` and exactly one of ``clearance``, ``eccentricity``
@@ -151,10 +167,6 @@ class RubMapSpec(AbstractAnalysisSpec):
         None, description="unbalance eccentricities [start, stop, count] (m), rub_rotor")
     unbalance: tuple[quantity("unbalance", ge=0), quantity("unbalance", ge=0), integer(ge=1)] | None = Field(
         None, description="first unbalance m e [start, stop, count] (kg*m), machine")
-    t_end: quantity("time", gt=0) = Field(description="simulated time of every point (s)")
-    window: quantity("time", gt=0) = Field(description="classified window at the end of each run (s)")
-    initial_radius: quantity("length", ge=0) = Field(0.0, description="radius of the starting whirl (m)")
-    initial_whirl: quantity("angular_speed") = Field(0.0, description="angular speed of the starting whirl (rad/s)")
     samples: integer(ge=2) = Field(200, description="samples in the window (-)")
 
     @model_validator(mode="after")
@@ -164,8 +176,7 @@ class RubMapSpec(AbstractAnalysisSpec):
         if len(given) != 1:
             issues.append(Issue((), "give exactly one of clearance, eccentricity or unbalance as the second axis"
                                 + (f" (got {', '.join(given)})" if given else ""), show_value=False))
-        if self.window >= self.t_end:
-            issues.append(Issue(("window",), f"must be < t_end ({self.t_end:g} s)", self.window))
+        issues += self._window_issues()
         if issues:
             raise IssueGroup(issues)
         return self
@@ -178,7 +189,7 @@ class RubMapSpec(AbstractAnalysisSpec):
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """A rub_rotor (eccentricity or clearance), or a machine with a clearance and a constant
         speed (unbalance or clearance)."""
-        issues = _model_rub_issues(self, model)
+        issues = super().case_issues(model)
         axis, own = self.second_axis, getattr(model, "rub_map_axis", None)
         if own is not None and axis != "clearance" and axis != own:
             issues.append(Issue((axis,), f"does not apply: a {model.type} model varies its {own}",

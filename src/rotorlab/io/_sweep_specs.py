@@ -14,14 +14,13 @@ Examples
 
 from __future__ import annotations
 
-import re
 from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from rotorlab.io._basin_specs import (TORUS_COORDINATES, _any_dimension, coordinate_dimensions, coordinates_text,
-                                      key_quantity)
+from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, _any_dimension, coordinate_dimensions,
+                                     coordinates_text, key_quantity)
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, Unit, _error, _QuantityValidator, integer,
                                  quantity)  # fmt: skip
@@ -40,7 +39,6 @@ SWEEP_PARAMETERS: dict[str, tuple[str, str]] = {
     "ball_damping": ("torque_damping", "N*m*s/rad"),
     "ball_friction": ("dimensionless", "1"),
 }
-_STATE = re.compile(r"^(d?)psi_([1-9][0-9]*)$")
 
 #: Initial conditions of a toroidal ball (its state entries; the rest of
 #: :data:`rotorlab.io.TORUS_COORDINATES` are parameters).
@@ -48,7 +46,7 @@ TORUS_STATES = ("psi", "alpha", "dpsi", "dalpha")
 
 
 def _is_state(name: str) -> bool:
-    return name in TORUS_STATES or _STATE.match(name) is not None
+    return name in TORUS_STATES or BALL_COORDINATE.match(name) is not None
 
 
 def coordinate_dimension(name: str, kind: str) -> str | None:
@@ -90,7 +88,7 @@ def sweep_coordinates(model: Any, kind: str) -> dict[str, str]:
     >>> list(sweep_coordinates(load_case("strautmanis-torus").model, "ic"))
     ['psi', 'alpha', 'dpsi', 'dalpha']
     """
-    from rotorlab.io._basin_specs import Coordinates
+    from rotorlab.io._coordinates import Coordinates
 
     named = {n: d for n, d in coordinate_dimensions(model).items() if _is_state(n) == (kind == "ic")}
     return Coordinates(named, model) if kind == "param" else named
@@ -222,9 +220,9 @@ class SweepSpec(AbstractAnalysisSpec):
             for name in getattr(self, key):
                 if name in known:
                     continue
-                m = _STATE.match(name)
-                if kind == "jeffcott_balls" and m is not None:
-                    issues.append(Issue((key, name), f"the model has {model.n_balls} ball(s)", name))
+                reason = model.missing_coordinate(name)
+                if reason is not None:
+                    issues.append(Issue((key, name), f"the model {reason}", name))
                 else:
                     issues.append(Issue((key, name), f"not a{'n initial condition' if key == 'ic' else ' parameter'}"
                                                      f" of this {kind} model (allowed: {coordinates_text(known)})", name))
@@ -236,10 +234,10 @@ class SweepSpec(AbstractAnalysisSpec):
                     issues.append(Issue((key, name), "give [start, stop, count] (or set sample)", list(entry)))
         if not self.param and not self.ic:
             issues.append(Issue(("param",), "give at least one param or ic to vary", None, show_value=False))
-        if kind == "toroidal_ball":
+        if model.spins_at_own_speed:
             for key in ("speed_ratio", "speed"):
                 if getattr(self, key) is not None:
-                    issues.append(Issue((key,), "applies to a rotor with balls only; a toroidal_ball spins at its "
+                    issues.append(Issue((key,), f"applies to a rotor with balls only; a {kind} spins at its "
                                                 "model's spin_speed (vary it with param)", getattr(self, key)))
             return issues
         if self.spare_turns is not None:
@@ -255,7 +253,7 @@ class SweepSpec(AbstractAnalysisSpec):
 
     def spin_speed(self, model: AbstractModelSpec) -> float:
         """Return the base spin speed (rad/s)."""
-        if getattr(model, "type", None) == "toroidal_ball":
+        if model.spins_at_own_speed:
             return model.spin_speed
         if self.speed is not None:
             return self.speed

@@ -186,8 +186,24 @@ class RigidBody:
         return g
 
 
+class _Massless:
+    """Mass and gyroscopic matrices of a massless element on ``nodes`` (4 DOF each): zero."""
+
+    __slots__ = ()
+
+    def M(self) -> np.ndarray:
+        """Zero: the element is massless."""
+        n = 4 * len(self.nodes)
+        return np.zeros((n, n))
+
+    def G(self) -> np.ndarray:
+        """Zero."""
+        n = 4 * len(self.nodes)
+        return np.zeros((n, n))
+
+
 @dataclass(frozen=True, slots=True)
-class Bearing:
+class Bearing(_Massless):
     """Linear bearing or support: springs and dampers from a node to ground or to another node.
 
     Force on the node (to ground): ``-[[kxx, kxy], [kyx, kyy]] [x, y] - (same with c) [x', y']``,
@@ -280,15 +296,6 @@ class Bearing:
         c[0, 0], c[0, 1], c[1, 0], c[1, 1] = self.cxx, self.cxy, self.cyx, self.cyy
         return self._expand(c)
 
-    def M(self) -> np.ndarray:
-        """Zero: a bearing has no mass."""
-        n = 4 * len(self.nodes)
-        return np.zeros((n, n))
-
-    def G(self) -> np.ndarray:
-        """Zero."""
-        n = 4 * len(self.nodes)
-        return np.zeros((n, n))
 
 
 def _plane_matrix(owner: str, name: str, value, m: int, *, symmetric: bool) -> np.ndarray:
@@ -308,7 +315,7 @@ def _plane_matrix(owner: str, name: str, value, m: int, *, symmetric: bool) -> n
 
 
 @dataclass(frozen=True, slots=True)
-class ElasticConnection:
+class ElasticConnection(_Massless):
     """Stiffness (and optional damping) matrix joining several nodes, plane by plane.
 
     This is how a multibody model on elastic supports is written (seed 000): the elastic
@@ -418,12 +425,3 @@ class ElasticConnection:
         """Damping (4m, 4m); zero unless damping was given."""
         return self._scatter(self.damping_x, self.damping_y)
 
-    def M(self) -> np.ndarray:
-        """Zero: the connection is massless."""
-        n = 4 * len(self.nodes)
-        return np.zeros((n, n))
-
-    def G(self) -> np.ndarray:
-        """Zero."""
-        n = 4 * len(self.nodes)
-        return np.zeros((n, n))

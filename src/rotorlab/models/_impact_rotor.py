@@ -90,14 +90,29 @@ contact point slides forwards over the housing (the surface speed ``r_P omega0``
 vibration). When a sliding contact whirls backwards, friction drives it further backwards; the
 faster it whirls, the larger N (centripetal term) and the friction, and nothing in the sliding
 law limits it (the whirl speed grows to ~1e12 rad/s within a second). The theory says where that
-law ends: at the backward whirl speed ``r_P sin(beta) omega0 / Delta``
-(:meth:`Housing.rolling_whirl_speed`) the slip vanishes and the rotor rolls on the housing, the
-dry-friction backward whirl ``-(R / delta) Omega`` (Black 1968, Crandall 1990; see
-:func:`rotorlab.contact.rolling_whirl`), which this sliding model cannot carry. The run is
-stopped there and flagged (``whirl_limit`` overrides the speed). The impacts counted are the
-same whichever speed the stop is detected at, since a sliding contact makes no impacts: over
-16 runs (2 and 3 kg, seed 0, 10 s) the former empirical limit 2 omega0, the rolling speed and no
-limit at all flag the same runs with the same counts (``tests/validation/test_impact_whirl.py``).
+law ends: where the slip of P over the housing (:func:`rotorlab._kernels.impact_rotor.slip_speed`,
+the surface speed ``r_P omega0`` plus the vibration of the material point P) vanishes, the rotor
+rolls on the housing, the dry-friction backward whirl ``-(R / delta) Omega`` (Black 1968, Crandall
+1990; see :func:`rotorlab.contact.rolling_whirl`), which this sliding model cannot carry. The run
+is stopped exactly there (the event ``backward_whirl`` is the slip itself) and flagged. Without
+tilt (the translational model, ``w = sin(beta) u``) this is the whirl speed
+``r_P sin(beta) omega0 / Delta`` (:meth:`Housing.rolling_whirl_speed`); with tilt the material
+point P also moves with ``h_P t'``, which is not along ``w``, so the whirl speed at which P rolls
+differs from it. A ``whirl_limit`` replaces the criterion by a threshold on the backward whirl
+speed of the contact point. The impacts counted are the same whichever stop ends the slide,
+since a sliding contact makes no impacts: over 16 runs (2 and 3 kg, seed 0, 10 s) the former
+empirical limit 2 omega0, the slip criterion and no limit at all flag the same runs with the same
+counts (``tests/validation/test_impact_whirl.py``).
+
+Impacts are the shared contact law (:mod:`rotorlab._kernels.contact`), which is (3.9) while P
+slides forwards. Its friction impulse sticks when the slip of P vanishes: the rotor then rolls
+on the housing, the same dry-friction backward whirl reached through impacts instead of
+sliding (with restitution 1 and heavy stones, where no accumulation turns into sliding), and
+the run is stopped and flagged there too. Seed 001's own map, friction always along
+``-e_perp``, pushed such a run past rolling (friction along the slip, energy from nowhere) until
+P went through the housing (issue 14: 1.4 million impacts, 2e6 m); the energy ledger
+(:mod:`rotorlab._kernels.impact_rotor`) and :meth:`ImpactRotor.impossible_states` fail any run
+that creates energy or passes the housing.
 
 Energy
 ------
@@ -139,14 +154,19 @@ __all__ = [
     "Reconstruction",
 ]
 
+#: Energy created beyond the ledger's bound that fails a run, relative to the energy that went
+#: through the ledger (see :meth:`ImpactRotor.impossible_states`).
+ENERGY_TOLERANCE = 1e-3
+
 #: Event functions of the model, in kernel order.
 EVENT_NAMES = ("impact", "lift_off", "stone", "backward_whirl")
 
 #: Names of the state entries, in kernel order.
 STATE_NAMES = (
-    "u1", "u2", "t1", "t2", "du1", "du2", "dt1", "dt2", "int_contact_force",
-    "mode", "i_breakpoint", "t_reset", "n_impacts", "n_impacts_all", "n_slides", "t_slide_start",
-    "t_sliding", "impulse_sum", "e_restitution", "v_max", "penetration_max", "whirl",
+    "u1", "u2", "t1", "t2", "du1", "du2", "dt1", "dt2", "int_contact_force", "work_stones",
+    "work_nonconservative", "mode", "i_breakpoint", "t_reset", "n_impacts", "n_impacts_all", "n_slides",
+    "t_slide_start", "t_sliding", "impulse_sum", "e_restitution", "v_max", "penetration_max", "whirl",
+    "energy_start", "work_drive", "e_friction", "e_projection",
 )  # fmt: skip
 
 _KERNELS = Kernels(
@@ -181,7 +201,7 @@ class ImpactRotor:
     --------
     >>> model = krasnov_crusher().with_stones(t_end=0.2, seed=3)
     >>> model.n_state, len(model.sequence), round(model.equivalent_mass, 2)
-    (22, 5, 627.3)
+    (28, 5, 627.3)
     """
 
     rotor: CentrifugeRotor
@@ -259,6 +279,7 @@ class ImpactRotor:
         head[_k.P_VREST] = h.rest_speed
         head[_k.P_VCOUNT] = h.count_speed
         head[_k.P_WHIRL] = h.rolling_whirl_speed(w0) if h.whirl_limit is None else h.whirl_limit
+        head[_k.P_SLIPSTOP] = 1.0 if h.whirl_limit is None else 0.0
         head[_k.P_TAUEND] = push.tau_end
         # stones: t_n, m_n w0^2 R_q, cos(alpha_n), sin(alpha_n)
         n = len(seq)
@@ -277,19 +298,39 @@ class ImpactRotor:
         return np.concatenate([head, stones.ravel(), bp, active.ravel().astype(float), tab.ravel()])
 
     def impossible_states(self, ys, y_final, t_final, params) -> list[str]:
-        """Sanity monitor (kernel contract item 6): runs where P went through the housing.
+        """Sanity monitor (kernel contract item 6): runs whose result is physically impossible.
 
-        The housing is rigid and every approach of P is caught by the impact event, so P can
-        exceed the gap only by the event-location tolerance. A penetration beyond the clearance
-        itself (``|w| - Delta > Delta``, at an impact or projection, or in a saved state) means
-        the impacts no longer hold the rotor: with restitution 1 and heavy stones the impacts
-        accumulate faster than they can be resolved and the rotor drifts through the housing
-        (issue 14: 1.4 million "impacts" in 2 s, penetration 2e6 m). Such a run is failed.
+        Two checks, on the records the kernel keeps (the same on the scalar and the lane driver):
+
+        - **penetration beyond the clearance.** The housing is rigid and every approach of P is
+          caught by the impact event, so P can exceed the gap only by the event-location
+          tolerance. ``|w| - Delta > Delta`` (at an impact or projection, or in a saved state)
+          means the impacts no longer hold the rotor (issue 14: 1.4 million "impacts" in 2 s,
+          penetration 2e6 m, with seed 001's own impulse arithmetic).
+        - **energy created.** The energy ledger of :mod:`rotorlab._kernels.impact_rotor`: the
+          fixed-frame vibration energy ``E`` changes by ``W_NC + W_DRIVE - E_REST - E_FRIC``
+          (work between impulses; the drive's work through the friction impulses, less what
+          restitution and friction took). The sources are the stones (``W_ST``) and the drive
+          (``W_DRIVE``, and ``f r_P omega0 int N dt`` in sliding); the membranes' friction and
+          the friction heat in sliding (``W_ST + f r_P omega0 int N dt - W_NC``), restitution
+          and the friction heat of the impulses only take energy away. A run whose energy rose
+          above the ledger, or in which one of those losses is negative, created energy (a
+          missed impact, a law pushing P along its slip). Tolerance: ``ENERGY_TOLERANCE`` times
+          the energy that went through the ledger (``E_0 + |W_ST| + W_DRIVE + f r_P omega0 int
+          N dt``). Why: the ledger closes to the integration error, first order in ``rtol``
+          (3e-8 of that at the case files' ``rtol = 1e-8``, ``tests/unit/test_impact_ledger.py``);
+          the check is for energy created at the scale of the budget (issue 14's run: 1.4e6
+          times it), not for integration error, and 1e-3 leaves that room up to ``rtol`` of
+          about 1e-5.
+
+        An accumulation of impacts in finite time that the chatter rule (``rest_speed``) does
+        not turn into sliding contact ends the run with the integrator's own failed status
+        ``EVENT_LOOP`` (events firing without time advancing).
 
         Parameters
         ----------
-        ys : ndarray, shape (N, n_save, 22)
-        y_final : ndarray, shape (N, 22)
+        ys : ndarray, shape (N, n_save, 28)
+        y_final : ndarray, shape (N, 28)
         t_final : ndarray, shape (N,)
         params : ndarray, shape (N or 1, n_param)
             Packed parameters (:meth:`to_array`) of each run.
@@ -297,24 +338,43 @@ class ImpactRotor:
         Returns
         -------
         list of str
-            Per run, empty or the message naming the penetration, the gap and the time.
+            Per run, empty or the message naming the check and its numbers.
         """
         ys, y_final, params = np.asarray(ys, float), np.asarray(y_final, float), np.atleast_2d(params)
-        gap = np.broadcast_to(params[:, _k.P_GAP], (y_final.shape[0],))
-        sb = np.broadcast_to(params[:, _k.P_SB], gap.shape)
-        lp = np.broadcast_to(params[:, _k.P_LP], gap.shape)
+        n = y_final.shape[0]
+
+        def col(i):
+            return np.broadcast_to(params[:, i], (n,))
+
+        gap, sb, lp = col(_k.P_GAP), col(_k.P_SB), col(_k.P_LP)
         pen = y_final[:, _k.PEN_MAX]
         if ys.shape[1]:
             w1 = sb[:, None] * ys[:, :, _k.U1] + lp[:, None] * ys[:, :, _k.T1]
             w2 = sb[:, None] * ys[:, :, _k.U2] + lp[:, None] * ys[:, :, _k.T2]
             with np.errstate(invalid="ignore"):
                 pen = np.fmax(pen, np.nanmax(np.hypot(w1, w2), axis=1, initial=0.0) - gap)
+        energy = np.array([_k.fixed_energy(y_final[i], params[i if params.shape[0] > 1 else 0]) for i in range(n)])
+        yf = y_final
+        slide_drive = col(_k.P_F) * col(_k.P_RP) * col(_k.P_W0) * yf[:, _k.INT_N]
+        gain = energy - yf[:, _k.E_0]
+        allowed = yf[:, _k.W_NC] + yf[:, _k.W_DRIVE] - yf[:, _k.E_REST] - yf[:, _k.E_FRIC]
+        between = yf[:, _k.W_ST] + slide_drive - yf[:, _k.W_NC]  # membranes' friction + sliding heat
+        created = np.max(np.stack([gain - allowed, -between, -yf[:, _k.E_REST], -yf[:, _k.E_FRIC]]), axis=0)
+        scale = np.abs(yf[:, _k.E_0]) + np.abs(yf[:, _k.W_ST]) + np.abs(yf[:, _k.W_DRIVE]) + np.abs(slide_drive)
+        tol = ENERGY_TOLERANCE * scale + 1e-12
         out = []
-        for i in range(gap.shape[0]):
+        for i in range(n):
+            after = f"by t = {t_final[i]:.6g} s after {int(yf[i, _k.N_ALL])} impacts"
             if pen[i] > gap[i]:
-                out.append(f"the gap point P went {pen[i]:.3g} m through the housing (gap {gap[i]:.3g} m) by "
-                           f"t = {t_final[i]:.6g} s after {int(y_final[i, _k.N_ALL])} impacts: the impacts no "
-                           "longer hold the rotor (restitution near 1 with heavy stones?)")  # fmt: skip
+                out.append(f"the gap point P went {pen[i]:.3g} m through the housing (gap {gap[i]:.3g} m) {after}: "
+                           "the impacts no longer hold the rotor (restitution near 1 with heavy stones?)")  # fmt: skip
+            elif created[i] > tol[i]:
+                out.append(f"energy created: the vibration energy rose by {gain[i]:.4g} J {after}; the stones "
+                           f"supplied {yf[i, _k.W_ST]:.4g} J and the drive {yf[i, _k.W_DRIVE] + slide_drive[i]:.4g} J, "
+                           f"and the ledger allows {allowed[i]:.4g} J (lost by restitution {yf[i, _k.E_REST]:.4g} J, "
+                           f"by friction at the impacts {yf[i, _k.E_FRIC]:.4g} J, by the membranes and in sliding "
+                           f"{between[i]:.4g} J): {created[i]:.3g} J created (tolerance {tol[i]:.3g} J; "
+                           "tolerances too loose?)")  # fmt: skip
             else:
                 out.append("")
         return out
@@ -331,6 +391,7 @@ class ImpactRotor:
             y[_k.T1:_k.T2 + 1] = tilt
             y[_k.DT1:_k.DT2 + 1] = dtilt
         y[_k.T_RESET] = -1.0
+        y[_k.E_0] = self.fixed_energy(y)
         w = self.gap_vector(y)
         if np.hypot(*w) >= self.housing.gap:
             raise ValueError(f"initial state must be clear of the housing: |w| = {np.hypot(*w):.4g} m >= gap {self.housing.gap:g} m")
@@ -338,7 +399,7 @@ class ImpactRotor:
 
     # ---- physics helpers (numpy, for analyses and tests) ---------------------------------------
     def gap_vector(self, y) -> np.ndarray:
-        """w = u sin(beta) + l_P t at states ``y`` (..., 22) -> (..., 2) (m)."""
+        """w = u sin(beta) + l_P t at states ``y`` (..., 28) -> (..., 2) (m)."""
         y = np.asarray(y, dtype=float)
         sb = math.sin(self.housing.cone_angle)
         lp = self.housing.lever()
@@ -362,6 +423,31 @@ class ImpactRotor:
         return (0.5 * r.mass * sq(du) + 0.5 * r.inertia_transverse * sq(dt) + 0.5 * r.stiffness * sq(um)
                 + 0.5 * r.tilt_stiffness * sq(t) - 0.5 * r.mass * w0 * w0 * sq(u)
                 + 0.5 * (r.inertia_polar - r.inertia_transverse) * w0 * w0 * sq(t))  # fmt: skip
+
+    def fixed_energy(self, y) -> np.ndarray:
+        """Vibration energy in the fixed frame at states ``y`` (..., 28) (J).
+
+        ``1/2 m |X'|^2 + 1/2 A1 |T'|^2 + 1/2 c |u + n_m t|^2 + 1/2 c_* |t|^2`` with the
+        fixed-frame velocities ``X' = u' + omega0 k x u``, ``T' = t' + omega0 k x t`` (the
+        membranes are fixed, the gyroscopic moment does no work); the energy ledger of
+        :mod:`rotorlab._kernels.impact_rotor` balances it. Conserved without stones, membrane
+        friction and contact.
+        """
+        y = np.asarray(y, dtype=float)
+        r = self.rotor
+        w0 = r.spin_speed
+        u, t, du, dt = y[..., 0:2], y[..., 2:4], y[..., 4:6], y[..., 6:8]
+        x = du + w0 * np.stack([-u[..., 1], u[..., 0]], axis=-1)
+        um = u + r.membrane_offset * t
+
+        def sq(v):
+            return np.sum(v * v, axis=-1)
+
+        e = 0.5 * r.mass * sq(x) + 0.5 * r.stiffness * sq(um)
+        if not self.translational:
+            s = dt + w0 * np.stack([-t[..., 1], t[..., 0]], axis=-1)
+            e = e + 0.5 * r.inertia_transverse * sq(s) + 0.5 * r.tilt_stiffness * sq(t)
+        return e
 
     def stone_energy(self, t_end: float) -> float:
         """Energy the motor spends on the stones landed before ``t_end`` (J), partial last ones."""

@@ -127,6 +127,7 @@ import numpy as np
 from rotorlab._kernels import jeffcott_balls as _k
 from rotorlab._kernels.speed import KIND_CONSTANT, KIND_RAMP
 from rotorlab.models._base import EventSpec, Kernels, no_events, no_reset
+from rotorlab.models._jeffcott_frames import fixed_to_rotating, rotating_to_fixed
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
 from rotorlab.models._speed import ConstantSpeed, SpeedProfile, speed_from_array  # noqa: F401
 
@@ -165,75 +166,6 @@ def _kernels_for(frame: str, n_balls: int, friction: bool, arithmetic_speed: boo
         else:
             _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n_balls, events=no_events, reset=no_reset)
     return _KERNELS[key]
-
-
-def rotating_to_fixed(theta, omega, y, n_balls: int) -> np.ndarray:
-    """Convert rotating-frame states to the fixed frame.
-
-    Parameters
-    ----------
-    theta, omega : float or array_like, shape (...)
-        Spin angle (rad) and speed (rad/s) at the states' times.
-    y : array_like, shape (..., n_state)
-        ``[u, v, du, dv, psi_i, dpsi_i, (modes)]`` (m, m/s, rad, rad/s).
-    n_balls : int
-
-    Returns
-    -------
-    ndarray, shape (..., n_state)
-        ``[x, y, vx, vy, phi_i, w_i, (modes)]``.
-    """
-    y = np.asarray(y, dtype=float)
-    th = np.asarray(theta, dtype=float)
-    om = np.asarray(omega, dtype=float)
-    c, s = np.cos(th), np.sin(th)
-    u, v, du, dv = (y[..., k] for k in range(4))
-    a = du - om * v
-    b = dv + om * u
-    out = np.array(y, copy=True)
-    out[..., 0] = c * u - s * v
-    out[..., 1] = s * u + c * v
-    out[..., 2] = c * a - s * b
-    out[..., 3] = s * a + c * b
-    n = n_balls
-    out[..., 4 : 4 + n] = y[..., 4 : 4 + n] + th[..., None]
-    out[..., 4 + n : 4 + 2 * n] = y[..., 4 + n : 4 + 2 * n] + om[..., None]
-    return out
-
-
-def fixed_to_rotating(theta, omega, y, n_balls: int) -> np.ndarray:
-    """Convert fixed-frame states to the co-rotating frame (inverse of :func:`rotating_to_fixed`).
-
-    Parameters
-    ----------
-    theta, omega : float or array_like, shape (...)
-        Spin angle (rad) and speed (rad/s) at the states' times.
-    y : array_like, shape (..., n_state)
-        ``[x, y, vx, vy, phi_i, w_i, (modes)]``.
-    n_balls : int
-
-    Returns
-    -------
-    ndarray, shape (..., n_state)
-        ``[u, v, du, dv, psi_i, dpsi_i, (modes)]``; the angles psi_i = phi_i - theta are not
-        wrapped.
-    """
-    y = np.asarray(y, dtype=float)
-    th = np.asarray(theta, dtype=float)
-    om = np.asarray(omega, dtype=float)
-    c, s = np.cos(th), np.sin(th)
-    x, yy, vx, vy = (y[..., k] for k in range(4))
-    out = np.array(y, copy=True)
-    u = c * x + s * yy
-    v = -s * x + c * yy
-    out[..., 0] = u
-    out[..., 1] = v
-    out[..., 2] = c * vx + s * vy + om * v
-    out[..., 3] = -s * vx + c * vy - om * u
-    n = n_balls
-    out[..., 4 : 4 + n] = y[..., 4 : 4 + n] - th[..., None]
-    out[..., 4 + n : 4 + 2 * n] = y[..., 4 + n : 4 + 2 * n] - om[..., None]
-    return out
 
 
 @dataclass(frozen=True, slots=True)

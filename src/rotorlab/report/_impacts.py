@@ -42,6 +42,8 @@ def _run_html(ds: xarray.Dataset) -> str:
         ["time in sliding contact", f"{s['sliding_time_s']:.4g}", "s"],
         ["energy on the stones", f"{s['energy_stones_J']:.4g}", "J"],
         ["energy against friction at the housing", f"{s['energy_friction_J']:.4g}", "J"],
+        ["work of the stones on the vibration", f"{s['work_stones_J']:.4g}", "J"],
+        ["vibration energy gained (fixed frame)", f"{s['energy_vibration_J']:.4g}", "J"],
         ["eta (seed 001, Fig. 5)", eta, "1"],
         ["largest approach speed", f"{s['max_approach_speed_m_s']:.4g}", "m/s"],
         ["largest penetration (should be 0)", f"{s['max_penetration_m']:.3g}", "m"],
@@ -49,7 +51,17 @@ def _run_html(ds: xarray.Dataset) -> str:
         ["seed of the stone sequence", s["seed"], "numpy.random.default_rng"],
         ["run ended at", f"{s['t_final_s']:.6g}", "s"],
     ]
-    return "<h3>Result</h3>" + _table(["quantity", "value", "unit"], rows, numeric={1})
+    detail = ds.attrs.get("status_detail")
+    note = ""
+    if detail:
+        if s["status"] < 0:
+            text, cls = "Failed: " + detail, "outcome-bad"
+        elif s["backward_whirl"]:  # not failed, but not the requested run either: say it as plainly
+            text, cls = detail[:1].upper() + detail[1:], "outcome-bad"
+        else:
+            text, cls = "Note: " + detail, "muted"
+        note = f'<p class="{cls}">{_e(text)}</p>'
+    return "<h3>Result</h3>" + note + _table(["quantity", "value", "unit"], rows, numeric={1})
 
 
 def _sweep_html(ds: xarray.Dataset) -> str:
@@ -59,20 +71,26 @@ def _sweep_html(ds: xarray.Dataset) -> str:
     paper = paper_counts(ds)
     unit = f" ({doc['units']})" if doc["units"] not in ("", "1") else ""
     header = [doc["param"] + unit, "impacts median", "quartiles", "min-max", "none", "rebounds", "sliding",
-              "backward whirl", "eta median", "seed 001"]  # fmt: skip
+              "backward whirl", "failed", "eta median", "seed 001"]  # fmt: skip
     rows = []
     for row, p in zip(doc["rows"], paper):
         r = row["regimes"]
         eta = "-" if row["energy_ratio_median"] is None else f"{row['energy_ratio_median']:.3g}"
-        rows.append([f"{row['value']:.4g}", f"{row['impacts_median']:g}",
-                     f"{row['impacts_q25']:g}-{row['impacts_q75']:g}", f"{row['impacts_min']}-{row['impacts_max']}",
-                     r["none"], r["rebounds"], r["sliding"], r["backward_whirl"], eta,
+        if row["impacts_median"] is None:  # every run at this value failed
+            med, quart = "-", "-"
+        else:
+            med, quart = f"{row['impacts_median']:g}", f"{row['impacts_q25']:g}-{row['impacts_q75']:g}"
+        rows.append([f"{row['value']:.4g}", med, quart, f"{row['impacts_min']}-{row['impacts_max']}",
+                     r["none"], r["rebounds"], r["sliding"], r["backward_whirl"], r["failed"], eta,
                      "-" if p is None else p])  # fmt: skip
     text = (f'<p class="muted">{doc["n_sequences"]} random stone sequences per value (seeds {doc["seed"]} to '
             f'{doc["seed"] + doc["n_sequences"] - 1}, the same at every value), {doc["t_end_s"]:g} s each. '
-            "Regime counts are numbers of runs. The paper's counts come from one sequence each and from "
+            "Regime counts are numbers of runs; a failed run (physically impossible result or integrator failure) "
+            "is counted as failed, not in a regime, and left out of the medians; a run stopped at the dry-friction "
+            "backward whirl (the rotor rolls on its housing, which this model cannot carry) counts its impacts up to "
+            "the stop, not over the whole time. The paper's counts come from one sequence each and from "
             "parameters it does not give (start radius, number of guides, guide sequence).</p>")  # fmt: skip
-    return "<h3>Impacts over stone sequences</h3>" + text + _table(header, rows, numeric={0, 1, 4, 5, 6, 7, 8, 9})
+    return "<h3>Impacts over stone sequences</h3>" + text + _table(header, rows, numeric={0, 1, 4, 5, 6, 7, 8, 9, 10})
 
 
 def impact_section(ds: xarray.Dataset) -> str:

@@ -15,7 +15,7 @@ from rotorlab.sweep._axes import GridAxis, ListAxis, Points, Sample
 from rotorlab.sweep._executors import DaskExecutor, ExecutorError, InProcess, LocalProcesses
 from rotorlab.sweep._run import SweepProgress, run_sweep
 from rotorlab.sweep._spec import DEFAULT_CHUNK, AbstractPointAnalysis, ChunkVar, Sweep, compute_chunk, describe_value
-from rotorlab.sweep._store import SweepStoreError, open_sweep, store_info
+from rotorlab.sweep._store_read import SweepStoreError, open_sweep, store_info
 
 __all__ = [
     "AbstractPointAnalysis",
