@@ -1071,8 +1071,9 @@ class Machine:
         Starts from the balanced state when the balls can cancel the unbalance, else from the
         ball angles that cancel most of it (least squares) with the structure on its locked
         response, and solves ``rotating_rhs(y) = 0`` for the positions (velocities zero) with
-        SciPy's hybrid Powell method; ``near`` (a co-rotating state, e.g. the steady motion at a
-        neighbouring speed) is tried first as the start.
+        SciPy's hybrid Powell method (Levenberg-Marquardt where it stalls), from each of the
+        distinct best partial balances (mirror images); ``near`` (a co-rotating state, e.g. the
+        steady motion at a neighbouring speed) is tried first as the start.
         """
         from scipy.optimize import least_squares, root
 
@@ -1085,11 +1086,17 @@ class Machine:
         rng = np.random.default_rng(seed)
         guesses = ([np.asarray(ball_angles, float)] if ball_angles is not None else []) + \
             [rng.uniform(0, 2 * np.pi, nb) for _ in range(starts)]
-        best = min((least_squares(lambda a: self.balance_residual(a) / scale, g) for g in guesses),
-                   key=lambda r: r.cost) if nb else None
-        psi0 = best.x if best is not None else np.zeros(0)
+        fits = sorted((least_squares(lambda a: self.balance_residual(a) / scale, g) for g in guesses),
+                      key=lambda r: r.cost) if nb else []
+        # the best partial balances (distinct ball layouts of the least cost; mirror images of
+        # each other): the equilibrium solver may converge from one and not from the other
+        layouts = [np.zeros(0)] if not fits else []
+        for fit in fits:
+            if fit.cost > fits[0].cost + 1e-10 * max(fits[0].cost, 1e-300) + 1e-20:
+                break
+            if all(np.max(np.abs(np.angle(np.exp(1j * (fit.x - q))))) > 1e-6 for q in layouts):
+                layouts.append(fit.x)
         K0 = self.reduced["K"] - om * om * self._m0()
-        z0 = np.linalg.lstsq(K0, om * om * self.balance_residual(psi0), rcond=None)[0]
 
         def residual(x):
             y = np.zeros(2 * nz + 2 * nb)
@@ -1097,13 +1104,16 @@ class Machine:
             f = self.rotating_rhs(y)
             return np.concatenate([f[nz:2 * nz], f[2 * nz + nb:]])
 
-        starts_x = [np.concatenate([z0, psi0])]
+        starts_x = [np.concatenate([np.linalg.lstsq(K0, om * om * self.balance_residual(q), rcond=None)[0], q])
+                    for q in layouts[:4]]
         if near is not None:
             near = np.asarray(near, dtype=float)
             starts_x.insert(0, np.concatenate([near[:nz], near[2 * nz:2 * nz + nb]]))
         zs = max(scale / max(self.structure.total_mass, 1e-300), 1e-300)
         for x0 in starts_x:
             sol = root(residual, x0, method="hybr", options={"xtol": 1e-13})
+            if np.max(np.abs(residual(sol.x))) > 1e-9 * zs * max(1.0, om * om):
+                sol = root(residual, x0, method="lm", options={"xtol": 1e-15, "ftol": 1e-15})
             if np.max(np.abs(residual(sol.x))) <= 1e-9 * zs * max(1.0, om * om):
                 y = np.zeros(2 * nz + 2 * nb)
                 y[:nz], y[2 * nz:2 * nz + nb] = sol.x[:nz], sol.x[nz:]
