@@ -165,8 +165,9 @@ def test_a_failed_or_stopped_run_is_said_plainly_in_the_findings():
     s = impact_summary(stopped)
     assert s["backward_whirl"] and s["t_final_s"] < 0.2
     f = impact_findings(stopped, [s])
-    assert f.verdict == (f"stopped at t = {s['t_final_s']:.4g} s of 0.2 s: the rotor rolls on its housing (dry-friction "
-                         f"backward whirl, which this model cannot carry); {s['impacts']} impacts up to the stop")
+    assert f.verdict == (f"stopped at t = {s['t_final_s']:.4g} s of 0.2 s: the rotor rolls on its housing "
+                         "(dry-friction backward whirl, which this model cannot carry); "
+                         f"{s['impacts']} impacts up to the stop")
     assert '<p class="outcome-bad">Stopped at t = ' in impact_section(stopped)
     sw = impact_sweep(krasnov_crusher(), [0.7, 1e300], n_sequences=2, t_end=0.1, threads=1)
     f = impact_findings(sw, sweep_summary(sw)["rows"])

@@ -80,7 +80,8 @@ def test_the_rub_analysis_of_a_machine_case_gives_the_jeffcott_case_and_its_clos
     assert verdict == "full rub (forward); closed forms allow: full rub (forward)"
     assert force_line.startswith("contact normal force (peak): ") and force_line.endswith(" N")
     assert a["friction"] < a["critical_friction"] == pytest.approx(0.0484, abs=5e-4)
-    assert friction_line.startswith("friction 0.02 is below the critical 0.048") and "full rub is stable" in friction_line
+    assert friction_line.startswith("friction 0.02 is below the critical 0.048")
+    assert "full rub is stable" in friction_line
 
 
 def _machine(p: RubRotor, speed: float) -> Machine:
@@ -163,3 +164,6 @@ def test_a_speed_by_unbalance_map_changes_regime_at_the_grazing_unbalance_and_ru
     # the boundary falls between cells at each speed, and moves with speed as the closed form does
     assert [int((ds.regime.values[i] == RubRegime.NO_CONTACT).sum()) for i in range(3)] == [7, 3, 0]
     assert ds.attrs["closed_form_decided"] == ds.attrs["closed_form_agree"] == 27
+    # the fine line the figure draws passes through the map's own grazing values
+    fine = ds.grazing_curve.sel(curve_speed=ds.spin_speed.values).values
+    assert np.array_equal(fine, ds.grazing_boundary.values) and ds.sizes["curve_speed"] >= 201

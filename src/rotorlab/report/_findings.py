@@ -233,8 +233,8 @@ def _impact_sweep(ds: xarray.Dataset, rows: Rows) -> Findings:
         if n:  # first, so that it is never among the lines cut from the box
             at = ", ".join(f"{r['value']:g}" for r in rows if r["regimes"][key])
             numbers.append(f"{n} of {runs} runs {what}, at {param} = {at} {unit}".rstrip())
-    numbers += [f"{param} = {r['value']:g} {unit}: median {r['impacts_median']:g} impacts, mostly {r['regime']}"
-                for r in rows if r["impacts_median"] is not None]  # fmt: skip
+    numbers += [f"{param} = {r['value']:g} {unit}: median {r['impacts_median']:g} impacts, "
+                f"mostly {r['regime'].replace('_', ' ')}" for r in rows if r["impacts_median"] is not None]  # fmt: skip
     medians = [r["impacts_median"] for r in rows if r["impacts_median"] is not None]
     verdict = (f"median impacts {min(medians):g} to {max(medians):g} over {len(rows)} values of {param}"
                if medians else "no finished runs")  # fmt: skip

@@ -75,12 +75,14 @@ def _verdict(ds: xarray.Dataset, rows: Rows) -> str:
     hit = [r for r in done if r["contact_probability"] > 0.0]
     if clear:
         high = max(r["probability_high"] for r in clear)
-        out = (f"Choose a ball damping of {_dampings([r['ball_damping'] for r in clear])}: no run-up touched the housing "
+        out = (f"Choose a ball damping of {_dampings([r['ball_damping'] for r in clear])}: "
+               "no run-up touched the housing "
                f"there (0 of {clear[0]['runs'] - clear[0]['failed']} random ball starts; contact probability below "
                f"{_pct(high)} with 95 % confidence{'' if high < 0.05 else ', more starts narrow this'}).")  # fmt: skip
     else:
         best = min(done, key=lambda r: (r["contact_probability"], r["largest_impulse"] or 0.0))
-        out = (f"Every ball damping tried lets some run-ups touch the housing; the fewest at {best['ball_damping']:.3g} "
+        out = ("Every ball damping tried lets some run-ups touch the housing; "
+               f"the fewest at {best['ball_damping']:.3g} "
                f"N m s/rad ({_pct(best['contact_probability'])}, largest impulse {_imp(best['largest_impulse'])}).")
     if hit:
         worst = max(hit, key=lambda r: r["largest_impulse"] or 0.0)

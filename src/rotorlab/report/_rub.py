@@ -64,7 +64,10 @@ def rub_map_section(ds: xarray.Dataset, rows: Rows) -> str:
              f"{r['spin_speed_min']:.4g} – {r['spin_speed_max']:.4g}",
              f"{r[f'{axis}_min']:.4g} – {r[f'{axis}_max']:.4g}"] for r in rows]  # fmt: skip
     head = (f"<p>{ds.attrs['points']} points over spin speed x {axis}; the dashed line of the map is "
-            "where the closed-form no-rub orbit just reaches the clearance (contact begins beyond it).</p>")
+            "where the closed-form no-rub orbit just reaches the clearance: on its contact side no orbit clear of "
+            "the stator exists. On its other side the rotor may still rub where a full-rub branch coexists with "
+            "the no-rub orbit (above the critical speed); there the map shows where the run from the common "
+            "start lands.</p>")
     return head + table(["regime", "points", "share", "spin speed (rad/s)", f"{axis} ({unit})"], body, numeric={1, 2})
 
 
@@ -73,8 +76,11 @@ def rub_map_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
     a = ds.attrs
     numbers = ()
     if "closed_form_decided" in a:
+        rest = int(a["points"]) - int(a["closed_form_decided"])
         numbers = (f"at the {a['closed_form_decided']} points where the closed forms allow one regime, the map "
-                   f"shows it at {a['closed_form_agree']}",)  # fmt: skip
+                   f"shows it at {a['closed_form_agree']}"
+                   + (f"; at the other {rest} they allow several (coexistence: the map shows where the runs "
+                      "land) or none, or the run failed" if rest else ""),)  # fmt: skip
     return Findings("regimes found: " + "; ".join(f"{r['regime']} ({100 * r['share']:.0f} %)" for r in rows), numbers)
 
 
