@@ -30,6 +30,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._coordinates import (  # noqa: F401 - re-exported: this module's names before the split
     BALANCER_COORDINATES,
     BALL_COORDINATE,
@@ -202,7 +203,7 @@ class ToroidalBallSpec(AbstractModelSpec):
 
     def describe(self) -> str:
         """One line: geometry, speed and friction."""
-        rpm = self.spin_speed * 60.0 / (2.0 * math.pi)
+        rpm = self.spin_speed * RPM_PER_RAD_S
         return (f"toroidal_ball (R = {self.ring_radius * 1e3:g} mm, R1 = {self.tube_radius * 1e3:g} mm, "
                 f"r = {self.ball_radius * 1e3:g} mm, e = {self.offset * 1e3:g} mm, "
                 f"k = {self.rolling_friction:g} m, {rpm:.0f} rpm, {self.form} form)")  # fmt: skip

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Annotated, Any, ClassVar, get_args
 from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
 from rotorlab.io._units import DIMENSIONS, UnitError, convert
 
@@ -352,7 +353,7 @@ def speed_text(omega: float | None, p: float | None = None) -> str:
     """
     if omega is None:
         return "follows the model's speed profile"
-    text = f"{omega:.6g} rad/s = {omega * 30.0 / math.pi:.6g} rpm = {omega / (2 * math.pi):.6g} Hz"
+    text = f"{omega:.6g} rad/s = {omega * RPM_PER_RAD_S:.6g} rpm = {omega / (2 * math.pi):.6g} Hz"
     return text + (f" (ω/p = {omega / p:.3g})" if p else "")
 
 

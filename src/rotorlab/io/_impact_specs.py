@@ -22,6 +22,7 @@ from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, ValidationInfo, WithJsonSchema, field_validator, model_validator
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import (
     Unit,
@@ -153,7 +154,7 @@ class ImpactRotorSpec(AbstractModelSpec):
     def describe(self) -> str:
         """Return a one-line description."""
         kind = "translational " if self.translational else ""
-        return (f"{kind}centrifuge rotor {self.mass:g} kg at {self.spin_speed * 30 / math.pi:.5g} rpm, "
+        return (f"{kind}centrifuge rotor {self.mass:g} kg at {self.spin_speed * RPM_PER_RAD_S:.5g} rpm, "
                 f"gap {self.housing.gap * 1e3:.3g} mm, stones {self.stones.mass:g} kg every {self.stones.interval:g} s")  # fmt: skip
 
 

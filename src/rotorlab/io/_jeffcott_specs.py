@@ -12,6 +12,7 @@ from typing import Annotated, Any, ClassVar, Literal, Union
 
 from pydantic import Field, field_validator, model_validator
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import (
     AbstractAnalysisSpec,
@@ -436,7 +437,7 @@ class SimulateSpec(AbstractAnalysisSpec):
     def summary(self, model: AbstractModelSpec) -> dict[str, Any]:
         """Return ``speed`` (rad/s or None), ``speed_rpm``, ``configurations`` and ``t_end`` (s)."""
         omega = self.spin_speed(model)
-        return {"speed": omega, "speed_rpm": None if omega is None else omega * 30.0 / math.pi,
+        return {"speed": omega, "speed_rpm": None if omega is None else omega * RPM_PER_RAD_S,
                 "configurations": len(self.ball_angle_sets(model.balls_in(self.races))),
                 "t_end": self.duration(model)}  # fmt: skip
 
