@@ -132,7 +132,7 @@ def unbalance_response(system: LinearSystem, speeds: Sequence[float],
         },
         coords={
             "speed": ("speed", w, {"units": "rad/s"}),
-            "speed_rpm": ("speed", w * 30.0 / np.pi, {"units": "rev/min"}),
+            "speed_rpm": ("speed", w * RPM_PER_RAD_S, {"units": "rev/min"}),
             "dof": ("dof", np.arange(n), {"units": "1"}),
             "node": ("dof", system.dof_node, {"units": "1"}),
             "direction": ("dof", np.array(system.dof_direction), {"units": "1"}),
