@@ -439,9 +439,10 @@ def impact_model(case_model: Any, **overrides: float) -> ImpactRotor:
     >>> m.stones.mass, m.rotor.spin_speed, m.translational
     (3.0, 160.0, False)
     """
+    from rotorlab.io import ImpactRotorSpec
     from rotorlab.models import CentrifugeRotor, Housing, ImpactRotor, StoneFeed
 
-    if getattr(case_model, "type", None) != "impact_rotor":
+    if not isinstance(case_model, ImpactRotorSpec):
         raise ValueError(f"needs an impact_rotor model, got {getattr(case_model, 'type', None)!r}")
     cm, h, s = case_model, case_model.housing, case_model.stones
     rotor = CentrifugeRotor(cm.mass, cm.inertia_transverse, cm.inertia_polar, cm.spin_speed, cm.stiffness_1,

@@ -284,7 +284,7 @@ def _modes_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
 def _unbalance_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
     return [{"node": int(node), "label": str(ds.node_label.values[node]),
              "peak_amplitude": _num(ds.peak_orbit.values[node]),
-             "peak_speed_rpm": _num(ds.peak_speed.values[node] * 30.0 / np.pi),
+             "peak_speed_rpm": _num(ds.peak_speed.values[node] * _RPM),
              "note": str(ds.attrs.get("note", ""))}
             for node in ds.attrs.get("output_nodes", [])]
 

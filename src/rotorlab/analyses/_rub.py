@@ -38,8 +38,9 @@ def _rotor(case_model: Any) -> RubRotor:
 def rub_model(case_model: Any) -> JeffcottRub:
     """Build the :class:`~rotorlab.contact.JeffcottRub` of a validated ``rub_rotor`` case model."""
     from rotorlab.contact import JeffcottRub
+    from rotorlab.io._rub_specs import JeffcottRubSpec
 
-    if getattr(case_model, "type", None) != "rub_rotor":
+    if not isinstance(case_model, JeffcottRubSpec):
         raise ValueError(f"needs a rub_rotor model, got {getattr(case_model, 'type', None)!r}")
     return JeffcottRub(_rotor(case_model), case_model.spin_speed, restitution=case_model.restitution,
                        rest_speed=case_model.rest_speed)  # fmt: skip

@@ -53,7 +53,8 @@ class AbstractMapper(Protocol):
        (N, n_horizon), plus optionally per-trajectory arrays of shape (N,).
     6. ``group(features)``: integer labels of shape (N, n_horizon) from the feature values.
     7. ``control``: the :class:`~rotorlab.integrate.StepControl` of the integration.
-    8. Optional, for the case-file analyses: ``start_value(name)``, the value (SI) a start takes
+    8. For a mapper of case-file basins (a model type's ``mapper``; not needed by
+       :func:`map_starts`): ``start_value(name)``, the value (SI) a start takes
        for the coordinate ``name`` when it is not given (the base value of item 3), or None
        where the starts have no single value (balls of different masses) or the name is not a
        coordinate. Reports and figures show it for every coordinate a basin does not vary.

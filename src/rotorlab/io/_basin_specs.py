@@ -30,6 +30,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._coordinates import (  # noqa: F401 - re-exported: this module's names before the split
     BALANCER_COORDINATES,
     BALL_COORDINATE,
@@ -204,7 +205,7 @@ class ToroidalBallSpec(AbstractModelSpec):
 
     def describe(self) -> str:
         """One line: geometry, speed and friction."""
-        rpm = self.spin_speed * 60.0 / (2.0 * math.pi)
+        rpm = self.spin_speed * RPM_PER_RAD_S
         return (f"toroidal_ball (R = {self.ring_radius * 1e3:g} mm, R1 = {self.tube_radius * 1e3:g} mm, "
                 f"r = {self.ball_radius * 1e3:g} mm, e = {self.offset * 1e3:g} mm, "
                 f"k = {self.rolling_friction:g} m, {rpm:.0f} rpm, {self.form} form)")  # fmt: skip
@@ -393,18 +394,12 @@ class WorkingPointSpec(AbstractAnalysisSpec):
     """
 
     type: Literal["working-point"] = "working-point"
+    model_types: ClassVar[tuple[str, ...]] = ("toroidal_ball",)
     psi_span: quantity("angle", gt=0, le=math.pi) = Field(math.pi, description="half-width of the psi range (rad)")
     points: integer(ge=3) = Field(361, description="points of the restoring-force curve")
     start: tuple[quantity("angle"), quantity("angle"), quantity("angular_speed"), quantity("angular_speed")] = Field(
         (2.0, 0.0, 0.0, 0.0), description="[psi, alpha, dpsi, dalpha] of the phase-portrait trajectory (rad, rad/s)")
     t_end: quantity("time", gt=0) = Field(10.0, description="simulated time of the trajectory (s)")
-
-    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Only for a toroidal_ball model."""
-        if getattr(model, "type", None) != "toroidal_ball":
-            return [Issue(("type",), f"needs a toroidal_ball model, not {getattr(model, 'type', None)!r}",
-                          self.type)]  # fmt: skip
-        return []
 
     def describe(self, model: AbstractModelSpec) -> str:
         """One line."""
