@@ -349,3 +349,24 @@ def test_impacts_on_a_tilting_race_keep_the_energy_balance(friction):
         assert abs(y[-5]) < 1e-15 * m.energy(y0)
     else:
         assert y[-5] > 1e-3 * m.energy(y0)
+
+
+def test_on_a_horizontal_axis_the_balls_hang_below_the_race_at_low_speed():
+    """Gravity across the axis at a low speed (the drag c Omega of the oil below the weight's
+    torque m l g): a ball does not go round with the rotor but hangs still, lifted from the bottom
+    of the race to where the drag holds its weight, ``c Omega = m l g cos(phi)`` (the torque
+    balance of its equation at rest; the structure at rest in its sag)."""
+    g, om = 9.81, 2.5
+    balls = (Ball(BM, inertia=1e-3, damping=BC), Ball(1.1 * BM, damping=0.9 * BC))
+    mac = Machine(planar_structure(d=1.0), races=(BallRace(0, BL, balls),),
+                  unbalances=(Unbalance(0, 0.0),), gravity=Gravity((0.0, -g, 0.0)),
+                  drive=ConstantSpeed(om), n_modes=2)
+    y0 = mac.initial_state([0.3, 2.0])  # balls at rest relative to the rotor
+    # the slowest transient is the hanging ball's swing, damped at c / (2 J) ~ 0.24 1/s
+    sol = solve(mac, y0, (0.0, 100.0), control=StepControl(rtol=1e-10, atol=1e-12))
+    lay = mac.layout
+    phi = np.angle(np.exp(1j * sol.y_final[lay.i_phi:lay.i_w]))
+    expect = -np.arccos(np.array([BC, 0.9 * BC]) * om / (np.array([BM, 1.1 * BM]) * BL * g))
+    assert np.all(expect > -np.pi / 2) and np.all(expect < 0.0)  # between the bottom and the side
+    np.testing.assert_allclose(phi, expect, atol=1e-7)
+    np.testing.assert_allclose(sol.y_final[lay.i_w:lay.i_w + 2], 0.0, atol=1e-7)

@@ -52,9 +52,11 @@ from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
 from rotorlab.io._fields import (
     AbstractAnalysisSpec,
     AbstractModelSpec,
+    RaceIndices,
     _choice,
     _error,
     _QuantityValidator,
+    chosen_race_issues,
     integer,
     quantity,
 )
@@ -247,6 +249,9 @@ class BasinSpec(AbstractAnalysisSpec):
     rtol, atol : float, optional
         Integrator tolerances (default 1e-6 / 1e-8 for the toroidal ball, 1e-8 / 1e-10 for a
         rotor with balls).
+    races : tuple of int, optional
+        A machine model: the indices of the ball races that take part (a variant of the
+        machine; ``psi_<i>`` counts the balls of these races in order); default all.
     """
 
     exclusive = (("speed_ratio", "speed", False),)
@@ -268,6 +273,7 @@ class BasinSpec(AbstractAnalysisSpec):
     speed: quantity("angular_speed", gt=0) | None = Field(None, description="spin speed (rad/s)")
     rtol: quantity("dimensionless", gt=0, lt=1) | None = Field(None, description="relative tolerance (-)")
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance (-)")
+    races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
     _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
 
@@ -328,6 +334,8 @@ class BasinSpec(AbstractAnalysisSpec):
                 issues.append(Issue(("fixed", name), f"not a coordinate of this {kind} model "
                                                      f"(coordinates: {coordinates_text(known)})", value))  # fmt: skip
         issues += model.basin_issues(self)
+        issues += chosen_race_issues(model, self.races, [(("x",), self.x[0]), (("y",), self.y[0])]
+                                     + [(("fixed", k), k) for k in self.fixed])
         if model.spins_at_own_speed:
             for key in ("speed_ratio", "speed"):
                 if getattr(self, key) is not None:

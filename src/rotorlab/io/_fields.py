@@ -37,6 +37,7 @@ __all__ = [
     "plain_data",
     "speed_text",
     "RaceIndices",
+    "chosen_race_issues",
 ]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
@@ -341,6 +342,25 @@ class AbstractModelSpec(_Spec):
 
 #: Type of the ``races`` key of analyses that run on a machine's ball races (indices, >= 0).
 RaceIndices = tuple[integer(ge=0), ...]
+
+
+def chosen_race_issues(model: AbstractModelSpec, races: tuple[int, ...] | None,
+                       named: list[tuple[tuple, str]]) -> list[Issue]:
+    """Check a basin's or sweep's choice of races and its ball coordinates against it.
+
+    ``named`` holds ``(key path, coordinate name)``; a ``psi_<i>`` or ``dpsi_<i>`` beyond the
+    balls of the chosen races is an issue at its key path.
+    """
+    issues = model.race_issues(races)
+    if races is None or issues:
+        return issues
+    n = model.balls_in(races)
+    for key, name in named:
+        hit = re.fullmatch(r"d?psi_(\d+)", str(name))
+        if hit and int(hit.group(1)) > n:
+            issues.append(Issue(key, f"{name!r} names ball {hit.group(1)}, but the races "
+                                     f"{list(races)} have {n} ball(s)", name))
+    return issues
 
 
 def speed_text(omega: float | None, p: float | None = None) -> str:
