@@ -143,6 +143,37 @@ def test_working_point_analysis_holds_the_papers_point():
     assert ds.release_psi.values[0] == 2.0 and ds.release_dpsi.attrs["units"] == "rad/s"
 
 
+def test_each_mapper_gives_the_value_its_starts_use():
+    # start_value(name) is the value the starts take for a coordinate not given: giving that
+    # value explicitly changes no start state and no parameter, for every coordinate.
+    from rotorlab.analyses import basin_mapper
+    from rotorlab.analyses._case import build_model
+    from rotorlab.explore import MachineRegimes
+
+    torus, auto = load_case("strautmanis-torus"), load_case("autobalancer")
+    pico = load_case("pico21-balancer")
+    mappers = [basin_mapper(torus.model, torus.analysis("basin-k1e-5")),
+               basin_mapper(auto.model, auto.analysis("basin")), MachineRegimes(build_model(pico.model))]
+    for mapper in mappers:
+        _, y_base, p_base = mapper.starts({})
+        for name in mapper.coordinate_units:
+            value = mapper.start_value(name)
+            assert value is not None, name
+            _, y, p = mapper.starts({name: np.array([value])})
+            np.testing.assert_allclose(y, y_base, rtol=1e-15, atol=0, err_msg=name)
+            np.testing.assert_allclose(p, p_base, rtol=1e-15, atol=0, err_msg=name)
+    # the case files' numbers (SI): the torus offset 20 mm; the autobalancer basin at twice
+    # p = sqrt(c / (M1 + 2 m)), 30 g balls; pico21-balancer at 10000 rpm with 5 g balls
+    torus_m, auto_m, pico_m = mappers
+    assert torus_m.start_value("offset") == 0.02 and torus_m.start_value("psi") == 0.0
+    assert auto_m.start_value("spin_speed") == pytest.approx(2.0 * math.sqrt(16740.0 / 1.06), rel=1e-15)
+    assert auto_m.start_value("ball_mass") == 0.03 and auto_m.start_value("dpsi_2") == 0.0
+    assert auto_m.start_value("psi_3") is None and auto_m.start_value("model.x") is None
+    assert pico_m.start_value("spin_speed") == pytest.approx(10000.0 * math.pi / 30.0, rel=1e-15)
+    assert pico_m.start_value("ball_mass") == 0.005 and pico_m.start_value("ball_damping") == 2e-4
+    assert pico_m.start_value("psi_4") == pico_m.base_angles[3] and pico_m.start_value("psi_5") is None
+
+
 def test_basin_analysis_fractions_and_document():
     case = parse_case(_small_torus())
     ds = run_basin_analysis(case.model, case.analysis("basin-k1e-4"), chunk_size=7)

@@ -113,3 +113,18 @@ def test_balancer_tutorial_balances_where_the_closed_form_says(site):
     cli = re.search(r"rotorlab run: stable at \(rpm\): \[([^\]]*)\]", text).group(1).replace(",", " ").split()
     assert [float(v) for v in cli] == [float(v) for v in stable]
     assert "rotorlab run: start-up balanced" in text
+
+
+def test_api_pages_list_inherited_methods(site):
+    # Every element on the rotorlab.linear page documents the whole AbstractElement contract,
+    # also the matrices it inherits (Bearing's and ElasticConnection's zero M and G from one
+    # massless base): the API pages are built with :inherited-members:.
+    page = (site / "api" / "linear.html").read_text(encoding="utf-8")
+    for cls in ("ShaftElement", "RigidBody", "Bearing", "ElasticConnection"):
+        for member in ("M", "C", "K", "G"):
+            assert f'id="rotorlab.linear.{cls}.{member}"' in page, f"{cls}.{member}"
+    # The same for the speed profiles: each lists the time functions it shares with the others.
+    page = (site / "api" / "models.html").read_text(encoding="utf-8")
+    for cls in ("ConstantSpeed", "LinearRamp", "HillRunUp"):
+        for member in ("spin_angle", "spin_speed", "spin_acceleration", "revolution_times"):
+            assert f'id="rotorlab.models.{cls}.{member}"' in page, f"{cls}.{member}"

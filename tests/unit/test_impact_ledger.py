@@ -147,3 +147,29 @@ def test_a_failed_run_is_shown_failed_in_the_report_and_the_sweep():
     assert rows[0]["impacts_median"] == 0 and rows[1]["impacts_median"] is None
     table = impact_section(sw)
     assert "<th>failed</th>" in table
+
+
+def test_a_failed_or_stopped_run_is_said_plainly_in_the_findings():
+    """The report's box never calls a run that failed or stopped short a result over the whole
+    time: a failed run is FAILED with the integrator's message, a run stopped at the backward
+    whirl gives its stop time and counts 'up to the stop'; a sweep puts its failed and stopped
+    runs first (never among the lines cut from the box)."""
+    from rotorlab.analyses import impact_run, impact_summary, impact_sweep, sweep_summary
+    from rotorlab.report._findings import impact_findings
+    from rotorlab.report._impacts import impact_section
+
+    failed = impact_run(krasnov_crusher(stone_mass=1e300), t_end=0.1, n_save=10)
+    f = impact_findings(failed, [impact_summary(failed)])
+    assert f.verdict.startswith("FAILED at t = ") and "non-finite" in f.verdict and f.numbers == ()
+    stopped = impact_run(krasnov_crusher(stone_mass=50.0, restitution=1.0), t_end=0.2, n_save=10)
+    s = impact_summary(stopped)
+    assert s["backward_whirl"] and s["t_final_s"] < 0.2
+    f = impact_findings(stopped, [s])
+    assert f.verdict == (f"stopped at t = {s['t_final_s']:.4g} s of 0.2 s: the rotor rolls on its housing "
+                         "(dry-friction backward whirl, which this model cannot carry); "
+                         f"{s['impacts']} impacts up to the stop")
+    assert '<p class="outcome-bad">Stopped at t = ' in impact_section(stopped)
+    sw = impact_sweep(krasnov_crusher(), [0.7, 1e300], n_sequences=2, t_end=0.1, threads=1)
+    f = impact_findings(sw, sweep_summary(sw)["rows"])
+    assert f.numbers[0] == "2 of 4 runs failed (left out of the medians), at stone_mass = 1e+300 kg"
+    assert f.verdict == "median impacts 0 to 0 over 2 values of stone_mass"

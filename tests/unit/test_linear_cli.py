@@ -12,7 +12,7 @@ import pytest
 from typer.testing import CliRunner
 
 from rotorlab.cli import app
-from rotorlab.io import load_netcdf
+from rotorlab.io import CaseError, load_case, load_netcdf
 from rotorlab.linear import RPM, campbell, critical_speeds, modal
 from rotorlab.linear.cases import audit_pico21, friswell_rotor, pico21
 
@@ -175,6 +175,17 @@ def test_simulate_rejects_a_linear_case(tmp_path):
     assert result.exit_code == 2
     assert "simulate needs a rotor with balls" in result.stderr
     assert list(tmp_path.iterdir()) == []
+    # a simulate analysis in a linear rotor's case file is refused when the case is read (it
+    # was accepted, and 'rotorlab run' then failed with a traceback)
+    path = tmp_path / "sim.toml"
+    path.write_text(load_case("pico21").text.split("[[analysis]]")[0]
+                    + '[[analysis]]\ntype = "simulate"\nspeed = "900 rpm"\nball_angle_grid = 2\nt_end = "1 s"\n')
+    with pytest.raises(CaseError, match=r"analysis\[0\]\.type = \"simulate\": needs a jeffcott_balls or "
+                                        r"machine model, not 'multibody'"):
+        load_case(path)
+    result = invoke("run", str(path), "--out", str(tmp_path / "out"))
+    assert result.exit_code == 2 and not (tmp_path / "out").exists()
+    assert "needs a jeffcott_balls or machine model, not 'multibody'" in result.stderr
 
 
 # --------------------------------------------------------------------------- cases / validate

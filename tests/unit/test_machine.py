@@ -161,6 +161,12 @@ def test_mass_matrix_symmetric_positive_definite_and_consistent_with_rhs():
     phi, w = y[lay.i_phi:lay.i_phi + nb], y[lay.i_w:lay.i_w + nb]
     om = y[lay.i_theta + 1]
     Q = -c * (w - om) + m * l * (0.0 * -np.sin(phi) + -0.5 * np.cos(phi))
+    # the races tilt with the rotor: the ball's velocity term m l^2 (e_b . phi') (t_b . phi')
+    # (rigid ball kinematics, rotorlab.models._machine; Rodrigues et al. 2008 eq. (13) plus the
+    # second-order term of test_rcfw_reference._axial_term)
+    dphi = y[nz + 2:nz + 4]
+    Q += m * l**2 * (np.cos(phi) * dphi[0] + np.sin(phi) * dphi[1]) * (-np.sin(phi) * dphi[0] + np.cos(phi) * dphi[1])
+    assert lay.tilt and m.max() * (dphi @ dphi) > 1e-8  # far above the tolerance below
     np.testing.assert_allclose(row, Q, atol=1e-13)
 
 
@@ -311,3 +317,56 @@ def test_modal_reduction_converges_and_reports_its_change():
     assert np.all(np.diff(changes) < 0) and changes[-1] < 1e-3
     every = Machine(s, races=race, unbalances=unb, drive=ConstantSpeed(om), n_modes=s.n_dof)
     np.testing.assert_allclose(every._locked_response(om), full._locked_response(om), rtol=1e-9)
+
+
+@pytest.mark.parametrize("friction", [0.0, 0.3])
+def test_impacts_on_a_tilting_race_keep_the_energy_balance(friction):
+    """A clearance on a machine whose race tilts (balls on the tilting race, a motor): every
+    impact's Delassus matrix comes from the same Schur system as the accelerations, the balls'
+    axial unknowns included, so the energy balance closes (Stronge, *Impact Mechanics*, 2000,
+    ch. 5: e = 1 without friction loses nothing, with friction exactly the friction work)."""
+    from rotorlab.models import Clearance
+
+    k = 2.0 * (2 * math.pi * 5.0) ** 2
+    s = LinearSystem(M=np.diag([2.0, 2.0, 0.01, 0.01]), C=np.zeros((4, 4)), G=np.zeros((4, 4)),
+                     K=np.diag([k, k, 50.0, 50.0]))
+    race = BallRace(0, 0.04, (Ball(0.05), Ball(0.05)), axial_offset=0.1)
+    m = Machine(s, races=(race,), unbalances=(Unbalance(0, 1e-4, axial_offset=-0.05),),
+                drive=Motor(torque=2.0, polar_inertia=0.01, no_load_speed=40.0), energy_states=True,
+                clearances=(Clearance(0, 1e-3, restitution=1.0, friction=friction, rotor_radius=0.05,
+                                      axial_offset=0.05),))
+    assert m.layout.tilt
+    y0 = m.initial_state(ball_angles=[0.3, 2.0], ball_rates=[5.0, -3.0], spin_speed=20.0,
+                         z=[2e-4, 0.0, 0.002, -0.001], dz=[0.0, 0.05, 0.02, 0.0])
+    sol = solve(m, y0, (0.0, 1.0), control=StepControl(rtol=1e-10, atol=1e-13), max_events_recorded=10)
+    assert sol.status.name == "SUCCESS", sol.status.message
+    y = sol.y_final
+    assert y[-3] > 10 and np.abs(y[2:4]).max() > 1e-4  # impacts, and the race tilts
+    ie = m.layout.i_energy
+    gain, sources = m.energy(y) - m.energy(y0), y[ie] - y[ie + 1] + y[-4] - y[-5]
+    assert gain == pytest.approx(sources, abs=1e-8 * m.energy(y0))
+    if friction == 0.0:  # an elastic frictionless impact dissipates nothing (to round-off)
+        assert abs(y[-5]) < 1e-15 * m.energy(y0)
+    else:
+        assert y[-5] > 1e-3 * m.energy(y0)
+
+
+def test_on_a_horizontal_axis_the_balls_hang_below_the_race_at_low_speed():
+    """Gravity across the axis at a low speed (the drag c Omega of the oil below the weight's
+    torque m l g): a ball does not go round with the rotor but hangs still, lifted from the bottom
+    of the race to where the drag holds its weight, ``c Omega = m l g cos(phi)`` (the torque
+    balance of its equation at rest; the structure at rest in its sag)."""
+    g, om = 9.81, 2.5
+    balls = (Ball(BM, inertia=1e-3, damping=BC), Ball(1.1 * BM, damping=0.9 * BC))
+    mac = Machine(planar_structure(d=1.0), races=(BallRace(0, BL, balls),),
+                  unbalances=(Unbalance(0, 0.0),), gravity=Gravity((0.0, -g, 0.0)),
+                  drive=ConstantSpeed(om), n_modes=2)
+    y0 = mac.initial_state([0.3, 2.0])  # balls at rest relative to the rotor
+    # the slowest transient is the hanging ball's swing, damped at c / (2 J) ~ 0.24 1/s
+    sol = solve(mac, y0, (0.0, 100.0), control=StepControl(rtol=1e-10, atol=1e-12))
+    lay = mac.layout
+    phi = np.angle(np.exp(1j * sol.y_final[lay.i_phi:lay.i_w]))
+    expect = -np.arccos(np.array([BC, 0.9 * BC]) * om / (np.array([BM, 1.1 * BM]) * BL * g))
+    assert np.all(expect > -np.pi / 2) and np.all(expect < 0.0)  # between the bottom and the side
+    np.testing.assert_allclose(phi, expect, atol=1e-7)
+    np.testing.assert_allclose(sol.y_final[lay.i_w:lay.i_w + 2], 0.0, atol=1e-7)

@@ -16,7 +16,7 @@ from typer.testing import CliRunner
 
 from rotorlab.analyses import run_analysis, summarize
 from rotorlab.cli import app
-from rotorlab.io import CampbellSpec, load_case, parse_case
+from rotorlab.io import CampbellSpec, CaseError, load_case, parse_case
 
 PLANAR = """
 schema_version = 1
@@ -306,3 +306,28 @@ def test_simulate_findings_without_balls_name_no_ball_angles():
     found = _simulate_findings(None, rows)
     assert found.numbers == ("largest vibration / unbalance response 1.04", "start 0: no balancer")
     assert "104 %" in found.verdict
+
+
+def test_basin_and_sweep_of_some_races_map_that_variant():
+    """``races = [0]`` on a basin (and a sweep) maps the machine with those races only: a second
+    race added to the planar case and left out gives the planar machine's own outcomes (starts off
+    the diagonal balance, as in the 3 x 3 basin above); ``psi_<i>`` counts the chosen races'
+    balls, so ``psi_3`` is refused there with its key path, and accepted with all races."""
+    race2 = ('[[model.races]]\nat = "disc"\nradius = "0.5 m"\n'
+             'balls = [{ mass = "0.01 kg", damping = "0.05 N*m*s/rad", count = 1 }]\n')
+    model = PLANAR[:PLANAR.index("[[analysis]]")]
+    text = model.replace("[[model.unbalances]]", race2 + "[[model.unbalances]]", 1)
+    text += ('[[analysis]]\ntype = "basin"\nname = "race-0"\nraces = [0]\n'
+             'x = ["psi_1", "0 deg", "120 deg", 2]\ny = ["psi_2", "240 deg", "240 deg", 1]\n'
+             't_end = "3000 s"\nn_horizons = 2\n')
+    case = parse_case(text)
+    basin = run_analysis(case.model, case.analysis("race-0"))
+    assert [str(basin["regime"].values[int(o)]) for o in basin.outcome.values.ravel()] == ["balanced"] * 2
+    bad = text.replace('y = ["psi_2", "240 deg"', 'y = ["psi_3", "240 deg"')
+    with pytest.raises(CaseError, match=r"analysis\[0\]\.y = .*'psi_3' names ball 3, but the races \[0\] have 2 ball"):
+        parse_case(bad)
+    parse_case(bad.replace("races = [0]\n", ""))  # three balls in all: psi_3 is a coordinate
+    sweep = text + ('[[analysis]]\ntype = "sweep"\nname = "s"\nraces = [0]\n'
+                    'ic = { psi_3 = ["0 deg", "90 deg", 2] }\nt_end = "10 s"\n')
+    with pytest.raises(CaseError, match=r"analysis\[1\]\.ic\.psi_3 = .*'psi_3' names ball 3, but the races"):
+        parse_case(sweep)

@@ -18,7 +18,7 @@ from typer.testing import CliRunner
 
 from rotorlab.analyses import ANALYSIS_TYPES, MODEL_TYPES, AnalysisType, run_case, summarize
 from rotorlab.cli import app
-from rotorlab.io import ANALYSIS_SPECS, MODEL_SPECS, AbstractAnalysisSpec, parse_case, quantity
+from rotorlab.io import ANALYSIS_SPECS, MODEL_SPECS, AbstractAnalysisSpec, load_case, parse_case, quantity
 from rotorlab.report import PRESENTATIONS, Findings, Presentation, write_report
 
 # --------------------------------------------------------------------------- in step
@@ -32,6 +32,32 @@ def test_every_spec_has_an_entry_and_every_entry_a_spec():
     for model in MODEL_TYPES.values():  # a model's own implementations are of common types
         assert set(model.analyses) <= set(ANALYSIS_TYPES)
         assert all(entry.name == name for name, entry in model.analyses.items())
+
+
+def test_the_model_types_an_analysis_accepts_are_registered_and_include_its_own_entries():
+    # An analysis spec's model_types (None: any) names registered model types, and a model type
+    # with its own implementation of an analysis type is among the types that spec accepts.
+    for spec in ANALYSIS_SPECS.values():
+        assert spec.model_types is None or set(spec.model_types) <= set(MODEL_TYPES), spec.__name__
+    for model in MODEL_TYPES.values():
+        for kind in model.analyses:
+            types = ANALYSIS_SPECS[kind].model_types
+            assert types is None or model.name in types, (model.name, kind)
+    # A case whose model is of another type gets one issue at the analysis' type, naming it.
+    models = {m.type: m for m in (load_case(name).model for name in (
+        "friswell-rotor", "krasnov-crusher", "autobalancer", "pico21-balancer", "pico21", "rub-jeffcott",
+        "strautmanis-torus"))}  # fmt: skip
+    assert set(models) == set(MODEL_TYPES)
+    for kind, spec in ANALYSIS_SPECS.items():
+        for model_type, model in models.items():
+            if spec.model_types is None:
+                assert spec.wrong_model(model) is None
+            elif model_type in spec.model_types:
+                assert spec.wrong_model(model) is None
+            else:
+                issue, = spec.model_construct().case_issues(model)  # unvalidated: only its type is read
+                assert (issue.loc, issue.value) == (("type",), kind)
+                assert issue.message == spec.wrong_model(model) and repr(model_type) in issue.message.replace('"', "'")
 
 
 def test_every_analysis_type_has_a_presentation_and_every_presentation_is_used():

@@ -159,3 +159,9 @@ def test_the_rub_analysis_reports_an_impossible_run_as_failed(monkeypatch):
     assert ds.attrs["status"] == int(Status.IMPOSSIBLE)
     assert ds.attrs["status_message"] == "the rotor passed through the rigid stator"
     assert summarize(ds)[0]["measured"] == "integration failed"
+    # the report's box says FAILED with the reason, not a regime or a number
+    from rotorlab.report._rub import rub_findings
+
+    found = rub_findings(ds, summarize(ds))
+    assert found.verdict.startswith("FAILED: the rotor passed through the rigid stator; closed forms allow: ")
+    assert found.numbers == ()

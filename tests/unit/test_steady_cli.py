@@ -217,6 +217,17 @@ def test_steady_bad_options(args, words):
         assert w in result.stderr
 
 
+@pytest.mark.parametrize("command, case, args", [
+    ("steady", "strautmanis-torus", ["--speed-rpm", "900"]),
+    ("steady", "pico21", ["--speed-rpm", "900"]),
+    ("stability-chart", "krasnov-crusher", ["--speeds-rpm", "300:900:3"]),
+])  # fmt: skip
+def test_steady_commands_need_a_rotor_with_balls(command, case, args):
+    result = invoke(command, case, *args)
+    assert result.exit_code == 2 and result.stdout == ""
+    assert f"case {case}: steady motions need a jeffcott_balls model with balls" in result.stderr
+
+
 def test_steady_needs_a_speed_when_the_case_has_no_steady_analysis():
     result = invoke("steady", "autobalancer")
     assert result.exit_code == 2 and "give --speed-rpm" in result.stderr

@@ -3,6 +3,7 @@
 import math
 from fractions import Fraction
 
+import mpmath
 import numpy as np
 import pytest
 from numba import njit
@@ -62,7 +63,6 @@ def test_sincos_error_below_0p8_ulp(lo, hi):
 
 def test_sincos_near_multiples_of_half_pi():
     """Arguments closest to k pi/2 (results near 0): the reduction keeps ~100 bits."""
-    mpmath = pytest.importorskip("mpmath")
     mpmath.mp.prec = 200
     rng = np.random.default_rng(3)
     ks = list(range(1, 60)) + list(rng.integers(60, int(SINCOS_LIMIT / (math.pi / 2)), 300))

@@ -63,3 +63,37 @@ def test_without_friction_there_is_no_backward_whirl():
     ds = impact_sweep(krasnov_crusher(friction=0.0), [3.0], n_sequences=8, t_end=10.0, seed=0)
     assert np.all(ds.whirl.values == 0) and np.all(ds.t_final.values == 10.0)
     assert np.all(ds.regime.values == 2)  # sliding
+
+
+def test_the_stop_is_where_the_slip_of_p_vanishes_which_with_tilt_is_not_the_rolling_speed():
+    """The sliding law (friction -f N e_perp) holds while P slides forwards; the stop is the slip
+    of P itself (``whirl_stop``). Without tilt the slip vanishes exactly at the whirl speed
+    -r_P sin(beta) omega0 / Delta; with tilt, a tilt rate along e_perp that leaves the gap rate
+    (and so the whirl speed) unchanged still moves P by (h_P - l_P / sin(beta)) per unit: at
+    the rolling speed P still slips, and the stop waits for the slip to vanish."""
+    from rotorlab._kernels import impact_rotor as k
+
+    for translational in (True, False):
+        model = krasnov_crusher(translational=translational)
+        h, w0, p = model.housing, model.rotor.spin_speed, model.to_array()
+        sb, lp, hp = math.sin(h.cone_angle), h.lever(), h.height
+        roll = -h.rolling_whirl_speed(w0)
+        th = 0.7
+        e, ep = np.array([math.cos(th), math.sin(th)]), np.array([-math.sin(th), math.cos(th)])
+        y = model.initial_state()  # then on the housing, sliding, whirling at the rolling speed
+        y[k.U1], y[k.U2] = h.gap / sb * e
+        y[k.DU1], y[k.DU2] = (roll - w0) * h.gap / sb * ep  # rotating-frame rate: fixed minus omega0 k x u
+        y[k.MODE] = 1.0
+        assert k.whirl_speed(y, p) == pytest.approx(roll, rel=1e-12)
+        assert k.slip_speed(y, p, *e) == pytest.approx(0.0, abs=1e-12 * h.radius * w0)
+        assert k.whirl_stop(y, p, *e) == k.slip_speed(y, p, *e)  # the default stop is the slip
+        p_lim = replace(model, housing=replace(h, whirl_limit=-roll)).to_array()
+        assert k.whirl_stop(y, p_lim, *e) == pytest.approx(0.0, abs=1e-9 * -roll)  # the threshold, here equal
+        if not translational:
+            a = 0.01  # rad/s of tilt along e_perp, compensated in u' so that w' is unchanged
+            y[k.DT1], y[k.DT2] = a * ep
+            y[k.DU1] -= lp / sb * a * ep[0]
+            y[k.DU2] -= lp / sb * a * ep[1]
+            assert k.whirl_speed(y, p) == pytest.approx(roll, rel=1e-12)
+            assert k.whirl_stop(y, p_lim, *e) == pytest.approx(0.0, abs=1e-9 * -roll)
+            assert k.whirl_stop(y, p, *e) == pytest.approx((hp - lp / sb) * a, rel=1e-9)

@@ -60,7 +60,9 @@ def test_impacts_shared_with_balls_and_a_motor_keep_the_energy_balance(friction)
     gain, sources = _balance(m, y0, y)
     assert gain == pytest.approx(sources, abs=1e-7 * m.energy(y0))
     if friction == 0.0:
-        assert y[-5] == 0.0  # an elastic frictionless impact dissipates nothing
+        # an elastic frictionless impact dissipates nothing (to round-off: the races tilt with
+        # the structure, and the balls' axial unknowns enter every Delassus solve)
+        assert abs(y[-5]) < 1e-15 * m.energy(y0)
     else:
         assert y[-5] > 1e-3 * m.energy(y0)  # friction worked, and the balance still closes
 

@@ -40,6 +40,19 @@ def test_a_tight_clearance_is_always_struck_and_a_wide_one_never(washer):
             hits = int(round(row["contact_probability"] * row["runs"]))
             lo, hi = binomtest(hits, row["runs"]).proportion_ci(0.95, method="wilson")
             assert (row["probability_low"], row["probability_high"]) == pytest.approx((lo, hi), abs=1e-12)
+    # the report's verdict leads with the choice and the confidence 4 starts give (Wilson, 0 of 4:
+    # below 3.84 / 7.84 = 49 %), and says when no damping keeps the run-up clear
+    from rotorlab.report._knock import knock_findings
+
+    verdict = knock_findings(wide, knock_rows(wide)).verdict
+    assert verdict == ("Choose a ball damping of 0.005, 0.05 N m s/rad: no run-up touched the housing there (0 of 4 "
+                       "random ball starts; contact probability below 49 % with 95 % confidence, more starts narrow "
+                       "this). Without balls the run-up stays clear.")
+    verdict = knock_findings(tight, knock_rows(tight)).verdict
+    assert verdict.startswith("Every ball damping tried lets some run-ups touch the housing; the fewest at ")
+    assert "touched in 100 % of the run-ups, hardest at " in verdict
+    assert verdict.endswith(f"Without balls it strikes {int(tight.attrs['no_balls_impacts'])} times (largest impulse "
+                            f"{tight.attrs['no_balls_peak_impulse']:.3g} N s).")
 
 
 def test_knock_runs_are_seeded_and_independent_of_threads(washer):

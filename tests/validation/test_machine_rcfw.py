@@ -14,17 +14,16 @@ axial offsets +-2 and an :class:`Unbalance` U = M eps at phase 0.
 What is checked, against the independent sympy reference of ``tests/validation/_rcfw_reference.py``
 (``dev/derive_rcfw.py``) and the paper:
 
-- the compiled right-hand side equals the reference's with *lateral* ball kinematics (the balls
-  move in their race plane, as Machine documents) to 1e-12 on random states, at constant speed and
-  during a run-up; the paper's own equations (9)-(13) also move a ball axially with its tilting
-  race (the reference's *rigid* kinematics), which Machine leaves out: the test measures what that
-  changes in the stability boundaries;
+- the compiled right-hand side equals the reference's with *rigid* ball kinematics (a ball moves
+  with its tilting race, axially too, as the paper's equations (9)-(13)) to 1e-12 on random
+  states, at constant speed and during a run-up;
 - the critical speeds of the structure: Omega_1 = 1, Omega_2 = sqrt(k22 / (Jt - Jp)) ~= 1.81
   (eq. (19)) and the backward conical one sqrt(k22 / (Jt + Jp));
 - the balanced state: Machine's ball angles are eq. (16) (pi +- arccos(eps / (4 m))), none below
   m_c = eps / 4 = 0.0025 (eq. (21));
 - its linearisation about the balanced state against the reference's complex-step Jacobian, the
-  verdicts at the four Fig. 11 points, stability over speed (Fig. 5(a)) and the disc rotor
+  verdicts at the four Fig. 11 points, stability over speed (Fig. 5(a)), the onset of the primary
+  stable region at the paper's Omega = 4.59-4.60 (m = 0.025) and 4.90-4.91 (m = 0.03), the disc rotor
   (Jp > Jt) without a stable balanced state (Rodrigues et al. 2011, IJNLM 46, Fig. 13(b));
 - short simulations from the start of Fig. 11 (rotor at rest, balls of each race opposite, eq.
   (24)): (iii) balances, (ii) and (iv) do not, (iv) vibrates far more than the rotor without balls;
@@ -119,7 +118,7 @@ def _random_states(model: Machine, rng, count: int, span):
 ])
 def test_rhs_matches_the_reference(drive, jp, span):
     model = long_rotor(0.025, drive=drive, jp=jp)
-    ref_sys = ref.TwoPlane.long_rotor(0.025, kinematics="lateral", jp=jp)
+    ref_sys = ref.TwoPlane.long_rotor(0.025, kinematics="rigid", jp=jp)
     rng = np.random.default_rng(zlib.crc32(repr(drive).encode()))
     for t, y in _random_states(model, rng, 12, span):
         got = _to_reference(model.rhs(t, y))
@@ -147,7 +146,7 @@ def test_linearization_matches_the_reference(omega):
     yr = model.balanced_state(ref.balanced_angles(ref.EPS, 0.025))
     lin = model.linearize(yr)
     assert np.max(np.abs(lin.residual)) < 1e-14
-    ref_sys = ref.TwoPlane.long_rotor(0.025, kinematics="lateral")
+    ref_sys = ref.TwoPlane.long_rotor(0.025, kinematics="rigid")
     perm = np.r_[0:4, 8:12, 4:8, 12:16]
     A_ref = ref.jacobian(lambda s: ref.rotating_rhs(ref_sys, s, omega), _rotating_to_reference(yr))
     A = lin.A[np.ix_(perm, perm)]
@@ -176,24 +175,25 @@ def _stable_speeds(make, omegas) -> np.ndarray:
 
 
 def test_stability_over_speed():
-    """m = 0.025: the speeds where B is stable are the reference's (lateral kinematics) on a grid:
+    """m = 0.025: the speeds where B is stable are the reference's (rigid kinematics) on a grid:
     none below Omega_2, a secondary region holding 2.0, a primary region at high speed (Fig. 5(a))."""
     omegas = np.round(np.arange(0.5, 6.0001, 0.25), 6)
     got = _stable_speeds(lambda om: long_rotor(0.025, drive=ConstantSpeed(om)), omegas)
-    lateral = ref.TwoPlane.long_rotor(0.025, kinematics="lateral")
-    expect = np.array([ref.spectral_abscissa(lateral, om) < 0 for om in omegas])
+    rigid = ref.TwoPlane.long_rotor(0.025, kinematics="rigid")
+    expect = np.array([ref.spectral_abscissa(rigid, om) < 0 for om in omegas])
     np.testing.assert_array_equal(got, expect)
     assert not got[omegas < ref.OMEGA_CON].any()
     assert got[omegas == 2.0].all() and got[omegas >= 4.75].all() and not got[omegas == 3.0].any()
 
 
-def test_primary_region_onset_misses_the_paper_by_the_balls_axial_motion():
-    """Known limitation, measured: Machine keeps the balls in their race plane, so at m = 0.025
-    its primary stable region starts at Omega = 4.48 (between 4.47 and 4.49, as the lateral
-    reference), where Fig. 5(a) (balls moving axially with the tilting race, which the
-    rigid-kinematics reference reproduces within 0.01) has 4.59-4.60."""
-    got = _stable_speeds(lambda om: long_rotor(0.025, drive=ConstantSpeed(om)), [4.47, 4.49, 4.58])
-    assert got.tolist() == [False, True, True]
+@pytest.mark.parametrize(("m", "lo", "hi"), [(0.025, 4.59, 4.60), (0.03, 4.90, 4.91)])
+def test_primary_region_onset_is_the_papers(m, lo, hi):
+    """Fig. 5(a) of Rodrigues et al. (2008) (boundaries read from the figure's vector graphics on
+    a 0.01 grid, ``test_rcfw_reference.FIG5A_BOUNDARIES``): the primary stable region of B starts
+    between Omega = 4.59 and 4.60 at m = 0.025 and between 4.90 and 4.91 at m = 0.03. The balls'
+    axial motion on their tilting races sets it: without it (in-plane balls) it started at 4.48."""
+    got = _stable_speeds(lambda om: long_rotor(m, drive=ConstantSpeed(om)), [lo, hi])
+    assert got.tolist() == [False, True]
 
 
 def test_disc_rotor_has_no_stable_balanced_state():
@@ -237,11 +237,12 @@ def test_fig11_runs_that_do_not_balance():
     """Fig. 11 (ii), (Omega, eps, m) = (2.5, 0.01, 0.005): the vibration first dies down, then
     the unstable balanced state gives way to a periodic motion ten times the rotor's own whirl.
     Fig. 11 (iv), (1.5, 0.025, 0.025): "chaotic motion ... far higher than that for the rotor
-    without an ABB" (Section 4)."""
-    ts, a = _fig11(2.5, 0.01, 0.005, 800.0)
-    late = a[ts > 700]
+    without an ABB" (Section 4). With the balls' axial motion the growth from the unstable state
+    takes longer: the periodic motion (about 11 times the rotor's own whirl) holds from t ~ 1000."""
+    ts, a = _fig11(2.5, 0.01, 0.005, 1300.0)
+    late = a[ts > 1200]
     assert late.min() > 5 * _rotor_alone(2.5, 0.01)
-    assert a[(ts > 100) & (ts < 500)].min() < 0.2 * late.mean()
+    assert a[(ts > 100) & (ts < 300)].min() < 0.2 * late.mean()
     ts, a = _fig11(1.5, 0.025, 0.025, 400.0)
     assert a[ts > 300].max() > 4 * _rotor_alone(1.5, 0.025)
 
@@ -272,13 +273,13 @@ def test_builtin_case_is_the_long_rotor(rcfw_case):
 def test_builtin_case_stability_over_speed(rcfw_case):
     """stability-chart: B exists at every speed with the balls at pi +- 60 degrees (eq. (16),
     eps / (4 m) = 1/2), is unstable below Omega_2 and stable from 3 rad/s on (Fig. 5(a) at
-    m = 0.005: from 2.94 rad/s; here, without the balls' axial motion, 2.93)."""
+    m = 0.005: from 2.94-2.95 rad/s)."""
     ds = rcfw_case[1]["stability-over-speed"]
     om = ds.speed.values
     assert ds.exists.all() and ds.balanced.all() and (ds.status == 0).all()
     np.testing.assert_allclose(np.abs(ds.ball_angle.values), 2 * np.pi / 3, atol=1e-9)
-    lateral = ref.TwoPlane.long_rotor(0.005, kinematics="lateral")
-    expect = np.array([ref.spectral_abscissa(lateral, w) < 0 for w in om])
+    rigid = ref.TwoPlane.long_rotor(0.005, kinematics="rigid")
+    expect = np.array([ref.spectral_abscissa(rigid, w) < 0 for w in om])
     np.testing.assert_array_equal(ds.stable.values, expect)
     assert not ds.stable.values[om < ref.OMEGA_CON].any() and ds.stable.values[om >= 3.0].all()
 
@@ -293,6 +294,10 @@ def test_builtin_case_simulations(rcfw_case):
     bal = res["fig11-iii-balancing"]
     assert (bal.status == 0).all()
     assert float(bal.amplitude.max()) < 2e-3 * alone
-    np.testing.assert_allclose(np.abs(bal.final_ball_angle.values), 2 * np.pi / 3, atol=2e-3)
+    # the first start ends within 4e-4 rad of the balanced angles; the second (each race's balls
+    # together, a large initial couple) is still ~2e-3 rad away at 1600 s, closing at the slowest
+    # eigenvalue's rate Re = -0.0034 1/s
+    np.testing.assert_allclose(np.abs(bal.final_ball_angle.values[0]), 2 * np.pi / 3, atol=5e-4)
+    np.testing.assert_allclose(np.abs(bal.final_ball_angle.values[1]), 2 * np.pi / 3, atol=3e-3)
     unstable = res["fig11-ii-unstable"]
     assert float(unstable.amplitude.min()) > 5 * _rotor_alone(2.5, ref.EPS)

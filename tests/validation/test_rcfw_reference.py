@@ -27,8 +27,8 @@ Derived here (closed forms, checked against the sympy equations of ``dev/derive_
 ball angles of B at m = 0.025 (pi +- arccos(0.1)), the whirl frequencies and the gyroscopic split
 of the conical mode, the backward conical critical speed sqrt(k22 / (Jt + Jp)), and the
 eigenvalues of the linearisation about B (complex-step Jacobian of the co-rotating equations).
-Two ball kinematics are checked: "rigid" (the ball follows its tilting race, as eqs. (9)-(13))
-and "lateral" (in-plane only, as Rodrigues et al. 2011 eq. (2) and ``rotorlab.models.Machine``).
+Two ball kinematics are checked: "rigid" (the ball follows its tilting race, as eqs. (9)-(13) and
+``rotorlab.models.Machine``) and "lateral" (in-plane only, as Rodrigues et al. 2011 eq. (2)).
 """
 
 from __future__ import annotations
@@ -258,9 +258,9 @@ def test_stability_boundaries_of_fig5a(m):
 
 
 def test_lateral_kinematics_shifts_the_boundaries():
-    """Without the balls' axial motion (lateral kinematics, the model of Rodrigues et al. 2011 and
-    of rotorlab's Machine) the primary region starts at Omega ~= 4.48 instead of the paper's 4.60
-    at m = 0.025 (and 4.74 instead of 4.90 at m = 0.03): the balls' own tilt inertia matters."""
+    """Without the balls' axial motion (lateral kinematics, the model of Rodrigues et al. 2011;
+    rotorlab's Machine has the rigid kinematics) the primary region starts at Omega ~= 4.48
+    instead of the paper's 4.60 at m = 0.025 (and 4.74 instead of 4.90 at m = 0.03): the balls' own tilt inertia matters."""
     lateral = ref.TwoPlane.long_rotor(0.025, kinematics="lateral")
     assert ref.spectral_abscissa(lateral, 4.47) > 0 > ref.spectral_abscissa(lateral, 4.49)
     assert ref.spectral_abscissa(lateral, 4.55) < 0  # the paper (and rigid kinematics): unstable

@@ -51,14 +51,17 @@ sin a_n``), n_bp, offset of the sorted breakpoint times, offset of the active-st
 (``n_bp + 1`` rows of ``n_act`` stone indices, -1 where empty), n_act, n_tab, offset of the
 push table (``n_tab`` rows ``J_x, J_y, dJ_x/dtau, dJ_y/dtau`` on the uniform grid
 ``tau_j = j dtau``), dtau.
+``p[32]``: slip stop (1: sliding stops where the slip of P vanishes, the default; 0: at
+``whirl_limit``, see :func:`whirl_stop`).
 
 Events (all direction -1)
 -------------------------
 ``0 impact``: free, ``g = Delta - |w|`` (exactly 0 at the time of the last reset that left P on
 the housing); ``1 lift_off``: sliding, ``g = N``; ``2 stone``: ``g = t_bp - t`` for the next
 stone arrival or departure (the active stones change only there, so the forcing is smooth inside
-every step); ``3 backward_whirl``: sliding, ``g = whirl_limit + dphi/dt + omega0`` (inertial
-angular speed of the contact point), stops the run. An impact whose impulse sticks (the slip of
+every step); ``3 backward_whirl``: sliding, ``g`` = the slip of P (:func:`slip_speed`; or, with a
+``whirl_limit``, ``whirl_limit + dphi/dt + omega0``, the inertial angular speed of the contact
+point; :func:`whirl_stop`), stops the run. An impact whose impulse sticks (the slip of
 P stops: P rolls on the housing, the dry-friction backward whirl) also stops the run.
 
 Impacts and sliding are the shared contact law of :mod:`rotorlab._kernels.contact` at P
@@ -86,7 +89,8 @@ P_IMS, P_HQ, P_TRANS, P_VREST, P_VCOUNT, P_WHIRL, P_TAUEND = 16, 17, 18, 19, 20,
 P_NST, P_OST, P_NBP, P_OBP, P_OACT, P_NACT, P_NTAB, P_OTAB, P_DTAU = (
     23, 24, 25, 26, 27, 28, 29, 30, 31,
 )  # fmt: skip
-P_HEADER = 32
+P_SLIPSTOP = 32
+P_HEADER = 33
 
 EV_IMPACT, EV_LIFT, EV_STONE, EV_WHIRL = 0, 1, 2, 3
 
@@ -319,6 +323,20 @@ def whirl_speed(y, p):
 
 
 @njit(cache=True, nogil=True)
+def whirl_stop(y, p, e1, e2):
+    """Sliding contact's stop function (``< 0``: the dry-friction backward whirl is reached).
+
+    With ``p[P_SLIPSTOP] = 1`` (the default) the slip of P over the housing, :func:`slip_speed`:
+    the sliding law (friction ``-f N e_perp``) holds while P slides forwards and ends exactly where
+    the slip vanishes and P would roll. Otherwise ``whirl_limit + dphi/dt + omega0``: the contact
+    point whirling backwards faster than ``whirl_limit`` (a user's override).
+    """
+    if p[P_SLIPSTOP] != 0.0:
+        return slip_speed(y, p, e1, e2)
+    return p[P_WHIRL] + whirl_speed(y, p)
+
+
+@njit(cache=True, nogil=True)
 def events(t, y, p, g):
     free = y[MODE] == 0.0
     if free:
@@ -333,7 +351,7 @@ def events(t, y, p, g):
         g[EV_IMPACT] = 1.0
         n, e1, e2 = contact_force(t, y, p)
         g[EV_LIFT] = n
-        g[EV_WHIRL] = p[P_WHIRL] + whirl_speed(y, p)
+        g[EV_WHIRL] = whirl_stop(y, p, e1, e2)
     i_bp = int(y[I_BP])
     if i_bp < int(p[P_NBP]):
         g[EV_STONE] = p[int(p[P_OBP]) + i_bp] - t
@@ -457,7 +475,9 @@ def reset(k, t, y, p, y_new):
             if n > 0.0:
                 y_new[N_SLIDE] += 1.0
                 y_new[T_START] = t
-                if stick or whirl_speed(y_new, p) < -p[P_WHIRL]:
+                w1, w2 = gap_vector(y_new, p)
+                r = math.sqrt(w1 * w1 + w2 * w2)
+                if stick or whirl_stop(y_new, p, w1 / r, w2 / r) < 0.0:
                     # it starts in the dry-friction backward whirl (rolling, or faster than the
                     # rolling speed): the sliding law ends here, stop
                     y_new[WHIRL] = 1.0

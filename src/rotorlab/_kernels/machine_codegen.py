@@ -86,6 +86,13 @@ class Layout:
     clearance : {"", "rigid", "elastic", "housing"}
         The kind of the machine's clearance (rotor-stator contact), "" for none; see
         :mod:`rotorlab._kernels.machine_contact`.
+    friction : bool
+        The balls have Coulomb or rolling friction (stick-slip modes).
+    tilt : tuple of int
+        Empty, or (when some race can tilt) per race the number of its node among the races'
+        distinct nodes: the balls follow the tilting race plane (rigid ball kinematics, see
+        :mod:`rotorlab.models._machine`); adds a tilt station per distinct node and one axial
+        unknown per ball to the Schur system.
     """
 
     n_z: int
@@ -98,9 +105,13 @@ class Layout:
     energy: bool = False
     clearance: str = ""
     friction: bool = False
+    tilt: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "races", tuple(int(n) for n in self.races))
+        object.__setattr__(self, "tilt", tuple(int(k) for k in self.tilt))
+        if self.tilt and (len(self.tilt) != len(self.races) or sorted(set(self.tilt)) != list(range(self.n_tilt))):
+            raise ValueError(f"bad layout tilt={self.tilt!r} for races={self.races!r}")
         if self.drive not in DRIVE_KINDS or self.speed_kind not in SPEED_KINDS:
             raise ValueError(f"bad layout drive={self.drive!r} speed_kind={self.speed_kind!r}")
         if self.clearance not in ("", "rigid", "elastic", "housing"):
@@ -120,6 +131,36 @@ class Layout:
     @property
     def n_stations(self) -> int:
         return self.n_races + self.n_unbalance + (1 if self.clearance else 0)
+
+    @property
+    def n_all_stations(self) -> int:
+        """Stations with packed B, H B^T and pair matrices: the lateral ones, then (with
+        ``tilt``) one tilt station per distinct race node, whose ``B`` is that node's tilt ``T``."""
+        return self.n_stations + self.n_tilt
+
+    @property
+    def n_tilt(self) -> int:
+        """Distinct nodes of the races (tilt stations), 0 without ``tilt``."""
+        return max(self.tilt) + 1 if self.tilt else 0
+
+    def tilt_station(self, r: int) -> int:
+        """Index of the tilt station of race ``r`` (``tilt`` layouts)."""
+        return self.n_stations + self.tilt[r]
+
+    @property
+    def tilt_stations(self) -> list[int]:
+        """The tilt stations, in order."""
+        return [self.n_stations + k for k in range(self.n_tilt)]
+
+    def tilt_balls(self, ts: int) -> list[int]:
+        """The balls whose race sits on tilt station ``ts``."""
+        return [b for b in range(self.n_balls) if self.tilt_station(self.ball_race[b]) == ts]
+
+    @property
+    def n_schur(self) -> int:
+        """Unknowns of the Schur system: ball accelerations, theta'' with a motor, and with
+        ``tilt`` one axial unknown per ball (``mu_b = m_b l_b^2 e_b . T_r z''``)."""
+        return self.n_balls + (1 if self.motor else 0) + (self.n_balls if self.tilt else 0)
 
     @property
     def motor(self) -> bool:
@@ -176,7 +217,7 @@ class Layout:
     # ---- parameter offsets
     @property
     def offsets(self) -> dict[str, int]:
-        nz, ns = self.n_z, self.n_stations
+        nz, ns = self.n_z, self.n_all_stations
         sizes = [
             ("speed", 6),
             ("motor", 3 + 2 * self.n_table),
@@ -193,6 +234,7 @@ class Layout:
             ("Ka", nz * nz if self.energy else 0),
             ("clearance", 11 if self.clearance else 0),
             ("friction", self.n_balls if self.friction else 0),
+            ("tilt", self.n_balls if self.tilt else 0),
         ]
         out, k = {}, 0
         for name, size in sizes:
@@ -215,7 +257,7 @@ class Layout:
 
     def pair_L(self, s: int, s2: int) -> int:
         """Offset of B_s H B_s2^T (2 x 2)."""
-        return self.offsets["L"] + 4 * (s * self.n_stations + s2)
+        return self.offsets["L"] + 4 * (s * self.n_all_stations + s2)
 
     @property
     def key(self) -> str:
@@ -223,7 +265,8 @@ class Layout:
         races = "x".join(str(n) for n in self.races) or "0"
         return (f"z{self.n_z}r{races}u{self.n_unbalance}{self.drive[0]}{self.speed_kind[0]}"
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
-                f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}")
+                f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
+                f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}")
 
 
 def _sum(terms: list[str]) -> str:
@@ -311,6 +354,8 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
         a(f"    J{b} = p[{k + 2}]")
         a(f"    cb{b} = p[{k + 3}]")
         a(f"    rel{b} = w{b} - om")
+    if lay.tilt:
+        tilt_lines(lay, L)
     stations_force = []
     for r in range(nr):
         bs = [b for b in range(nb) if br[b] == r]
@@ -326,6 +371,12 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             a(f"    fx{s} = U{u} * (om * om * eux{u} + dom * euy{u})")
             a(f"    fy{s} = U{u} * (om * om * euy{u} - dom * eux{u})")
         stations_force.append((s, f"fx{s}", f"fy{s}"))
+    if lay.tilt:  # the balls' velocity terms on their tilting races (moments on phi_r)
+        for ts in lay.tilt_stations:
+            r, bs = ts, lay.tilt_balls(ts)
+            a(f"    fx{ts} = -({_sum([f'w{b} * (D{b} * (tp{b} * c{b} - ep{b} * s{b}) + J{b} * tvy{r})' for b in bs])})")
+            a(f"    fy{ts} = -({_sum([f'w{b} * (D{b} * (tp{b} * s{b} + ep{b} * c{b}) - J{b} * tvx{r})' for b in bs])})")
+            stations_force.append((ts, f"fx{ts}", f"fy{ts}"))
     # ---- h = H R_z
     for i in range(nz):
         terms = [f"p[{o['Hf'] + i}]"]
@@ -341,12 +392,14 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             a(f"    h{i} += p[{k}] * {fx} + p[{k + 1}] * {fy}")
     # ---- a0_s = B_s h for the stations that enter the Schur system
     need = list(range(nr)) + ([nr + u for u in range(nu)] if lay.motor else [])
+    need += lay.tilt_stations
     for s in need:
         kb = lay.station_B(s)
         a(f"    ax{s} = {_sum([f'p[{kb + j}] * h{j}' for j in range(nz)])}")
         a(f"    ay{s} = {_sum([f'p[{kb + nz + j}] * h{j}' for j in range(nz)])}")
     # ---- Schur system S x = q in the ball accelerations (and theta'')
     unknowns = [("b", b) for b in range(nb)] + ([("th", 0)] if lay.motor else [])
+    unknowns += [("m", b) for b in range(nb)] if lay.tilt else []
     n_s = len(unknowns)
 
     def t_vec(kind, idx):  # (tx, ty) expressions of the unit tangent of a ball / unbalance
@@ -362,7 +415,9 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
         return (f"({t1[0]} * (p[{kk}] * {t2[0]} + p[{kk + 1}] * {t2[1]}) + "
                 f"{t1[1]} * (p[{kk + 2}] * {t2[0]} + p[{kk + 3}] * {t2[1]}))")
 
-    for i, (ki, ii) in enumerate(unknowns):
+    if lay.tilt:
+        tilt_schur(lay, L, unknowns)
+    for i, (ki, ii) in enumerate([] if lay.tilt else unknowns):
         for j, (kj, ij) in enumerate(unknowns[: i + 1]):
             if ki == "b" and kj == "b":
                 diag = f"J{ii} - " if i == j else "-"
@@ -380,8 +435,15 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
     for i, (k, idx) in enumerate(unknowns):
         if k == "b":
             r = br[idx]
+            extra = ""
+            if lay.tilt:  # the ball's moment on its tilting race and the axial motion's term
+                ts = lay.tilt_station(r)
+                extra = f" + D{idx} * ep{idx} * tp{idx} - (nx{idx} * ax{ts} + ny{idx} * ay{ts})"
             a(f"    q{i} = -cb{idx} * rel{idx} + ml{idx} * (-gx * s{idx} + gy * c{idx})"
-              f" - ml{idx} * (-s{idx} * ax{r} + c{idx} * ay{r})")
+              f" - ml{idx} * (-s{idx} * ax{r} + c{idx} * ay{r})" + extra)
+        elif k == "m":
+            ts = lay.tilt_station(br[idx])
+            a(f"    q{i} = -(c{idx} * ax{ts} + s{idx} * ay{ts})")
         else:
             km = o["motor"]
             if lay.drive == "linear":
@@ -410,6 +472,112 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
         return []
     solve_lines(lay, L, "x", "q")
     return reactions(lay, L, "g", "x")
+
+
+def tilt_lines(lay: Layout, L: list[str]) -> None:
+    """Append the tilt ``(tx, ty)`` and its rate ``(tvx, tvy)`` of each race's node and per ball
+    ``D = m l^2``, ``ep = e . phi'``, ``tp = t . phi'`` and its moment arm on the race's tilt
+    ``(nx, ny) = J_b / 2 (phi_y, -phi_x)`` (rigid ball kinematics, :mod:`rotorlab.models._machine`)."""
+    nz, br, o = lay.n_z, lay.ball_race, lay.offsets
+    a = L.append
+    for r in lay.tilt_stations:  # named by the tilt station
+        kb = lay.station_B(r)
+        for name, row, src in (("tx", 0, "z"), ("ty", 1, "z"), ("tvx", 0, "v"), ("tvy", 1, "v")):
+            a(f"    {name}{r} = {_sum([f'p[{kb + row * nz + j}] * {src}{j}' for j in range(nz)])}")
+    for b in range(lay.n_balls):
+        r = lay.tilt_station(br[b])
+        a(f"    D{b} = p[{o['tilt'] + b}]")
+        a(f"    ep{b} = c{b} * tvx{r} + s{b} * tvy{r}")
+        a(f"    tp{b} = c{b} * tvy{r} - s{b} * tvx{r}")
+        a(f"    nx{b} = 0.5 * J{b} * ty{r}")
+        a(f"    ny{b} = -0.5 * J{b} * tx{r}")
+
+
+def loads(lay: Layout, kind: str, idx: int) -> list[tuple[int, str, str]]:
+    """Where a unit of Schur unknown ``(kind, idx)`` acts on the structure: ``(station, vx, vy)``
+    with ``X_j = sum B_s^T (vx, vy)`` (its column of the mass matrix's coupling block)."""
+    br, nr = lay.ball_race, lay.n_races
+    if kind == "b":
+        out = [(br[idx], f"mtx{idx}", f"mty{idx}")]
+        if lay.tilt:
+            out.append((lay.tilt_station(br[idx]), f"nx{idx}", f"ny{idx}"))
+        return out
+    if kind == "th":
+        return [(nr + u, f"(-U{u} * euy{u})", f"(U{u} * eux{u})") for u in range(lay.n_unbalance)]
+    return [(lay.tilt_station(br[idx]), f"c{idx}", f"s{idx}")]
+
+
+def tilt_schur(lay: Layout, L: list[str], unknowns) -> None:
+    """Append the Schur matrix ``S = diag(J_b, J, -1 / D_b) - X^T H X`` of a ``tilt`` layout
+    (lower triangle ``S{i}_{j}``); ``P{j}_{s} = B_s H X_j`` is formed once per unknown."""
+    a = L.append
+    for b in range(lay.n_balls):
+        a(f"    mtx{b} = -ml{b} * s{b}")
+        a(f"    mty{b} = ml{b} * c{b}")
+    lds = [loads(lay, k, i) for k, i in unknowns]
+    used = sorted({s for ld in lds for s, _, _ in ld})
+    # B_s H B_s2^T = B_s (H B_s2^T) from the packed B and H B^T that the kernel reads anyway
+    # (for s <= s2; the other half by symmetry): fewer distinct loads of p than reading the
+    # packed pairs, which keeps the lane loop within LLVM's runtime alias-check budget
+    nz = lay.n_z
+    for i1, s1 in enumerate(used):
+        for s2 in used[i1:]:
+            kb, kh = lay.station_B(s1), lay.station_HBT(s2)
+            for k in range(4):
+                row, col = divmod(k, 2)
+                a(f"    Lv{s1}_{s2}_{k} = " + _sum([f"p[{kb + row * nz + j}] * p[{kh + 2 * j + col}]"
+                                                   for j in range(nz)]))
+
+    def lv(s1, s2, k):
+        return f"Lv{s1}_{s2}_{k}" if s1 <= s2 else f"Lv{s2}_{s1}_{2 * (k % 2) + k // 2}"
+
+    for j, ld in enumerate(lds):
+        for s in used:
+            for row, nm in ((0, "Px"), (1, "Py")):
+                terms = [f"{lv(s, s2, 2 * row)} * {vx} + {lv(s, s2, 2 * row + 1)} * {vy}"
+                         for s2, vx, vy in ld]
+                a(f"    {nm}{j}_{s} = {_sum(terms)}")
+    km = lay.offsets["motor"]
+    for i, (ki, ii) in enumerate(unknowns):
+        for j in range(i + 1):
+            quad = _sum([f"{vx} * Px{j}_{s} + {vy} * Py{j}_{s}" for s, vx, vy in lds[i]])
+            diag = ""
+            if i == j:
+                diag = {"b": f"J{ii}", "th": f"p[{km}]", "m": f"-1.0 / D{ii}"}[ki] + " "
+            a(f"    S{i}_{j} = {diag}- ({quad})")
+
+
+def unit_rhs(lay: Layout, L: list[str], tag: str, s: int, tq: str, ind: str) -> None:
+    """Append ``{tag}q{i} = -X_i^T H B_s^T f`` for a unit force ``f = ({tag}fx, {tag}fy)`` at
+    station ``s`` (and the spin torque ``tq`` on theta's row): the right-hand side of the
+    Schur system for the response to a force (the clearance's Delassus terms)."""
+    br, nr, nb = lay.ball_race, lay.n_races, lay.n_balls
+    a = lambda x: L.append(ind + x)  # noqa: E731
+
+    def proj(s2, vx, vy):
+        kk = lay.pair_L(s2, s)
+        return (f"{vx} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
+                f" + {vy} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy)")
+
+    for b in range(nb):
+        kk = lay.pair_L(br[b], s)
+        extra = ""
+        if lay.tilt:
+            extra = " + " + proj(lay.tilt_station(br[b]), f"nx{b}", f"ny{b}")
+        a(f"{tag}q{b} = -ml{b} * (-s{b} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
+          f" + c{b} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy))"
+          + (f" - ({extra[3:]})" if extra else ""))
+    if lay.motor:
+        terms = []
+        for u in range(lay.n_unbalance):
+            kk = lay.pair_L(nr + u, s)
+            terms.append(f"U{u} * (-euy{u} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
+                         f" + eux{u} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy))")
+        a(f"{tag}q{nb} = {tq} - ({_sum(terms)})")
+    if lay.tilt:
+        i0 = nb + (1 if lay.motor else 0)
+        for b in range(nb):
+            a(f"{tag}q{i0 + b} = -({proj(lay.tilt_station(br[b]), f'c{b}', f's{b}')})")
 
 
 def friction_solve(lay: Layout, L: list[str], unknowns, t_vec, station) -> None:
@@ -443,6 +611,11 @@ def friction_solve(lay: Layout, L: list[str], unknowns, t_vec, station) -> None:
         kind, idx = unknowns[j]
         if kind == "b":
             pairs = [(f"ml{idx}", lay.pair_L(br[b], br[idx]), t_vec("b", idx))]
+            if lay.tilt:
+                pairs.append(("1.0", lay.pair_L(br[b], lay.tilt_station(br[idx])),
+                              (f"nx{idx}", f"ny{idx}")))
+        elif kind == "m":
+            pairs = [("1.0", lay.pair_L(br[b], lay.tilt_station(br[idx])), (f"c{idx}", f"s{idx}"))]
         else:
             pairs = [(f"U{u}", lay.pair_L(br[b], lay.n_races + u), t_vec("u", u))
                      for u in range(lay.n_unbalance)]
@@ -473,6 +646,10 @@ def friction_solve(lay: Layout, L: list[str], unknowns, t_vec, station) -> None:
                 terms.append(f"kst{b} * {S(b, j)} - kms{b} * {E(b, j)}")
             a(f"    A{th}_{j} = " + " + ".join(terms))
         a(f"    r{th} = q{th}" + "".join(f" + kst{b} * q{b} + ksg{b} * kN0{b}" for b in range(nb)))
+    for i in range(nb + (1 if lay.motor else 0), n_s):  # the axial unknowns of the balls
+        for j in range(n_s):
+            a(f"    A{i}_{j} = {S(i, j)}")
+        a(f"    r{i} = q{i}")
     for k in range(n_s):
         for i in range(k + 1, n_s):
             a(f"    fe = A{i}_{k} / A{k}_{k}")
@@ -489,8 +666,7 @@ def friction_torques(lay: Layout, L: list[str], corr, zdd: str = "out") -> None:
     the solution (the residual of the ball's equation, exact in every mode)."""
     nz, br, o = lay.n_z, lay.ball_race, lay.offsets
     a = L.append
-    for r in range(lay.n_races):
-        kb = lay.station_B(r)
+    for r in list(range(lay.n_races)) + lay.tilt_stations:
         # station acceleration a_r = a0_r - sum_s L_(r, s) g_s
         for row, nm in ((0, "fax"), (1, "fay")):
             terms = [f"a{'xy'[row]}{r}"]
@@ -501,7 +677,10 @@ def friction_torques(lay: Layout, L: list[str], corr, zdd: str = "out") -> None:
     for b in range(lay.n_balls):
         r = br[b]
         m = f"p[{o['balls'] + 4 * b}]"
-        a(f"    tq{b} = J{b} * x{b} + cb{b} * rel{b} - ml{b} * (-s{b} * (gx - fax{r}) + c{b} * (gy - fay{r}))")
+        tilt = ""
+        if lay.tilt:  # + n_b . T_r z'' - D e.phi' t.phi' (rigid kinematics)
+            tilt = f" + nx{b} * fax{lay.tilt_station(r)} + ny{b} * fay{lay.tilt_station(r)} - D{b} * ep{b} * tp{b}"
+        a(f"    tq{b} = J{b} * x{b} + cb{b} * rel{b} - ml{b} * (-s{b} * (gx - fax{r}) + c{b} * (gy - fay{r}))" + tilt)
         a(f"    wn{b} = kst{b} * om + (1.0 - kst{b}) * w{b}")
         a(f"    bd{b} = kap{b} * (ml{b} * wn{b} * wn{b} + {m} * (c{b} * (gx - fax{r}) + s{b} * (gy - fay{r})))")
 
@@ -562,7 +741,7 @@ _DECO = '\n\n@njit(cache=True, nogil=True, error_model="numpy")\n'
 
 def solve_lines(lay: Layout, L: list[str], x: str, q: str, indent: str = "    ") -> None:
     """Append the forward and back substitution ``S x = q`` with the LDL^T factors of :func:`prefix`."""
-    n_s = lay.n_balls + (1 if lay.motor else 0)
+    n_s = lay.n_schur
     for i in range(n_s):
         L.append(f"{indent}{x}{i} = {q}{i}" + "".join(f" - L{i}_{k} * {x}{k}" for k in range(i)))
     for i in reversed(range(n_s)):
@@ -583,6 +762,13 @@ def reactions(lay: Layout, L: list[str], g: str, x: str, indent: str = "    ") -
             L.append(f"{indent}{g}x{nr + u} = -U{u} * {x}{nb} * euy{u}")
             L.append(f"{indent}{g}y{nr + u} = U{u} * {x}{nb} * eux{u}")
             corr.append((nr + u, f"{g}x{nr + u}", f"{g}y{nr + u}"))
+    if lay.tilt:  # the balls' moments on their races' tilt: n_b phi_b'' + e_b mu_b
+        i0 = nb + (1 if lay.motor else 0)
+        for ts in lay.tilt_stations:
+            bs = lay.tilt_balls(ts)
+            L.append(f"{indent}{g}x{ts} = {_sum([f'nx{b} * {x}{b} + c{b} * {x}{i0 + b}' for b in bs])}")
+            L.append(f"{indent}{g}y{ts} = {_sum([f'ny{b} * {x}{b} + s{b} * {x}{i0 + b}' for b in bs])}")
+            corr.append((ts, f"{g}x{ts}", f"{g}y{ts}"))
     return corr
 
 

@@ -61,24 +61,14 @@ def _unit(lay, L: list[str], ind: str, tag: str, fx: str, fy: str, tq: str, full
     Defines ``{tag}acx, {tag}acy`` (contact point's acceleration), ``{tag}dom`` (spin's) and
     with ``full`` ``{tag}z{i}`` (structure) and ``{tag}x{b}`` (balls, spin).
     """
-    from rotorlab._kernels.machine_codegen import reactions, solve_lines
+    from rotorlab._kernels.machine_codegen import reactions, solve_lines, unit_rhs
 
     nz, nb, br, nr, nu = lay.n_z, lay.n_balls, lay.ball_race, lay.n_races, lay.n_unbalance
     sc = _station(lay)
     a = lambda s: L.append(ind + s)  # noqa: E731
     a(f"{tag}fx = {fx}")
     a(f"{tag}fy = {fy}")
-    for b in range(nb):
-        kk = lay.pair_L(br[b], sc)
-        a(f"{tag}q{b} = -ml{b} * (-s{b} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
-          f" + c{b} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy))")
-    if lay.motor:
-        terms = []
-        for u in range(nu):
-            kk = lay.pair_L(nr + u, sc)
-            terms.append(f"U{u} * (-euy{u} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
-                         f" + eux{u} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy))")
-        a(f"{tag}q{nb} = {tq} - ({_sum(terms)})")
+    unit_rhs(lay, L, tag, sc, tq, ind)
     solve_lines(lay, L, f"{tag}x", f"{tag}q", ind)
     corr = reactions(lay, L, f"{tag}g", f"{tag}x", ind)
     kc = lay.pair_L(sc, sc)

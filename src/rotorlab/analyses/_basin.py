@@ -257,7 +257,8 @@ def basin_task_size(case_model: Any, analysis: Any) -> int:
 
 
 def _effective_values(case_model: Any, analysis: Any, mapper: Any) -> dict[str, float]:
-    """Every start coordinate that is not varied, with the value the starts use (SI)."""
+    """Every start coordinate that is not varied, with the value the starts use (SI): the fixed
+    value, or the mapper's (its ``start_value``)."""
     from rotorlab.io import coordinate_dimensions
 
     varied = {analysis.x[0], analysis.y[0]}
@@ -265,24 +266,9 @@ def _effective_values(case_model: Any, analysis: Any, mapper: Any) -> dict[str, 
     for name in coordinate_dimensions(case_model):
         if name in varied:
             continue
-        if name in analysis.fixed:
-            out[name] = float(analysis.fixed[name])
-        elif case_model.type == "toroidal_ball":
-            out[name] = float(getattr(case_model, name, 0.0))  # state coordinates start at 0
-        elif name.startswith("psi_") and hasattr(mapper, "base_angles"):
-            out[name] = float(mapper.base_angles[int(name[4:]) - 1])  # where that ball starts
-        elif name.startswith("dpsi_"):
-            out[name] = 0.0  # balls start at rest relative to the rotor
-        elif name == "spin_speed":
-            omega = analysis.spin_speed(case_model)
-            if omega is not None:
-                out[name] = float(omega)
-        elif name.startswith("ball_"):
-            values = {getattr(b, name[5:]) for b in case_model.balls}
-            if len(values) == 1:
-                out[name] = float(values.pop())
-        elif hasattr(case_model, name):
-            out[name] = float(getattr(case_model, name))
+        value = analysis.fixed[name] if name in analysis.fixed else mapper.start_value(name)
+        if value is not None:
+            out[name] = float(value)
     return out
 
 

@@ -7,9 +7,10 @@ Regimes (per run)
 -----------------
 ``none``: no impact with an approach speed >= ``Housing.count_speed``; ``rebounds``: impacts,
 sliding contact for less than ``sliding_fraction`` (default 2 %) of the run; ``sliding``: sliding
-for at least that fraction; ``backward_whirl``: a sliding contact whirled backwards up to the
-rolling speed of the theory (:meth:`rotorlab.models.Housing.rolling_whirl_speed`), where the
-sliding law ends in the dry-friction backward whirl, or an impact's friction impulse stuck (the
+for at least that fraction; ``backward_whirl``: a sliding contact whirled backwards until the
+slip of P vanished (the theory's criterion; without tilt the rolling speed
+:meth:`rotorlab.models.Housing.rolling_whirl_speed`), where the sliding law ends in the
+dry-friction backward whirl, or an impact's friction impulse stuck (the
 slip of P stopped: P rolls on the housing, reached through impacts, e.g. with restitution 1), and
 the run was stopped there (its impact
 counts are those of the whole run: a sliding contact makes no impacts, so they do not depend on
@@ -438,9 +439,10 @@ def impact_model(case_model: Any, **overrides: float) -> ImpactRotor:
     >>> m.stones.mass, m.rotor.spin_speed, m.translational
     (3.0, 160.0, False)
     """
+    from rotorlab.io import ImpactRotorSpec
     from rotorlab.models import CentrifugeRotor, Housing, ImpactRotor, StoneFeed
 
-    if getattr(case_model, "type", None) != "impact_rotor":
+    if not isinstance(case_model, ImpactRotorSpec):
         raise ValueError(f"needs an impact_rotor model, got {getattr(case_model, 'type', None)!r}")
     cm, h, s = case_model, case_model.housing, case_model.stones
     rotor = CentrifugeRotor(cm.mass, cm.inertia_transverse, cm.inertia_polar, cm.spin_speed, cm.stiffness_1,

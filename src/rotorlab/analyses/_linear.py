@@ -16,6 +16,7 @@ from typing import TYPE_CHECKING, Any
 import numpy as np
 
 from rotorlab.analyses._linear_build import build_linear_system
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -34,7 +35,6 @@ __all__ = [
 LINEAR_ANALYSES = ("campbell", "modes", "critical_speeds", "unbalance_response", "identify",
                    "data_audit")
 
-_RPM = 30.0 / math.pi
 _WHIRL = {1: "F", -1: "B", 0: "M"}
 
 
@@ -284,7 +284,7 @@ def _modes_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
 def _unbalance_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
     return [{"node": int(node), "label": str(ds.node_label.values[node]),
              "peak_amplitude": _num(ds.peak_orbit.values[node]),
-             "peak_speed_rpm": _num(ds.peak_speed.values[node] * 30.0 / np.pi),
+             "peak_speed_rpm": _num(ds.peak_speed.values[node] * _RPM),
              "note": str(ds.attrs.get("note", ""))}
             for node in ds.attrs.get("output_nodes", [])]
 

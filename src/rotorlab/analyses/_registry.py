@@ -85,7 +85,7 @@ class ModelType:
         every result.
     mapper : callable, optional
         ``mapper(spec, analysis, options) -> rotorlab.explore.AbstractMapper or None``: the
-        regime mapper of ``basin`` and ``sweep`` analyses (``options``: keyword arguments of
+        regime mapper (with ``start_value``, item 8 of its list) of ``basin`` and ``sweep`` analyses (``options``: keyword arguments of
         the mapper from the analysis, to complete); None (or a mapper returning None): the model
         has no basins.
     analyses : mapping of str to AnalysisType

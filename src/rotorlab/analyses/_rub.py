@@ -38,8 +38,9 @@ def _rotor(case_model: Any) -> RubRotor:
 def rub_model(case_model: Any) -> JeffcottRub:
     """Build the :class:`~rotorlab.contact.JeffcottRub` of a validated ``rub_rotor`` case model."""
     from rotorlab.contact import JeffcottRub
+    from rotorlab.io._rub_specs import JeffcottRubSpec
 
-    if getattr(case_model, "type", None) != "rub_rotor":
+    if not isinstance(case_model, JeffcottRubSpec):
         raise ValueError(f"needs a rub_rotor model, got {getattr(case_model, 'type', None)!r}")
     return JeffcottRub(_rotor(case_model), case_model.spin_speed, restitution=case_model.restitution,
                        rest_speed=case_model.rest_speed)  # fmt: skip
@@ -215,12 +216,15 @@ def run_rub_map(case_model: Any, analysis: Any,
     last ``window`` classified (:class:`rotorlab.contact.RubRegimes`); the Dataset is the sweep's
     (``regime`` and the features over ``spin_speed`` and the second axis) with
     ``grazing_boundary`` (second-axis value at which the closed-form no-rub orbit just reaches the
-    clearance, at every speed) beside it.
+    clearance, at every speed) beside it, and the same line ``grazing_curve`` on a fine grid
+    ``curve_speed`` across the map; ``attrs["closed_form_decided"]`` counts the finished
+    points where the closed forms (:func:`rub_prediction`) allow a single regime and
+    ``attrs["closed_form_agree"]`` those of them where the map shows that regime.
     """
     from dataclasses import replace
 
     from rotorlab.analyses._registry import MODEL_TYPES
-    from rotorlab.contact import RubRegimes, no_rub_radius
+    from rotorlab.contact import RubRegime, RubRegimes, no_rub_radius
     from rotorlab.sweep import GridAxis, Sweep, run_sweep
 
     model = MODEL_TYPES[case_model.type].build(case_model)
@@ -234,13 +238,35 @@ def run_rub_map(case_model: Any, analysis: Any,
     ds = run_sweep(Sweep(regimes, axes=axes), progress=report)
     rotor = model.equivalent_rub_rotor()
     speeds = ds.spin_speed.values
-    if axis == "clearance":  # the clearance the no-rub orbit just reaches
-        boundary = np.array([no_rub_radius(rotor, float(s)) for s in speeds])
-    else:  # the orbit radius is linear in the eccentricity: the one (or m e) that just reaches it
-        per_unit = np.array([no_rub_radius(replace(rotor, eccentricity=1.0), float(s)) for s in speeds])
-        boundary = rotor.clearance / per_unit * (rotor.mass if axis == "unbalance" else 1.0)
-    ds["grazing_boundary"] = (("spin_speed",), boundary, {"units": "m" if axis != "unbalance" else "kg m"})
-    ds.attrs.update({"name": analysis.name, "second_axis": axis, "points": int(total)})
+
+    def grazing(at: np.ndarray) -> np.ndarray:
+        if axis == "clearance":  # the clearance the no-rub orbit just reaches
+            return np.array([no_rub_radius(rotor, float(s)) for s in at])
+        # the orbit radius is linear in the eccentricity: the one (or m e) that just reaches it
+        per_unit = np.array([no_rub_radius(replace(rotor, eccentricity=1.0), float(s)) for s in at])
+        return rotor.clearance / per_unit * (rotor.mass if axis == "unbalance" else 1.0)
+
+    unit = {"units": "m" if axis != "unbalance" else "kg m"}
+    ds["grazing_boundary"] = (("spin_speed",), grazing(speeds), unit)
+    # the same line on a fine grid over the map's cells (a figure draws it; the grid is coarse)
+    half = 0.5 * (speeds[-1] - speeds[0]) / max(speeds.size - 1, 1)
+    fine = np.unique(np.concatenate([np.linspace(max(speeds[0] - half, 1e-9 * speeds[0]), speeds[-1] + half, 201),
+                                     speeds]))  # fmt: skip
+    ds = ds.assign_coords(curve_speed=("curve_speed", fine, {"units": "rad/s"}))
+    ds["grazing_curve"] = (("curve_speed",), grazing(fine), unit)
+    # where the closed forms allow a single regime, does the map show it?
+    decided = agree = 0
+    for i, s in enumerate(speeds):
+        for j, v in enumerate(ds[axis].values):
+            v = float(v)
+            at = {"clearance": {"clearance": v}, "eccentricity": {"eccentricity": v},
+                  "unbalance": {"eccentricity": v / rotor.mass}}[axis]  # fmt: skip
+            allowed = rub_prediction(replace(rotor, **at), float(s))["regimes"]
+            if len(allowed) == 1 and int(ds.status.values[i, j]) >= 0:
+                decided += 1
+                agree += RubRegime(int(ds.regime.values[i, j])).label == allowed[0]
+    ds.attrs.update({"name": analysis.name, "second_axis": axis, "points": int(total),
+                     "closed_form_decided": decided, "closed_form_agree": agree})  # fmt: skip
     return ds
 
 

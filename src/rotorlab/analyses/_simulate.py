@@ -16,6 +16,7 @@ from rotorlab.analyses._outcome import (
     reference_amplitude,
     wrap_angle,
 )
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -27,8 +28,6 @@ __all__ = ["simulate", "SETTLE_REVOLUTIONS", "run_simulate_analysis", "simulatio
 #: Length of the final window (revolutions at the final speed) over which the final amplitude is
 #: averaged and the balls must stay at rest relative to the rotor to count as settled.
 SETTLE_REVOLUTIONS = 10.0
-
-_RPM = 60.0 / (2.0 * math.pi)
 
 
 def _check_inputs(model: Any, speeds: Any, initial_ball_angles: Any, t_end: float,

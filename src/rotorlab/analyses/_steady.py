@@ -13,6 +13,7 @@ from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -32,7 +33,6 @@ __all__ = [
 #: Analysis types run by :func:`run_steady_analysis`.
 STEADY_ANALYSES = ("steady", "stability-chart", "verify", "run-up")
 
-_RPM = 60.0 / (2.0 * math.pi)
 _METHODS = ("exact", "hamilton", "averaged")
 
 

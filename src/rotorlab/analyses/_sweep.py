@@ -13,7 +13,7 @@ import math
 from collections.abc import Callable, Mapping
 from typing import Any
 
-_RPM = 60.0 / (2.0 * math.pi)
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["build_sweep", "sweep_task_size", "run_sweep_analysis", "stability_sweep", "stability_summary", "impact_store_summary",
            "STABILITY_AXES", "SPEED_AXES", "STABILITY_CHUNK"]

@@ -32,12 +32,12 @@ from rotorlab.cli._output import (
     status,
     stdout,
 )
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["app", "main"]
 
 DEFAULT_CASE = "autobalancer"
 DEFAULT_OUT = "rotorlab-out"
-_RPM = 60.0 / (2.0 * math.pi)
 
 app = typer.Typer(
     name="rotorlab",
@@ -376,7 +376,10 @@ def simulate_command(
                 update.update(t_end=t_end, revolutions=None)
             run_through_entry(settings, loaded, spec.model_copy(update=update), json_out, out)
             return
-        if loaded.model.type != "jeffcott_balls":
+        from rotorlab.io import SimulateSpec
+
+        # the model types simulate accepts, less those with their own simulate: jeffcott_balls
+        if SimulateSpec.wrong_model(loaded.model) is not None:
             raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; simulate "
                            "needs a rotor with balls ([model] type jeffcott_balls); for a "
                            "linear rotor use 'rotorlab campbell' or 'rotorlab modes'")

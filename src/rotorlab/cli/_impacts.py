@@ -47,9 +47,12 @@ def _check(stone_mass: float | None, t_end: float | None, seed: int | None, plot
 
 
 def _impact_case(case: str, sets: list[str] | None = None) -> Any:
+    from rotorlab.io import ImpactsSpec
+
     loaded = _load(case, sets)
-    if getattr(loaded.model, "type", None) != "impact_rotor":
-        raise BadInput(f"case {loaded.name}: needs an impact_rotor model (this case has '{loaded.model.type}')")
+    problem = ImpactsSpec.wrong_model(loaded.model)
+    if problem is not None:
+        raise BadInput(f"case {loaded.name}: {problem}")
     return loaded
 
 

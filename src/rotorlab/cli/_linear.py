@@ -9,7 +9,6 @@ shared :data:`~rotorlab.cli._app.app`.
 
 from __future__ import annotations
 
-import math
 import os
 import tempfile
 from collections.abc import Mapping, Sequence
@@ -18,13 +17,13 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from rotorlab._constants import RAD_S_PER_RPM
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app
 from rotorlab.cli._options import check_plot_path, check_speed, parse_speed_range
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
 __all__ = ["campbell_command", "modes_command", "linear_tables", "write_figure"]
 
-_RPM_TO_RAD = math.pi / 30.0
 _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
 _LINEAR_MODELS = ("multibody", "fe_rotor")
 
@@ -173,7 +172,7 @@ def campbell_command(
         _check_modes(modes, n_dof)
         from rotorlab.io import CampbellSpec
 
-        start, stop, n = (rng[0] * _RPM_TO_RAD, rng[1] * _RPM_TO_RAD, rng[2]) if rng else (
+        start, stop, n = (rng[0] * RAD_S_PER_RPM, rng[1] * RAD_S_PER_RPM, rng[2]) if rng else (
             spec.start, spec.stop, spec.n_speeds)
         n_modes = modes or (spec.n_modes if spec is not None else 6)
         analysis = CampbellSpec(
@@ -236,7 +235,7 @@ def modes_command(
         spec = _first(loaded, "modes")
         from rotorlab.io import ModesSpec
 
-        speed = speed_rpm * _RPM_TO_RAD if speed_rpm is not None else (
+        speed = speed_rpm * RAD_S_PER_RPM if speed_rpm is not None else (
             spec.speed if spec is not None else 0.0)
         analysis = ModesSpec(name="modes", speed=speed,
                              n_modes=modes if modes is not None else (
@@ -247,5 +246,5 @@ def modes_command(
         if json_out:
             emit_json(modes_summary(ds))
             return
-        stdout().print(_modes_table(f"{loaded.name}: modes at {speed / _RPM_TO_RAD:.6g} rpm",
+        stdout().print(_modes_table(f"{loaded.name}: modes at {speed / RAD_S_PER_RPM:.6g} rpm",
                                     summarize_linear(ds)))

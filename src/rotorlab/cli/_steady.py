@@ -17,10 +17,10 @@ import typer
 from rotorlab.cli._app import (CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis, own_entry,
                                run_through_entry)
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["steady_command", "stability_chart_command", "run_up_command", "parse_range", "regime_overrides", "steady_tables"]
 
-_RPM = 60.0 / (2.0 * math.pi)
 _METHODS = ("exact", "hamilton", "averaged")
 
 RegimeOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
@@ -125,8 +125,12 @@ def regime_overrides(loaded: Any, regime: str | None) -> dict[str, float]:
     return {k: v for k, (v, _) in found.items()}
 
 
-def _model(loaded: Any, overrides: dict[str, float]) -> Any:
-    if getattr(loaded.model, "type", None) != "jeffcott_balls" or loaded.model.n_balls < 1:
+def _model(loaded: Any, overrides: dict[str, float], kind: str) -> Any:
+    """The steady-motion model of a case whose model type has no ``kind`` entry of its own: the
+    model's own check (``steady_issues``: a jeffcott_balls rotor with balls) decides."""
+    from rotorlab.io import ANALYSIS_SPECS
+
+    if loaded.model.steady_issues(ANALYSIS_SPECS[kind].model_construct()):  # unvalidated: its type only
         raise BadInput(f"case {loaded.name}: steady motions need a jeffcott_balls model with balls")
     from rotorlab.analyses import build_model
     from rotorlab.steady import with_parameter
@@ -200,7 +204,7 @@ def steady_command(
             if spec is None:
                 raise BadInput(f"case {loaded.name} has no steady analysis: give --speed-rpm or --speed-ratio")
             overrides = overrides or spec.overrides()
-        model = _model(loaded, overrides)
+        model = _model(loaded, overrides, "steady")
         if speed_rpm is not None:
             omega = speed_rpm / _RPM
         elif speed_ratio is not None:
@@ -325,7 +329,7 @@ def stability_chart_command(
             overrides = overrides or spec.overrides()
             if name is None and spec.param is not None:
                 name, values = spec.param, spec.parameter_values()
-        model = _model(loaded, overrides)
+        model = _model(loaded, overrides, "stability-chart")
         import numpy as np
 
         if rpm is not None:

@@ -29,6 +29,7 @@ from rotorlab.cli._sweep_common import (
     run_with_bar,
     stability_line,
 )
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 
 def _names(known: Any) -> str:
@@ -38,8 +39,6 @@ def _names(known: Any) -> str:
 
 
 __all__ = ["sweep_command", "parse_axis"]
-
-_RPM = 60.0 / (2.0 * math.pi)
 
 def parse_axis(option: str, text: str, kind: str, sample: bool,
                dimensions: dict[str, str] | None = None) -> tuple[str, tuple]:  # fmt: skip

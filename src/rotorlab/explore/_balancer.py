@@ -20,7 +20,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rotorlab._kernels import jeffcott_balls as _jk
-from rotorlab.explore._mapper import Feature, ball_coordinate_units, window_save_times
+from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import Status, StepControl
 from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls
 
@@ -149,6 +149,19 @@ class BalancerRegimes:
         balls = tuple(_vary_ball(b, ball_kw) for b in self.model.balls) if ball_kw else self.model.balls
         speed = ConstantSpeed(values["spin_speed"]) if "spin_speed" in values else self.model.speed
         return JeffcottBalls(rotor, balls, speed=speed, frame="rotating")
+
+    def start_value(self, name: str) -> float | None:
+        """The value a start takes for coordinate ``name`` when not given (SI): the base ball
+        angle, rest, the base model's speed or rotor field, the field shared by all balls (None
+        if the balls differ in it); None for any other name."""
+        if name == "spin_speed":
+            return float(self.model.speed.speed)
+        if name in _ROTOR_UNITS:
+            return float(getattr(self.model.rotor, name))
+        if name in _BALL_UNITS:
+            values = {float(getattr(b, name[5:])) for b in self.model.balls}
+            return values.pop() if len(values) == 1 else None
+        return ball_start_value(name, self.base_angles)
 
     def starts(self, coords: Mapping[str, np.ndarray]):
         n_pts = max((v.size for v in coords.values()), default=1)

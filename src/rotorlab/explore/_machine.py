@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab.explore._mapper import Feature, ball_coordinate_units, window_save_times
+from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import StepControl
 from rotorlab.models import ConstantSpeed, Machine
 
@@ -153,6 +153,17 @@ class MachineRegimes:
                                                  for b in r.balls)) for r in m.races)
             m = replace(m, races=races)
         return m
+
+    def start_value(self, name: str) -> float | None:
+        """The value a start takes for coordinate ``name`` when not given (SI): the base ball
+        angle, rest, the base machine's speed, the mass or damping shared by all its balls (None
+        if they differ); None for any other name."""
+        if name == "spin_speed":
+            return float(self.model.drive.speed)
+        if name in _PARAMS:
+            values = {float(getattr(b, name[5:])) for r in self.model.races for b in r.balls}
+            return values.pop() if len(values) == 1 else None
+        return ball_start_value(name, self.base_angles)
 
     def starts(self, coords: Mapping[str, np.ndarray]):
         n_pts = max((v.size for v in coords.values()), default=1)

@@ -53,6 +53,11 @@ class AbstractMapper(Protocol):
        (N, n_horizon), plus optionally per-trajectory arrays of shape (N,).
     6. ``group(features)``: integer labels of shape (N, n_horizon) from the feature values.
     7. ``control``: the :class:`~rotorlab.integrate.StepControl` of the integration.
+    8. For a mapper of case-file basins (a model type's ``mapper``; not needed by
+       :func:`map_starts`): ``start_value(name)``, the value (SI) a start takes
+       for the coordinate ``name`` when it is not given (the base value of item 3), or None
+       where the starts have no single value (balls of different masses) or the name is not a
+       coordinate. Reports and figures show it for every coordinate a basin does not vary.
     """
 
     @property
@@ -77,6 +82,23 @@ def ball_coordinate_units(n_balls: int) -> dict[str, str]:
     units = {f"psi_{i}": "rad" for i in range(1, n_balls + 1)}
     units.update({f"dpsi_{i}": "rad/s" for i in range(1, n_balls + 1)})
     return units
+
+
+def ball_start_value(name: str, base_angles: tuple[float, ...]) -> float | None:
+    """The start value of a ball coordinate not given: ``psi_<i>`` starts at ``base_angles[i - 1]``
+    (rad), ``dpsi_<i>`` at rest relative to the rotor (0 rad/s); None for any other name.
+
+    Examples
+    --------
+    >>> ball_start_value("psi_2", (0.0, 3.0)), ball_start_value("dpsi_1", (0.0, 3.0))
+    (3.0, 0.0)
+    >>> ball_start_value("psi_3", (0.0, 3.0)) is None, ball_start_value("spin_speed", ()) is None
+    (True, True)
+    """
+    prefix, _, index = name.partition("_")
+    if prefix not in ("psi", "dpsi") or not index.isdigit() or not 1 <= int(index) <= len(base_angles):
+        return None
+    return float(base_angles[int(index) - 1]) if prefix == "psi" else 0.0
 
 
 def window_save_times(horizons: np.ndarray, window: float, samples_per_window: int) -> np.ndarray:

@@ -133,6 +133,13 @@ class TorusRegimes:
         h = self.horizons()
         return np.unique(np.concatenate([np.maximum(h - self.window, 0.0), h]))
 
+    def start_value(self, name: str) -> float | None:
+        """The value a start takes for coordinate ``name`` when not given (SI): the base state's
+        entry or the base model's parameter; None for any other name."""
+        if name in _STATE_UNITS:
+            return self.base_state[list(_STATE_UNITS).index(name)]
+        return float(getattr(self.model, name)) if name in _PARAM_UNITS else None
+
     def starts(self, coords: Mapping[str, np.ndarray]):
         n = max((v.size for v in coords.values()), default=1)
         params = [k for k in _PARAM_UNITS if k in coords]

@@ -30,6 +30,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._coordinates import (  # noqa: F401 - re-exported: this module's names before the split
     BALANCER_COORDINATES,
     BALL_COORDINATE,
@@ -51,9 +52,11 @@ from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
 from rotorlab.io._fields import (
     AbstractAnalysisSpec,
     AbstractModelSpec,
+    RaceIndices,
     _choice,
     _error,
     _QuantityValidator,
+    chosen_race_issues,
     integer,
     quantity,
 )
@@ -202,7 +205,7 @@ class ToroidalBallSpec(AbstractModelSpec):
 
     def describe(self) -> str:
         """One line: geometry, speed and friction."""
-        rpm = self.spin_speed * 60.0 / (2.0 * math.pi)
+        rpm = self.spin_speed * RPM_PER_RAD_S
         return (f"toroidal_ball (R = {self.ring_radius * 1e3:g} mm, R1 = {self.tube_radius * 1e3:g} mm, "
                 f"r = {self.ball_radius * 1e3:g} mm, e = {self.offset * 1e3:g} mm, "
                 f"k = {self.rolling_friction:g} m, {rpm:.0f} rpm, {self.form} form)")  # fmt: skip
@@ -246,6 +249,9 @@ class BasinSpec(AbstractAnalysisSpec):
     rtol, atol : float, optional
         Integrator tolerances (default 1e-6 / 1e-8 for the toroidal ball, 1e-8 / 1e-10 for a
         rotor with balls).
+    races : tuple of int, optional
+        A machine model: the indices of the ball races that take part (a variant of the
+        machine; ``psi_<i>`` counts the balls of these races in order); default all.
     """
 
     exclusive = (("speed_ratio", "speed", False),)
@@ -267,6 +273,7 @@ class BasinSpec(AbstractAnalysisSpec):
     speed: quantity("angular_speed", gt=0) | None = Field(None, description="spin speed (rad/s)")
     rtol: quantity("dimensionless", gt=0, lt=1) | None = Field(None, description="relative tolerance (-)")
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance (-)")
+    races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
     _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
 
@@ -327,6 +334,8 @@ class BasinSpec(AbstractAnalysisSpec):
                 issues.append(Issue(("fixed", name), f"not a coordinate of this {kind} model "
                                                      f"(coordinates: {coordinates_text(known)})", value))  # fmt: skip
         issues += model.basin_issues(self)
+        issues += chosen_race_issues(model, self.races, [(("x",), self.x[0]), (("y",), self.y[0])]
+                                     + [(("fixed", k), k) for k in self.fixed])
         if model.spins_at_own_speed:
             for key in ("speed_ratio", "speed"):
                 if getattr(self, key) is not None:
@@ -385,18 +394,12 @@ class WorkingPointSpec(AbstractAnalysisSpec):
     """
 
     type: Literal["working-point"] = "working-point"
+    model_types: ClassVar[tuple[str, ...]] = ("toroidal_ball",)
     psi_span: quantity("angle", gt=0, le=math.pi) = Field(math.pi, description="half-width of the psi range (rad)")
     points: integer(ge=3) = Field(361, description="points of the restoring-force curve")
     start: tuple[quantity("angle"), quantity("angle"), quantity("angular_speed"), quantity("angular_speed")] = Field(
         (2.0, 0.0, 0.0, 0.0), description="[psi, alpha, dpsi, dalpha] of the phase-portrait trajectory (rad, rad/s)")
     t_end: quantity("time", gt=0) = Field(10.0, description="simulated time of the trajectory (s)")
-
-    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Only for a toroidal_ball model."""
-        if getattr(model, "type", None) != "toroidal_ball":
-            return [Issue(("type",), f"needs a toroidal_ball model, not {getattr(model, 'type', None)!r}",
-                          self.type)]  # fmt: skip
-        return []
 
     def describe(self, model: AbstractModelSpec) -> str:
         """One line."""

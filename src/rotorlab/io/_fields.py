@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Annotated, Any, ClassVar, get_args
 from pydantic import BaseModel, ConfigDict, Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
 from rotorlab.io._units import DIMENSIONS, UnitError, convert
 
@@ -36,6 +37,7 @@ __all__ = [
     "plain_data",
     "speed_text",
     "RaceIndices",
+    "chosen_race_issues",
 ]
 
 _NAME = re.compile(r"^[A-Za-z0-9][A-Za-z0-9_.-]{0,63}$")
@@ -342,6 +344,25 @@ class AbstractModelSpec(_Spec):
 RaceIndices = tuple[integer(ge=0), ...]
 
 
+def chosen_race_issues(model: AbstractModelSpec, races: tuple[int, ...] | None,
+                       named: list[tuple[tuple, str]]) -> list[Issue]:
+    """Check a basin's or sweep's choice of races and its ball coordinates against it.
+
+    ``named`` holds ``(key path, coordinate name)``; a ``psi_<i>`` or ``dpsi_<i>`` beyond the
+    balls of the chosen races is an issue at its key path.
+    """
+    issues = model.race_issues(races)
+    if races is None or issues:
+        return issues
+    n = model.balls_in(races)
+    for key, name in named:
+        hit = re.fullmatch(r"d?psi_(\d+)", str(name))
+        if hit and int(hit.group(1)) > n:
+            issues.append(Issue(key, f"{name!r} names ball {hit.group(1)}, but the races "
+                                     f"{list(races)} have {n} ball(s)", name))
+    return issues
+
+
 def speed_text(omega: float | None, p: float | None = None) -> str:
     """A spin speed in rad/s, rpm and Hz (and as omega / p when ``p`` is given), for messages.
 
@@ -352,7 +373,7 @@ def speed_text(omega: float | None, p: float | None = None) -> str:
     """
     if omega is None:
         return "follows the model's speed profile"
-    text = f"{omega:.6g} rad/s = {omega * 30.0 / math.pi:.6g} rpm = {omega / (2 * math.pi):.6g} Hz"
+    text = f"{omega:.6g} rad/s = {omega * RPM_PER_RAD_S:.6g} rpm = {omega / (2 * math.pi):.6g} Hz"
     return text + (f" (ω/p = {omega / p:.3g})" if p else "")
 
 
@@ -426,6 +447,14 @@ class AbstractAnalysisSpec(_Spec):
     #: Pairs ``(a, b, required)`` of mutually exclusive keys.
     exclusive: ClassVar[tuple[tuple[str, str, bool], ...]] = ()
 
+    #: The ``[model]`` types this analysis runs on; None: any (the model's own hooks, such as
+    #: ``steady_issues``, say what it cannot run). Read by :meth:`case_issues` and, through
+    #: :meth:`wrong_model`, by the command line: one list, no test of the type elsewhere.
+    model_types: ClassVar[tuple[str, ...] | None] = None
+    #: What a case with a model of another type is told (``{kind}``: its type; ``{types}``: the
+    #: accepted ones, joined by "or").
+    wrong_model_message: ClassVar[str] = "needs a {types} model, not {kind!r}"
+
     type: str
     name: _Name | None = Field(None, description="unique name of the analysis")
 
@@ -437,9 +466,31 @@ class AbstractAnalysisSpec(_Spec):
             raise IssueGroup(issues)
         return self
 
+    @classmethod
+    def wrong_model(cls, model: AbstractModelSpec) -> str | None:
+        """Why this analysis type cannot run on ``model``'s type (:attr:`model_types`), or None.
+
+        Examples
+        --------
+        >>> from rotorlab.io import WorkingPointSpec, load_case
+        >>> WorkingPointSpec.wrong_model(load_case("autobalancer").model)
+        "needs a toroidal_ball model, not 'jeffcott_balls'"
+        >>> WorkingPointSpec.wrong_model(load_case("strautmanis-torus").model) is None
+        True
+        """
+        kind = getattr(model, "type", None)
+        if cls.model_types is None or kind in cls.model_types:
+            return None
+        return cls.wrong_model_message.format(kind=kind, types=" or ".join(cls.model_types))
+
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Return the problems of this analysis that depend on the model (``loc`` relative)."""
-        return []
+        """Return the problems of this analysis that depend on the model (``loc`` relative).
+
+        Here: a model type outside :attr:`model_types`; a subclass adds its own checks after
+        ``super().case_issues(model)`` comes back empty.
+        """
+        problem = self.wrong_model(model)
+        return [] if problem is None else [Issue(("type",), problem, self.type)]
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description of what the analysis computes on ``model``."""

@@ -18,10 +18,11 @@ Examples
 from __future__ import annotations
 
 import math
-from typing import Annotated, Any, Literal
+from typing import Annotated, Any, ClassVar, Literal
 
 from pydantic import Field, ValidationInfo, WithJsonSchema, field_validator, model_validator
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import (
     Unit,
@@ -69,8 +70,8 @@ class HousingSpec(_Spec):
     rest_speed: quantity("velocity", gt=0) = Field(1e-4, description="rebound speed turning chatter into sliding (m/s)")
     count_speed: quantity("velocity", gt=0) = Field(1e-3, description="approach speed from which impacts count (m/s)")
     whirl_limit: quantity("angular_speed", gt=0) | None = Field(
-        None, description="backward whirl speed that stops a run (rad/s); default the rolling speed "
-                          "r_P sin(beta) omega0 / gap, where the slip vanishes"
+        None, description="backward whirl speed that stops a run (rad/s); default: the run stops where the "
+                          "slip of P over the housing vanishes (without tilt at r_P sin(beta) omega0 / gap)"
     )
 
     @model_validator(mode="after")
@@ -153,12 +154,15 @@ class ImpactRotorSpec(AbstractModelSpec):
     def describe(self) -> str:
         """Return a one-line description."""
         kind = "translational " if self.translational else ""
-        return (f"{kind}centrifuge rotor {self.mass:g} kg at {self.spin_speed * 30 / math.pi:.5g} rpm, "
+        return (f"{kind}centrifuge rotor {self.mass:g} kg at {self.spin_speed * RPM_PER_RAD_S:.5g} rpm, "
                 f"gap {self.housing.gap * 1e3:.3g} mm, stones {self.stones.mass:g} kg every {self.stones.interval:g} s")  # fmt: skip
 
 
 class _ImpactAnalysis(AbstractAnalysisSpec):
     """Common keys of the impact analyses: duration, seed, tolerances and parameter overrides."""
+
+    model_types: ClassVar[tuple[str, ...]] = ("impact_rotor",)
+    wrong_model_message: ClassVar[str] = "needs an impact_rotor model (this case has '{kind}')"
 
     t_end: quantity("time", gt=0) = Field(10.0, description="duration of a run (s)")
     seed: integer(ge=0) = Field(0, description="seed of the (first) stone sequence (-)")
@@ -178,12 +182,6 @@ class _ImpactAnalysis(AbstractAnalysisSpec):
         keys = ("stone_mass", "interval", "internal_friction", "restitution", "friction")
         return {k: getattr(self, k) for k in keys if getattr(self, k) is not None}
 
-    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check that the model is an ``impact_rotor``."""
-        if getattr(model, "type", None) != "impact_rotor":
-            return [Issue(("type",), f"needs an impact_rotor model (this case has '{getattr(model, 'type', '?')}')",
-                          self.type)]  # fmt: skip
-        return []
 
 
 class ImpactsSpec(_ImpactAnalysis):

@@ -12,6 +12,7 @@ from typing import Annotated, Any, ClassVar, Literal, Union
 
 from pydantic import Field, field_validator, model_validator
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import (
     AbstractAnalysisSpec,
@@ -387,6 +388,8 @@ class SimulateSpec(AbstractAnalysisSpec):
     )
 
     type: Literal["simulate"] = "simulate"
+    #: A rotor with balls: the jeffcott_balls start-ups, or the machine's own simulate.
+    model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls", "machine")
     speed_ratio: quantity("dimensionless", gt=0) | None = Field(
         None, description="speed as a multiple of the critical speed (-)"
     )
@@ -434,7 +437,7 @@ class SimulateSpec(AbstractAnalysisSpec):
     def summary(self, model: AbstractModelSpec) -> dict[str, Any]:
         """Return ``speed`` (rad/s or None), ``speed_rpm``, ``configurations`` and ``t_end`` (s)."""
         omega = self.spin_speed(model)
-        return {"speed": omega, "speed_rpm": None if omega is None else omega * 30.0 / math.pi,
+        return {"speed": omega, "speed_rpm": None if omega is None else omega * RPM_PER_RAD_S,
                 "configurations": len(self.ball_angle_sets(model.balls_in(self.races))),
                 "t_end": self.duration(model)}  # fmt: skip
 
@@ -454,8 +457,9 @@ class SimulateSpec(AbstractAnalysisSpec):
         return tuple(itertools.product(angles, repeat=n_balls))
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        """Check ball-angle rows against the number of balls and that a spin speed exists."""
-        issues = model.race_issues(self.races)
+        """Check the model type, ball-angle rows against the number of balls and that a spin
+        speed exists."""
+        issues = super().case_issues(model) or model.race_issues(self.races)
         if issues:
             return issues
         n = model.balls_in(self.races)

@@ -14,7 +14,7 @@ Layout::
 
 from __future__ import annotations
 
-from typing import Literal
+from typing import ClassVar, Literal
 
 from pydantic import Field
 
@@ -29,6 +29,9 @@ class MachineKnockSpec(AbstractAnalysisSpec):
     over random initial ball positions, for each ball damping."""
 
     type: Literal["machine-knock"] = "machine-knock"
+    model_types: ClassVar[tuple[str, ...]] = ("machine",)
+    wrong_model_message: ClassVar[str] = ('needs a machine model ([model] type "machine"), but the case\'s model '
+                                          'is "{kind}"')
     races: tuple[integer(ge=0), ...] | None = Field(
         None, description="indices of the races that take part (default: all)")
     t_end: quantity("time", gt=0) = Field(description="duration of each run-up (s)")
@@ -40,9 +43,9 @@ class MachineKnockSpec(AbstractAnalysisSpec):
     atol: quantity("dimensionless", gt=0) = Field(1e-10, description="absolute tolerance")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
-        if getattr(model, "type", None) != "machine":
-            return [Issue(("type",), f'needs a machine model ([model] type "machine"), but the case\'s model is '
-                                     f'"{getattr(model, "type", None)}"', self.type)]
+        issues = super().case_issues(model)
+        if issues:
+            return issues
         n = len(model.races)
         issues = [Issue(("races", i), f"must be < {n} (the model has {n} race(s))", r)
                   for i, r in enumerate(self.races or ()) if r >= n]

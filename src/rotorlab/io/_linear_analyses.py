@@ -8,7 +8,6 @@ They run on a linear rotor model (``multibody`` or ``fe_rotor``; see
 
 from __future__ import annotations
 
-import math
 from typing import Any, Literal
 
 from pydantic import Field, model_validator
@@ -24,6 +23,7 @@ from rotorlab.io._fields import (
 )
 from rotorlab.io._linear_common import AbstractLinearModelSpec, label, parse_path
 from rotorlab.io._multibody_spec import ElasticSpec, MultibodySpec, elastic_issues
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = [
     "LINEAR_MODELS",
@@ -43,8 +43,6 @@ LINEAR_MODELS = ("multibody", "fe_rotor")
 
 #: Data sets :class:`DataAuditSpec` can audit (see :data:`rotorlab.analyses.DATA_AUDITS`).
 AUDITED_DATA = ("pico21",)
-
-_RPM = 30.0 / math.pi
 
 
 def linear_model_issues(model: AbstractModelSpec) -> list[Issue]:

@@ -20,6 +20,7 @@ from typing import ClassVar, Literal
 
 from pydantic import Field, model_validator
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, integer, quantity
 
@@ -69,7 +70,7 @@ class JeffcottRubSpec(AbstractModelSpec):
     def describe(self) -> str:
         """Return a one-line description."""
         stator = "rigid stator" if self.stator_stiffness is None else f"stator {self.stator_stiffness:g} N/m"
-        return (f"Jeffcott rotor {self.mass:g} kg at {self.spin_speed * 30 / math.pi:.5g} rpm in a "
+        return (f"Jeffcott rotor {self.mass:g} kg at {self.spin_speed * RPM_PER_RAD_S:.5g} rpm in a "
                 f"{self.clearance * 1e3:.3g} mm clearance, {stator}, friction {self.friction:g}")  # fmt: skip
 
 

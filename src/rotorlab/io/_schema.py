@@ -29,8 +29,11 @@ For implementers
 2. A new analysis type is one class deriving from :class:`AbstractAnalysisSpec` with a field
    ``type: Literal["<name>"] = "<name>"``, registered with :func:`register_analysis_spec`
    (built-in: ``_BUILTIN_ANALYSES``). Declare
-   pairs of mutually exclusive keys in ``exclusive``; put checks that need the model in
-   :meth:`~AbstractAnalysisSpec.case_issues`.
+   pairs of mutually exclusive keys in ``exclusive`` and the model types it runs on in
+   ``model_types`` (None: any; the message for another type in ``wrong_model_message``); put
+   other checks that need the model in :meth:`~AbstractAnalysisSpec.case_issues`, after
+   ``super().case_issues(model)``. A model type with its own implementation of a common
+   analysis type belongs to that type's ``model_types``.
 3. Declare quantities with :func:`quantity` (dimension and bounds), integers with
    :func:`integer`, booleans with :func:`~rotorlab.io._fields.flag`; give every field a
    ``description`` (quoted when the key is missing). The unit shown in reports is data: the

@@ -18,7 +18,6 @@ Examples
 
 from __future__ import annotations
 
-import math
 from typing import Annotated, Any, ClassVar, Literal
 
 import numpy as np
@@ -40,6 +39,7 @@ from rotorlab.io._fields import (
 )
 from rotorlab.io._jeffcott_specs import _SpeedProfile
 from rotorlab.io._units import DIMENSIONS
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = [
     "STEADY_PARAMETERS",
@@ -58,7 +58,6 @@ STEADY_PARAMETERS: dict[str, tuple[str, str, str]] = {
     "eccentricity": ("length", "ge", "m"),
     "support_damping": ("damping", "ge", "N*s/m"),
 }
-_RPM = 60.0 / (2.0 * math.pi)
 
 
 class _GridValidator:

@@ -22,8 +22,8 @@ from pydantic_core import PydanticCustomError
 from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, _any_dimension, coordinate_dimensions,
                                      coordinates_text, key_quantity)
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, Unit, _error, _QuantityValidator, integer,
-                                 quantity)  # fmt: skip
+from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
+                                 chosen_race_issues, integer, quantity)  # fmt: skip
 
 __all__ = ["SWEEP_PARAMETERS", "TORUS_STATES", "SweepSpec", "coordinate_dimension", "sweep_coordinates"]
 
@@ -184,6 +184,9 @@ class SweepSpec(AbstractAnalysisSpec):
     rtol, atol : float, optional
         Integrator tolerances (default: the mapper's, 1e-8 / 1e-10 for a rotor with balls,
         1e-6 / 1e-8 for a toroidal ball).
+    races : tuple of int, optional
+        A machine model: the indices of the ball races that take part (a variant of the
+        machine; ``psi_<i>`` counts the balls of these races in order); default all.
     """
 
     exclusive: ClassVar[tuple[tuple[str, str, bool], ...]] = (
@@ -207,6 +210,7 @@ class SweepSpec(AbstractAnalysisSpec):
     chunk: integer(ge=1) = Field(1024, description="points per chunk")
     rtol: quantity("dimensionless", gt=0, lt=1) | None = Field(None, description="relative tolerance")
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance")
+    races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """Check the model (one with a regime mapper), the coordinates and grid / sample entries."""
@@ -232,6 +236,7 @@ class SweepSpec(AbstractAnalysisSpec):
                     issues.append(Issue((key, name), "with sample, give a range [low, high]", list(entry)))
                 if self.sample is None and len(entry) != 3:
                     issues.append(Issue((key, name), "give [start, stop, count] (or set sample)", list(entry)))
+        issues += chosen_race_issues(model, self.races, [(("ic", k), k) for k in self.ic])
         if not self.param and not self.ic:
             issues.append(Issue(("param",), "give at least one param or ic to vary", None, show_value=False))
         if model.spins_at_own_speed:

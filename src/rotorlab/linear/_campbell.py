@@ -8,6 +8,7 @@ import numpy as np
 import scipy.optimize
 import xarray as xr
 
+from rotorlab._constants import RAD_S_PER_RPM
 from rotorlab.linear._eigen import Solver, Spectrum, whirl_of_shapes
 from rotorlab.linear._modal import log_decrement, normalize_shapes
 from rotorlab.linear._system import LinearSystem
@@ -15,7 +16,7 @@ from rotorlab.linear._system import LinearSystem
 __all__ = ["campbell", "track_modes", "RPM"]
 
 #: rad/s per rev/min.
-RPM = np.pi / 30.0
+RPM = RAD_S_PER_RPM
 
 
 def track_modes(track: np.ndarray, eigenvalues: np.ndarray, n_modes: int) -> np.ndarray:

@@ -9,6 +9,7 @@ import numpy as np
 import scipy.linalg
 import xarray as xr
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.linear._blas import single_threaded_blas
 from rotorlab.linear._eigen import whirl_of_shapes
 from rotorlab.linear._modal import normalize_shapes
@@ -41,7 +42,7 @@ class CriticalSpeeds:
     @property
     def speed_rpm(self) -> np.ndarray:
         """Critical speeds in rev/min."""
-        return self.speed * 30.0 / np.pi
+        return self.speed * RPM_PER_RAD_S
 
     def to_dataset(self) -> xr.Dataset:
         """Return an :class:`xarray.Dataset` with dim ``critical``."""

@@ -9,6 +9,7 @@ from dataclasses import dataclass
 import numpy as np
 import xarray as xr
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.linear._blas import single_threaded_blas
 from rotorlab.linear._system import LinearSystem
 
@@ -131,7 +132,7 @@ def unbalance_response(system: LinearSystem, speeds: Sequence[float],
         },
         coords={
             "speed": ("speed", w, {"units": "rad/s"}),
-            "speed_rpm": ("speed", w * 30.0 / np.pi, {"units": "rev/min"}),
+            "speed_rpm": ("speed", w * RPM_PER_RAD_S, {"units": "rev/min"}),
             "dof": ("dof", np.arange(n), {"units": "1"}),
             "node": ("dof", system.dof_node, {"units": "1"}),
             "direction": ("dof", np.array(system.dof_direction), {"units": "1"}),
@@ -188,7 +189,7 @@ def _peaks(system: LinearSystem, F: np.ndarray, w: np.ndarray,
 
         crit = critical_speeds(system, harmonics=(1,), max_speed=float(w.max())).speed
         inside = np.unique(np.round(crit[(crit >= w.min()) & (crit <= w.max())], 9))
-        where = (", ".join(f"{c * 30.0 / math.pi:.6g}" for c in inside) + " rpm") if inside.size \
+        where = (", ".join(f"{c * RPM_PER_RAD_S:.6g}" for c in inside) + " rpm") if inside.size \
             else "none in this speed range"
         note = ("undamped rotor: the response is unbounded at the critical speeds "
                 f"({where}); the orbits on the speed grid depend on how close the grid comes")

@@ -116,8 +116,9 @@ class Housing:
     whirl_limit : float or None
         Backward angular speed (rad/s) of the contact point in the fixed frame during sliding
         above which the run is stopped and flagged as dry-friction backward whirl; ``None``
-        (default) takes the theory's criterion, the rolling speed :meth:`rolling_whirl_speed`
-        where the slip the sliding law assumes vanishes (see the module docstring of
+        (default) takes the theory's criterion: the slip of P over the housing, which the
+        sliding law assumes forwards, vanishes (P rolls; without tilt that is the whirl speed
+        :meth:`rolling_whirl_speed`; see the module docstring of
         :mod:`rotorlab.models._impact_rotor`).
 
     Examples
@@ -162,7 +163,8 @@ class Housing:
         (its gap component ``w`` on ``|w| = Delta``); rolling without slip needs its speed to
         cancel the surface speed ``r_P omega0``: ``|omega_w| = r_P sin(beta) omega0 / Delta``,
         the dry-friction backward whirl ``-(R / delta) Omega`` of Black (1968) and Crandall (1990)
-        on the cone (exact in the translational model, where ``w = sin(beta) u``).
+        on the cone (exact in the translational model, where ``w = sin(beta) u``; with tilt the
+        run's stop is the slip of P itself, :func:`rotorlab._kernels.impact_rotor.whirl_stop`).
 
         Examples
         --------

@@ -7,6 +7,8 @@ f`` over the DOFs ``x, y, phi_x, phi_y`` of every node, optionally reduced to it
 
 - **ball races** (:class:`BallRace`): balls of mass m_b at radius l about the race centre, which
   moves with the node as ``r_c = B z = (x + a phi_x, y + a phi_y)`` (a: axial offset of the race);
+  the race plane tilts with its node (``phi = T z``) and a ball follows it, axially too (rigid
+  ball kinematics, as Rodrigues, Champneys, Friswell & Wilson 2008);
 - **unbalances** (:class:`Unbalance`): ``U = m e`` at ``theta + beta`` at a station;
 - **gravity** (:class:`Gravity`): its lateral part loads the structure, the balls and, through
   the unbalances, the drive;
@@ -30,7 +32,7 @@ angle phi_b, race r) and ``e_u, t_u`` likewise at ``theta + beta_u``, the kineti
         + 1/2 J_b phi_b'^2] + 1/2 J theta'^2 + sum_u U_u theta' t_u . B_u z'
 
 (``J_b = m_b l_b^2 + J_c``; J the polar inertia of a motor-driven rotor; the unbalance masses are
-part of ``M_s``). Lagrange's equations give ::
+part of ``M_s``), plus the terms of a ball on a *tilting* race (below). Lagrange's equations give ::
 
     M0 z'' + sum_b m_b l_b B_r^T t_b phi_b'' + sum_u U B_u^T t_u theta''
         = -K z - (C + Omega G) z' + f_g + sum_b m_b l_b phi_b'^2 B_r^T e_b + sum_u U theta'^2 B_u^T e_u
@@ -38,10 +40,29 @@ part of ``M_s``). Lagrange's equations give ::
     J theta'' + sum_u U t_u . B_u z'' = T(Omega) + sum_b c_b (phi_b' - Omega) + sum_u U g . t_u
 
 with ``M0 = M_s + sum_r m_r B_r^T B_r`` (m_r: ball mass of race r) and ``f_g`` the weights of the
-structure (``M_s`` times the rigid translation along g) and of the balls. The ball axial
-displacement that a tilt causes is of second order and left out (balls move in their race plane),
-as in the two-plane balancer literature. With a prescribed spin the last equation is not solved:
-theta'' is known and the torque it needs is the drive torque.
+structure (``M_s`` times the rigid translation along g) and of the balls. With a prescribed spin
+the last equation is not solved: theta'' is known and the torque it needs is the drive torque.
+
+Rigid ball kinematics on a tilting race: the ball sits at the body point ``(l e(phi_b), a)`` of
+the race, turned with its node by the rotation vector ``(-phi_y, phi_x, 0)`` (``phi = T_r z``, the
+node's tilt); ``phi_b`` is measured in the tilted race plane. To second order in the small
+motions (the truncation of Rodrigues et al. 2008, Section 2.3.2) this moves the ball axially by
+``-l e_b . phi`` and turns the race plane about its normal at the rate ``(phi_y phi_x' - phi_x
+phi_y') / 2``, which adds to T ::
+
+    sum_b [1/2 m_b l_b^2 (e_b . phi')^2 + 1/2 J_b phi_b' (phi_y phi_x' - phi_x phi_y')]
+
+(the ball's own inertia J_c turns with the race normal too). Its terms in the equations: the
+structure gains the mass ``m_b l_b^2 T^T e_b e_b^T T`` and the force ``-T^T [m_b l_b^2 phi_b'
+((t_b . phi') e_b + (e_b . phi') t_b) + J_b phi_b' (phi_y', -phi_x')]``, the ball its coupling
+``J_b / 2 (phi_y, -phi_x) . T z''`` and the force ``m_b l_b^2 (e_b . phi') (t_b . phi')``. The
+structure's equilibria and the balanced state are unchanged (the terms vanish at rest); they
+change the stability of the balanced state (its primary region's onset, Fig. 5(a) of the paper)
+and the motion. The rank-one mass terms enter the elimination below as one extra unknown per
+ball, ``mu_b = m_b l_b^2 e_b . T z''`` (its row ``e_b . T z'' - mu_b / (m_b l_b^2) = 0``), so
+that ``M0`` stays constant; the Schur complement is then symmetric quasi-definite (positive
+block of the ball and spin accelerations, negative block of the mu_b) and the unrolled LDL^T
+needs no pivoting.
 
 Solution of the mass-matrix system: with ``H = M0^-1`` (constant, precomputed) the structure
 accelerations are eliminated, leaving the Schur complement ``S = diag(J_b, J) - X^T H X``
@@ -234,7 +255,8 @@ class Machine:
                 n_table=d.n_table if self.is_motor else 0,
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
                 clearance=self.clearances[0].kind if self.clearances else "",
-                friction=self.has_friction)
+                friction=self.has_friction,
+                tilt=self._tilt_numbers())
         return self._cache["layout"]
 
     @property
@@ -350,6 +372,26 @@ class Machine:
         e[1, 4 * node + 3] = axial_offset
         return e @ self.basis
 
+    def _tilt_numbers(self) -> tuple[int, ...]:
+        """Per race the number of its node among the races' distinct nodes, or () when no race
+        can tilt (the layout's ``tilt``)."""
+        if not any(np.any(self.tilt_matrix(r.node) != 0.0) for r in self.races):
+            return ()
+        nodes = list(dict.fromkeys(r.node for r in self.races))
+        return tuple(nodes.index(r.node) for r in self.races)
+
+    def tilt_matrix(self, node: int) -> np.ndarray:
+        """T, shape (2, n_z): the tilt ``(phi_x, phi_y)`` of a node (where its races tilt)."""
+        return self.basis[4 * node + 2:4 * node + 4, :]
+
+    @property
+    def _packed_stations(self) -> list[np.ndarray]:
+        """The stations packed in ``p``: :attr:`_stations`, then with a tilting race (layout
+        ``tilt``) the tilt ``T_r`` of each race's node."""
+        nodes = list(dict.fromkeys(r.node for r in self.races)) if self.layout.tilt else []
+        extra = [self.tilt_matrix(n) for n in nodes]
+        return self._stations + extra
+
     @property
     def _stations(self) -> list[np.ndarray]:
         return [self.station_matrix(r.node, r.axial_offset) for r in self.races] + \
@@ -427,8 +469,10 @@ class Machine:
         red = self.reduced
         H = np.linalg.inv(self._m0())
         H = 0.5 * (H + H.T)
-        st = self._stations
+        st = self._packed_stations
         nz = lay.n_z
+        if lay.tilt:  # D_b = m_b l_b^2: the ball's inertia about its race's diameters
+            p[o["tilt"]:o["tilt"] + lay.n_balls] = m * l * l
         for s, B in enumerate(st):
             k = lay.station_B(s)
             p[k:k + 2 * nz] = B.ravel()
@@ -606,6 +650,16 @@ class Machine:
             Mf[:nz, nz + b] = col
             Mf[nz + b, :nz] = col
             Mf[nz + b, nz + b] = J[b]
+        if lay.tilt:  # rigid ball kinematics on a tilting race (module docstring)
+            z = y[:nz]
+            for b in range(nb):
+                T = self.tilt_matrix(self.races[race[b]].node)
+                ph = T @ z
+                tau = T.T @ np.array([math.cos(phi[b]), math.sin(phi[b])])
+                Mf[:nz, :nz] += m[b] * l[b] ** 2 * np.outer(tau, tau)
+                col = 0.5 * J[b] * (T.T @ np.array([ph[1], -ph[0]]))
+                Mf[:nz, nz + b] += col
+                Mf[nz + b, :nz] += col
         if self.is_motor:
             th = y[lay.i_theta]
             w = np.zeros(nz)
@@ -1017,8 +1071,9 @@ class Machine:
         Starts from the balanced state when the balls can cancel the unbalance, else from the
         ball angles that cancel most of it (least squares) with the structure on its locked
         response, and solves ``rotating_rhs(y) = 0`` for the positions (velocities zero) with
-        SciPy's hybrid Powell method; ``near`` (a co-rotating state, e.g. the steady motion at a
-        neighbouring speed) is tried first as the start.
+        SciPy's hybrid Powell method (Levenberg-Marquardt where it stalls), from each of the
+        distinct best partial balances (mirror images); ``near`` (a co-rotating state, e.g. the
+        steady motion at a neighbouring speed) is tried first as the start.
         """
         from scipy.optimize import least_squares, root
 
@@ -1031,11 +1086,17 @@ class Machine:
         rng = np.random.default_rng(seed)
         guesses = ([np.asarray(ball_angles, float)] if ball_angles is not None else []) + \
             [rng.uniform(0, 2 * np.pi, nb) for _ in range(starts)]
-        best = min((least_squares(lambda a: self.balance_residual(a) / scale, g) for g in guesses),
-                   key=lambda r: r.cost) if nb else None
-        psi0 = best.x if best is not None else np.zeros(0)
+        fits = sorted((least_squares(lambda a: self.balance_residual(a) / scale, g) for g in guesses),
+                      key=lambda r: r.cost) if nb else []
+        # the best partial balances (distinct ball layouts of the least cost; mirror images of
+        # each other): the equilibrium solver may converge from one and not from the other
+        layouts = [np.zeros(0)] if not fits else []
+        for fit in fits:
+            if fit.cost > fits[0].cost + 1e-10 * max(fits[0].cost, 1e-300) + 1e-20:
+                break
+            if all(np.max(np.abs(np.angle(np.exp(1j * (fit.x - q))))) > 1e-6 for q in layouts):
+                layouts.append(fit.x)
         K0 = self.reduced["K"] - om * om * self._m0()
-        z0 = np.linalg.lstsq(K0, om * om * self.balance_residual(psi0), rcond=None)[0]
 
         def residual(x):
             y = np.zeros(2 * nz + 2 * nb)
@@ -1043,13 +1104,16 @@ class Machine:
             f = self.rotating_rhs(y)
             return np.concatenate([f[nz:2 * nz], f[2 * nz + nb:]])
 
-        starts_x = [np.concatenate([z0, psi0])]
+        starts_x = [np.concatenate([np.linalg.lstsq(K0, om * om * self.balance_residual(q), rcond=None)[0], q])
+                    for q in layouts[:4]]
         if near is not None:
             near = np.asarray(near, dtype=float)
             starts_x.insert(0, np.concatenate([near[:nz], near[2 * nz:2 * nz + nb]]))
         zs = max(scale / max(self.structure.total_mass, 1e-300), 1e-300)
         for x0 in starts_x:
             sol = root(residual, x0, method="hybr", options={"xtol": 1e-13})
+            if np.max(np.abs(residual(sol.x))) > 1e-9 * zs * max(1.0, om * om):
+                sol = root(residual, x0, method="lm", options={"xtol": 1e-15, "ftol": 1e-15})
             if np.max(np.abs(residual(sol.x))) <= 1e-9 * zs * max(1.0, om * om):
                 y = np.zeros(2 * nz + 2 * nb)
                 y[:nz], y[2 * nz:2 * nz + nb] = sol.x[:nz], sol.x[nz:]

@@ -10,6 +10,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.plot._campbell import campbell_figure
 
 if TYPE_CHECKING:
@@ -144,7 +145,7 @@ def mode_shapes_figure(ds: xarray.Dataset, *, max_modes: int = 6,
     ax.axhline(0.0, color="0.6", lw=0.6)
     ax.set_xlabel("axial position (mm)" if known else "node")
     ax.set_ylabel("translation (scaled)")
-    at = "at rest" if speed == 0.0 else f"at {speed * 30.0 / np.pi:.6g} rev/min"
+    at = "at rest" if speed == 0.0 else f"at {speed * RPM_PER_RAD_S:.6g} rev/min"
     ax.set_title(f"mode shapes {at}" if title is None else title)
     ax.grid(True, lw=0.3)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0), frameon=False)

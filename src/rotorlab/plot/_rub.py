@@ -60,7 +60,10 @@ def rub_map_figure(ds: xarray.Dataset) -> Figure:
     ax = fig.subplots()
     x, y = ds.spin_speed.values, ds[axis].values
     ax.pcolormesh(x, y, ds.regime.values.T.astype(float), cmap=cmap, norm=norm, shading="nearest")
-    ax.plot(x, ds.grazing_boundary.values, "k--", lw=1.2)
+    if "grazing_curve" in ds:  # the closed-form line on a fine grid, not joined between map speeds
+        ax.plot(ds.curve_speed.values, ds.grazing_curve.values, "k--", lw=1.2)
+    else:
+        ax.plot(x, ds.grazing_boundary.values, "k--", lw=1.2)
     ax.set_ylim(y.min() - 0.5 * (np.ptp(y) / max(len(y) - 1, 1)), y.max() + 0.5 * (np.ptp(y) / max(len(y) - 1, 1)))
     ax.set_xlabel("spin speed (rad/s)")
     unit = ds[axis].attrs.get("units", "")

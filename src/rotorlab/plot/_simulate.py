@@ -12,6 +12,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rotorlab._constants import RPM_PER_RAD_S
+
 if TYPE_CHECKING:
     import xarray
     from matplotlib.axes import Axes
@@ -103,7 +105,7 @@ def speed_label(ds: xarray.Dataset, k: int) -> str:
     'omega = 2400 rpm (40.0 Hz), omega/p = 2.00'
     """
     om = float(ds.speed.values[k])
-    rpm = om * 60.0 / (2.0 * math.pi)
+    rpm = om * RPM_PER_RAD_S
     return f"omega = {rpm:.0f} rpm ({om / (2 * math.pi):.1f} Hz), omega/p = {float(ds.speed_ratio.values[k]):.2f}"
 
 

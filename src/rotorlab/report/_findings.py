@@ -13,6 +13,7 @@ from collections import Counter
 from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -21,7 +22,6 @@ __all__ = ["Findings", "simulation_findings", "basin_findings", "steady_findings
            "linear_findings"]  # fmt: skip
 
 Rows = Sequence[Mapping[str, Any]]
-_RPM = 60.0 / (2.0 * math.pi)
 _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
 
 
@@ -212,19 +212,33 @@ def steady_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
 def _impact_run(ds: xarray.Dataset, rows: Rows) -> Findings:
     s = rows[0]
     eta = "–" if s["energy_ratio"] is None else f"{s['energy_ratio']:.3g}"
-    return Findings(f"regime {s['regime']}: {_count(s['impacts'], 'impact')} in {s['t_end_s']:g} s",
-                    (f"sliding for {s['sliding_time_s']:.3g} s", f"energy ratio eta = {eta}",
-                     f"largest approach speed {s['max_approach_speed_m_s']:.3g} m/s"))  # fmt: skip
+    numbers = (f"sliding for {s['sliding_time_s']:.3g} s", f"energy ratio eta = {eta}",
+               f"largest approach speed {s['max_approach_speed_m_s']:.3g} m/s")  # fmt: skip
+    if s["regime"] == "failed":  # no regime and no count to trust: say why, nothing else
+        return Findings(f"FAILED at t = {s['t_final_s']:.4g} s of {s['t_end_s']:g} s: {s['status_detail']}")
+    if s["backward_whirl"]:  # the count is up to the stop, not over the requested time
+        return Findings(f"stopped at t = {s['t_final_s']:.4g} s of {s['t_end_s']:g} s: the rotor rolls on its housing "
+                        f"(dry-friction backward whirl, which this model cannot carry); "
+                        f"{_count(s['impacts'], 'impact')} up to the stop", numbers)  # fmt: skip
+    return Findings(f"regime {s['regime']}: {_count(s['impacts'], 'impact')} in {s['t_end_s']:g} s", numbers)
 
 
 def _impact_sweep(ds: xarray.Dataset, rows: Rows) -> Findings:
     param, unit = ds.attrs.get("param", "value"), ds.attrs.get("param_units", "")
-    numbers = tuple(f"{param} = {r['value']:g} {unit}: median {r['impacts_median']:g} impacts, mostly {r['regime']}"
-                    for r in rows if r["impacts_median"] is not None)  # fmt: skip
+    numbers = []
+    runs = sum(sum(r["regimes"].values()) for r in rows)
+    for key, what in (("failed", "failed (left out of the medians)"),
+                      ("backward_whirl", "stopped at the dry-friction backward whirl (their counts run to the stop)")):
+        n = sum(r["regimes"][key] for r in rows)
+        if n:  # first, so that it is never among the lines cut from the box
+            at = ", ".join(f"{r['value']:g}" for r in rows if r["regimes"][key])
+            numbers.append(f"{n} of {runs} runs {what}, at {param} = {at} {unit}".rstrip())
+    numbers += [f"{param} = {r['value']:g} {unit}: median {r['impacts_median']:g} impacts, "
+                f"mostly {r['regime'].replace('_', ' ')}" for r in rows if r["impacts_median"] is not None]  # fmt: skip
     medians = [r["impacts_median"] for r in rows if r["impacts_median"] is not None]
     verdict = (f"median impacts {min(medians):g} to {max(medians):g} over {len(rows)} values of {param}"
                if medians else "no finished runs")  # fmt: skip
-    return Findings(verdict, numbers)
+    return Findings(verdict, tuple(numbers))
 
 
 _IMPACT_FINDINGS: Mapping[str, Callable[[Any, Rows], Findings]] = {

@@ -15,10 +15,10 @@ from rotorlab.io import field_unit
 from rotorlab.report._presentations import PRESENTATIONS, presentation_of
 from rotorlab.report._table import escape as _e
 from rotorlab.report._table import table as _table
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["render_report", "parameter_rows", "versions"]
 
-_RPM = 60.0 / (2.0 * math.pi)
 _MAX_NUMBERS = 5  # key numbers shown in a findings box
 
 _CSS = """

@@ -54,8 +54,13 @@ def _run_html(ds: xarray.Dataset) -> str:
     detail = ds.attrs.get("status_detail")
     note = ""
     if detail:
-        label = "Failed: " if s["status"] < 0 else "Note: "
-        note = f'<p class="{"outcome-bad" if s["status"] < 0 else "muted"}">{_e(label + detail)}</p>'
+        if s["status"] < 0:
+            text, cls = "Failed: " + detail, "outcome-bad"
+        elif s["backward_whirl"]:  # not failed, but not the requested run either: say it as plainly
+            text, cls = detail[:1].upper() + detail[1:], "outcome-bad"
+        else:
+            text, cls = "Note: " + detail, "muted"
+        note = f'<p class="{cls}">{_e(text)}</p>'
     return "<h3>Result</h3>" + note + _table(["quantity", "value", "unit"], rows, numeric={1})
 
 
@@ -81,7 +86,9 @@ def _sweep_html(ds: xarray.Dataset) -> str:
     text = (f'<p class="muted">{doc["n_sequences"]} random stone sequences per value (seeds {doc["seed"]} to '
             f'{doc["seed"] + doc["n_sequences"] - 1}, the same at every value), {doc["t_end_s"]:g} s each. '
             "Regime counts are numbers of runs; a failed run (physically impossible result or integrator failure) "
-            "is counted as failed, not in a regime, and left out of the medians. The paper's counts come from one sequence each and from "
+            "is counted as failed, not in a regime, and left out of the medians; a run stopped at the dry-friction "
+            "backward whirl (the rotor rolls on its housing, which this model cannot carry) counts its impacts up to "
+            "the stop, not over the whole time. The paper's counts come from one sequence each and from "
             "parameters it does not give (start radius, number of guides, guide sequence).</p>")  # fmt: skip
     return "<h3>Impacts over stone sequences</h3>" + text + _table(header, rows, numeric={0, 1, 4, 5, 6, 7, 8, 9, 10})
 

@@ -5,18 +5,17 @@ Within the family the analysis type (``ds.attrs["analysis"]``) picks its table f
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping, Sequence
 from typing import Any
 
 import numpy as np
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.report._findings import Findings
 
 __all__ = ["machine_section", "machine_findings", "machine_figures", "machine_rows_table"]
 
 Rows = Sequence[Mapping[str, Any]]
-_RPM = 30.0 / math.pi
 
 
 def _g(v, digits: int = 4) -> str:

@@ -38,10 +38,20 @@ def rub_section(ds: xarray.Dataset, rows: Rows) -> str:
 
 
 def rub_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
-    """The regime with the closed-form prediction, and the whirl radius and speed ratio."""
-    numbers = tuple(f"{r['quantity']}: {_fmt(r['measured'])} (closed form {_fmt(r['closed_form'])}) {r['unit']}".rstrip()
-                    for r in rows[1:3])  # fmt: skip
-    return Findings(f"{rows[0]['measured']}; closed forms allow: {rows[0]['closed_form']}", numbers)
+    """The regime with the closed-form prediction, the whirl radius, speed ratio and contact force,
+    and whether the friction is below the full rub's critical friction."""
+    a = ds.attrs
+    if a.get("status", 0) < 0:
+        return Findings(f"FAILED: {a.get('status_message', '')}; closed forms allow: {rows[0]['closed_form']}")
+    numbers = [f"{r['quantity']}: {_fmt(r['measured'])} (closed form {_fmt(r['closed_form'])}) {r['unit']}".rstrip()
+               for r in rows[1:4]]  # fmt: skip
+    for r in rows[4:]:
+        if r["quantity"] == "critical friction of the full rub":
+            stable = r["measured"] < r["closed_form"]
+            numbers.append(f"friction {_fmt(r['measured'])} is {'below' if stable else 'above'} the critical "
+                           f"{_fmt(r['closed_form'])}: the full rub is {'stable' if stable else 'unstable'} "
+                           "(closed form)")  # fmt: skip
+    return Findings(f"{rows[0]['measured']}; closed forms allow: {rows[0]['closed_form']}", tuple(numbers))
 
 
 def rub_map_section(ds: xarray.Dataset, rows: Rows) -> str:
@@ -54,13 +64,24 @@ def rub_map_section(ds: xarray.Dataset, rows: Rows) -> str:
              f"{r['spin_speed_min']:.4g} – {r['spin_speed_max']:.4g}",
              f"{r[f'{axis}_min']:.4g} – {r[f'{axis}_max']:.4g}"] for r in rows]  # fmt: skip
     head = (f"<p>{ds.attrs['points']} points over spin speed x {axis}; the dashed line of the map is "
-            "where the closed-form no-rub orbit just reaches the clearance (contact begins beyond it).</p>")
+            "where the closed-form no-rub orbit just reaches the clearance: on its contact side no orbit clear of "
+            "the stator exists. On its other side the rotor may still rub where a full-rub branch coexists with "
+            "the no-rub orbit (above the critical speed); there the map shows where the run from the common "
+            "start lands.</p>")
     return head + table(["regime", "points", "share", "spin speed (rad/s)", f"{axis} ({unit})"], body, numeric={1, 2})
 
 
 def rub_map_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
-    """The regimes found and their shares."""
-    return Findings("regimes found: " + "; ".join(f"{r['regime']} ({100 * r['share']:.0f} %)" for r in rows))
+    """The regimes found and their shares, and the agreement with the closed forms."""
+    a = ds.attrs
+    numbers = ()
+    if "closed_form_decided" in a:
+        rest = int(a["points"]) - int(a["closed_form_decided"])
+        numbers = (f"at the {a['closed_form_decided']} points where the closed forms allow one regime, the map "
+                   f"shows it at {a['closed_form_agree']}"
+                   + (f"; at the other {rest} they allow several (coexistence: the map shows where the runs "
+                      "land) or none, or the run failed" if rest else ""),)  # fmt: skip
+    return Findings("regimes found: " + "; ".join(f"{r['regime']} ({100 * r['share']:.0f} %)" for r in rows), numbers)
 
 
 def rub_map_tables(results: Mapping[str, Any], rows: Mapping[str, Rows]) -> list[Any]:

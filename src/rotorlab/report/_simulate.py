@@ -7,13 +7,12 @@ from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
 from rotorlab.report._table import escape, table
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
 
 __all__ = ["simulation_section"]
-
-_RPM = 60.0 / (2.0 * math.pi)
 
 
 def _angles(values: Sequence[float | None]) -> str:

@@ -13,6 +13,7 @@ from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
 from rotorlab.analyses._steady import STEADY_ANALYSES, steady_rows
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -29,7 +30,6 @@ STEADY_FIGURES = {
 _METHODS = ("hamilton", "averaged", "exact")
 _METHOD_NAMES = {"hamilton": "seed 003 (least H~*)", "averaged": "seed 002 (averaged)", "exact": "exact"}
 _SEEDS = {"002": "Seed 002 (Zhakash et al. 2024)", "003": "Seed 003 (Filimonikhin & Filimonikhina)"}
-_RPM = 60.0 / (2.0 * math.pi)
 _NUM = ' class="num"'
 
 

@@ -14,6 +14,7 @@ import numpy as np
 
 from rotorlab.steady._motions import SteadyMotion, find_steady_motions, resolve_speed
 from rotorlab.steady._stability import _seed_h_values, assess_stability
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -22,7 +23,6 @@ if TYPE_CHECKING:
 
 __all__ = ["Disagreement", "SteadyAnalysis", "analyze_steady"]
 
-_RPM = 60.0 / (2.0 * math.pi)
 _METHOD_NAMES = {
     "hamilton": "seed 003 (least H~*, Hessian of f, eqs. (14)-(19))",
     "averaged": "seed 002 (averaged equations, A and B of eqs. (19)-(20) corrected)",

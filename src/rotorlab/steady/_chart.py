@@ -9,7 +9,6 @@ run in chunks on local processes or Dask, into a resumable store, with
 
 from __future__ import annotations
 
-import math
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING, Any
@@ -18,6 +17,7 @@ import numpy as np
 
 from rotorlab.steady._analysis import analyze_steady
 from rotorlab.steady._motions import motion_labels
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -33,7 +33,6 @@ PARAMETERS = {
     "eccentricity": "m",
     "support_damping": "N s/m",
 }
-_RPM = 60.0 / (2.0 * math.pi)
 
 #: The exact verdicts of a steady motion (:attr:`rotorlab.steady.Stability.exact`), in the order
 #: of the integer codes of :class:`SteadyStability`'s ``verdict_exact``.

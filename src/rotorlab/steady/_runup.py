@@ -17,6 +17,7 @@ import numpy as np
 from rotorlab.steady._analysis import analyze_steady
 from rotorlab.steady._motions import wrap
 from rotorlab.steady._verify import match_state, typical_deflection
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -24,8 +25,6 @@ if TYPE_CHECKING:
     from rotorlab.models import JeffcottBalls
 
 __all__ = ["run_up"]
-
-_RPM = 60.0 / (2.0 * math.pi)
 
 
 def run_up(model: JeffcottBalls, profile: Any, *, t_end: float, initial_ball_angles: Any = None,

@@ -17,6 +17,7 @@ import numpy as np
 
 from rotorlab.steady._analysis import analyze_steady
 from rotorlab.steady._motions import motion_labels, wrap
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
     import xarray
@@ -29,7 +30,6 @@ __all__ = ["verify", "ball_grid", "match_state", "typical_deflection", "OTHER_OU
 #: Outcomes of a start that reaches no predicted motion.
 OTHER_OUTCOMES = ("non-synchronous", "other", "failed")
 _METHODS = ("hamilton", "averaged", "exact")
-_RPM = 60.0 / (2.0 * math.pi)
 
 
 def ball_grid(n_balls: int, points: int) -> np.ndarray:
