@@ -476,8 +476,9 @@ def _worker(counter, inputs, settings, event_table, outputs):
         # The six stages in one loop with a single call site of the kernel: inlined once, so numba
         # types and LLVM optimises the kernel once per driver, not once per stage (six literal
         # row offsets made six copies: ~6x the compile time of a lane driver). Each stage's
-        # argument is the same expression as before (same bits); the stage index is uniform
-        # over the lanes, so the branches cost nothing per lane.
+        # argument is the same expression as before (same bits); the kernel reads and writes
+        # fixed rows (_tt, _T -> _Q), copied from and to the stage's own rows; the stage index
+        # is uniform over the lanes, so the branches cost nothing per lane.
         for s in range(6):
             if s == 0:
                 for k in range(n * nl):
@@ -515,7 +516,18 @@ def _worker(counter, inputs, settings, event_table, outputs):
                         B1 * W[_K1 + k] + B3 * W[_K3 + k] + B4 * W[_K4 + k] + B5 * W[_K5 + k]
                         + B6 * W[_K6 + k]
                     )  # fmt: skip
-            _rhs_lanes(W, _tn if s >= 4 else _tt, _YN if s == 5 else _T, _K2 + s * NL, PL, nl)
+            if s >= 4:  # the last two stages at t + h (a copy: the same bits)
+                for lane in range(nl):
+                    W[_tt + lane] = W[_tn + lane]
+            if s == 5:  # the 5th-order solution is the last stage's argument
+                for k in range(n * nl):
+                    W[_T + k] = W[_YN + k]
+            # constant rows (LLVM proves the lanes' loads and stores apart and vectorises the
+            # kernel without run-time alias checks); _Q is free until the error norm
+            _rhs_lanes(W, _tt, _T, _Q, PL, nl)
+            ks = _K2 + s * NL
+            for k in range(n * nl):
+                W[ks + k] = W[_Q + k]
 
         # ---- error norm (RMS over the continuous states, as _core._rms_scaled) --------------
         # Summed over the states in the same order, by a recurrence at distance L (the last
