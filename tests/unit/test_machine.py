@@ -21,6 +21,7 @@ from rotorlab.models import (
     BallRace,
     ConstantSpeed,
     Gravity,
+    HillRunUp,
     JeffcottBalls,
     LinearRamp,
     Machine,
@@ -90,6 +91,41 @@ def test_planar_machine_is_jeffcott_balls_trajectory():
     ctl = StepControl(rtol=1e-10, atol=1e-12)
     sj = solve(jb, yj0, (0.0, 60.0), control=ctl)
     sm = solve(mac, to_machine(mac, yj0), (0.0, 60.0), control=ctl)
+    np.testing.assert_allclose(from_machine(mac, sm.y_final), sj.y_final, rtol=0, atol=1e-7)
+
+
+def test_planar_machine_under_a_hill_run_up_follows_the_profile_and_is_jeffcott_balls():
+    """A Hill run-up omega(t) = omega_max t^n / (t_half^n + t^n) through the critical speed
+    p = sqrt(c / (M1 + m1 + m2)) ~ 0.98 rad/s: the machine's kernel reads the closed-form spin
+    speed and acceleration and theta = int omega dt (quadrature here), its right-hand side is
+    jeffcott_balls' on random states and its trajectory is jeffcott_balls' (the one kernel a
+    Hill machine needs: the profile kind is compile-time)."""
+    from scipy.integrate import quad
+
+    from rotorlab._kernels.speed import profile
+
+    wmax, th, n = 2.5, 8.0, 3.0
+    hill = HillRunUp(wmax, th, n)
+    mac, jb = planar_pair(hill, n_modes=2)
+    p, k = mac.to_array(), mac.layout.offsets["speed"]
+    for t in (0.5, 4.0, 8.0, 13.0, 40.0):
+        w = wmax * t**n / (th**n + t**n)
+        dw = wmax * n * th**n * t ** (n - 1) / (th**n + t**n) ** 2
+        theta = quad(lambda u: wmax * u**n / (th**n + u**n), 0.0, t, epsabs=0, epsrel=1e-13)[0]
+        np.testing.assert_allclose(profile(t, p, k), (theta, w, dw), rtol=1e-12)
+    assert wmax * 8.0**n / (th**n + 8.0**n) == wmax / 2  # t_half: half the final speed
+    rng = np.random.default_rng(11)
+    for _ in range(20):
+        t = rng.uniform(0.0, 40.0)
+        yj = rng.normal(size=8)
+        fm = from_machine(mac, mac.rhs(t, to_machine(mac, yj)))
+        fj = jb.rhs(t, yj)
+        np.testing.assert_allclose(fm, fj, rtol=0, atol=1e-12 * np.abs(fj).max())
+    yj0 = jb.initial_state([0.3, 2.0])
+    ctl = StepControl(rtol=1e-10, atol=1e-12)
+    sj = solve(jb, yj0, (0.0, 40.0), control=ctl)
+    sm = solve(mac, to_machine(mac, yj0), (0.0, 40.0), control=ctl)
+    assert sj.status == 0 and sm.status == 0
     np.testing.assert_allclose(from_machine(mac, sm.y_final), sj.y_final, rtol=0, atol=1e-7)
 
 

@@ -331,3 +331,45 @@ def test_basin_and_sweep_of_some_races_map_that_variant():
                     'ic = { psi_3 = ["0 deg", "90 deg", 2] }\nt_end = "10 s"\n')
     with pytest.raises(CaseError, match=r"analysis\[1\]\.ic\.psi_3 = .*'psi_3' names ball 3, but the races"):
         parse_case(sweep)
+
+
+def test_run_up_report_says_what_its_result_arrays_say():
+    """The run-up's report (findings and table) against its own arrays and closed forms: passes
+    the critical speed p = sqrt(c / (M1 + 2 m)) iff the final speed exceeds 1.05 p, the residual
+    vibration is the tail orbit of the amplitude array, "balanced" iff that is at most
+    BALANCED_FRACTION of the locked unbalance response U w^2 / |c - M w^2 + i d w| at the final
+    speed; the planar case with a motor is the kernel of test_machine_analyses' run-up test."""
+    from rotorlab.analyses._outcome import BALANCED_FRACTION
+    from rotorlab.report._machine import machine_findings, machine_rows_table
+
+    text = PLANAR[:PLANAR.index("[[analysis]]")].replace('profile = "constant"\nspeed = "2.5 rad/s"',
+                          'profile = "motor"\nstall_torque = "0.03 N*m"\nno_load_speed = "3 rad/s"\n'
+                          'polar_inertia = "0.05 kg*m^2"')
+    text += ('\n[[analysis]]\ntype = "run-up"\nname = "up"\nt_end = "300 s"\nn_save = 300\n'
+             'initial_ball_angles = [["47 deg", "145 deg"], ["36 deg", "36 deg"]]\n')
+    case = parse_case(text)
+    ds = run_analysis(case.model, case.analysis("up"))
+    rows = summarize(ds)
+    found = machine_findings(ds, rows)
+    header, body = machine_rows_table(ds, rows)
+    tail = ds.time.values >= 0.9 * ds.time.values[-1]
+    for i, r in enumerate(rows):
+        w = float(ds.speed.values[i, -1])
+        assert r["final_speed"] == pytest.approx(w, rel=1e-12)
+        assert r["critical_speeds"][0] == pytest.approx(P, rel=1e-9)
+        assert r["passed"] == sum(w > 1.05 * c for c in r["critical_speeds"]) and r["passed"] >= 1
+        assert r["captured_at"] is None
+        # no gravity: the orbit's centre is the axis, the residual is the tail's largest radius
+        amp = ds.amplitude.sel(station="disc").values[i][tail]
+        assert r["residual_amplitude"]["disc"] == pytest.approx(amp.max(), rel=0.05)
+        ref = 0.01 * w**2 / abs(1.0 - 1.04 * w**2 + 0.1j * w)
+        assert r["reference_amplitude"]["disc"] == pytest.approx(ref, rel=1e-9)
+        balanced = r["residual_amplitude"]["disc"] <= BALANCED_FRACTION * ref
+        assert (r["outcome"] == "balanced") == balanced
+        assert f"start {i}: passes {r['passed']} critical speed(s), reaches {w * 30 / math.pi:.4g} rpm" \
+            in found.verdict
+        assert f"start {i}: residual vibration disc: {r['residual_amplitude']['disc'] * 1e3:.4g} mm" in found.numbers[i]
+        assert body[i][header.index("passed")] == str(r["passed"])
+    good = [r["ic"] for r in rows if r["outcome"] == "balanced"]
+    assert good[:1] == [0]  # the balls apart balance above p
+    assert found.verdict.startswith(f"The balancer balances from start(s) {', '.join(map(str, good))} ({len(good)} of 2)")
