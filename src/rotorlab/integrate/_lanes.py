@@ -209,12 +209,11 @@ def _fetch_add(typingctx, counter, delta):
     return types.int64(counter, delta), codegen
 
 
-# inline="always" (numba-IR level): the loop is part of the worker's step loop, not a call made
-# six times a step, so LLVM keeps the kernel's constants (vector broadcasts of its coefficients,
-# sincos's polynomial) in registers or hoists them out of the step loop instead of reloading
-# them in every call. Measured at one thread, 256 trajectories of the benchmark: 0.234 -> 0.215
-# CPU-s on its kernel, 0.83 -> 0.73 on jeffcott_balls in the rotating frame (same bits).
-@njit(cache=True, nogil=True, error_model="numpy", inline="always")
+# Not inlined into the worker: inlined (numba-IR level) the machine's generated kernels no longer
+# vectorised (tests/unit/test_machine.py::test_kernel_vectorises_in_the_lane_driver; the
+# benchmark and jeffcott_balls kernels did, 0.234 -> 0.215 CPU-s on the benchmark). Called from
+# one site of the worker's stage loop, with constant rows: compiled once per driver.
+@njit(cache=True, nogil=True, error_model="numpy")
 def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
     """``K[:, l] = rhs(t[l], Y[:, l], p[:, l])`` for every lane, rows of the workspace ``W``.
 
