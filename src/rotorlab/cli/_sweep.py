@@ -311,7 +311,7 @@ def _stability_sweep(settings: Any, case: str, sets: list[str] | None, out: Path
     loaded = _load(case, sets)
     from rotorlab.cli._steady import _model
 
-    model = _model(loaded, {})
+    model = _model(loaded, {}, "stability-chart")  # per-point stability: the stability chart's check
     fixed: dict[str, float] = {}
     if speed_rpm is not None:
         fixed["spin_speed"] = speed_rpm / _RPM
