@@ -13,11 +13,11 @@ import numpy as np
 
 from rotorlab.analyses._machine import (
     NO_STEADY_STATUS,
-    machine_run_up,
     machine_simulate,
     machine_steady,
     unbalance_amplitudes,
 )
+from rotorlab.analyses._machine_run_up import machine_run_up
 from rotorlab.linear import LinearSystem
 from rotorlab.models import Ball, BallRace, ConstantSpeed, Machine, Motor, Unbalance
 
