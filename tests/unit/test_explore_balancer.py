@@ -63,6 +63,11 @@ def test_parameter_coordinates_and_checks():
     _, Y0, Pk = mapper.starts({"ball_mass": np.array([0.03, 0.06]), "damping": np.array([13.32, 20.0])})
     assert Pk[1, 12] == 0.06 and Pk[1, 14] == pytest.approx(0.06 * 0.05**2) and Pk[1, 5] == 20.0
     assert Y0.shape == (2, MODEL.n_state)
+    for frame in ("fixed", "rotating"):  # the starts of all points at once: initial_state's numbers
+        m, Y0, _ = BalancerRegimes(MODEL, frame=frame).starts({"psi_1": np.array([0.3, 2.0]), "dpsi_2": np.array([0.0, 5.0])})
+        one = [m.initial_state([a, math.pi], ball_rates=[0.0, r]) for a, r in ((0.3, 0.0), (2.0, 5.0))]
+        np.testing.assert_array_equal(Y0, one)
+        assert m.frame == frame
     with pytest.raises(ValueError, match="ball_friction"):
         mapper.starts({"ball_friction": np.array([0.0, 0.01])})
     with pytest.raises(ValueError, match="ConstantSpeed"):

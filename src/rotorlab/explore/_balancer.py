@@ -211,7 +211,13 @@ class BalancerRegimes:
             elif model.has_friction != first.has_friction:
                 raise ValueError("ball_friction must be either zero everywhere or positive everywhere")
             sel = np.flatnonzero(inverse == j)
-            Y0[sel] = [model.initial_state(angles[i], ball_rates=rates[i]) for i in sel]
+            if model.has_friction:  # each start's stick/slip modes settled one at a time
+                Y0[sel] = [model.initial_state(angles[i], ball_rates=rates[i]) for i in sel]
+            else:  # model.initial_state of all starts at once (0.18 ms a start one at a time)
+                yr = np.zeros((sel.size, model.n_state))
+                yr[:, 4 : 4 + nb] = angles[sel]
+                yr[:, 4 + nb :] = rates[sel]
+                Y0[sel] = model.with_frame("rotating").to_frame(0.0, yr, model.frame)
             P[sel] = model.to_array()
         return first, Y0, P
 
