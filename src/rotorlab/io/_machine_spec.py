@@ -100,7 +100,7 @@ class MachineBallSpec(_Spec):
     coulomb, rolling : float
         Coulomb friction coefficient (-) and rolling-friction arm (m), >= 0: stick-slip with the
         race's torque bounded by ``(coulomb radius + rolling) N`` (see
-        :func:`rotorlab._kernels.machine_codegen.friction_solve`); 0 with a clearance.
+        :func:`rotorlab._kernels.machine_friction.friction_solve`); 0 with a clearance.
     count : int
         Repeat this ball ``count`` times.
     """
