@@ -130,8 +130,9 @@ def _model(loaded: Any, overrides: dict[str, float], kind: str) -> Any:
     model's own check (``steady_issues``: a jeffcott_balls rotor with balls) decides."""
     from rotorlab.io import ANALYSIS_SPECS
 
-    if loaded.model.steady_issues(ANALYSIS_SPECS[kind].model_construct()):  # unvalidated: its type only
-        raise BadInput(f"case {loaded.name}: steady motions need a jeffcott_balls model with balls")
+    issues = loaded.model.steady_issues(ANALYSIS_SPECS[kind].model_construct())  # unvalidated: its type only
+    if issues:
+        raise BadInput(f"case {loaded.name}: {kind} " + "; ".join(i.message for i in issues))
     from rotorlab.analyses import build_model
     from rotorlab.steady import with_parameter
 

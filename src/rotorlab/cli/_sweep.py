@@ -224,8 +224,9 @@ def sweep_command(
         model = loaded.model
         kind = getattr(model, "type", None)
         if not sweep_coordinates(model, "ic"):
-            raise BadInput(f"case {loaded.name}: rotorlab sweep runs models with a regime mapper (a jeffcott_balls "
-                           f"model with balls, or a toroidal_ball model), this case's model is '{kind}'")  # fmt: skip
+            from rotorlab.io._coordinates import mappable_text
+
+            raise BadInput(f"case {loaded.name}: rotorlab sweep needs {mappable_text(model)}")
         for option, texts, what in (("--param", param, "param"), ("--ic", ic, "ic")):
             known = sweep_coordinates(model, what)
             for text in texts or ():

@@ -1,7 +1,7 @@
 """Case-file specs of the toroidal ball balancer (seed 004) and of the basin analyses.
 
 The start coordinates a basin may vary (names, dimensions, ``model.<key path>``) are in
-:mod:`rotorlab.io._coordinates`; their names are re-exported here.
+:mod:`rotorlab.io._coordinates`.
 
 ``[model] type = "toroidal_ball"`` is one ball rolling in a torus offset from the rotation axis
 (:class:`rotorlab.models.ToroidalBall`). ``[[analysis]] type = "basin"`` maps a 2-D grid (or a
@@ -31,21 +31,16 @@ from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_v
 from pydantic_core import PydanticCustomError
 
 from rotorlab._constants import RPM_PER_RAD_S
-from rotorlab.io._coordinates import (  # noqa: F401 - re-exported: this module's names before the split
+from rotorlab.io._coordinates import (
     BALANCER_COORDINATES,
-    BALL_COORDINATE,
-    COORDINATE_BOUNDS,
-    KEY_PREFIX,
-    MACHINE_COORDINATES,
     TORUS_COORDINATES,
-    Coordinates,
     _any_dimension,
     _bound_kw,
     _known_names,
-    ball_coordinates,
     coordinate_dimensions,
     coordinates_text,
     key_quantity,
+    mappable_text,
     record_input_units,
 )
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
@@ -63,9 +58,6 @@ from rotorlab.io._fields import (
 from rotorlab.io._jeffcott_specs import constant_spin_speed
 
 __all__ = [
-    "TORUS_COORDINATES",  # these three live in rotorlab.io._coordinates
-    "BALANCER_COORDINATES",
-    "coordinate_dimensions",
     "ToroidalBallSpec",
     "BasinSpec",
     "WorkingPointSpec",
@@ -322,8 +314,7 @@ class BasinSpec(AbstractAnalysisSpec):
         kind = getattr(model, "type", None)
         known = coordinate_dimensions(model)
         if not known:
-            return [Issue(("type",), f"basins need a toroidal_ball model or a jeffcott_balls or machine model with "
-                                     f"balls, not {model.without_regimes()}", self.type)]  # fmt: skip
+            return [Issue(("type",), f"basins need {mappable_text(model)}", self.type)]
         issues = []
         for key, axis in (("x", self.x), ("y", self.y)):
             if axis[0] not in known:

@@ -35,6 +35,7 @@ __all__ = [
     "coordinate_dimensions",
     "coordinates_text",
     "key_quantity",
+    "mappable_text",
     "record_input_units",
 ]
 
@@ -256,6 +257,25 @@ def coordinate_dimensions(model: Any) -> dict[str, str]:
     ['alpha', 'ball_radius', 'dalpha', 'dpsi']
     """
     return Coordinates(model.start_coordinates(), model)
+
+
+def mappable_text(model: Any) -> str:
+    """What basins and sweeps need, for the message refusing ``model``: the model types with a
+    regime mapper (those whose spec names start coordinates, as registered), and what ``model``
+    is instead (its :meth:`~rotorlab.io.AbstractModelSpec.without_regimes`).
+
+    Examples
+    --------
+    >>> from rotorlab.io import load_case
+    >>> mappable_text(load_case("friswell-rotor").model)
+    "a jeffcott_balls, toroidal_ball or machine model (a rotor with at least one ball), not model type 'fe_rotor'"
+    """
+    from rotorlab.io._fields import AbstractModelSpec
+    from rotorlab.io._schema import MODEL_SPECS
+
+    kinds = [k for k, cls in MODEL_SPECS.items() if cls.start_coordinates is not AbstractModelSpec.start_coordinates]
+    listed = ", ".join(kinds[:-1]) + f" or {kinds[-1]}" if len(kinds) > 1 else "".join(kinds)
+    return f"a {listed} model (a rotor with at least one ball), not {model.without_regimes()}"
 
 
 def ball_coordinates(n_balls: int, parameters: dict[str, str]) -> dict[str, str]:

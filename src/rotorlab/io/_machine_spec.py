@@ -379,7 +379,7 @@ class MachineSpec(AbstractModelSpec):
     def start_coordinates(self) -> dict[str, str]:
         """``psi_<i>``, ``dpsi_<i>`` (every ball, races in order), ``spin_speed``, ``ball_mass``,
         ``ball_damping`` (none without balls)."""
-        from rotorlab.io._basin_specs import MACHINE_COORDINATES, ball_coordinates
+        from rotorlab.io._coordinates import MACHINE_COORDINATES, ball_coordinates
 
         return ball_coordinates(self.n_balls, MACHINE_COORDINATES)
 

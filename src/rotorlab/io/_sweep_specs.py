@@ -20,7 +20,7 @@ from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
 from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, _any_dimension, coordinate_dimensions,
-                                     coordinates_text, key_quantity)
+                                     coordinates_text, key_quantity, mappable_text)
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
                                  chosen_race_issues, integer, quantity)  # fmt: skip
@@ -217,8 +217,7 @@ class SweepSpec(AbstractAnalysisSpec):
         issues = []
         kind = getattr(model, "type", None)
         if not coordinate_dimensions(model):
-            return [Issue(("type",), "needs a jeffcott_balls model with at least one ball or a toroidal_ball "
-                                     "model", self.type)]  # fmt: skip
+            return [Issue(("type",), f"needs {mappable_text(model)}", self.type)]
         for key in ("param", "ic"):
             known = sweep_coordinates(model, key)
             for name in getattr(self, key):
