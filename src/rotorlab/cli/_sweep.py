@@ -11,7 +11,6 @@ store is touched (bad input: exit 2, nothing written).
 from __future__ import annotations
 
 import dataclasses
-
 import math
 from pathlib import Path
 from typing import Annotated, Any, Optional
@@ -269,8 +268,8 @@ def sweep_command(
         from rotorlab.io._coordinates import record_input_units
 
         # the unit each angle was written in, for figures (``rotorlab show`` draws it in that unit)
-        given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (ic or ())]
-        shown = {k: v for k, v in record_input_units({}, given).items() if k in sweep.varied}
+        given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (*(param or ()), *(ic or ()))]
+        shown = {k: v for k, v in record_input_units(sweep.input_units, given).items() if k in sweep.varied}
         sweep = dataclasses.replace(sweep, input_units=shown)
         size = chunk if chunk is not None else (None if resume and out.exists() else spec.chunk)
         where = executor.describe()
