@@ -19,6 +19,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab._version import __version__
 from rotorlab.cli._output import (
     BadInput,
@@ -32,7 +33,6 @@ from rotorlab.cli._output import (
     status,
     stdout,
 )
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["app", "main"]
 

@@ -14,10 +14,10 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.cli._app import (CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis, own_entry,
                                run_through_entry)
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["steady_command", "stability_chart_command", "run_up_command", "parse_range", "regime_overrides", "steady_tables"]
 

@@ -17,6 +17,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, console_or_json, exit_if_failed, handled, info
 from rotorlab.cli._sweep_common import (
@@ -28,7 +29,6 @@ from rotorlab.cli._sweep_common import (
     run_with_bar,
     stability_line,
 )
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 
 def _names(known: Any) -> str:
