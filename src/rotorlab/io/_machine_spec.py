@@ -145,9 +145,19 @@ class RaceSpec(_Station):
         if total > MAX_BALLS:
             raise IssueGroup([Issue((), _too_many_balls(total), total)])
         out = []
-        for b in balls:
+        for b in balls:  # one copy per entry, repeated: written_balls() finds the entries again
             out.extend([b.model_copy(update={"count": 1})] * b.count)
         return tuple(out)
+
+    def written_balls(self) -> list[tuple[int, MachineBallSpec]]:
+        """The ball entries as written, each with its index in the race's ``balls`` before
+        ``count`` was expanded (for key paths in messages): the expansion repeats one object per
+        entry."""
+        out: list[tuple[int, MachineBallSpec]] = []
+        for b in self.balls:
+            if not out or out[-1][1] is not b:
+                out.append((len(out), b))
+        return out
 
 
 class MachineUnbalanceSpec(_Station):
@@ -331,7 +341,7 @@ class MachineSpec(AbstractModelSpec):
                     issues.append(Issue((key, i, bad), msg, getattr(it, bad)))
         if self.clearances:
             for i, r in enumerate(self.races):
-                for j, b in enumerate(r.balls):
+                for j, b in r.written_balls():  # key paths as written (count = n repeats an entry)
                     for k in ("coulomb", "rolling"):
                         if getattr(b, k) != 0.0:
                             issues.append(Issue(("races", i, "balls", j, k), "must be 0 with a "
