@@ -5,7 +5,7 @@ kernel module. :mod:`rotorlab._kernels.machine_codegen` calls them."""
 
 from __future__ import annotations
 
-from rotorlab._kernels.machine_layout import _DECO, Layout, _sum
+from rotorlab._kernels.machine_layout import _DECO, Layout, _less_reactions, _sum
 
 __all__ = ["friction_solve", "friction_torques", "friction_functions"]
 
@@ -99,11 +99,7 @@ def friction_torques(lay: Layout, L: list[str], corr, zdd: str = "out") -> None:
     for r in list(range(lay.n_races)) + lay.tilt_stations:
         # station acceleration a_r = a0_r - sum_s L_(r, s) g_s
         for row, nm in ((0, "fax"), (1, "fay")):
-            terms = [f"a{'xy'[row]}{r}"]
-            for s, gx, gy in corr:
-                k = lay.pair_L(r, s) + 2 * row
-                terms.append(f"-(p[{k}] * {gx} + p[{k + 1}] * {gy})")
-            a(f"    {nm}{r} = " + " ".join(terms))
+            a(f"    {nm}{r} = " + " ".join([f"a{'xy'[row]}{r}", *_less_reactions(lay, r, row, corr)]))
     for b in range(lay.n_balls):
         r = br[b]
         m = f"p[{o['balls'] + 4 * b}]"

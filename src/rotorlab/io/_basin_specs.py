@@ -27,13 +27,14 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
+from pydantic import Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
 from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.io._coordinates import (
     BALANCER_COORDINATES,
     TORUS_COORDINATES,
+    RecordsInputUnits,
     _any_dimension,
     _bound_kw,
     _known_names,
@@ -41,7 +42,6 @@ from rotorlab.io._coordinates import (
     coordinates_text,
     key_quantity,
     mappable_text,
-    record_input_units,
 )
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
 from rotorlab.io._fields import (
@@ -206,7 +206,7 @@ class ToroidalBallSpec(AbstractModelSpec):
 # --------------------------------------------------------------------------- analyses
 
 
-class BasinSpec(AbstractAnalysisSpec):
+class BasinSpec(RecordsInputUnits):
     """Regimes reached from a 2-D grid (or a seeded random sample) of start coordinates.
 
     Parameters
@@ -267,35 +267,13 @@ class BasinSpec(AbstractAnalysisSpec):
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance (-)")
     races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
-    _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
-
-    @model_validator(mode="wrap")
     @classmethod
-    def _record_input_units(cls, data: Any, handler: Any) -> BasinSpec:
-        """Keep the unit each angle of x, y and fixed was written in (see :attr:`input_units`)."""
-        spec = handler(data)
-        if isinstance(data, dict):
-            given = [(raw[0], raw[1:3]) for raw in (data.get("x"), data.get("y"))
-                     if isinstance(raw, (list, tuple)) and len(raw) == 4 and isinstance(raw[0], str)]
-            fixed = data.get("fixed")
-            given += [(str(name), [raw]) for name, raw in (fixed.items() if isinstance(fixed, dict) else ())]
-            spec._input_units = record_input_units({}, given)
-        return spec
-
-    @property
-    def input_units(self) -> dict[str, str]:
-        """Angle coordinate given to the unit it was written in: ``"deg"`` or ``"rad"`` (SI).
-
-        The values themselves are SI (radians); results and figures show these coordinates in
-        the unit the case file or command line gave them in.
-        """
-        return dict(self._input_units)
-
-    def with_input_units(self, units: dict[str, str]) -> BasinSpec:
-        """Return a copy whose :attr:`input_units` are ``units`` (for options given apart)."""
-        out = self.model_copy()
-        out._input_units = dict(units)
-        return out
+    def _written(cls, data: dict[str, Any]) -> list[tuple[str, list[Any]]]:
+        """The angles of x, y and fixed as written (see :attr:`input_units`)."""
+        given = [(raw[0], raw[1:3]) for raw in (data.get("x"), data.get("y"))
+                 if isinstance(raw, (list, tuple)) and len(raw) == 4 and isinstance(raw[0], str)]
+        fixed = data.get("fixed")
+        return given + [(str(name), [raw]) for name, raw in (fixed.items() if isinstance(fixed, dict) else ())]
 
     @model_validator(mode="after")
     def _check_axes(self) -> BasinSpec:

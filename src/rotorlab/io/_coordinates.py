@@ -20,7 +20,9 @@ from __future__ import annotations
 import re
 from typing import Annotated, Any
 
-from rotorlab.io._fields import _QuantityValidator
+from pydantic import PrivateAttr, model_validator
+
+from rotorlab.io._fields import AbstractAnalysisSpec, _QuantityValidator
 from rotorlab.io._units import DIMENSIONS, input_unit
 
 __all__ = [
@@ -37,6 +39,7 @@ __all__ = [
     "key_quantity",
     "mappable_text",
     "record_input_units",
+    "RecordsInputUnits",
 ]
 
 #: Start coordinates of a toroidal-ball basin (state entries and parameters): name -> dimension.
@@ -307,6 +310,42 @@ def record_input_units(units: dict[str, str], given: list[tuple[str, list[Any]]]
         if _any_dimension(name) == "angle":
             out[name] = next((u for u in map(input_unit, raws) if u), "rad")
     return out
+
+
+class RecordsInputUnits(AbstractAnalysisSpec):
+    """An analysis that varies start coordinates and keeps the unit each angle was written in.
+
+    The values are SI (radians); results and figures show these coordinates in the unit the case
+    file or command line gave them in (``attrs["input_units_<name>"]``). A subclass says where
+    its angles are written (:meth:`_written`); ``basin`` and ``sweep`` derive from it.
+    """
+
+    _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
+
+    @classmethod
+    def _written(cls, data: dict[str, Any]) -> list[tuple[str, list[Any]]]:
+        """The coordinates in the raw ``data`` with their values as written (for
+        :func:`record_input_units`)."""
+        return []
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _record_input_units(cls, data: Any, handler: Any) -> RecordsInputUnits:
+        spec = handler(data)
+        if isinstance(data, dict):
+            spec._input_units = record_input_units({}, cls._written(data))
+        return spec
+
+    @property
+    def input_units(self) -> dict[str, str]:
+        """Angle coordinate given to the unit it was written in: ``"deg"`` or ``"rad"`` (SI)."""
+        return dict(self._input_units)
+
+    def with_input_units(self, units: dict[str, str]) -> RecordsInputUnits:
+        """Return a copy whose :attr:`input_units` are ``units`` (for options given apart)."""
+        out = self.model_copy()
+        out._input_units = dict(units)
+        return out
 
 
 def _known_names() -> str:

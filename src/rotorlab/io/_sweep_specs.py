@@ -16,13 +16,13 @@ from __future__ import annotations
 
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
+from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, _any_dimension, coordinate_dimensions,
-                                     coordinates_text, key_quantity, mappable_text, record_input_units)
+from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, RecordsInputUnits, _any_dimension,
+                                     coordinate_dimensions, coordinates_text, key_quantity, mappable_text)
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
+from rotorlab.io._fields import (AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
                                  chosen_race_issues, integer, quantity)  # fmt: skip
 
 __all__ = ["SWEEP_PARAMETERS", "TORUS_STATES", "SweepSpec", "coordinate_dimension", "sweep_coordinates"]
@@ -141,7 +141,7 @@ def _axes(kind: str) -> Any:
     return Annotated[dict[str, tuple], PlainValidator(_AxesValidator(kind)), WithJsonSchema(schema), Unit(unit)]
 
 
-class SweepSpec(AbstractAnalysisSpec):
+class SweepSpec(RecordsInputUnits):
     """Regimes of a rotor with balls or of a toroidal ball at every point of a grid or a sample.
 
     Every point is a start-up at a constant speed, classified by the model's mapper (built like
@@ -212,32 +212,17 @@ class SweepSpec(AbstractAnalysisSpec):
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance")
     races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
-    _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
-
-    @model_validator(mode="wrap")
     @classmethod
-    def _record_input_units(cls, data: Any, handler: Any) -> SweepSpec:
-        """Keep the unit each angle of ``param`` and ``ic`` was written in (see :attr:`input_units`)."""
-        spec = handler(data)
-        if isinstance(data, dict):
-            given = [(str(name), list(raw[:2])) for key in ("param", "ic") if isinstance(data.get(key), dict)
-                     for name, raw in data[key].items() if isinstance(raw, (list, tuple))]  # fmt: skip
-            spec._input_units = record_input_units({}, given)
-        return spec
-
-    @property
-    def input_units(self) -> dict[str, str]:
-        """Angle coordinate varied to the unit it was written in: ``"deg"`` or ``"rad"``.
-
-        The values are SI (radians); results and figures show these coordinates in the unit the
-        case file gave them in, as for a basin (:attr:`rotorlab.io.BasinSpec.input_units`).
+    def _written(cls, data: dict[str, Any]) -> list[tuple[str, list[Any]]]:
+        """The angles of ``param`` and ``ic`` as written (see :attr:`input_units`).
 
         Examples
         --------
         >>> SweepSpec(ic={"psi_1": ["0 deg", "90 deg", 3], "dpsi_1": [-1, 1, 2]}, t_end=1.0).input_units
         {'psi_1': 'deg'}
         """
-        return dict(self._input_units)
+        return [(str(name), list(raw[:2])) for key in ("param", "ic") if isinstance(data.get(key), dict)
+                for name, raw in data[key].items() if isinstance(raw, (list, tuple))]  # fmt: skip
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """Check the model (one with a regime mapper), the coordinates and grid / sample entries."""
