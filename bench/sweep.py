@@ -24,7 +24,8 @@ all CPU time (user + system, all threads):
    command and all its children via ``getrusage(RUSAGE_CHILDREN)``), on the n and the --n-small
    grid: CPU = fixed + points x per-point gives the start-up and per-point cost of each.
 
-Prints medians, trajectories per CPU-second, the ratios, the physics check (every off-diagonal
+Prints medians, trajectories per CPU-second, the ratios, the frame the sweep integrates in and
+its right-hand-side evaluations per trajectory, the physics check (every off-diagonal
 start balanced, the diagonal not) and that the sweep's labels agree with the ensemble's final
 amplitudes. Compilation is excluded by a warm-up (subprocesses load the on-disk cache).
 """
@@ -229,7 +230,8 @@ def main(argv: list[str] | None = None) -> int:
             sol = solve_ensemble(model, Y0, (0.0, t_end), params=P, save_at=SaveAt(ts=ts),
                                  control=mapper.control, threads=th)  # fmt: skip
             rec(f"lanes_{th}_thread", time.process_time() - c0)
-            amp_base = np.hypot(sol.y_final[:, 0], sol.y_final[:, 1])
+            amp_base = np.hypot(sol.y_final[:, 0], sol.y_final[:, 1])  # the same in either frame
+            nfev = sol.stats[:, 0]
         if not args.skip_cli:
             for label, (cf, nn) in {"": (case_file, n), "_small": (small[0], args.n_small) if small else None}.items() \
                     if small else {"": (case_file, n)}.items():  # fmt: skip
@@ -249,6 +251,9 @@ def main(argv: list[str] | None = None) -> int:
         "physics_check": bool(np.all(balanced[~diag]) and not np.any(balanced[diag])),
         "labels_agree": bool(np.all((ds["outcome"].values.reshape(-1) == 0) == balanced)),
         "c_reference": c_note or "dp5_simd.c run on the same trajectories (OMP_NUM_THREADS = workers)",
+        "frame": mapper.frame,
+        "rhs_per_trajectory": {"mean": round(float(nfev.mean())), "off_diagonal": round(float(nfev[~diag].mean())),
+                               "diagonal": round(float(nfev[diag].mean()))},
     }  # fmt: skip
     tp = {k: N / v for k, v in med.items() if not k.endswith("_small")}
     out["traj_per_cpu_s"] = {k: round(v, 2) for k, v in tp.items()}

@@ -72,3 +72,33 @@ def test_parameter_coordinates_and_checks():
     with pytest.raises(ValueError, match="samples_per_window"):
         BalancerRegimes(MODEL, samples_per_window=1)
     assert mapper.base_angles == pytest.approx((0.0, math.pi))
+
+
+def test_frame_is_chosen_from_the_base_model():
+    # fixed where the base model spins at >= 1.8 p and the balls can balance it (eta = M1 e / (2 m l) = 0.5)
+    assert BalancerRegimes(MODEL).frame == "fixed"  # 2.0 p
+    assert BalancerRegimes(MODEL.with_speed(ConstantSpeed(1.7 * P))).frame == "rotating"
+    heavy = JeffcottBalls(RotorParams(1.0, 4e-3, 16740.0, 13.32), (BALL, BALL), speed=ConstantSpeed(3 * P))
+    assert heavy.capacity < heavy.imbalance and BalancerRegimes(heavy).frame == "rotating"
+    assert BalancerRegimes(MODEL, frame="rotating").frame == "rotating"
+    with pytest.raises(ValueError, match="frame must be 'fixed', 'rotating' or None, got 'inertial'"):
+        BalancerRegimes(MODEL, frame="inertial")
+
+
+@pytest.mark.parametrize("friction, n", [(0.0, 3), (0.02, 1)])
+def test_fixed_and_rotating_frames_agree(friction, n):
+    # the same starts integrated in either frame: same labels, features equal to the tolerance
+    # (rtol 1e-8 on states of O(1e-3) m and O(1) rad). With friction the first start sticks and
+    # slips (3 stick, 1 slip event, both kernels have them); one start on one thread, so that
+    # the test runs on the serial scalar driver that test_jeffcott_friction compiles (the
+    # friction lane drivers of both frames cost about 2 CPU-minutes cold).
+    starts = {"psi_1": np.array([0.5, 1.0, 2.0])[:n], "psi_2": np.array([2.5, 1.0, 4.5])[:n],
+              "spin_speed": np.array([2.0, 2.0, 0.6])[:n] * P, "ball_friction": np.full(n, friction)}  # fmt: skip
+    a, b = (map_starts(BalancerRegimes(MODEL, t_end=2.0, n_horizons=2, frame=f), starts, threads=1)
+            for f in ("fixed", "rotating"))
+    np.testing.assert_array_equal(a.label.values, b.label.values)
+    ref = float(a.reference_amplitude.max())
+    np.testing.assert_allclose(a.amplitude.values, b.amplitude.values, rtol=0, atol=1e-6 * ref)
+    for i in (1, 2):
+        np.testing.assert_allclose(a[f"ball_angle_{i}"].values, b[f"ball_angle_{i}"].values, rtol=0, atol=1e-6)
+    np.testing.assert_allclose(a.max_rate.values, b.max_rate.values, rtol=0, atol=1e-6 * float(P))

@@ -13,11 +13,11 @@ import numpy as np
 
 from rotorlab.analyses._machine import (
     NO_STEADY_STATUS,
-    machine_run_up,
     machine_simulate,
     machine_steady,
     unbalance_amplitudes,
 )
+from rotorlab.analyses._machine_run_up import machine_run_up
 from rotorlab.linear import LinearSystem
 from rotorlab.models import Ball, BallRace, ConstantSpeed, Machine, Motor, Unbalance
 
@@ -86,6 +86,37 @@ def test_run_up_reports_the_critical_speed_it_is_captured_at():
 
     weak = machine_run_up(machine(0.0100), t_end=400.0, n_save=200)
     strong = machine_run_up(machine(0.0115), t_end=400.0, n_save=200)
-    np.testing.assert_allclose(weak.attrs["critical_speeds"], [P, math.sqrt(5.0 / 0.3)], rtol=1e-9)
+    # the tilt mode with the balls locked at l = 0.5: J_t + 2 m l^2 / 2 - J_p, J_p = 2 m l^2 (no own
+    # inertia), forward whirl
+    np.testing.assert_allclose(weak.attrs["critical_speeds"], [P, math.sqrt(5.0 / (0.3 + 0.02 * 0.25 - 0.01))],
+                               rtol=1e-9)
     assert weak.attrs["passed"] == 0 and weak.attrs["captured_at"] == weak.attrs["critical_speeds"][0]
     assert strong.attrs["passed"] == 1 and math.isnan(strong.attrs["captured_at"])
+
+
+def test_locked_critical_speeds_count_the_balls_inertia_about_the_tilt_axes():
+    """A rigid rotor (M = 1, J_t = 3.25, J_p = 0.5; the long rotor of Rodrigues et al. 2008) on
+    two supports of 0.5 at +-3 (K = diag(1, 1, 9, 9)) with one race of two balls (m = 0.05,
+    own inertia J_c = 0.001) at radius l = 1 and axial offset a = 2. Locked, the balls are point
+    masses on the race: translation 2 m, coupling 2 m a, transverse inertia 2 m (a^2 + l^2 / 2),
+    polar 2 (m l^2 + J_c). A synchronous forward whirl (x, phi_x) = (X, Phi) e^(i w t) of each
+    plane then obeys ``det(K2 - w^2 [[M + 2m, 2ma], [2ma, J_t + 2m (a^2 + l^2/2) - J_p - 2 (m l^2 + J_c)]]) = 0``
+    (the polar inertia's gyroscopic moment at w = Omega stiffens the forward tilt): a quadratic in
+    w^2, here against ``structure_critical_speeds``."""
+    from rotorlab.analyses._machine import structure_critical_speeds
+
+    G = np.zeros((4, 4))
+    G[2, 3], G[3, 2] = 0.5, -0.5
+    s = LinearSystem(M=np.diag([1.0, 1.0, 3.25, 3.25]), C=np.zeros((4, 4)), G=G, K=np.diag([1.0, 1.0, 9.0, 9.0]))
+    m, l, a, jc = 0.05, 1.0, 2.0, 0.001
+    mac = Machine(s, races=(BallRace(0, l, (Ball(m, inertia=jc),) * 2, axial_offset=a),), unbalances=UNB,
+                  drive=ConstantSpeed(1.0))
+    A, B = 1.0 + 2 * m, 2 * m * a
+    D = 3.25 + 2 * m * (a * a + l * l / 2) - 0.5 - 2 * (m * l * l + jc)
+    mu = np.roots([A * D - B * B, -(9.0 * A + D), 9.0])
+    np.testing.assert_allclose(np.sort(structure_critical_speeds(mac)), np.sort(np.sqrt(mu)), rtol=1e-12)
+    # on the axis (the balls' l^2 terms left out, as Rodrigues et al. 2011 eq. (32) locks them)
+    # the mostly tilting (higher) critical speed would be 0.8 % off
+    D0 = 3.25 + 2 * m * a * a - 0.5
+    mu0 = np.roots([A * D0 - B * B, -(9.0 * A + D0), 9.0])
+    assert abs(np.sqrt(mu0.max()) / np.sqrt(mu.max()) - 1) > 5e-3

@@ -262,11 +262,14 @@ def test_builtin_case_is_the_long_rotor(rcfw_case):
         np.testing.assert_allclose(getattr(model.structure, name), getattr(expect.structure, name),
                                    rtol=1e-15, atol=1e-15)
     np.testing.assert_allclose(model.to_array(), expect.to_array(), rtol=1e-14, atol=1e-16)
-    # critical speeds with the balls locked on the axis: Rodrigues et al. 2011, eq. (32),
-    # sqrt(2k / (M + 4m)) and sqrt(2k l^2 / (Jt + 4 m z^2 - Jp)) (the cylindrical one is a
-    # double root: no gyroscopic split)
+    # critical speeds with the balls locked: Rodrigues et al. 2011, eq. (32), sqrt(2k / (M + 4m))
+    # and, with the balls locked on the axis, sqrt(2k l^2 / (Jt + 4 m z^2 - Jp)) (the cylindrical
+    # one is a double root: no gyroscopic split); locked at their race radius R = 1 they add
+    # 4 m R^2 / 2 to Jt and 4 m R^2 to Jp (own inertia 0): sqrt(2k l^2 / (Jt + 4 m (z^2 + R^2/2)
+    # - Jp - 4 m R^2))
     np.testing.assert_allclose(np.unique(np.round(structure_critical_speeds(model), 12)),
-                               [np.sqrt(1.0 / 1.02), np.sqrt(9.0 / (3.25 + 16 * 0.005 - 0.5))],
+                               [np.sqrt(1.0 / 1.02),
+                                np.sqrt(9.0 / (3.25 + 4 * 0.005 * (4 + 0.5) - 0.5 - 4 * 0.005))],
                                rtol=1e-12)
 
 

@@ -67,7 +67,8 @@ from rotorlab.analyses._outcome import (
     wrap_angle,
 )
 from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
-from rotorlab.analyses._machine import machine_run_up, machine_simulate, machine_steady
+from rotorlab.analyses._machine import machine_simulate, machine_steady
+from rotorlab.analyses._machine_run_up import PassingTorque, machine_run_up, passing_torque
 from rotorlab.analyses._steady import (
     STEADY_ANALYSES,
     chart_intervals,
@@ -78,6 +79,8 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
+    "PassingTorque",
+    "passing_torque",
     "machine_run_up",
     "machine_simulate",
     "machine_steady",

@@ -92,8 +92,9 @@ def torus_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
 
 
 def balancer_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
-    """The regime mapper of a ``jeffcott_balls`` model (None without balls): its ball starts in
-    the rotating frame at the analysis' constant speed."""
+    """The regime mapper of a ``jeffcott_balls`` model (None without balls): its ball starts at
+    the analysis' constant speed (integrated in the fixed frame, see
+    :class:`~rotorlab.explore.BalancerRegimes`)."""
     from rotorlab.analyses._builders import jeffcott_balls_model
     from rotorlab.explore import BalancerRegimes
     from rotorlab.integrate import StepControl
@@ -105,7 +106,7 @@ def balancer_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
     omega = analysis.spin_speed(case_model)
     if omega is None:  # spin_speed is a coordinate of every start: any base speed will do
         omega = case_model.critical_speed()
-    model = JeffcottBalls(base.rotor, base.balls, speed=ConstantSpeed(omega), frame="rotating")
+    model = JeffcottBalls(base.rotor, base.balls, speed=ConstantSpeed(omega))
     if analysis.rtol is not None or analysis.atol is not None:
         kw["control"] = StepControl(rtol=analysis.rtol or 1e-8, atol=analysis.atol or 1e-10)
     return BalancerRegimes(model, **kw)

@@ -21,7 +21,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["machine_simulate", "machine_steady", "machine_motions", "machine_run_up", "locked_structure",
+__all__ = ["machine_simulate", "machine_steady", "machine_motions", "locked_structure",
            "orbit_amplitude", "machine_model", "machine_quantities", "machine_analysis_types",
            "jeffcott_limit", "structure_critical_speeds", "unbalance_amplitudes", "NO_STEADY_STATUS", "CLEARANCE_STATUS",
            "clearance_violation"]
@@ -86,26 +86,44 @@ def clearance_violation(machine, y_rotating) -> tuple[float, str | None]:
                     f"{c.gap:.4g} m: this motion does not exist without contact (simulate the rub instead)")
 
 
-def locked_structure(machine):
-    """Return the structure with the ball masses added at their races (``LinearSystem``)."""
+def locked_structure(machine, *, tilt_inertia: bool = False):
+    """Return the structure with the balls locked at their races (``LinearSystem``).
+
+    Each ball of mass m at race radius l and axial offset a from its node is a point mass on the
+    race centre ``(x + a phi_x, y + a phi_y)``: the mass ``m e^T e`` (translation m, coupling
+    m a, tilt m a^2), as in the kernel's ``M0``. With ``tilt_inertia`` the ball's inertia about
+    its place off the axis is added, as for a ring locked to the rotor: ``m l^2 / 2`` about each
+    diametral axis (the mean over the ball's angle of the tilting race's ``m l^2 (e_b . phi')^2``
+    term) and the polar ``J_b = m l^2 + J_c`` in the gyroscopic matrix (``G[phi_x, phi_y] =
+    J_b``, the convention of :class:`rotorlab.linear.RigidBody`; the race-frame term ``J_b phi_b'
+    (phi_y phi_x' - phi_x phi_y') / 2`` with ``phi_b' = Omega``), see :mod:`rotorlab.models._machine`.
+    """
     from rotorlab.linear import LinearSystem
 
     s = machine.structure
-    M = s.M.copy()
+    M, G = s.M.copy(), s.G.copy()
     for r in machine.races:
+        n = 4 * r.node
         e = np.zeros((2, s.n_dof))
-        e[0, 4 * r.node], e[1, 4 * r.node + 1] = 1.0, 1.0
-        e[0, 4 * r.node + 2] = e[1, 4 * r.node + 3] = r.axial_offset
+        e[0, n], e[1, n + 1] = 1.0, 1.0
+        e[0, n + 2] = e[1, n + 3] = r.axial_offset
         M += sum(b.mass for b in r.balls) * (e.T @ e)
-    return LinearSystem(M=M, C=s.C, G=s.G, K=s.K, node_position=s.node_position,
+        if tilt_inertia:
+            for b in r.balls:
+                M[n + 2, n + 2] += 0.5 * b.mass * r.radius**2
+                M[n + 3, n + 3] += 0.5 * b.mass * r.radius**2
+                G[n + 2, n + 3] += b.mass * r.radius**2 + b.inertia
+                G[n + 3, n + 2] -= b.mass * r.radius**2 + b.inertia
+    return LinearSystem(M=M, C=s.C, G=G, K=s.K, node_position=s.node_position,
                         node_label=s.node_label)
 
 
 def structure_critical_speeds(machine, max_speed: float | None = None) -> np.ndarray:
-    """Forward-whirl 1x critical speeds of the structure with the balls locked (rad/s)."""
+    """Forward-whirl 1x critical speeds of the structure with the balls locked (rad/s), their
+    inertia about the tilt axes included (:func:`locked_structure` with ``tilt_inertia``)."""
     from rotorlab.linear import critical_speeds
 
-    cs = critical_speeds(locked_structure(machine), max_speed=max_speed)
+    cs = critical_speeds(locked_structure(machine, tilt_inertia=True), max_speed=max_speed)
     return cs.speed[cs.whirl >= 0]
 
 
@@ -338,78 +356,6 @@ def machine_steady(machine, speeds, *, ball_angles=None):
                **({"message": message} if message else {})},
     )
     return ds
-
-
-def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=None,
-                   rtol: float = 1e-8, atol: float = 1e-10, initial_speed: float = 0.0):
-    """Run the machine up (motor or prescribed profile) and say whether it passes its criticals.
-
-    Returns
-    -------
-    xarray.Dataset
-        Over ``time``: ``speed`` (rad/s), ``amplitude`` (time, station) radial displacement of
-        each node (m), ``ball_angle`` (time, ball) relative to the rotor (rad). Attributes:
-        ``critical_speeds`` (rad/s, forward 1x, balls locked), ``final_speed``,
-        ``passed`` (number of critical speeds passed, the final speed above 1.05 times each),
-        ``captured_at`` (the critical speed just above a final speed within 15 % below it, or
-        NaN), ``residual_amplitude`` per station (vibration amplitude about the mean position
-        over the last 10 % of the run, m).
-    """
-    import xarray as xr
-
-    from rotorlab.integrate import SaveAt, StepControl, solve
-
-    if isinstance(n_save, bool) or int(n_save) != n_save or n_save < 10:
-        raise ValueError(f"n_save must be an integer >= 10, got {n_save!r}")
-    from rotorlab._memory import check_memory
-
-    check_memory(8.0 * int(n_save) * (2 * machine.kernels.n_state + 8),
-                 f"n_save = {int(n_save)} saved states of {machine.kernels.n_state} entries",
-                 "save fewer states (n_save)")  # fmt: skip
-    y0 = machine.initial_state(ball_angles, spin_speed=initial_speed)
-    ts = np.linspace(0.0, float(t_end), int(n_save))
-    sol = solve(machine, y0, (0.0, float(t_end)), save_at=SaveAt(ts=ts),
-                control=StepControl(rtol=rtol, atol=atol))
-    lay = machine.layout
-    spin = np.array([machine.spin(t, y) for t, y in zip(ts, sol.ys)])
-    amp = machine.station_amplitudes(sol.ys)
-    rel = _wrap(sol.ys[:, lay.i_phi:lay.i_phi + lay.n_balls] - spin[:, :1])
-    final = float(spin[-1, 1])
-    crit = structure_critical_speeds(machine, max_speed=None)
-    crit = np.unique(np.round(crit, 9))
-    passed = int(np.sum(final > 1.05 * crit))
-    above = crit[crit >= final]
-    captured = float(above[0]) if above.size and final >= 0.85 * above[0] and machine.is_motor \
-        and final < 0.95 * _motor_top(machine) else math.nan
-    tail = ts >= 0.9 * ts[-1]
-    ds = xr.Dataset(
-        {
-            "speed": (("time",), spin[:, 1], {"units": "rad/s"}),
-            "amplitude": (("time", "station"), amp, {"units": "m"}),
-            "ball_angle": (("time", "ball"), rel, {"units": "rad"}),
-            "residual_amplitude": (("station",), orbit_amplitude(machine, sol.ys[tail]),
-                                   {"units": "m"}),
-        },
-        coords={"time": ("time", ts, {"units": "s"}), "station": list(machine.structure.node_label),
-                **_ball_coords(machine)},
-        attrs={"analysis": "run-up", "model": "machine", "critical_speeds": crit,
-               "final_speed": final, "passed": passed, "captured_at": captured,
-               "status": int(sol.status)},
-    )
-    return ds
-
-
-def _motor_top(machine) -> float:
-    d = machine.drive
-    if d.kind == "linear":
-        return float(d.no_load_speed)
-    w, t = np.asarray(d.torque[0]), np.asarray(d.torque[1])
-    idx = np.flatnonzero((t[:-1] > 0) & (t[1:] <= 0))
-    if idx.size:
-        k = idx[0]
-        return float(w[k] + (w[k + 1] - w[k]) * t[k] / (t[k] - t[k + 1]))
-    return float(w[-1])
-
 
 
 # --------------------------------------------------------------------------- steady motions at one speed
@@ -751,60 +697,6 @@ def _chart_task_size(case_model, analysis) -> int:
     return 1 if values is None else len(values)
 
 
-def _run_run_up(case_model, analysis, progress=None):
-    import xarray as xr
-
-    from rotorlab.analyses._builders import speed_profile
-
-    m = _variant(case_model, analysis)
-    if analysis.speed is not None:
-        m = m.with_drive(speed_profile(analysis.speed))
-    starts = analysis.initial_ball_angles or (None,)
-    start_speed = getattr(case_model.drive, "initial_speed", 0.0) if analysis.speed is None else 0.0
-    parts = []
-    for k, angles in enumerate(starts):
-        one = machine_run_up(m, t_end=analysis.t_end, n_save=analysis.n_save,
-                             ball_angles=None if angles is None or m.n_balls == 0 else list(angles),
-                             rtol=analysis.rtol, atol=analysis.atol, initial_speed=start_speed)
-        for key in ("final_speed", "passed", "captured_at", "status"):
-            one[key] = ((), one.attrs.pop(key))
-        ref = unbalance_amplitudes(m, float(one["final_speed"]))
-        one["reference_amplitude"] = (("station",), ref, {"units": "m"})
-        one["outcome"] = ((), _run_up_outcome(m, one, ref))
-        parts.append(one)
-        if progress is not None:
-            progress(k + 1, len(starts))
-    ds = xr.concat(parts, dim="ic", combine_attrs="override")
-    ds = ds.assign_coords(ic=np.arange(len(starts)))
-    ds["final_speed"].attrs["units"] = "rad/s"
-    ds["captured_at"].attrs["units"] = "rad/s"
-    return _annotate(ds, case_model, analysis)
-
-
-def _run_up_outcome(machine, ds, reference) -> str:
-    """Where a run-up ended: "failed", "no balancer", "captured" (below a critical speed),
-    "balanced" (residual vibration at most BALANCED_FRACTION of the locked unbalance response at
-    the final speed), "non-synchronous" (balls still circling the rotor over the last 10 %) or
-    "not balanced"."""
-    from rotorlab.analyses._outcome import BALANCED_FRACTION
-
-    if int(ds["status"]) < 0:
-        return "failed"
-    if machine.n_balls == 0:
-        return "no balancer"
-    if np.isfinite(float(ds["captured_at"])):
-        return "captured"
-    if np.max(ds.residual_amplitude.values) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
-        return "balanced"
-    tail = ds.time.values >= 0.9 * ds.time.values[-1]
-    turn = np.ptp(np.unwrap(ds.ball_angle.values[tail], axis=0), axis=0)
-    return "non-synchronous" if np.any(turn > np.pi) else "not balanced"
-
-
-def _run_up_task_size(case_model, analysis) -> int:
-    return len(analysis.initial_ball_angles or (None,))
-
-
 def _simulate_rows(ds) -> list[dict[str, Any]]:
     rows = []
     for i in range(ds.sizes["ic"]):
@@ -859,21 +751,9 @@ def _chart_rows(ds) -> list[dict[str, Any]]:
     return rows
 
 
-def _run_up_rows(ds) -> list[dict[str, Any]]:
-    crit = [_num(w) for w in np.ravel(ds.attrs["critical_speeds"])]
-    rows = []
-    for i in range(ds.sizes["ic"]):
-        r = ds.isel(ic=i)
-        rows.append({"ic": i, "final_speed": _num(r.final_speed), "final_speed_rpm": _num(r.final_speed * 30 / np.pi),
-                     "critical_speeds": crit, "passed": int(r.passed), "captured_at": _num(r.captured_at),
-                     "residual_amplitude": _per_station(ds, r.residual_amplitude.values),
-                     "reference_amplitude": _per_station(ds, r.reference_amplitude.values),
-                     "outcome": str(r.outcome.values), "status": int(r.status)})
-    return rows
-
-
 def machine_analysis_types() -> dict[str, Any]:
     """The machine's own implementations of the common analysis types (its ``ModelType.analyses``)."""
+    from rotorlab.analyses._machine_run_up import _run_run_up, _run_up_rows, _run_up_task_size
     from rotorlab.analyses._registry import AnalysisType
 
     return {

@@ -22,9 +22,15 @@ import numpy as np
 from rotorlab._kernels import jeffcott_balls as _jk
 from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import Status, StepControl
-from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls
+from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, fixed_to_rotating
 
 __all__ = ["BalancerRegimes", "balancer_labels"]
+
+#: Speed ratio Omega / p from which :class:`BalancerRegimes` integrates in the fixed frame by
+#: default (where the balls can balance the rotor). Between 1.5 p and 2 p the co-rotating frame
+#: stops being the cheaper one on the benchmark problem and the ``autobalancer`` case
+#: (``bench/README.md``, issue 11).
+FIXED_FRAME_ABOVE = 1.8
 
 _ROTOR_UNITS = {"disc_mass": "kg", "eccentricity": "m", "stiffness": "N/m", "damping": "N s/m"}
 _BALL_UNITS = {"ball_mass": "kg", "ball_radius": "m", "ball_damping": "N m s/rad", "ball_friction": "1"}
@@ -57,7 +63,8 @@ class BalancerRegimes:
     """Mapper of start points of a :class:`~rotorlab.models.JeffcottBalls` model to regimes.
 
     Trajectories start with the disc centre at rest on the axis and the balls at given angles
-    and rates relative to the rotor; they are integrated in the co-rotating frame.
+    and rates relative to the rotor. They are integrated in ``frame``; the features are taken
+    from the states in the co-rotating frame (converted where integrated in the fixed one).
 
     Parameters
     ----------
@@ -79,6 +86,15 @@ class BalancerRegimes:
         spaced, 2 pi i / n.
     control : StepControl
         Integrator tolerances.
+    frame : {"fixed", "rotating"} or None
+        Frame the trajectories are integrated in; None (default) chooses from the base model:
+        ``"fixed"`` where it spins at >= ``FIXED_FRAME_ABOVE`` (1.8) times its critical speed with
+        the capacity to balance it (sum m_i l_i >= M1 e), else ``"rotating"``. Results agree to
+        the tolerance; the work differs. A start that ends balanced takes about a third of the
+        right-hand-side evaluations in the fixed frame (in the co-rotating one the decaying
+        relative motion oscillates at p +- Omega instead of p), one that ends in a steady whirl
+        (side motions, below or near p, non-synchronous) 1.4-5x more (its whirl is constant in
+        the co-rotating frame). Measured in ``bench/README.md`` (issue 11).
 
     Examples
     --------
@@ -97,6 +113,7 @@ class BalancerRegimes:
     samples_per_window: int = 16
     base_angles: tuple[float, ...] | None = None
     control: StepControl = field(default_factory=lambda: StepControl(rtol=1e-8, atol=1e-10))
+    frame: str | None = None
 
     def __post_init__(self) -> None:
         if not isinstance(self.model, JeffcottBalls):
@@ -121,6 +138,12 @@ class BalancerRegimes:
         object.__setattr__(self, "base_angles", base)
         if not isinstance(self.control, StepControl):
             raise ValueError(f"BalancerRegimes.control must be a StepControl, got {type(self.control).__name__}")
+        if self.frame is None:
+            m = self.model
+            balances = abs(m.speed.speed) >= FIXED_FRAME_ABOVE * m.critical_speed and m.capacity >= m.imbalance
+            object.__setattr__(self, "frame", "fixed" if balances else "rotating")
+        elif self.frame not in ("fixed", "rotating"):
+            raise ValueError(f"BalancerRegimes.frame must be 'fixed', 'rotating' or None, got {self.frame!r}")
 
     # ---- AbstractMapper -----------------------------------------------------------------------
     @property
@@ -148,7 +171,7 @@ class BalancerRegimes:
         ball_kw = {k[5:]: v for k, v in values.items() if k in _BALL_UNITS}
         balls = tuple(_vary_ball(b, ball_kw) for b in self.model.balls) if ball_kw else self.model.balls
         speed = ConstantSpeed(values["spin_speed"]) if "spin_speed" in values else self.model.speed
-        return JeffcottBalls(rotor, balls, speed=speed, frame="rotating")
+        return JeffcottBalls(rotor, balls, speed=speed, frame=self.frame)
 
     def start_value(self, name: str) -> float | None:
         """The value a start takes for coordinate ``name`` when not given (SI): the base ball
@@ -198,7 +221,10 @@ class BalancerRegimes:
         nb = int(P[0, _jk.P_N])
         h = self.horizons()
         ts = self.save_times()
+        omega = P[:, _jk.P_SPEED + 1]
         ys = sol.ys
+        if self.frame == "fixed":  # to the co-rotating frame: constant speed, theta = omega t
+            ys = fixed_to_rotating(omega[:, None] * ts[None, :], omega[:, None], ys, nb)
         amp = np.hypot(ys[:, :, 0], ys[:, :, 1])
         rate = np.abs(ys[:, :, 4 + nb : 4 + 2 * nb]).max(axis=2, initial=0.0)
         n, nh = ys.shape[0], h.size
@@ -213,7 +239,6 @@ class BalancerRegimes:
             max_rate[:, j] = rate[:, cols].max(axis=1)
         i_end = np.searchsorted(ts, h)
         masses = P[:, _jk.P_BALLS + _jk.B_M :: _jk.BALL_STRIDE][:, :nb]
-        omega = P[:, _jk.P_SPEED + 1]
         ref = reference_amplitude(P[:, _jk.P_M1] * P[:, _jk.P_E], P[:, _jk.P_C],
                                   P[:, _jk.P_M1] + masses.sum(axis=1), P[:, _jk.P_D], omega)  # fmt: skip
         out = {

@@ -340,6 +340,13 @@ class AbstractModelSpec(_Spec):
                                  f"ball, or a machine model; this case has a {what})", analysis.type)]
 
 
+    def passing_torque_issues(self, analysis: AbstractAnalysisSpec) -> list[Issue]:
+        """Check a ``run-up`` with ``passing_torque = true``: the model must be driven by a motor
+        whose torque can be scaled; the model types that have one override this."""
+        return [Issue(("passing_torque",), "needs a machine model driven by a motor ([model.drive] profile = "
+                                           f"\"motor\"); model '{getattr(self, 'type', '?')}' has none", True)]
+
+
 #: Type of the ``races`` key of analyses that run on a machine's ball races (indices, >= 0).
 RaceIndices = tuple[integer(ge=0), ...]
 

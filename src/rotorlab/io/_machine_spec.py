@@ -433,6 +433,24 @@ class MachineSpec(AbstractModelSpec):
                                 getattr(analysis, "races", None) or analysis.type))
         return issues
 
+    def passing_torque_issues(self, analysis) -> list[Issue]:
+        """``passing_torque = true`` scales the motor's torque: a motor drive, a stall torque
+        T(0) > 0, and no prescribed ``speed`` profile in the analysis."""
+        d = self.drive
+        if d.profile != "motor":
+            return [Issue(("passing_torque",), "needs [model.drive] profile = \"motor\" (its torque is what is "
+                                               f"scaled); this machine's drive is {d.profile!r}", True)]
+        issues = []
+        if getattr(analysis, "speed", None) is not None:
+            issues.append(Issue(("speed",), "replaces the motor by a prescribed speed: leave it out with "
+                                            "passing_torque = true", show_value=False))
+        t0 = d.stall_torque if d.speeds is None else d.torques[0]
+        if t0 is not None and not t0 > 0:
+            key = "stall_torque" if d.speeds is None else "torques"
+            issues.append(Issue(("passing_torque",), f"scales the motor's torque, whose value at rest ({key}) "
+                                                     f"must then be > 0 N*m, got {t0:g} N*m", True))
+        return issues
+
     def describe(self) -> str:
         drive = self.drive.profile
         gap = ""

@@ -412,6 +412,12 @@ class RunUpSpec(SteadyAnalysisSpec):
         Tolerance of the match to a steady motion at the final speed (rad), > 0.
     rtol, atol : float
         Integrator tolerances (-).
+    passing_torque : bool
+        A machine driven by a motor: also find the smallest motor torque whose run-up (over
+        ``t_end``, from each start) passes the first critical speed, with the analysis' races and
+        without any (:func:`rotorlab.analyses.passing_torque`).
+    passing_torque_rtol : float
+        Relative width of that torque's final bracket (-), in (0, 1).
     """
 
     simulates: ClassVar[bool] = True
@@ -427,6 +433,10 @@ class RunUpSpec(SteadyAnalysisSpec):
     angle_tol: quantity("angle", gt=0) = Field(0.05, description="ball-angle tolerance of the match (rad)")
     rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance (-)")
     atol: quantity("dimensionless", gt=0) = Field(1e-11, description="absolute tolerance (-)")
+    passing_torque: bool = Field(False, description="find the smallest motor torque that passes the first "
+                                                    "critical speed, with and without the balls (machine with a motor)")
+    passing_torque_rtol: quantity("dimensionless", gt=0, lt=1) = Field(
+        1e-3, description="relative width of the passing-torque bracket (-)")
 
     def profile(self, model: AbstractModelSpec) -> Any:
         """Return the speed profile spec: this analysis' ``speed``, else the model's."""
@@ -448,6 +458,8 @@ class RunUpSpec(SteadyAnalysisSpec):
             issues.append(Issue(("initial_ball_angles",), "is empty: give at least one configuration (one angle "
                                 "per ball), or leave it out", []))
         issues += _angle_issues(self.initial_ball_angles, "initial_ball_angles", model.balls_in(self.races))
+        if self.passing_torque:
+            issues += model.passing_torque_issues(self)
         return issues
 
     def describe(self, model: AbstractModelSpec) -> str:
@@ -462,5 +474,7 @@ class RunUpSpec(SteadyAnalysisSpec):
             what = f"{profile.profile} profile to {_ratio_text(profile.final_speed, model)}"
         starts = 1 if self.initial_ball_angles is None else len(self.initial_ball_angles)
         text = f"run-up ({what}) from {self.t_start:g} s to {self.t_end:g} s, {starts} start(s)"
+        if self.passing_torque:
+            text += f", smallest passing motor torque (to {self.passing_torque_rtol:g})"
         regime = self.regime_text()
         return text + (f", {regime}" if regime else "")

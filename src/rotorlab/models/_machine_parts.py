@@ -228,6 +228,22 @@ class Motor:
             return self.torque * (1.0 - w / self.no_load_speed)
         return np.interp(w, self.torque[0], self.torque[1])
 
+    @property
+    def stall_torque(self) -> float:
+        """The torque at rest T(0) (N m): T_s of the linear characteristic, the table's at 0."""
+        return float(self.torque_at(0.0))
+
+    def scaled(self, factor: float) -> Motor:
+        """Return this motor with its torque characteristic times ``factor`` (> 0): T_s of the
+        linear characteristic, every torque of a table; the speeds are kept."""
+        f = float(factor)
+        if not (f > 0 and math.isfinite(f)):
+            raise ValueError(f"Motor.scaled: factor must be a finite number > 0, got {factor!r}")
+        if self.kind == "linear":
+            return Motor(self.torque * f, self.polar_inertia, self.no_load_speed)
+        return Motor((self.torque[0], tuple(f * t for t in self.torque[1])), self.polar_inertia,
+                     self.no_load_speed)
+
     def to_array(self) -> np.ndarray:
         """``[J, T_s, Omega_0, speeds..., torques...]`` (see the kernel layout)."""
         if self.kind == "linear":

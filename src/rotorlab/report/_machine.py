@@ -83,6 +83,9 @@ def _run_up(rows: Rows):
              str(r["passed"]), _g(None if r["captured_at"] is None else r["captured_at"] * _RPM, 5),
              *(_mm(r["residual_amplitude"][s]) for s in stations),
              *(_mm(r["reference_amplitude"][s]) for s in stations), r["outcome"]) for r in rows]
+    if rows and "passing_torque" in rows[0]:  # passing_torque = true
+        header = (*header, "smallest passing torque with balls (N*m)", "without balls (N*m)")
+        body = [(*b, _g(r["passing_torque"]), _g(r["passing_torque_without_balls"])) for b, r in zip(body, rows)]
     return header, body
 
 
@@ -217,7 +220,36 @@ def _run_up_findings(ds, rows):
     if any(r["outcome"] != "no balancer" for r in rows):
         head = (f"The balancer balances from {'every start' if len(good) == len(rows) else 'no start' if not good else 'start(s) ' + ', '.join(map(str, good))} "
                 f"({len(good)} of {len(rows)}). ")
-    return Findings(head + "; ".join(parts) + ".", tuple(numbers))
+    tail = _passing_torque_text(ds, rows)
+    return Findings(head + "; ".join(parts) + "." + (f" {tail}" if tail else ""), tuple(numbers))
+
+
+def _passing_torque_text(ds, rows) -> str:
+    """The smallest passing stall torque with and without the balls (``passing_torque = true``)."""
+    if not rows or "passing_torque" not in rows[0]:
+        return ""
+    r0 = rows[0]
+    crit = f"{r0['critical_speeds'][0] * _RPM:.4g} rpm" if r0["critical_speeds"] else "-"
+    how = f"(found to {r0['passing_torque_rtol']:g} by run-ups of {float(ds.time.values[-1]):g} s from each start)"
+    msg = r0.get("passing_torque_message")
+    bare = r0["passing_torque_without_balls"]
+    if bare is None:
+        return f"The smallest stall torque that passes the first critical speed ({crit}) was not found: {msg}."
+    without = f"{bare:.4g} N*m without"
+    if all(r["outcome"] == "no balancer" for r in rows):
+        return f"The smallest stall torque that passes the first critical speed ({crit}): {without} balls {how}."
+    values = [r["passing_torque"] for r in rows]
+    if all(v is not None and f"{v:.4g}" == f"{values[0]:.4g}" for v in values):
+        ratio = r0["passing_torque_ratio"]
+        withb = f"{values[0]:.4g} N*m with the balls"
+        change = f", ratio {ratio:.3g}" if ratio is not None else ""
+    else:
+        withb = "with the balls " + ", ".join(f"{'not found' if v is None else f'{v:.4g} N*m'} from start {r['ic']}"
+                                               for r, v in zip(rows, values))
+        change = ""
+    note = f" ({msg})" if msg else ""
+    return (f"The smallest stall torque that passes the first critical speed ({crit}): {withb}, {without}{change} "
+            f"{how}.{note}")
 
 
 _FINDINGS = {"steady": _steady_findings, "stability-chart": _chart_findings, "simulate": _simulate_findings,
