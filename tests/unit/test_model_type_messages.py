@@ -4,8 +4,9 @@ Review of the session-5 diff: the lists of accepted model types were written out
 messages, and some had fallen behind the code (a machine runs basins, sweeps, simulate and the
 steady analyses, but the sweep, simulate and steady messages named jeffcott_balls or toroidal_ball
 only). They now come from one place each: the model specs that name start coordinates (basins,
-sweeps), ``SimulateSpec.model_types`` and the model's own ``steady_issues``. Refused on the command
-line: exit 2, no traceback, nothing written.
+sweeps), ``SimulateSpec.model_types`` and the model's own ``steady_issues`` (the steady commands:
+``tests/unit/test_steady_cli.py::test_steady_commands_need_a_rotor_with_balls``). Refused on the
+command line: exit 2, no traceback, nothing written.
 """
 
 from __future__ import annotations
@@ -61,16 +62,3 @@ def test_simulate_command_names_its_model_types(tmp_path):
     assert result.exit_code == 2 and "Traceback" not in result.output
     assert "simulate needs a rotor with balls ([model] type jeffcott_balls or machine)" in result.output
     assert list(tmp_path.iterdir()) == []
-
-
-@pytest.mark.parametrize(("command", "case", "kind"), [
-    ("steady", "strautmanis-torus", "toroidal_ball"),
-    ("stability-chart", "krasnov-crusher", "impact_rotor"),
-])
-def test_steady_commands_say_what_the_model_lacks(command, case, kind):
-    speeds = ["--speed-rpm", "100"] if command == "steady" else ["--speeds-rpm", "100:200:3"]
-    result = runner.invoke(app, [command, case, *speeds])
-    assert result.exit_code == 2 and "Traceback" not in result.output
-    # the model's own check: a jeffcott_balls rotor with a ball, or a machine; and what the case has
-    assert f"case {case}: {command} needs a rotor with balls" in result.output
-    assert "or a machine model" in result.output and f"model '{kind}'" in result.output
