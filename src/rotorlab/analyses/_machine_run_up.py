@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab.analyses._machine import (
+from rotorlab.analyses._machine_common import (
     _annotate,
     _ball_coords,
     _num,
