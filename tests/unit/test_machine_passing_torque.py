@@ -153,9 +153,10 @@ def test_passing_torque_of_a_case_is_bracketed_by_the_run_up_verdict_and_the_bal
 
     header, (line,) = machine_rows_table(ds, [row])
     assert line[-2:] == (f"{up:.4g}", f"{up0:.4g}") and header[-2].startswith("smallest passing torque")
-    verdict = machine_findings(ds, [row]).verdict
-    assert (f"The smallest stall torque that passes the first critical speed ({p * 30 / math.pi:.4g} rpm): "
-            f"{up:.4g} N*m with the balls, {up0:.4g} N*m without") in verdict
+    line = machine_findings(ds, [row]).numbers[0]
+    assert line.startswith(f"The smallest stall torque that passes the first critical speed ({p * 30 / math.pi:.4g} "
+                           f"rpm): {up:.4g} N*m with the balls, {up0:.4g} N*m without")
+    assert line.endswith("; this motor's is 0.012 N*m.") and row["motor_stall_torque"] == 0.012
 
 
 def _races():
