@@ -14,13 +14,20 @@ Packed parameters ``p`` (float64; offsets from :class:`Layout`)
 ``balls``          4 per ball (races in order): m (kg), m l (kg m), J = m l^2 + J_c (kg m^2),
                    c (N m s/rad)
 ``unbalances``     3 per unbalance: U = m e (kg m), cos beta, sin beta (beta: phase, rad)
-``stations``       per station (races, then unbalances): B (2 x n_z, row-major), then H B^T
-                   (n_z x 2, row-major); ``B z`` is the lateral displacement of the station
+``stations``       per station (races, then unbalances, then the clearance's, then with ``tilt``
+                   one per distinct race node): B (2 x n_z, row-major), then H B^T (n_z x 2,
+                   row-major); ``B z`` is the lateral displacement of the station (a tilt
+                   station's ``B`` is its node's tilt ``T``)
 ``L``              per ordered pair of stations (s, s'): B_s H B_s'^T (2 x 2, row-major)
 ``HK, HC, HG``     n_z x n_z each (row-major): H K, H C, H G; ``HG`` only when the structure is
                    gyroscopic
 ``Hf``             n_z: H f_g, the weight of the structure and of the balls
 ``C, Ka``          n_z x n_z each, only with energy states: C and the skew part of K
+``clearance``      11, only with a clearance (:mod:`rotorlab._kernels.machine_contact`)
+``friction``       n_b, only with ball friction: each ball's friction arm ``coulomb l + rolling``
+                   (m)
+``tilt``           n_b, only with ``tilt``: each ball's ``D = m l^2`` (kg m^2), its inertia
+                   about its race's diameters
 =================  ===========================================================================
 
 ``H = M0^-1`` with ``M0 = M_s + sum_r m_r B_r^T B_r`` (the structure plus the ball masses carried
@@ -29,8 +36,10 @@ by the races).
 States
 ------
 ``[z (n_z), z' (n_z), phi (n_b), phi' (n_b), (theta, Omega) with a motor, (W, D) with energy
-states]``: structure coordinates and their rates, absolute ball angles and rates, spin angle and
-speed, drive work and dissipated energy.
+states, (clearance states), (n_b stick/slip modes) with ball friction]``: structure coordinates
+and their rates, absolute ball angles and rates, spin angle and speed, drive work and dissipated
+energy; the clearance's states are listed in :mod:`rotorlab._kernels.machine_contact`, and a
+ball's mode is -1 / +1 slipping with that sign of ``phi' - Omega``, 0 stuck.
 """
 
 from __future__ import annotations
