@@ -280,7 +280,7 @@ def test_basin_command_bad_input(tmp_path, args, message):
 
 def test_basin_command_needs_a_basin_model(tmp_path):
     res = invoke("basin", "pico21")
-    assert res.exit_code == 2 and "basins need a toroidal_ball model" in res.output
+    assert res.exit_code == 2 and "basins need a jeffcott_balls, toroidal_ball or machine model" in res.output
     case = tmp_path / "no-basin.toml"
     case.write_text(load_case("strautmanis-torus").text.split("[[analysis]]")[0])
     res = invoke("basin", str(case), "--x", "psi=0:1:2")

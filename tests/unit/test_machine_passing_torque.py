@@ -153,9 +153,10 @@ def test_passing_torque_of_a_case_is_bracketed_by_the_run_up_verdict_and_the_bal
 
     header, (line,) = machine_rows_table(ds, [row])
     assert line[-2:] == (f"{up:.4g}", f"{up0:.4g}") and header[-2].startswith("smallest passing torque")
-    verdict = machine_findings(ds, [row]).verdict
-    assert (f"The smallest stall torque that passes the first critical speed ({p * 30 / math.pi:.4g} rpm): "
-            f"{up:.4g} N*m with the balls, {up0:.4g} N*m without") in verdict
+    line = machine_findings(ds, [row]).numbers[0]
+    assert line.startswith(f"The smallest stall torque that passes the first critical speed ({p * 30 / math.pi:.4g} "
+                           f"rpm): {up:.4g} N*m with the balls, {up0:.4g} N*m without")
+    assert line.endswith("; this motor's is 0.012 N*m.") and row["motor_stall_torque"] == 0.012
 
 
 def _races():
@@ -199,3 +200,16 @@ def test_passing_torque_on_a_model_without_a_motor_names_the_key():
     with pytest.raises(CaseError) as err:
         parse_case(text)
     assert "analysis[9].passing_torque" in str(err.value) and "driven by a motor" in str(err.value)
+
+
+def test_motor_scaled_scales_the_whole_characteristic():
+    """``passing_torque`` probes ``Motor.scaled(f)``: T_s f for the linear line, every torque of a
+    table times f (speeds kept); T(0) is the stall torque either way."""
+    lin = Motor(0.4, polar_inertia=0.6, no_load_speed=2.0).scaled(2.5)
+    assert lin.stall_torque == pytest.approx(1.0, rel=1e-15) and lin.no_load_speed == 2.0
+    np.testing.assert_allclose(lin.torque_at([0.0, 1.0, 2.0]), [1.0, 0.5, 0.0], atol=1e-15)
+    tab = Motor(((0.0, 0.5, 1.0, 2.0), (0.4, 0.3, 0.2, 0.0)), polar_inertia=0.6).scaled(0.5)
+    assert tab.torque[0] == (0.0, 0.5, 1.0, 2.0) and tab.stall_torque == pytest.approx(0.2, rel=1e-15)
+    np.testing.assert_allclose(tab.torque_at([0.25, 1.5, 3.0]), [0.175, 0.05, 0.0], rtol=1e-15)
+    with pytest.raises(ValueError, match="factor must be a finite number > 0"):
+        tab.scaled(0.0)

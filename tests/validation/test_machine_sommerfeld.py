@@ -10,7 +10,8 @@ no-load speed. The thresholds found by bisection (``python bench/machine.py --so
 T_s between 0.01333 and 0.01335 N m without balls, between 0.01105 and 0.01107 N m with a
 two-ball race (2 x 20 g at l = 0.5 m, c = 0.005 N m s/rad): the balls lower the torque needed to
 pass by 17 %. (Found with this model, so the thresholds are not asserted to 4 digits; the test
-checks the physics on both sides of them.)
+checks the physics on both sides of them. ``rotorlab.analyses.passing_torque`` finds them by
+bisection: tests/unit/test_machine_passing_torque.py.)
 """
 
 import numpy as np

@@ -62,6 +62,8 @@ def test_the_speed_by_eccentricity_map_changes_regime_at_the_grazing_eccentricit
     ds = run_analysis(case.model, case.analysis("map"))
     m, k, c, delta = ROTOR.mass, ROTOR.stiffness, ROTOR.damping, ROTOR.clearance
     assert ds.regime.shape == (3, 9) and np.all(ds.status.values == 0)
+    # the grazing lines are in the unit of the axis they bound (SI: m)
+    assert ds.grazing_boundary.attrs["units"] == ds.grazing_curve.attrs["units"] == ds.eccentricity.attrs["units"] == "m"
     for i, w in enumerate(ds.spin_speed.values):
         grazing = delta * abs(k - m * w**2 + 1j * c * w) / (m * w**2)
         assert ds.grazing_boundary.values[i] == pytest.approx(grazing, rel=1e-9)

@@ -39,16 +39,12 @@ the slip, 2 rolling) at the end of the state.
 
 from __future__ import annotations
 
+from rotorlab._kernels.machine_layout import _DECO, _less_reactions, _sum
+
 __all__ = ["IMPORTS", "rhs_contact_lines", "rhs_tail_lines", "extra_functions"]
 
 IMPORTS = ("from rotorlab._kernels.contact import (circular_gap, contact_velocities, delassus_forces,\n"
            "    impulse_energy, newton_coulomb_impulse, penalty_normal_force)\n")
-
-_DECO = '\n\n@njit(cache=True, nogil=True, error_model="numpy")\n'
-
-
-def _sum(terms: list[str]) -> str:
-    return " + ".join(terms) if terms else "0.0"
 
 
 def _station(lay) -> int:
@@ -74,10 +70,7 @@ def _unit(lay, L: list[str], ind: str, tag: str, fx: str, fy: str, tq: str, full
     kc = lay.pair_L(sc, sc)
     for row, name in ((0, "acx"), (1, "acy")):
         terms = [f"p[{kc + 2 * row}] * {tag}fx + p[{kc + 2 * row + 1}] * {tag}fy"]
-        for s, gx, gy in corr:
-            k = lay.pair_L(sc, s) + 2 * row
-            terms.append(f"-(p[{k}] * {gx} + p[{k + 1}] * {gy})")
-        a(f"{tag}{name} = " + " ".join(terms))
+        a(f"{tag}{name} = " + " ".join(terms + _less_reactions(lay, sc, row, corr)))
     a(f"{tag}dom = {tag}x{nb}" if lay.motor else f"{tag}dom = 0.0")
     if full:
         for i in range(nz):

@@ -391,23 +391,29 @@ def impact_summary(ds: xarray.Dataset) -> dict[str, Any]:
 
 
 def sweep_summary(ds: xarray.Dataset) -> dict[str, Any]:
-    """JSON-ready summary of :func:`impact_sweep`: per value the median, quartiles, regimes."""
+    """JSON-ready summary of :func:`impact_sweep`: per value the median, quartiles, regimes.
+
+    Impact statistics (median, quartiles, range) are over the runs that did not fail, None where
+    every run failed; ``regimes`` counts the runs per regime and ``failed``; ``regime`` is the most
+    frequent of those (the first of equals, in that order).
+    """
     rows = []
     for i, v in enumerate(ds.value.values):
         counts = {lab: int(round(float(ds.regime_fraction.values[i, c]) * ds.sizes["sequence"]))
                   for c, lab in enumerate(REGIMES)}  # fmt: skip
         counts["failed"] = int(round(float(ds.failed_fraction.values[i]) * ds.sizes["sequence"]))
+        done = ds.impacts.values[i][ds.regime.values[i] >= 0]  # a failed run's count is no result
         rows.append({
             "value": float(v),
             "impacts_median": _num(ds.impacts_median.values[i]),
             "impacts_q25": _num(ds.impacts_q25.values[i]),
             "impacts_q75": _num(ds.impacts_q75.values[i]),
-            "impacts_min": int(ds.impacts.values[i].min()),
-            "impacts_max": int(ds.impacts.values[i].max()),
+            "impacts_min": int(done.min()) if done.size else None,
+            "impacts_max": int(done.max()) if done.size else None,
             "sliding_time_median_s": _num(ds.sliding_time_median.values[i]),
             "energy_ratio_median": _num(ds.eta_median.values[i]),
             "regimes": counts,
-            "regime": REGIMES[int(np.argmax(ds.regime_fraction.values[i]))],
+            "regime": max(counts, key=counts.get),  # the most frequent outcome, "failed" included
         })  # fmt: skip
     return {"param": ds.attrs["param"], "units": ds.attrs["param_units"], "t_end_s": ds.attrs["t_end"],
             "n_sequences": int(ds.sizes["sequence"]), "seed": int(ds.attrs["seed"]), "rows": rows}  # fmt: skip

@@ -16,7 +16,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab.analyses._machine import (
+from rotorlab.analyses._machine_common import (
     _annotate,
     _ball_coords,
     _num,
@@ -389,6 +389,7 @@ def _add_passing_torque(ds, machine, starts, analysis, start_speed) -> None:
     ds["passing_torque_ratio"] = (("ic",), ratio, {"units": "1"})
     ds["passing_torque_status"] = (("ic",), np.array([r.status or bare.status for r in with_balls], dtype=np.int64))
     ds.attrs["passing_torque_rtol"] = float(analysis.passing_torque_rtol)
+    ds.attrs["motor_stall_torque"] = float(machine.drive.stall_torque)
     ds.attrs["passing_torque_probes"] = int(bare.probes + (sum(r.probes for r in with_balls) if machine.n_balls else 0))
     notes = sorted({r.message for r in (bare, *with_balls) if r.message})
     if notes:
@@ -437,6 +438,7 @@ def _run_up_rows(ds) -> list[dict[str, Any]]:
                 "passing_torque_without_balls_lower": _num(r.passing_torque_without_balls_lower),
                 "passing_torque_ratio": _num(r.passing_torque_ratio),
                 "passing_torque_rtol": float(ds.attrs["passing_torque_rtol"]),
+                "motor_stall_torque": float(ds.attrs["motor_stall_torque"]),
                 "passing_torque_status": int(r.passing_torque_status),
                 **({"passing_torque_message": ds.attrs["passing_torque_message"]}
                    if "passing_torque_message" in ds.attrs else {})})

@@ -246,7 +246,7 @@ def run_rub_map(case_model: Any, analysis: Any,
         per_unit = np.array([no_rub_radius(replace(rotor, eccentricity=1.0), float(s)) for s in at])
         return rotor.clearance / per_unit * (rotor.mass if axis == "unbalance" else 1.0)
 
-    unit = {"units": "m" if axis != "unbalance" else "kg m"}
+    unit = {"units": ds[axis].attrs["units"]}  # the second axis' own (the model's rub_parameters)
     ds["grazing_boundary"] = (("spin_speed",), grazing(speeds), unit)
     # the same line on a fine grid over the map's cells (a figure draws it; the grid is coarse)
     half = 0.5 * (speeds[-1] - speeds[0]) / max(speeds.size - 1, 1)

@@ -73,17 +73,19 @@ def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None 
         spec.t_end if spec.t_end is not None else spec.revolutions * 2.0 * math.pi / omega)  # fmt: skip
     analysis = MapperAnalysis(basin_mapper(case_model, spec, t_end=duration))
     chosen = dict(axes) if axes is not None else {**spec.param, **spec.ic}
+    # the unit each varied angle was written in, for display (figures draw it in that unit)
+    units = {k: v for k, v in getattr(spec, "input_units", {}).items() if k in chosen}
     n_sample = sample if sample is not None else (spec.sample if axes is None else None)
     if n_sample is not None:
         bad = [k for k, v in chosen.items() if len(v) != 2]
         if bad:
             raise ValueError(f"with a sample, give ranges LOW:HIGH (not grids) for {', '.join(bad)}")
         return Sweep(analysis, sample=Sample({k: (v[0], v[1]) for k, v in chosen.items()}, n_sample,
-                                             spec.seed if seed is None else seed))  # fmt: skip
+                                             spec.seed if seed is None else seed), input_units=units)  # fmt: skip
     bad = [k for k, v in chosen.items() if len(v) != 3]
     if bad:
         raise ValueError(f"give grids START:STOP:N (or a sample) for {', '.join(bad)}")
-    return Sweep(analysis, axes=tuple(GridAxis(k, *v) for k, v in chosen.items()))
+    return Sweep(analysis, axes=tuple(GridAxis(k, *v) for k, v in chosen.items()), input_units=units)
 
 
 def run_sweep_analysis(case_model: Any, spec: Any, progress: Callable[[int, int], None] | None = None) -> Any:

@@ -19,6 +19,7 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab._version import __version__
 from rotorlab.cli._output import (
     BadInput,
@@ -32,7 +33,6 @@ from rotorlab.cli._output import (
     status,
     stdout,
 )
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["app", "main"]
 
@@ -378,11 +378,11 @@ def simulate_command(
             return
         from rotorlab.io import SimulateSpec
 
-        # the model types simulate accepts, less those with their own simulate: jeffcott_balls
+        # the model types simulate accepts (those with their own simulate ran above)
         if SimulateSpec.wrong_model(loaded.model) is not None:
-            raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; simulate "
-                           "needs a rotor with balls ([model] type jeffcott_balls); for a "
-                           "linear rotor use 'rotorlab campbell' or 'rotorlab modes'")
+            raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; simulate needs a rotor with "
+                           f"balls ([model] type {' or '.join(SimulateSpec.model_types)}); for a linear rotor use "
+                           "'rotorlab campbell' or 'rotorlab modes'")  # fmt: skip
         spec = _pick_analysis(loaded, analysis)
         model_spec = loaded.model
         p = model_spec.critical_speed()

@@ -181,8 +181,9 @@ def basin_command(
 
         known = coordinate_dimensions(loaded.model)
         if not known:
-            raise BadInput(f"case {loaded.name}: basins need a toroidal_ball model or a jeffcott_balls or machine model "
-                           f"with balls, not {loaded.model.type}")  # fmt: skip
+            from rotorlab.io._coordinates import mappable_text
+
+            raise BadInput(f"case {loaded.name}: basins need {mappable_text(loaded.model)}")
         base = find_analysis(loaded, "basin", analysis)
         updates: dict[str, Any] = {"x": _axis("--x", x, known), "y": _axis("--y", y, known),
                                    "samples": random, "seed": seed, "t_end": t_end}  # fmt: skip

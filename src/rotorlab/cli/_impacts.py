@@ -289,6 +289,7 @@ def impact_tables(results: dict[str, Any], rows: dict[str, Any] | None = None) -
     from rich.table import Table
 
     from rotorlab.analyses import impact_summary, paper_counts, sweep_summary
+    from rotorlab.report._impacts import SWEEP_COLUMNS, sweep_cells
 
     tables = []
     for name, ds in results.items():
@@ -311,18 +312,10 @@ def impact_tables(results: dict[str, Any], rows: dict[str, Any] | None = None) -
             unit = f" ({doc['units']})" if doc["units"] not in ("", "1") else ""
             t = Table(title=f"{name}: impacts in {doc['t_end_s']:g} s over {doc['n_sequences']} stone sequences",
                       title_justify="left")  # fmt: skip
-            cols = [doc["param"] + unit, "median", "quartiles", "min-max", "none", "rebounds", "sliding",
-                    "whirl", "eta (median)"] + (["paper"] if any(p is not None for p in paper) else [])  # fmt: skip
-            for col in cols:
+            with_paper = any(p is not None for p in paper)
+            for col in [doc["param"] + unit, *SWEEP_COLUMNS] + (["seed 001"] if with_paper else []):
                 t.add_column(col, justify="right")
             for row, p in zip(doc["rows"], paper):
-                r = row["regimes"]
-                eta = "-" if row["energy_ratio_median"] is None else f"{row['energy_ratio_median']:.3g}"
-                cells = [f"{row['value']:.4g}", f"{row['impacts_median']:g}",
-                         f"{row['impacts_q25']:g}-{row['impacts_q75']:g}", f"{row['impacts_min']}-{row['impacts_max']}",
-                         str(r["none"]), str(r["rebounds"]), str(r["sliding"]), str(r["backward_whirl"]), eta]  # fmt: skip
-                if len(cols) > 9:
-                    cells.append("-" if p is None else str(p))
-                t.add_row(*cells)
+                t.add_row(*sweep_cells(row), *(["-" if p is None else str(p)] if with_paper else []))
             tables.append(t)
     return tables

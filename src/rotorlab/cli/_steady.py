@@ -14,10 +14,10 @@ from typing import Annotated, Any, Optional
 
 import typer
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.cli._app import (CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis, own_entry,
                                run_through_entry)
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["steady_command", "stability_chart_command", "run_up_command", "parse_range", "regime_overrides", "steady_tables"]
 
@@ -130,8 +130,9 @@ def _model(loaded: Any, overrides: dict[str, float], kind: str) -> Any:
     model's own check (``steady_issues``: a jeffcott_balls rotor with balls) decides."""
     from rotorlab.io import ANALYSIS_SPECS
 
-    if loaded.model.steady_issues(ANALYSIS_SPECS[kind].model_construct()):  # unvalidated: its type only
-        raise BadInput(f"case {loaded.name}: steady motions need a jeffcott_balls model with balls")
+    issues = loaded.model.steady_issues(ANALYSIS_SPECS[kind].model_construct())  # unvalidated: its type only
+    if issues:
+        raise BadInput(f"case {loaded.name}: {kind} " + "; ".join(i.message for i in issues))
     from rotorlab.analyses import build_model
     from rotorlab.steady import with_parameter
 

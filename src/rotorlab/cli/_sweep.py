@@ -11,13 +11,13 @@ store is touched (bad input: exit 2, nothing written).
 from __future__ import annotations
 
 import dataclasses
-
 import math
 from pathlib import Path
 from typing import Annotated, Any, Optional
 
 import typer
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, console_or_json, exit_if_failed, handled, info
 from rotorlab.cli._sweep_common import (
@@ -29,7 +29,6 @@ from rotorlab.cli._sweep_common import (
     run_with_bar,
     stability_line,
 )
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 
 def _names(known: Any) -> str:
@@ -224,8 +223,9 @@ def sweep_command(
         model = loaded.model
         kind = getattr(model, "type", None)
         if not sweep_coordinates(model, "ic"):
-            raise BadInput(f"case {loaded.name}: rotorlab sweep runs models with a regime mapper (a jeffcott_balls "
-                           f"model with balls, or a toroidal_ball model), this case's model is '{kind}'")  # fmt: skip
+            from rotorlab.io._coordinates import mappable_text
+
+            raise BadInput(f"case {loaded.name}: rotorlab sweep needs {mappable_text(model)}")
         for option, texts, what in (("--param", param, "param"), ("--ic", ic, "ic")):
             known = sweep_coordinates(model, what)
             for text in texts or ():
@@ -268,8 +268,8 @@ def sweep_command(
         from rotorlab.io._coordinates import record_input_units
 
         # the unit each angle was written in, for figures (``rotorlab show`` draws it in that unit)
-        given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (ic or ())]
-        shown = {k: v for k, v in record_input_units({}, given).items() if k in sweep.varied}
+        given = [(t.partition("=")[0].strip(), t.partition("=")[2].split(":")[:2]) for t in (*(param or ()), *(ic or ()))]
+        shown = {k: v for k, v in record_input_units(sweep.input_units, given).items() if k in sweep.varied}
         sweep = dataclasses.replace(sweep, input_units=shown)
         size = chunk if chunk is not None else (None if resume and out.exists() else spec.chunk)
         where = executor.describe()

@@ -288,11 +288,11 @@ class _KeyUnits(dict):
     def _key(self, name: Any) -> str | None:
         if self._spec is None or not isinstance(name, str):
             return None
-        from rotorlab.io._basin_specs import Coordinates
+        from rotorlab.io._coordinates import Coordinates
 
         if name not in Coordinates({}, self._spec):
             return None
-        from rotorlab.io._basin_specs import key_quantity
+        from rotorlab.io._coordinates import key_quantity
 
         return key_quantity(name, type(self._spec)).dimension.si or "1"
 

@@ -1,7 +1,7 @@
 """Case-file specs of the toroidal ball balancer (seed 004) and of the basin analyses.
 
 The start coordinates a basin may vary (names, dimensions, ``model.<key path>``) are in
-:mod:`rotorlab.io._coordinates`; their names are re-exported here.
+:mod:`rotorlab.io._coordinates`.
 
 ``[model] type = "toroidal_ball"`` is one ball rolling in a torus offset from the rotation axis
 (:class:`rotorlab.models.ToroidalBall`). ``[[analysis]] type = "basin"`` maps a 2-D grid (or a
@@ -27,26 +27,21 @@ from __future__ import annotations
 import math
 from typing import Annotated, Any, ClassVar, Literal
 
-from pydantic import Field, PlainValidator, PrivateAttr, WithJsonSchema, model_validator
+from pydantic import Field, PlainValidator, WithJsonSchema, model_validator
 from pydantic_core import PydanticCustomError
 
 from rotorlab._constants import RPM_PER_RAD_S
-from rotorlab.io._coordinates import (  # noqa: F401 - re-exported: this module's names before the split
+from rotorlab.io._coordinates import (
     BALANCER_COORDINATES,
-    BALL_COORDINATE,
-    COORDINATE_BOUNDS,
-    KEY_PREFIX,
-    MACHINE_COORDINATES,
     TORUS_COORDINATES,
-    Coordinates,
+    RecordsInputUnits,
     _any_dimension,
     _bound_kw,
     _known_names,
-    ball_coordinates,
     coordinate_dimensions,
     coordinates_text,
     key_quantity,
-    record_input_units,
+    mappable_text,
 )
 from rotorlab.io._errors import Issue, IssueGroup, did_you_mean
 from rotorlab.io._fields import (
@@ -63,9 +58,6 @@ from rotorlab.io._fields import (
 from rotorlab.io._jeffcott_specs import constant_spin_speed
 
 __all__ = [
-    "TORUS_COORDINATES",  # these three live in rotorlab.io._coordinates
-    "BALANCER_COORDINATES",
-    "coordinate_dimensions",
     "ToroidalBallSpec",
     "BasinSpec",
     "WorkingPointSpec",
@@ -214,7 +206,7 @@ class ToroidalBallSpec(AbstractModelSpec):
 # --------------------------------------------------------------------------- analyses
 
 
-class BasinSpec(AbstractAnalysisSpec):
+class BasinSpec(RecordsInputUnits):
     """Regimes reached from a 2-D grid (or a seeded random sample) of start coordinates.
 
     Parameters
@@ -275,35 +267,13 @@ class BasinSpec(AbstractAnalysisSpec):
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance (-)")
     races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
-    _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
-
-    @model_validator(mode="wrap")
     @classmethod
-    def _record_input_units(cls, data: Any, handler: Any) -> BasinSpec:
-        """Keep the unit each angle of x, y and fixed was written in (see :attr:`input_units`)."""
-        spec = handler(data)
-        if isinstance(data, dict):
-            given = [(raw[0], raw[1:3]) for raw in (data.get("x"), data.get("y"))
-                     if isinstance(raw, (list, tuple)) and len(raw) == 4 and isinstance(raw[0], str)]
-            fixed = data.get("fixed")
-            given += [(str(name), [raw]) for name, raw in (fixed.items() if isinstance(fixed, dict) else ())]
-            spec._input_units = record_input_units({}, given)
-        return spec
-
-    @property
-    def input_units(self) -> dict[str, str]:
-        """Angle coordinate given to the unit it was written in: ``"deg"`` or ``"rad"`` (SI).
-
-        The values themselves are SI (radians); results and figures show these coordinates in
-        the unit the case file or command line gave them in.
-        """
-        return dict(self._input_units)
-
-    def with_input_units(self, units: dict[str, str]) -> BasinSpec:
-        """Return a copy whose :attr:`input_units` are ``units`` (for options given apart)."""
-        out = self.model_copy()
-        out._input_units = dict(units)
-        return out
+    def _written(cls, data: dict[str, Any]) -> list[tuple[str, list[Any]]]:
+        """The angles of x, y and fixed as written (see :attr:`input_units`)."""
+        given = [(raw[0], raw[1:3]) for raw in (data.get("x"), data.get("y"))
+                 if isinstance(raw, (list, tuple)) and len(raw) == 4 and isinstance(raw[0], str)]
+        fixed = data.get("fixed")
+        return given + [(str(name), [raw]) for name, raw in (fixed.items() if isinstance(fixed, dict) else ())]
 
     @model_validator(mode="after")
     def _check_axes(self) -> BasinSpec:
@@ -322,8 +292,7 @@ class BasinSpec(AbstractAnalysisSpec):
         kind = getattr(model, "type", None)
         known = coordinate_dimensions(model)
         if not known:
-            return [Issue(("type",), f"basins need a toroidal_ball model or a jeffcott_balls or machine model with "
-                                     f"balls, not {model.without_regimes()}", self.type)]  # fmt: skip
+            return [Issue(("type",), f"basins need {mappable_text(model)}", self.type)]
         issues = []
         for key, axis in (("x", self.x), ("y", self.y)):
             if axis[0] not in known:

@@ -20,7 +20,9 @@ from __future__ import annotations
 import re
 from typing import Annotated, Any
 
-from rotorlab.io._fields import _QuantityValidator
+from pydantic import PrivateAttr, model_validator
+
+from rotorlab.io._fields import AbstractAnalysisSpec, _QuantityValidator
 from rotorlab.io._units import DIMENSIONS, input_unit
 
 __all__ = [
@@ -35,7 +37,9 @@ __all__ = [
     "coordinate_dimensions",
     "coordinates_text",
     "key_quantity",
+    "mappable_text",
     "record_input_units",
+    "RecordsInputUnits",
 ]
 
 #: Start coordinates of a toroidal-ball basin (state entries and parameters): name -> dimension.
@@ -258,6 +262,25 @@ def coordinate_dimensions(model: Any) -> dict[str, str]:
     return Coordinates(model.start_coordinates(), model)
 
 
+def mappable_text(model: Any) -> str:
+    """What basins and sweeps need, for the message refusing ``model``: the model types with a
+    regime mapper (those whose spec names start coordinates, as registered), and what ``model``
+    is instead (its :meth:`~rotorlab.io.AbstractModelSpec.without_regimes`).
+
+    Examples
+    --------
+    >>> from rotorlab.io import load_case
+    >>> mappable_text(load_case("friswell-rotor").model)
+    "a jeffcott_balls, toroidal_ball or machine model (a rotor with at least one ball), not model type 'fe_rotor'"
+    """
+    from rotorlab.io._fields import AbstractModelSpec
+    from rotorlab.io._schema import MODEL_SPECS
+
+    kinds = [k for k, cls in MODEL_SPECS.items() if cls.start_coordinates is not AbstractModelSpec.start_coordinates]
+    listed = ", ".join(kinds[:-1]) + f" or {kinds[-1]}" if len(kinds) > 1 else "".join(kinds)
+    return f"a {listed} model (a rotor with at least one ball), not {model.without_regimes()}"
+
+
 def ball_coordinates(n_balls: int, parameters: dict[str, str]) -> dict[str, str]:
     """The start coordinates of a balancer with ``n_balls`` balls: ``psi_<i>``, ``dpsi_<i>`` and
     ``parameters`` (none without balls)."""
@@ -287,6 +310,42 @@ def record_input_units(units: dict[str, str], given: list[tuple[str, list[Any]]]
         if _any_dimension(name) == "angle":
             out[name] = next((u for u in map(input_unit, raws) if u), "rad")
     return out
+
+
+class RecordsInputUnits(AbstractAnalysisSpec):
+    """An analysis that varies start coordinates and keeps the unit each angle was written in.
+
+    The values are SI (radians); results and figures show these coordinates in the unit the case
+    file or command line gave them in (``attrs["input_units_<name>"]``). A subclass says where
+    its angles are written (:meth:`_written`); ``basin`` and ``sweep`` derive from it.
+    """
+
+    _input_units: dict[str, str] = PrivateAttr(default_factory=dict)
+
+    @classmethod
+    def _written(cls, data: dict[str, Any]) -> list[tuple[str, list[Any]]]:
+        """The coordinates in the raw ``data`` with their values as written (for
+        :func:`record_input_units`)."""
+        return []
+
+    @model_validator(mode="wrap")
+    @classmethod
+    def _record_input_units(cls, data: Any, handler: Any) -> RecordsInputUnits:
+        spec = handler(data)
+        if isinstance(data, dict):
+            spec._input_units = record_input_units({}, cls._written(data))
+        return spec
+
+    @property
+    def input_units(self) -> dict[str, str]:
+        """Angle coordinate given to the unit it was written in: ``"deg"`` or ``"rad"`` (SI)."""
+        return dict(self._input_units)
+
+    def with_input_units(self, units: dict[str, str]) -> RecordsInputUnits:
+        """Return a copy whose :attr:`input_units` are ``units`` (for options given apart)."""
+        out = self.model_copy()
+        out._input_units = dict(units)
+        return out
 
 
 def _known_names() -> str:

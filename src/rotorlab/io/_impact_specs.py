@@ -183,7 +183,6 @@ class _ImpactAnalysis(AbstractAnalysisSpec):
         return {k: getattr(self, k) for k in keys if getattr(self, k) is not None}
 
 
-
 class ImpactsSpec(_ImpactAnalysis):
     """One run from rest: regime, impacts, sliding, energy and the trajectory of P.
 

@@ -12,6 +12,7 @@ from typing import Any, Literal
 
 from pydantic import Field, model_validator
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fields import (
     AbstractAnalysisSpec,
@@ -23,7 +24,6 @@ from rotorlab.io._fields import (
 )
 from rotorlab.io._linear_common import AbstractLinearModelSpec, label, parse_path
 from rotorlab.io._multibody_spec import ElasticSpec, MultibodySpec, elastic_issues
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = [
     "LINEAR_MODELS",

@@ -100,7 +100,7 @@ class MachineBallSpec(_Spec):
     coulomb, rolling : float
         Coulomb friction coefficient (-) and rolling-friction arm (m), >= 0: stick-slip with the
         race's torque bounded by ``(coulomb radius + rolling) N`` (see
-        :func:`rotorlab._kernels.machine_codegen.friction_solve`); 0 with a clearance.
+        :func:`rotorlab._kernels.machine_friction.friction_solve`); 0 with a clearance.
     count : int
         Repeat this ball ``count`` times.
     """
@@ -145,9 +145,19 @@ class RaceSpec(_Station):
         if total > MAX_BALLS:
             raise IssueGroup([Issue((), _too_many_balls(total), total)])
         out = []
-        for b in balls:
+        for b in balls:  # one copy per entry, repeated: written_balls() finds the entries again
             out.extend([b.model_copy(update={"count": 1})] * b.count)
         return tuple(out)
+
+    def written_balls(self) -> list[tuple[int, MachineBallSpec]]:
+        """The ball entries as written, each with its index in the race's ``balls`` before
+        ``count`` was expanded (for key paths in messages): the expansion repeats one object per
+        entry."""
+        out: list[tuple[int, MachineBallSpec]] = []
+        for b in self.balls:
+            if not out or out[-1][1] is not b:
+                out.append((len(out), b))
+        return out
 
 
 class MachineUnbalanceSpec(_Station):
@@ -331,7 +341,7 @@ class MachineSpec(AbstractModelSpec):
                     issues.append(Issue((key, i, bad), msg, getattr(it, bad)))
         if self.clearances:
             for i, r in enumerate(self.races):
-                for j, b in enumerate(r.balls):
+                for j, b in r.written_balls():  # key paths as written (count = n repeats an entry)
                     for k in ("coulomb", "rolling"):
                         if getattr(b, k) != 0.0:
                             issues.append(Issue(("races", i, "balls", j, k), "must be 0 with a "
@@ -379,7 +389,7 @@ class MachineSpec(AbstractModelSpec):
     def start_coordinates(self) -> dict[str, str]:
         """``psi_<i>``, ``dpsi_<i>`` (every ball, races in order), ``spin_speed``, ``ball_mass``,
         ``ball_damping`` (none without balls)."""
-        from rotorlab.io._basin_specs import MACHINE_COORDINATES, ball_coordinates
+        from rotorlab.io._coordinates import MACHINE_COORDINATES, ball_coordinates
 
         return ball_coordinates(self.n_balls, MACHINE_COORDINATES)
 

@@ -24,6 +24,7 @@ import numpy as np
 from pydantic import Field, PlainValidator, ValidationInfo, WithJsonSchema, field_validator
 from pydantic_core import PydanticCustomError
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import (
     Unit,
@@ -39,7 +40,6 @@ from rotorlab.io._fields import (
 )
 from rotorlab.io._jeffcott_specs import _SpeedProfile
 from rotorlab.io._units import DIMENSIONS
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = [
     "STEADY_PARAMETERS",

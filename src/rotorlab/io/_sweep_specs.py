@@ -19,10 +19,10 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
-from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, _any_dimension, coordinate_dimensions,
-                                     coordinates_text, key_quantity)
+from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, RecordsInputUnits, _any_dimension,
+                                     coordinate_dimensions, coordinates_text, key_quantity, mappable_text)
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
+from rotorlab.io._fields import (AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
                                  chosen_race_issues, integer, quantity)  # fmt: skip
 
 __all__ = ["SWEEP_PARAMETERS", "TORUS_STATES", "SweepSpec", "coordinate_dimension", "sweep_coordinates"]
@@ -141,7 +141,7 @@ def _axes(kind: str) -> Any:
     return Annotated[dict[str, tuple], PlainValidator(_AxesValidator(kind)), WithJsonSchema(schema), Unit(unit)]
 
 
-class SweepSpec(AbstractAnalysisSpec):
+class SweepSpec(RecordsInputUnits):
     """Regimes of a rotor with balls or of a toroidal ball at every point of a grid or a sample.
 
     Every point is a start-up at a constant speed, classified by the model's mapper (built like
@@ -212,13 +212,24 @@ class SweepSpec(AbstractAnalysisSpec):
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance")
     races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
 
+    @classmethod
+    def _written(cls, data: dict[str, Any]) -> list[tuple[str, list[Any]]]:
+        """The angles of ``param`` and ``ic`` as written (see :attr:`input_units`).
+
+        Examples
+        --------
+        >>> SweepSpec(ic={"psi_1": ["0 deg", "90 deg", 3], "dpsi_1": [-1, 1, 2]}, t_end=1.0).input_units
+        {'psi_1': 'deg'}
+        """
+        return [(str(name), list(raw[:2])) for key in ("param", "ic") if isinstance(data.get(key), dict)
+                for name, raw in data[key].items() if isinstance(raw, (list, tuple))]  # fmt: skip
+
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """Check the model (one with a regime mapper), the coordinates and grid / sample entries."""
         issues = []
         kind = getattr(model, "type", None)
         if not coordinate_dimensions(model):
-            return [Issue(("type",), "needs a jeffcott_balls model with at least one ball or a toroidal_ball "
-                                     "model", self.type)]  # fmt: skip
+            return [Issue(("type",), f"needs {mappable_text(model)}", self.type)]
         for key in ("param", "ic"):
             known = sweep_coordinates(model, key)
             for name in getattr(self, key):

@@ -11,11 +11,11 @@ import re
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.io import field_unit
 from rotorlab.report._presentations import PRESENTATIONS, presentation_of
 from rotorlab.report._table import escape as _e
 from rotorlab.report._table import table as _table
-from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 __all__ = ["render_report", "parameter_rows", "versions"]
 

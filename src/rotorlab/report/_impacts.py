@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING, Any
 if TYPE_CHECKING:
     import xarray
 
-__all__ = ["impact_section", "reconstructions_section"]
+__all__ = ["impact_section", "reconstructions_section", "SWEEP_COLUMNS", "sweep_cells"]
 
 
 def _e(value: Any) -> str:
@@ -64,25 +64,34 @@ def _run_html(ds: xarray.Dataset) -> str:
     return "<h3>Result</h3>" + note + _table(["quantity", "value", "unit"], rows, numeric={1})
 
 
+#: Columns of an impacts-sweep table after the swept value (HTML report and console), in the order
+#: of :func:`sweep_cells`; a last column "seed 001" gives the paper's count where it has one.
+SWEEP_COLUMNS = ("impacts median", "quartiles", "min-max", "none", "rebounds", "sliding", "backward whirl", "failed",
+                 "eta median")  # fmt: skip
+
+
+def sweep_cells(row: dict[str, Any]) -> list[str]:
+    """The cells of one value of :func:`rotorlab.analyses.sweep_summary` (:data:`SWEEP_COLUMNS`):
+    medians, quartiles and range over the runs that did not fail ("-" where every run failed)."""
+    r = row["regimes"]
+    eta = "-" if row["energy_ratio_median"] is None else f"{row['energy_ratio_median']:.3g}"
+    if row["impacts_median"] is None:  # every run at this value failed
+        med = quart = span = "-"
+    else:
+        med, quart = f"{row['impacts_median']:g}", f"{row['impacts_q25']:g}-{row['impacts_q75']:g}"
+        span = f"{row['impacts_min']}-{row['impacts_max']}"
+    return [f"{row['value']:.4g}", med, quart, span, *(str(r[k]) for k in ("none", "rebounds", "sliding",
+            "backward_whirl", "failed")), eta]  # fmt: skip
+
+
 def _sweep_html(ds: xarray.Dataset) -> str:
     from rotorlab.analyses import paper_counts, sweep_summary
 
     doc = sweep_summary(ds)
     paper = paper_counts(ds)
     unit = f" ({doc['units']})" if doc["units"] not in ("", "1") else ""
-    header = [doc["param"] + unit, "impacts median", "quartiles", "min-max", "none", "rebounds", "sliding",
-              "backward whirl", "failed", "eta median", "seed 001"]  # fmt: skip
-    rows = []
-    for row, p in zip(doc["rows"], paper):
-        r = row["regimes"]
-        eta = "-" if row["energy_ratio_median"] is None else f"{row['energy_ratio_median']:.3g}"
-        if row["impacts_median"] is None:  # every run at this value failed
-            med, quart = "-", "-"
-        else:
-            med, quart = f"{row['impacts_median']:g}", f"{row['impacts_q25']:g}-{row['impacts_q75']:g}"
-        rows.append([f"{row['value']:.4g}", med, quart, f"{row['impacts_min']}-{row['impacts_max']}",
-                     r["none"], r["rebounds"], r["sliding"], r["backward_whirl"], r["failed"], eta,
-                     "-" if p is None else p])  # fmt: skip
+    header = [doc["param"] + unit, *SWEEP_COLUMNS, "seed 001"]
+    rows = [[*sweep_cells(row), "-" if p is None else p] for row, p in zip(doc["rows"], paper)]
     text = (f'<p class="muted">{doc["n_sequences"]} random stone sequences per value (seeds {doc["seed"]} to '
             f'{doc["seed"] + doc["n_sequences"] - 1}, the same at every value), {doc["t_end_s"]:g} s each. '
             "Regime counts are numbers of runs; a failed run (physically impossible result or integrator failure) "

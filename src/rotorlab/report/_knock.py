@@ -75,9 +75,11 @@ def _verdict(ds: xarray.Dataset, rows: Rows) -> str:
     hit = [r for r in done if r["contact_probability"] > 0.0]
     if clear:
         high = max(r["probability_high"] for r in clear)
+        finished = sorted({r["runs"] - r["failed"] for r in clear})  # per damping: its runs that did not fail
+        starts = str(finished[0]) if len(finished) == 1 else f"{finished[0]} to {finished[-1]}"
         out = (f"Choose a ball damping of {_dampings([r['ball_damping'] for r in clear])}: "
                "no run-up touched the housing "
-               f"there (0 of {clear[0]['runs'] - clear[0]['failed']} random ball starts; contact probability below "
+               f"there (0 of {starts} random ball starts; contact probability below "
                f"{_pct(high)} with 95 % confidence{'' if high < 0.05 else ', more starts narrow this'}).")  # fmt: skip
     else:
         best = min(done, key=lambda r: (r["contact_probability"], r["largest_impulse"] or 0.0))

@@ -221,7 +221,7 @@ def _run_up_findings(ds, rows):
         head = (f"The balancer balances from {'every start' if len(good) == len(rows) else 'no start' if not good else 'start(s) ' + ', '.join(map(str, good))} "
                 f"({len(good)} of {len(rows)}). ")
     tail = _passing_torque_text(ds, rows)
-    return Findings(head + "; ".join(parts) + "." + (f" {tail}" if tail else ""), tuple(numbers))
+    return Findings(head + "; ".join(parts) + ".", ((tail,) if tail else ()) + tuple(numbers))
 
 
 def _passing_torque_text(ds, rows) -> str:
@@ -248,8 +248,10 @@ def _passing_torque_text(ds, rows) -> str:
                                                for r, v in zip(rows, values))
         change = ""
     note = f" ({msg})" if msg else ""
+    own = r0.get("motor_stall_torque")
+    mine = f"; this motor's is {own:.4g} N*m" if own is not None else ""
     return (f"The smallest stall torque that passes the first critical speed ({crit}): {withb}, {without}{change} "
-            f"{how}.{note}")
+            f"{how}{mine}.{note}")
 
 
 _FINDINGS = {"steady": _steady_findings, "stability-chart": _chart_findings, "simulate": _simulate_findings,

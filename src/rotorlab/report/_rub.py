@@ -6,6 +6,8 @@ from __future__ import annotations
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
+import numpy as np
+
 from rotorlab.report._findings import Findings
 
 if TYPE_CHECKING:
@@ -45,12 +47,12 @@ def rub_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
         return Findings(f"FAILED: {a.get('status_message', '')}; closed forms allow: {rows[0]['closed_form']}")
     numbers = [f"{r['quantity']}: {_fmt(r['measured'])} (closed form {_fmt(r['closed_form'])}) {r['unit']}".rstrip()
                for r in rows[1:4]]  # fmt: skip
-    for r in rows[4:]:
-        if r["quantity"] == "critical friction of the full rub":
-            stable = r["measured"] < r["closed_form"]
-            numbers.append(f"friction {_fmt(r['measured'])} is {'below' if stable else 'above'} the critical "
-                           f"{_fmt(r['closed_form'])}: the full rub is {'stable' if stable else 'unstable'} "
-                           "(closed form)")  # fmt: skip
+    mu, mu_c = a.get("friction"), a.get("critical_friction")  # the numbers of rub_rows' last row
+    if len(rows) > 1 and mu is not None and mu_c is not None and np.isfinite(mu_c):
+        stable = float(mu) < float(mu_c)
+        numbers.append(f"friction {_fmt(float(mu))} is {'below' if stable else 'above'} the critical "
+                       f"{_fmt(float(mu_c))}: the full rub is {'stable' if stable else 'unstable'} "
+                       "(closed form)")  # fmt: skip
     return Findings(f"{rows[0]['measured']}; closed forms allow: {rows[0]['closed_form']}", tuple(numbers))
 
 

@@ -6,8 +6,8 @@ import math
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
-from rotorlab.report._table import escape, table
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
+from rotorlab.report._table import escape, table
 
 if TYPE_CHECKING:
     import xarray

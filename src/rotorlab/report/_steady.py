@@ -12,8 +12,8 @@ import math
 from collections.abc import Mapping
 from typing import TYPE_CHECKING, Any
 
-from rotorlab.analyses._steady import STEADY_ANALYSES, steady_rows
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
+from rotorlab.analyses._steady import STEADY_ANALYSES, steady_rows
 
 if TYPE_CHECKING:
     import xarray

@@ -1,0 +1,277 @@
+"""Sizes and offsets of a machine's generated kernel (:class:`Layout`), and the small pieces
+the generators share (:mod:`rotorlab._kernels.machine_codegen` and its parts
+:mod:`~rotorlab._kernels.machine_tilt`, :mod:`~rotorlab._kernels.machine_friction`,
+:mod:`~rotorlab._kernels.machine_contact`).
+
+Packed parameters ``p`` (float64; offsets from :class:`Layout`)
+---------------------------------------------------------------
+=================  ===========================================================================
+``speed``          6: the prescribed profile block (:mod:`rotorlab._kernels.speed`); zeros with a
+                   motor
+``motor``          3 + 2 n_t: polar inertia J (kg m^2), stall torque T_s (N m), no-load speed
+                   w_0 (rad/s) [linear]; then n_t speeds (rad/s) and n_t torques (N m) [table]
+``gravity``        2: g_x, g_y (m/s^2), the lateral components of gravity
+``balls``          4 per ball (races in order): m (kg), m l (kg m), J = m l^2 + J_c (kg m^2),
+                   c (N m s/rad)
+``unbalances``     3 per unbalance: U = m e (kg m), cos beta, sin beta (beta: phase, rad)
+``stations``       per station (races, then unbalances, then the clearance's, then with ``tilt``
+                   one per distinct race node): B (2 x n_z, row-major), then H B^T (n_z x 2,
+                   row-major); ``B z`` is the lateral displacement of the station (a tilt
+                   station's ``B`` is its node's tilt ``T``)
+``L``              per ordered pair of stations (s, s'): B_s H B_s'^T (2 x 2, row-major)
+``HK, HC, HG``     n_z x n_z each (row-major): H K, H C, H G; ``HG`` only when the structure is
+                   gyroscopic
+``Hf``             n_z: H f_g, the weight of the structure and of the balls
+``C, Ka``          n_z x n_z each, only with energy states: C and the skew part of K
+``clearance``      11, only with a clearance (:mod:`rotorlab._kernels.machine_contact`)
+``friction``       n_b, only with ball friction: each ball's friction arm ``coulomb l + rolling``
+                   (m)
+``tilt``           n_b, only with ``tilt``: each ball's ``D = m l^2`` (kg m^2), its inertia
+                   about its race's diameters
+=================  ===========================================================================
+
+``H = M0^-1`` with ``M0 = M_s + sum_r m_r B_r^T B_r`` (the structure plus the ball masses carried
+by the races).
+
+States
+------
+``[z (n_z), z' (n_z), phi (n_b), phi' (n_b), (theta, Omega) with a motor, (W, D) with energy
+states, (clearance states), (n_b stick/slip modes) with ball friction]``: structure coordinates
+and their rates, absolute ball angles and rates, spin angle and speed, drive work and dissipated
+energy; the clearance's states are listed in :mod:`rotorlab._kernels.machine_contact`, and a
+ball's mode is -1 / +1 slipping with that sign of ``phi' - Omega``, 0 stuck.
+"""
+
+from __future__ import annotations
+
+from dataclasses import dataclass
+
+__all__ = ["Layout", "SPEED_KINDS", "DRIVE_KINDS"]
+
+SPEED_KINDS = ("constant", "ramp", "hill")
+DRIVE_KINDS = ("profile", "linear", "table")
+
+
+@dataclass(frozen=True)
+class Layout:
+    """Sizes of one machine and the offsets of its packed parameters and states.
+
+    Parameters
+    ----------
+    n_z : int
+        Structure coordinates (4 per node, or the number of modes kept).
+    races : tuple of int
+        Balls per race.
+    n_unbalance : int
+        Number of unbalances.
+    drive : {"profile", "linear", "table"}
+        Prescribed spin, or a motor with a linear or tabulated characteristic.
+    speed_kind : {"constant", "ramp", "hill"}
+        Kind of the prescribed profile (``"constant"`` with a motor, unused).
+    n_table : int
+        Points of the tabulated characteristic (0 otherwise).
+    gyroscopic : bool
+        The structure has a nonzero G.
+    energy : bool
+        The state carries the drive work and the dissipated energy.
+    clearance : {"", "rigid", "elastic", "housing"}
+        The kind of the machine's clearance (rotor-stator contact), "" for none; see
+        :mod:`rotorlab._kernels.machine_contact`.
+    friction : bool
+        The balls have Coulomb or rolling friction (stick-slip modes).
+    tilt : tuple of int
+        Empty, or (when some race can tilt) per race the number of its node among the races'
+        distinct nodes: the balls follow the tilting race plane (rigid ball kinematics, see
+        :mod:`rotorlab.models._machine`); adds a tilt station per distinct node and one axial
+        unknown per ball to the Schur system.
+    """
+
+    n_z: int
+    races: tuple[int, ...]
+    n_unbalance: int
+    drive: str = "profile"
+    speed_kind: str = "constant"
+    n_table: int = 0
+    gyroscopic: bool = False
+    energy: bool = False
+    clearance: str = ""
+    friction: bool = False
+    tilt: tuple[int, ...] = ()
+
+    def __post_init__(self) -> None:
+        object.__setattr__(self, "races", tuple(int(n) for n in self.races))
+        object.__setattr__(self, "tilt", tuple(int(k) for k in self.tilt))
+        if self.tilt and (len(self.tilt) != len(self.races) or sorted(set(self.tilt)) != list(range(self.n_tilt))):
+            raise ValueError(f"bad layout tilt={self.tilt!r} for races={self.races!r}")
+        if self.drive not in DRIVE_KINDS or self.speed_kind not in SPEED_KINDS:
+            raise ValueError(f"bad layout drive={self.drive!r} speed_kind={self.speed_kind!r}")
+        if self.clearance not in ("", "rigid", "elastic", "housing"):
+            raise ValueError(f"bad layout clearance={self.clearance!r}")
+        if self.friction and self.clearance:
+            raise ValueError("ball friction and a clearance together are not implemented")
+
+    # ---- counts
+    @property
+    def n_balls(self) -> int:
+        return sum(self.races)
+
+    @property
+    def n_races(self) -> int:
+        return len(self.races)
+
+    @property
+    def n_stations(self) -> int:
+        return self.n_races + self.n_unbalance + (1 if self.clearance else 0)
+
+    @property
+    def n_all_stations(self) -> int:
+        """Stations with packed B, H B^T and pair matrices: the lateral ones, then (with
+        ``tilt``) one tilt station per distinct race node, whose ``B`` is that node's tilt ``T``."""
+        return self.n_stations + self.n_tilt
+
+    @property
+    def n_tilt(self) -> int:
+        """Distinct nodes of the races (tilt stations), 0 without ``tilt``."""
+        return max(self.tilt) + 1 if self.tilt else 0
+
+    def tilt_station(self, r: int) -> int:
+        """Index of the tilt station of race ``r`` (``tilt`` layouts)."""
+        return self.n_stations + self.tilt[r]
+
+    @property
+    def tilt_stations(self) -> list[int]:
+        """The tilt stations, in order."""
+        return [self.n_stations + k for k in range(self.n_tilt)]
+
+    def tilt_balls(self, ts: int) -> list[int]:
+        """The balls whose race sits on tilt station ``ts``."""
+        return [b for b in range(self.n_balls) if self.tilt_station(self.ball_race[b]) == ts]
+
+    @property
+    def n_schur(self) -> int:
+        """Unknowns of the Schur system: ball accelerations, theta'' with a motor, and with
+        ``tilt`` one axial unknown per ball (``mu_b = m_b l_b^2 e_b . T_r z''``)."""
+        return self.n_balls + (1 if self.motor else 0) + (self.n_balls if self.tilt else 0)
+
+    @property
+    def motor(self) -> bool:
+        return self.drive != "profile"
+
+    @property
+    def ball_race(self) -> tuple[int, ...]:
+        """Race of each ball."""
+        return tuple(r for r, n in enumerate(self.races) for _ in range(n))
+
+    # ---- state offsets
+    @property
+    def i_phi(self) -> int:
+        return 2 * self.n_z
+
+    @property
+    def i_w(self) -> int:
+        return 2 * self.n_z + self.n_balls
+
+    @property
+    def i_theta(self) -> int:
+        return 2 * self.n_z + 2 * self.n_balls
+
+    @property
+    def i_energy(self) -> int:
+        return self.i_theta + (2 if self.motor else 0)
+
+    @property
+    def i_clearance(self) -> int:
+        """First state of the clearance: the housing's (x, y, vx, vy) if it moves, then the
+        contact's dissipated energy and drive work, then its three discrete states (impacts,
+        largest normal impulse, mode) at the very end."""
+        return self.i_energy + (2 if self.energy else 0)
+
+    @property
+    def n_clearance_states(self) -> int:
+        if not self.clearance:
+            return 0
+        return 5 + (4 if self.clearance == "housing" else 0)
+
+    @property
+    def i_modes(self) -> int:
+        """First stick/slip mode of the balls (one per ball, at the end, with friction)."""
+        return self.i_clearance + self.n_clearance_states
+
+    @property
+    def n_discrete(self) -> int:
+        return (3 if self.clearance else 0) + (self.n_balls if self.friction else 0)
+
+    @property
+    def n_state(self) -> int:
+        return self.i_modes + (self.n_balls if self.friction else 0)
+
+    # ---- parameter offsets
+    @property
+    def offsets(self) -> dict[str, int]:
+        nz, ns = self.n_z, self.n_all_stations
+        sizes = [
+            ("speed", 6),
+            ("motor", 3 + 2 * self.n_table),
+            ("gravity", 2),
+            ("balls", 4 * self.n_balls),
+            ("unbalances", 3 * self.n_unbalance),
+            ("stations", 4 * nz * ns),
+            ("L", 4 * ns * ns),
+            ("HK", nz * nz),
+            ("HC", nz * nz),
+            ("HG", nz * nz if self.gyroscopic else 0),
+            ("Hf", nz),
+            ("C", nz * nz if self.energy else 0),
+            ("Ka", nz * nz if self.energy else 0),
+            ("clearance", 11 if self.clearance else 0),
+            ("friction", self.n_balls if self.friction else 0),
+            ("tilt", self.n_balls if self.tilt else 0),
+        ]
+        out, k = {}, 0
+        for name, size in sizes:
+            out[name] = k
+            k += size
+        out["size"] = k
+        return out
+
+    @property
+    def n_param(self) -> int:
+        return self.offsets["size"]
+
+    def station_B(self, s: int) -> int:
+        """Offset of B (2 x n_z) of station ``s``."""
+        return self.offsets["stations"] + 4 * self.n_z * s
+
+    def station_HBT(self, s: int) -> int:
+        """Offset of H B^T (n_z x 2) of station ``s``."""
+        return self.station_B(s) + 2 * self.n_z
+
+    def pair_L(self, s: int, s2: int) -> int:
+        """Offset of B_s H B_s2^T (2 x 2)."""
+        return self.offsets["L"] + 4 * (s * self.n_all_stations + s2)
+
+    @property
+    def key(self) -> str:
+        """Short identifier of the sizes (used in the generated module's name)."""
+        races = "x".join(str(n) for n in self.races) or "0"
+        return (f"z{self.n_z}r{races}u{self.n_unbalance}{self.drive[0]}{self.speed_kind[0]}"
+                f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
+                f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
+                f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}")
+
+
+def _sum(terms: list[str]) -> str:
+    return " + ".join(terms) if terms else "0.0"
+
+
+def _less_reactions(lay: Layout, r: int, row: int, corr: list[tuple[int, str, str]]) -> list[str]:
+    """Terms ``-(L_(r, s) g_s)[row]`` of station ``r``'s acceleration for the station forces
+    ``corr`` (``(s, gx name, gy name)``, from :func:`rotorlab._kernels.machine_codegen.reactions`)."""
+    out = []
+    for s, gx, gy in corr:
+        k = lay.pair_L(r, s) + 2 * row
+        out.append(f"-(p[{k}] * {gx} + p[{k + 1}] * {gy})")
+    return out
+
+
+_DECO = '\n\n@njit(cache=True, nogil=True, error_model="numpy")\n'

@@ -1,0 +1,237 @@
+"""Helpers shared by the machine's analyses (:mod:`rotorlab.analyses._machine`,
+``_machine_steady``, ``_machine_run_up``): status codes, the balls-locked structure and its
+critical speeds and unbalance response, vibration amplitudes, and the glue from a ``machine``
+case (its model, its variants per analysis, row formatting).
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["NO_STEADY_STATUS", "CLEARANCE_STATUS", "NON_SYNCHRONOUS_RATE", "clearance_violation",
+           "locked_structure", "structure_critical_speeds", "unbalance_amplitudes", "orbit_amplitude",
+           "machine_model", "machine_quantities"]
+
+#: Status of a steady analysis on a machine without co-rotating equilibria.
+NO_STEADY_STATUS = 3
+#: Status of a steady motion whose orbit at a clearance exceeds the gap (it cannot exist without
+#: contact; simulate the rub instead).
+CLEARANCE_STATUS = 4
+#: Balls moving relative to the rotor faster than this fraction of its speed in the final window
+#: of a simulation have not synchronised ("non-synchronous").
+NON_SYNCHRONOUS_RATE = 1e-2
+
+
+def _outcome(status: int, amplitude, reference, max_rate: float, speed: float, n_balls: int) -> str:
+    """Label where one simulation ended (see :func:`machine_simulate`)."""
+    from rotorlab.analyses._outcome import BALANCED_FRACTION
+
+    if status < 0:
+        return "failed"
+    if n_balls == 0:
+        return "no balancer"
+    if np.max(amplitude) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
+        return "balanced"
+    if not max_rate <= NON_SYNCHRONOUS_RATE * abs(speed):
+        return "non-synchronous"
+    return "not balanced"
+
+
+def _wrap(a):
+    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
+
+
+def clearance_violation(machine, y_rotating) -> tuple[float, str | None]:
+    """Whether a steady motion fits inside the machine's clearance.
+
+    The steady motion is computed without contact; in the fixed frame the clearance point runs on
+    the circle ``w(t) = R(Omega t) B z_r - c`` (``z_r`` the co-rotating coordinates, ``c`` the
+    stator's centre; a moving housing rests at its centre without contact), so its largest
+    distance from the stator's centre is ``|B z_r| + |c|``. Where that exceeds the gap the motion
+    does not exist as computed: the rotor would touch its stator.
+
+    Returns
+    -------
+    radius : float
+        ``|B z_r| + |c|`` (m), NaN without a clearance.
+    message : str or None
+        Names the station, the radius and the gap when the radius exceeds the gap.
+    """
+    if not machine.clearances:
+        return math.nan, None
+    c = machine.clearances[0]
+    nz = machine.n_coordinates
+    w = machine.gap_matrix(c) @ np.asarray(y_rotating, dtype=float)[:nz]
+    radius = float(math.hypot(w[0], w[1]) + math.hypot(*machine.clearance_center))
+    if radius <= c.gap:
+        return radius, None
+    label = machine.structure.node_label[c.node]
+    return radius, (f"the steady orbit at the clearance station {label!r} has radius {radius:.4g} m > gap "
+                    f"{c.gap:.4g} m: this motion does not exist without contact (simulate the rub instead)")
+
+
+def locked_structure(machine, *, tilt_inertia: bool = False):
+    """Return the structure with the balls locked at their races (``LinearSystem``).
+
+    Each ball of mass m at race radius l and axial offset a from its node is a point mass on the
+    race centre ``(x + a phi_x, y + a phi_y)``: the mass ``m e^T e`` (translation m, coupling
+    m a, tilt m a^2), as in the kernel's ``M0``. With ``tilt_inertia`` the ball's inertia about
+    its place off the axis is added, as for a ring locked to the rotor: ``m l^2 / 2`` about each
+    diametral axis (the mean over the ball's angle of the tilting race's ``m l^2 (e_b . phi')^2``
+    term) and the polar ``J_b = m l^2 + J_c`` in the gyroscopic matrix (``G[phi_x, phi_y] =
+    J_b``, the convention of :class:`rotorlab.linear.RigidBody`; the race-frame term ``J_b phi_b'
+    (phi_y phi_x' - phi_x phi_y') / 2`` with ``phi_b' = Omega``), see :mod:`rotorlab.models._machine`.
+    """
+    from rotorlab.linear import LinearSystem
+
+    s = machine.structure
+    M, G = s.M.copy(), s.G.copy()
+    for r in machine.races:
+        n = 4 * r.node
+        e = np.zeros((2, s.n_dof))
+        e[0, n], e[1, n + 1] = 1.0, 1.0
+        e[0, n + 2] = e[1, n + 3] = r.axial_offset
+        M += sum(b.mass for b in r.balls) * (e.T @ e)
+        if tilt_inertia:
+            for b in r.balls:
+                M[n + 2, n + 2] += 0.5 * b.mass * r.radius**2
+                M[n + 3, n + 3] += 0.5 * b.mass * r.radius**2
+                G[n + 2, n + 3] += b.mass * r.radius**2 + b.inertia
+                G[n + 3, n + 2] -= b.mass * r.radius**2 + b.inertia
+    return LinearSystem(M=M, C=s.C, G=G, K=s.K, node_position=s.node_position,
+                        node_label=s.node_label)
+
+
+def structure_critical_speeds(machine, max_speed: float | None = None) -> np.ndarray:
+    """Forward-whirl 1x critical speeds of the structure with the balls locked (rad/s), their
+    inertia about the tilt axes included (:func:`locked_structure` with ``tilt_inertia``)."""
+    from rotorlab.linear import critical_speeds
+
+    cs = critical_speeds(locked_structure(machine, tilt_inertia=True), max_speed=max_speed)
+    return cs.speed[cs.whirl >= 0]
+
+
+def unbalance_amplitudes(machine, spin_speed: float) -> np.ndarray:
+    """Steady radial amplitude per node (m) of the unbalance response without balls.
+
+    The largest radius of each node's (elliptical) orbit, ``sqrt((|X|^2 + |Y|^2)/2 +
+    |X^2 + Y^2|/2)``, from the full structure with the balls locked but not acting as balancers.
+    """
+    s = locked_structure(machine)
+    om = float(spin_speed)
+    D = s.K + 1j * om * (s.C + om * s.G) - om * om * s.M
+    f = np.zeros(s.n_dof, dtype=complex)
+    for u in machine.unbalances:
+        ph = u.mass_eccentricity * om * om * np.exp(1j * u.phase)
+        f[4 * u.node] += ph
+        f[4 * u.node + 1] += -1j * ph
+        f[4 * u.node + 2] += u.axial_offset * ph
+        f[4 * u.node + 3] += -1j * u.axial_offset * ph
+    q = np.linalg.solve(D, f)
+    X, Y = q[0::4], q[1::4]
+    return np.sqrt(0.5 * (np.abs(X) ** 2 + np.abs(Y) ** 2) + 0.5 * np.abs(X * X + Y * Y))
+
+
+def orbit_amplitude(machine, ys) -> np.ndarray:
+    """Largest distance of each node from its mean position over the saved states (m).
+
+    Parameters
+    ----------
+    ys : array_like, shape (..., n_times, n_state)
+
+    Returns
+    -------
+    ndarray, shape (..., n_nodes)
+        The vibration amplitude, without the static deflection (e.g. under gravity).
+    """
+    q = machine.displacements(np.asarray(ys, dtype=float))
+    x, y = q[..., 0::4], q[..., 1::4]
+    dx = x - x.mean(axis=-2, keepdims=True)
+    dy = y - y.mean(axis=-2, keepdims=True)
+    return np.hypot(dx, dy).max(axis=-2)
+
+
+def _with_units(ds):
+    """Give every variable and coordinate without a unit the unit "1" (counts, flags, labels)."""
+    for name in (*ds.data_vars, *ds.coords):
+        ds[name].attrs.setdefault("units", "1")
+    return ds
+
+
+def _ball_coords(machine) -> dict[str, Any]:
+    race = [i for i, r in enumerate(machine.races) for _ in r.balls]
+    return {"ball": np.arange(machine.n_balls), "race": ("ball", np.asarray(race, dtype=int))}
+
+
+# --------------------------------------------------------------------------- case files
+
+
+def _num(v) -> float | None:
+    v = float(v)
+    return v if math.isfinite(v) else None
+
+
+def _deg(values) -> list[float | None]:
+    return [None if not np.isfinite(v) else round(float(np.degrees(v)), 6) for v in np.ravel(values)]
+
+
+def _per_race(ds, values) -> dict[str, list[float | None]]:
+    """Angles (rad) by race, in degrees: ``{"race 0": [...], ...}``."""
+    race = ds.race.values
+    values = np.asarray(values, dtype=float)
+    return {f"race {r}": _deg(values[race == r]) for r in np.unique(race)}
+
+
+def _per_station(ds, values) -> dict[str, float | None]:
+    return {str(s): _num(v) for s, v in zip(ds.station.values, np.ravel(values))}
+
+
+def machine_model(case_model):
+    """Build the :class:`~rotorlab.models.Machine` of a ``machine`` spec."""
+    from rotorlab.io._machine_spec import build_machine
+
+    return build_machine(case_model)
+
+
+def machine_quantities(case_model) -> list[dict[str, Any]]:
+    """Derived quantities: critical speeds (balls locked), unbalance, capacity per race."""
+    m = machine_model(case_model)
+    rows = [{"quantity": "critical speeds (forward 1x, balls locked)",
+             "value": ", ".join(f"{w:.4g}" for w in structure_critical_speeds(m)[:6]),
+             "unit": "rad/s", "sign": ""},
+            {"quantity": "unbalance sum m e", "value": sum(u.mass_eccentricity for u in m.unbalances),
+             "unit": "kg*m", "sign": ""}]
+    for i, r in enumerate(m.races):
+        rows.append({"quantity": f"capacity of race {i} (sum m l)", "value": r.capacity,
+                     "unit": "kg*m", "sign": ""})
+    return rows
+
+
+def _variant(case_model, analysis, speed: float | None = None):
+    """The case's machine with only the analysis' races (all when it names none), at a constant
+    ``speed`` if given."""
+    from dataclasses import replace
+
+    from rotorlab.models import ConstantSpeed
+
+    m = machine_model(case_model)
+    races = getattr(analysis, "races", None)
+    if races is not None:
+        m = replace(m, races=tuple(m.races[i] for i in races))
+    if speed is not None:
+        m = m.with_drive(ConstantSpeed(float(speed)))
+    return m
+
+
+def _annotate(ds, case_model, analysis):
+    ds = _with_units(ds)
+    races = getattr(analysis, "races", None)
+    if races is not None:
+        ds.attrs["races"] = list(races)
+    ds.attrs["n_races"] = len(case_model.races) if races is None else len(races)
+    ds.attrs["name"] = analysis.name
+    ds.attrs["analysis"] = analysis.type
+    return ds

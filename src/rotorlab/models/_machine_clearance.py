@@ -1,0 +1,217 @@
+"""The clearance of the composed machine (a part of :class:`rotorlab.models.Machine`): gap and
+contact helpers, the energy a yielding stator stores, the rub parameters and the sanity checks of
+a run with contact. The contact law itself is generated in :mod:`rotorlab._kernels.machine_contact`.
+"""
+
+from __future__ import annotations
+
+import math
+
+import numpy as np
+
+from rotorlab._kernels import machine_codegen as _cg
+from rotorlab.models._speed import ConstantSpeed
+
+
+class _ClearanceParts:
+    """Clearance helpers of a :class:`Machine` (mixed in)."""
+
+    def _clearance_initial(self, y: np.ndarray, om: float) -> None:
+        """Contact mode of an initial state: free inside the clearance; pressed into an elastic
+        stator, sliding along its slip; beyond a rigid one, an error."""
+        c = self.clearances[0]
+        w = self.gap_vector(y)
+        rad = math.hypot(w[0], w[1])
+        if rad <= c.gap:
+            return
+        if c.kind != "elastic":
+            raise ValueError(f"Machine.initial_state: the gap vector {w.tolist()!r} m lies outside the "
+                             f"{c.kind} stator (clearance {c.gap:g} m)")
+        u = self.gap_matrix(c) @ y[self.n_coordinates:2 * self.n_coordinates]
+        if c.kind == "housing":
+            u = u - y[self.layout.i_clearance + 2:self.layout.i_clearance + 4]
+        slip = (-w[1] * u[0] + w[0] * u[1]) / rad + c.rotor_radius * om
+        y[-1] = 1.0 if slip >= 0.0 else -1.0
+
+    def _clearance_energy(self, y: np.ndarray) -> float:
+        """Energy stored by the clearance: a massless elastic stator's ``k_s p^2 / 2``, a moving
+        housing's ``m_s |v_h|^2 / 2 + k_s |x_h|^2 / 2 - m_s g . x_h`` (J)."""
+        if not self.clearances:
+            return 0.0
+        c, lay = self.clearances[0], self.layout
+        if c.kind == "rigid":
+            return 0.0
+        ks = c.stator.stiffness
+        if c.kind == "elastic":
+            w = self.gap_vector(y)
+            pen = max(math.hypot(w[0], w[1]) - c.gap, 0.0)
+            return 0.5 * ks * pen * pen
+        xh, vh = y[lay.i_clearance:lay.i_clearance + 2], y[lay.i_clearance + 2:lay.i_clearance + 4]
+        gx, gy = self.lateral_gravity
+        return float(0.5 * c.stator.mass * vh @ vh + 0.5 * ks * xh @ xh
+                     - c.stator.mass * (gx * xh[0] + gy * xh[1]))
+
+    def gap_vector(self, y) -> np.ndarray:
+        """Return the clearance's gap vector ``w`` (m), shape (..., 2), at states y."""
+        if not self.clearances:
+            raise ValueError("gap_vector needs a Machine with a clearance")
+        y = np.asarray(y, dtype=float)
+        w = y[..., :self.n_coordinates] @ self.gap_matrix(self.clearances[0]).T
+        if self.clearances[0].kind == "housing":
+            i = self.layout.i_clearance
+            w = w - y[..., i:i + 2]
+        return w - np.asarray(self.clearance_center)
+
+    @property
+    def clearance_center(self) -> tuple[float, float]:
+        """Centre of the stator's circle (m): the clearance's ``center``, or with ``"static"`` the
+        gap vector of the machine at rest under gravity (``B K^-1 f_g`` minus a moving housing's
+        own sag ``m_s g / k_s``)."""
+        c = self.clearances[0]
+        if c.center != "static":
+            return c.center
+        if "center" not in self._cache:
+            zs, hs = self._rest_position()
+            w = self.gap_matrix(c) @ zs - hs
+            self._cache["center"] = (float(w[0]), float(w[1]))
+        return self._cache["center"]
+
+    def _rest_position(self) -> tuple[np.ndarray, np.ndarray]:
+        """Structure coordinates ``K^-1 f_g`` and a moving housing's ``m_s g / k_s`` at rest under
+        gravity (balls at rest, lumped on their races)."""
+        gx, gy = self.lateral_gravity
+        try:
+            zs = np.linalg.solve(self.reduced["K"], self._weights())
+        except np.linalg.LinAlgError:
+            raise ValueError('Clearance.center = "static" needs a structure held by its supports '
+                             "(its stiffness matrix is singular)") from None
+        c = self.clearances[0] if self.clearances else None
+        hs = np.zeros(2)
+        if c is not None and c.kind == "housing":
+            hs = c.stator.mass * np.array([gx, gy]) / c.stator.stiffness
+        return zs, hs
+
+    @property
+    def rub_parameters(self) -> dict[str, tuple[int, str]]:
+        """Parameters a rub map may vary: name -> (index in :meth:`to_array`, unit).
+
+        ``clearance`` (m), ``restitution``, ``friction``, ``spin_speed`` (rad/s, constant
+        prescribed speed), ``unbalance`` (kg m, the first unbalance) and ``stator_stiffness``
+        (N/m, an elastic stator or housing); empty without a clearance.
+        """
+        if not self.clearances:
+            return {}
+        o = self.layout.offsets
+        kc = o["clearance"]
+        out = {"clearance": (kc, "m"), "restitution": (kc + 1, "1"), "friction": (kc + 2, "1")}
+        if isinstance(self.drive, ConstantSpeed):
+            out["spin_speed"] = (o["speed"] + 1, "rad/s")
+        if self.unbalances:
+            out["unbalance"] = (o["unbalances"], "kg m")
+        if self.clearances[0].kind != "rigid":
+            out["stator_stiffness"] = (kc + 5, "N/m")
+        return out
+
+    def contact_samples(self, ts, ys, params=None):
+        """The clearance's contact at saved samples (:class:`rotorlab.contact.ContactSamples`);
+        the normal force from the compiled contact law (the generated ``contact_terms``)."""
+        from rotorlab._kernels.speed import profile
+        from rotorlab.contact._regimes import ContactSamples
+
+        if not self.clearances:
+            raise ValueError("contact_samples needs a Machine with a clearance")
+        ys = np.atleast_2d(np.asarray(ys, dtype=float))
+        ts = np.broadcast_to(np.asarray(ts, dtype=float), ys.shape[:1])
+        p = self.to_array() if params is None else np.ascontiguousarray(params, dtype=float)
+        lay, nz = self.layout, self.n_coordinates
+        mod = _cg.kernel_module(lay)
+        dw = ys[:, nz:2 * nz] @ self.gap_matrix(self.clearances[0]).T
+        if self.clearances[0].kind == "housing":
+            dw = dw - ys[:, lay.i_clearance + 2:lay.i_clearance + 4]
+        mode = ys[:, -1]
+        force = np.array([mod.contact_terms(float(t), np.ascontiguousarray(row), p, float(row[-1]))[0]
+                          if row[-1] != 0.0 else 0.0 for t, row in zip(ts, ys)])
+        if self.is_motor:
+            spin = ys[:, lay.i_theta + 1]
+        else:
+            spin = np.array([profile(float(t), p, lay.offsets["speed"])[1] for t in ts])
+        return ContactSamples(self.gap_vector(ys), dw, mode, ys[:, -3], ys[:, -2], force, spin)
+
+    def gap_state(self, position=(0.0, 0.0), velocity=(0.0, 0.0)) -> np.ndarray:
+        """Initial state with the given gap vector ``w`` (m) and rate ``w'`` (m/s): the structure
+        in the mass-weighted shortest shape that has them, balls as in :meth:`initial_state`."""
+        if not self.clearances:
+            raise ValueError("gap_state needs a Machine with a clearance")
+        B = self.gap_matrix(self.clearances[0])
+        H = np.linalg.inv(self._m0())
+        shape = H @ B.T @ np.linalg.inv(B @ H @ B.T)
+        centre = np.asarray(self.clearance_center)
+        return self.initial_state(z=shape @ (np.asarray(position, float) + centre),
+                                  dz=shape @ np.asarray(velocity, float))
+
+    def whirl_state(self, radius: float, whirl_speed: float) -> np.ndarray:
+        """Initial state with the gap vector on a circular whirl: ``w = (radius, 0)``, ``w' =
+        (0, whirl_speed radius)`` (see :meth:`gap_state`)."""
+        return self.gap_state((radius, 0.0), (0.0, whirl_speed * radius))
+
+    def equivalent_rub_rotor(self):
+        """The Jeffcott rotor this machine is at its clearance (:class:`rotorlab.contact.RubRotor`).
+
+        With ``S = H B^T (B H B^T)^-1`` the mass-weighted shortest shape of a unit gap vector
+        (``H = M0^-1``): mass ``(B H B^T)^-1``, stiffness ``S^T K S`` and damping ``S^T C S``
+        (x entries), eccentricity ``sum U / m``. Exact for one rigid body whose tilt does not
+        couple with its translation (the Jeffcott rotor as a machine); a Rayleigh estimate
+        otherwise (the closed forms beside a general machine are then approximate).
+        """
+        from rotorlab.contact import RubRotor
+
+        if not self.clearances:
+            raise ValueError("equivalent_rub_rotor needs a Machine with a clearance")
+        c = self.clearances[0]
+        if c.rotor_radius <= 0.0:
+            raise ValueError("the closed forms need the rotor's radius at the contact: set "
+                             "Clearance.rotor_radius (> 0 m)")
+        B = self.gap_matrix(c)
+        H = np.linalg.inv(self._m0())
+        Lc = B @ H @ B.T
+        S = H @ B.T @ np.linalg.inv(Lc)
+        red = self.reduced
+        m = 1.0 / Lc[0, 0]
+        k = float((S.T @ red["K"] @ S)[0, 0])
+        damp = float((S.T @ red["C"] @ S)[0, 0])
+        ecc = sum(u.mass_eccentricity for u in self.unbalances) / m
+        st = c.stator
+        kw = {} if st == "rigid" else {"stator_stiffness": st.stiffness, "stator_damping": st.damping,
+                                        "stator_mass": st.mass}
+        return RubRotor(mass=m, stiffness=k, clearance=c.gap, damping=max(damp, 0.0), eccentricity=ecc,
+                        friction=c.friction, rotor_radius=c.rotor_radius, **kw)
+
+    def impossible_states(self, ys, y_final, t_final, params) -> list[str]:
+        """Sanity monitor (kernel contract item 6): runs where the rotor went through a rigid
+        stator (or a moving housing, which it strikes rigidly).
+
+        Beyond ``delta (1 + 1e-6)`` a rebound lower than the integrator resolves was missed
+        (raise the clearance's ``rest_speed``): a failed run. The clearance ``delta`` is read from
+        ``params`` (one row per run or one for all).
+        """
+        y_final = np.asarray(y_final, dtype=float)
+        n = y_final.shape[0]
+        if not self.clearances or self.clearances[0].kind == "elastic":
+            return [""] * n
+        params = np.atleast_2d(params)
+        delta = np.broadcast_to(params[:, self.layout.offsets["clearance"]], (n,))
+        ys = np.asarray(ys, dtype=float)
+        rad = np.hypot(*np.moveaxis(self.gap_vector(ys), -1, 0)) if ys.size else np.zeros((n, 0))
+        r_final = np.hypot(*self.gap_vector(y_final).T)
+        out = []
+        for i in range(n):
+            r = np.concatenate([rad[i][np.isfinite(rad[i])], [r_final[i]]])
+            worst = float(r.max())
+            if worst <= delta[i] * (1.0 + 1e-6):
+                out.append("")
+            else:
+                out.append(f"the rotor passed through the stator: gap vector {worst:.6g} m, "
+                           f"{worst - delta[i]:.3g} m beyond the clearance {delta[i]:g} m (by t = "
+                           f"{t_final[i]:.6g} s); a rebound lower than the tolerances resolve was "
+                           "missed: raise the clearance's rest_speed")
+        return out

@@ -1,0 +1,278 @@
+"""The composed machine in its co-rotating frame (a part of :class:`rotorlab.models.Machine`):
+where the structure is isotropic, without lateral gravity and at a constant speed, steady motions
+are equilibria; their linearization, the balanced ball angles and the steady states. See the
+equations in :mod:`rotorlab.models._machine`.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, replace
+
+import numpy as np
+
+from rotorlab.models._jeffcott_physics import Linearization
+from rotorlab.models._speed import ConstantSpeed
+
+__all__ = ["MachineLinearization"]
+
+
+@dataclass(frozen=True)
+class MachineLinearization(Linearization):
+    """Linearized co-rotating-frame motion about an equilibrium (constant speed).
+
+    The fields of :class:`rotorlab.models.Linearization`, here for ``q = (z_rotating, psi)``:
+    ``A`` (shape (2 n, 2 n)) the first-order Jacobian ``dy'/dy`` of ``[q, q']``; ``M``, ``C``,
+    ``G``, ``K`` (shape (n, n)) with ``M q'' + (C + G) q' + K q = 0`` (mass, damping as the
+    symmetric part of the velocity matrix, gyroscopic as its skew part, stiffness);
+    ``spin_speed`` Omega (rad/s); ``residual`` the rotating-frame dy/dt at the state (zero at an
+    equilibrium). Adds :attr:`is_stable`.
+    """
+
+    @property
+    def is_stable(self) -> bool:
+        """All eigenvalues in the open left half-plane, up to round-off (zero modes excluded)."""
+        lam = self.eigenvalues
+        scale = max(np.abs(lam).max(), 1.0)
+        return bool(np.all(lam.real < 1e-9 * scale))
+
+
+class _RotatingFrame:
+    """Co-rotating frame, linearization and steady states of a :class:`Machine` (mixed in)."""
+
+    # ------------------------------------------------------------------ co-rotating frame
+    @property
+    def has_rotating_frame(self) -> bool:
+        """True where steady motions are equilibria of the co-rotating frame.
+
+        Needs an isotropic structure, no lateral gravity and a constant prescribed speed.
+        """
+        return (self.structure.is_isotropic and not self.is_motor and not self.has_friction
+                and isinstance(self.drive, ConstantSpeed) and self.lateral_gravity == (0.0, 0.0))
+
+    def why_no_rotating_frame(self) -> str | None:
+        """The reason the co-rotating frame has no equilibria, or None if it has."""
+        if self.has_friction:
+            return ("the balls have Coulomb or rolling friction (stick-slip): steady motions are "
+                    "not equilibria of a smooth system; simulate instead")
+        if not self.structure.is_isotropic:
+            return ("the structure is anisotropic (its supports differ in x and y): the balls "
+                    "and the rotor never reach a steady motion; simulate instead")
+        if self.lateral_gravity != (0.0, 0.0):
+            return ("gravity acts across the axis: the balls are pulled down once per "
+                    "revolution, so there is no steady motion; simulate instead")
+        if self.is_motor or not isinstance(self.drive, ConstantSpeed):
+            return "the spin speed is not constant (steady motions need a ConstantSpeed drive)"
+        return None
+
+    def _require_rotating(self) -> float:
+        why = self.why_no_rotating_frame()
+        if why is not None:
+            raise ValueError(f"no co-rotating equilibria: {why}")
+        return float(self.drive.speed)
+
+    def _rot_pairs(self, a: np.ndarray, om: float) -> np.ndarray:
+        """Apply ``Omega J`` (J = [[0, -1], [1, 0]]) to each (even, odd) coordinate pair."""
+        out = np.empty_like(a)
+        out[..., 0::2] = -om * a[..., 1::2]
+        out[..., 1::2] = om * a[..., 0::2]
+        return out
+
+    def rotating_to_fixed(self, yr) -> np.ndarray:
+        """Convert a co-rotating state ``[z_r, z_r', psi, psi']`` to the fixed frame at t = 0."""
+        om = self._require_rotating()
+        lay = self.layout
+        nz, nb = lay.n_z, lay.n_balls
+        yr = np.asarray(yr, dtype=float)
+        y = np.zeros(lay.n_state)
+        y[:nz] = yr[:nz]
+        y[nz:2 * nz] = yr[nz:2 * nz] + self._rot_pairs(yr[:nz], om)
+        y[lay.i_phi:lay.i_phi + nb] = yr[2 * nz:2 * nz + nb]
+        y[lay.i_w:lay.i_w + nb] = yr[2 * nz + nb:2 * nz + 2 * nb] + om
+        return y
+
+    def rotating_rhs(self, yr) -> np.ndarray:
+        """Return d/dt of a co-rotating state ``[z_r, z_r', psi, psi']`` (autonomous).
+
+        Evaluated through the compiled fixed-frame kernel at t = 0 (theta = 0), where the frames
+        coincide: ``u'' = x'' - 2 Omega J u' + Omega^2 u``, ``psi'' = phi''``.
+        """
+        om = self._require_rotating()
+        lay = self.layout
+        nz, nb = lay.n_z, lay.n_balls
+        yr = np.asarray(yr, dtype=float)
+        f = self.rhs(0.0, self.rotating_to_fixed(yr))
+        out = np.empty(2 * nz + 2 * nb)
+        out[:nz] = yr[nz:2 * nz]
+        out[nz:2 * nz] = f[nz:2 * nz] - 2.0 * self._rot_pairs(yr[nz:2 * nz], om) + om * om * yr[:nz]
+        out[2 * nz:2 * nz + nb] = yr[2 * nz + nb:2 * nz + 2 * nb]
+        out[2 * nz + nb:] = f[lay.i_w:lay.i_w + nb]
+        return out
+
+    def linearize(self, yr) -> MachineLinearization:
+        """Linearize the co-rotating equations about ``yr`` (velocities taken as given).
+
+        The Jacobian is a fourth-order central difference of :meth:`rotating_rhs` (relative
+        accuracy about 1e-10 on the scale of the entries).
+        """
+        om = self._require_rotating()
+        yr = np.asarray(yr, dtype=float)
+        n = yr.size
+        A = np.empty((n, n))
+        for j in range(n):
+            h = self._fd_step(j, om)
+            e = np.zeros(n)
+            e[j] = h
+            f1 = self.rotating_rhs(yr + e) - self.rotating_rhs(yr - e)
+            f2 = self.rotating_rhs(yr + 2 * e) - self.rotating_rhs(yr - 2 * e)
+            A[:, j] = (8.0 * f1 - f2) / (12.0 * h)
+        half = n // 2
+        Mf = self.mass_matrix(self.rotating_to_fixed(yr))[: half, : half]
+        K = -Mf @ A[half:, :half]
+        D = -Mf @ A[half:, half:]
+        return MachineLinearization(A=A, M=Mf, C=0.5 * (D + D.T), G=0.5 * (D - D.T), K=K,
+                                    spin_speed=om, residual=self.rotating_rhs(yr))
+
+    def _fd_step(self, j: int, om: float) -> float:
+        """Finite-difference step of co-rotating state entry j (m, m/s, rad or rad/s)."""
+        nz = self.n_coordinates
+        if j >= 2 * nz:
+            return 1e-3  # ball angles (rad) and rates (rad/s)
+        u = sum(x.mass_eccentricity for x in self.unbalances) + sum(r.capacity for r in self.races)
+        zs = max(u / max(self.structure.total_mass, 1e-300), 1e-12)
+        return 1e-3 * zs * (1.0 if j < nz else max(abs(om), 1.0))
+
+    def balance_residual(self, ball_angles) -> np.ndarray:
+        """Return the generalised force of the locked balls and unbalances per Omega^2 (kg m).
+
+        ``sum_b m_b l_b B_r^T e_b + sum_u U B_u^T e_u`` at theta = 0: zero in a balanced state.
+        """
+        psi = np.asarray(ball_angles, dtype=float).reshape(-1)
+        m, l, J, c, race = self._ball_arrays
+        st = self._stations
+        f = np.zeros(self.n_coordinates)
+        for b in range(psi.size):
+            f += m[b] * l[b] * (st[race[b]].T @ np.array([math.cos(psi[b]), math.sin(psi[b])]))
+        for u, un in enumerate(self.unbalances):
+            f += un.mass_eccentricity * (st[len(self.races) + u].T @ np.array([math.cos(un.phase), math.sin(un.phase)]))
+        return f
+
+    def balanced_angles(self, guess=None, *, starts: int = 16, seed: int = 0) -> np.ndarray | None:
+        """Return ball angles that cancel the unbalance exactly, or None if the balls cannot.
+
+        Solves ``balance_residual(psi) = 0`` (least squares from ``guess`` and ``starts`` random
+        starts; accepted below 1e-10 of the unbalance scale).
+        """
+        from scipy.optimize import least_squares
+
+        nb = self.n_balls
+        if nb == 0:
+            return None
+        scale = max(sum(u.mass_eccentricity for u in self.unbalances), 1e-300)
+        rng = np.random.default_rng(seed)
+        tries = ([np.asarray(guess, float)] if guess is not None else []) + \
+            [rng.uniform(0, 2 * np.pi, nb) for _ in range(starts)]
+        for x0 in tries:
+            res = least_squares(lambda a: self.balance_residual(a) / scale, x0, xtol=1e-15,
+                                ftol=1e-15, gtol=1e-15)
+            if np.max(np.abs(res.fun)) < 1e-10:
+                return np.mod(res.x, 2 * np.pi)
+        return None
+
+    def balanced_state(self, ball_angles=None) -> np.ndarray:
+        """Return the co-rotating state of the balanced machine: z = 0, balls at rest at their angles.
+
+        Raises
+        ------
+        ValueError
+            If the balls cannot cancel the unbalance or there is no co-rotating frame.
+        """
+        self._require_rotating()
+        psi = self.balanced_angles() if ball_angles is None else np.asarray(ball_angles, float)
+        if psi is None:
+            raise ValueError("the balls cannot cancel the unbalance (capacity too small or "
+                             "races in the wrong planes)")
+        nz, nb = self.n_coordinates, self.n_balls
+        y = np.zeros(2 * nz + 2 * nb)
+        y[2 * nz:2 * nz + nb] = psi
+        return y
+
+    def steady_state(self, ball_angles=None, *, starts: int = 16, seed: int = 0,
+                     near=None) -> np.ndarray | None:
+        """Return a co-rotating equilibrium (a steady motion), balanced or not, or None.
+
+        Starts from the balanced state when the balls can cancel the unbalance, else from the
+        ball angles that cancel most of it (least squares) with the structure on its locked
+        response, and solves ``rotating_rhs(y) = 0`` for the positions (velocities zero) with
+        SciPy's hybrid Powell method (Levenberg-Marquardt where it stalls), from each of the
+        distinct best partial balances (mirror images); ``near`` (a co-rotating state, e.g. the
+        steady motion at a neighbouring speed) is tried first as the start.
+        """
+        from scipy.optimize import least_squares, root
+
+        om = self._require_rotating()
+        nz, nb = self.n_coordinates, self.n_balls
+        psi = self.balanced_angles(ball_angles, starts=starts, seed=seed)
+        if psi is not None:
+            return self.balanced_state(psi)
+        scale = max(sum(u.mass_eccentricity for u in self.unbalances), 1e-300)
+        rng = np.random.default_rng(seed)
+        guesses = ([np.asarray(ball_angles, float)] if ball_angles is not None else []) + \
+            [rng.uniform(0, 2 * np.pi, nb) for _ in range(starts)]
+        fits = sorted((least_squares(lambda a: self.balance_residual(a) / scale, g) for g in guesses),
+                      key=lambda r: r.cost) if nb else []
+        # the best partial balances (distinct ball layouts of the least cost; mirror images of
+        # each other): the equilibrium solver may converge from one and not from the other
+        layouts = [np.zeros(0)] if not fits else []
+        for fit in fits:
+            if fit.cost > fits[0].cost + 1e-10 * max(fits[0].cost, 1e-300) + 1e-20:
+                break
+            if all(np.max(np.abs(np.angle(np.exp(1j * (fit.x - q))))) > 1e-6 for q in layouts):
+                layouts.append(fit.x)
+        K0 = self.reduced["K"] - om * om * self._m0()
+
+        def residual(x):
+            y = np.zeros(2 * nz + 2 * nb)
+            y[:nz], y[2 * nz:2 * nz + nb] = x[:nz], x[nz:]
+            f = self.rotating_rhs(y)
+            return np.concatenate([f[nz:2 * nz], f[2 * nz + nb:]])
+
+        starts_x = [np.concatenate([np.linalg.lstsq(K0, om * om * self.balance_residual(q), rcond=None)[0], q])
+                    for q in layouts[:4]]
+        if near is not None:
+            near = np.asarray(near, dtype=float)
+            starts_x.insert(0, np.concatenate([near[:nz], near[2 * nz:2 * nz + nb]]))
+        zs = max(scale / max(self.structure.total_mass, 1e-300), 1e-300)
+        for x0 in starts_x:
+            sol = root(residual, x0, method="hybr", options={"xtol": 1e-13})
+            if np.max(np.abs(residual(sol.x))) > 1e-9 * zs * max(1.0, om * om):
+                sol = root(residual, x0, method="lm", options={"xtol": 1e-15, "ftol": 1e-15})
+            if np.max(np.abs(residual(sol.x))) <= 1e-9 * zs * max(1.0, om * om):
+                y = np.zeros(2 * nz + 2 * nb)
+                y[:nz], y[2 * nz:2 * nz + nb] = sol.x[:nz], sol.x[nz:]
+                return y
+        return None
+
+    def reduction_change(self, spin_speed: float) -> float:
+        """Relative change of the locked-ball unbalance response when ``n_modes`` doubles.
+
+        Returns ``max |q_2n - q_n| / max |q_2n|`` over the node translations of the steady
+        response to the unbalances (balls at rest in their races, treated as point masses on
+        the structure) at ``spin_speed``; 0 for an unreduced structure.
+        """
+        if self.n_modes is None:
+            return 0.0
+        big = replace(self, n_modes=min(2 * self.n_modes, self.structure.n_dof))
+        a = self._locked_response(spin_speed)
+        b = big._locked_response(spin_speed)
+        return float(np.max(np.abs(a - b)) / max(np.max(np.abs(b)), 1e-300))
+
+    def _locked_response(self, om: float) -> np.ndarray:
+        red = self.reduced
+        D = red["K"] + 1j * om * (red["C"] + om * red["G"]) - om * om * self._m0()
+        f = np.zeros(self.n_coordinates, dtype=complex)
+        st = self._stations
+        for u, un in enumerate(self.unbalances):
+            f += un.mass_eccentricity * om * om * np.exp(1j * un.phase) * (st[len(self.races) + u].T @ np.array([1.0, -1j]))
+        q = self.basis @ np.linalg.solve(D, f)
+        return np.concatenate([q[0::4], q[1::4]])
