@@ -69,14 +69,18 @@ def bench_case():
         params=params, save_at=SaveAt(ts=np.linspace(0.0, 1.0, 6)),
         control=StepControl(rtol=1e-8, atol=1e-10),
     )  # fmt: skip
-    scalar = solve_ensemble(BENCH_KERNELS, _bench_y0(idx), (0.0, t1), threads=2, **kw)
+    scalar = solve_ensemble(BENCH_KERNELS, _bench_y0(idx), (0.0, t1), threads=2, lanes=None, **kw)
+    assert scalar.driver == "scalar"
     return idx, t1, kw, scalar
 
 
-def test_bench_lanes_bit_identical_to_scalar(bench_case):
+@pytest.mark.parametrize("width", [8, 16])
+def test_bench_lanes_bit_identical_to_scalar(bench_case, width):
+    """Both widths the driver chooses (16 for kernels of at most 8 states, else 8)."""
     idx, t1, kw, scalar = bench_case
     assert np.all(scalar.status == Status.SUCCESS)
-    lanes = solve_ensemble(BENCH_KERNELS, _bench_y0(idx), (0.0, t1), threads=2, lanes=8, **kw)
+    lanes = solve_ensemble(BENCH_KERNELS, _bench_y0(idx), (0.0, t1), threads=2, lanes=width, **kw)
+    assert lanes.driver == f"lanes{width}"
     assert_same(lanes, scalar)
 
 

@@ -20,14 +20,25 @@ from rotorlab.integrate._codegen import build
 __all__ = ["driver", "check_lanes", "default_lanes", "is_vectorised"]
 
 DEFAULT_LANES = 8  # a multiple of the SIMD width in doubles: 4 (AVX2), 8 (AVX-512)
+WIDE_LANES = 16
+"""Lane width for small kernels (at most :data:`WIDE_STATES` states): two registers of AVX-512
+per value give the out-of-order core two independent chains and halve the driver's per-lane
+bookkeeping per step. Measured at one thread (``bench/README.md``, issue 11): benchmark kernel
+0.90 of the CPU time at 8 lanes, the toroidal ball's basin 0.77; larger kernels (the machine's)
+already spill registers at 8 lanes."""
+WIDE_STATES = 8
 
 
 def default_lanes(kernels, n_traj):
-    """The lane width ``lanes="auto"`` chooses: :data:`DEFAULT_LANES` for an ensemble (more than
-    one trajectory), else None (one trajectory: the scalar driver). Events, resets and modes run
-    on lanes too; a kernel that does not vectorise (``Kernels.vectorises`` False) gives the same
-    numbers there, at about scalar speed."""
-    return DEFAULT_LANES if n_traj > 1 else None
+    """The lane width ``lanes="auto"`` chooses for an ensemble (more than one trajectory):
+    :data:`WIDE_LANES` for a kernel of at most :data:`WIDE_STATES` states, else
+    :data:`DEFAULT_LANES`; None for one trajectory (the scalar driver). Events, resets and modes
+    run on lanes too; a kernel that does not vectorise (``Kernels.vectorises`` False) gives the
+    same numbers there, at about scalar speed. The width never changes a result (lanes are
+    independent)."""
+    if n_traj <= 1:
+        return None
+    return WIDE_LANES if kernels.n_state <= WIDE_STATES else DEFAULT_LANES
 
 
 def check_lanes(lanes):
@@ -62,20 +73,27 @@ def driver(kernels, lanes, serial):
     if lanes is None:
         ns = build("rotorlab.integrate._core", _roles(kernels))
         return ns["integrate_serial" if serial else "integrate_ensemble"]
-    ns = build("rotorlab.integrate._lanes", _roles(kernels), {"LANES": int(lanes), "N_STATE": kernels.n_state})
+    ns = build("rotorlab.integrate._lanes", _roles(kernels), _lane_consts(kernels, lanes))
     return ns["integrate_lanes_serial" if serial else "integrate_lanes"]
 
 
-def is_vectorised(kernels, lanes=8):
+def _lane_consts(kernels, lanes):
+    """The compile-time constants of the lane driver's copy for these kernels."""
+    return {"LANES": int(lanes), "N_STATE": kernels.n_state, "INLINE_RHS": int(bool(kernels.inline_lanes))}
+
+
+def is_vectorised(kernels, lanes=None):
     """Report whether LLVM vectorises the model's ``rhs`` across ``lanes`` lanes on this CPU.
 
     Compiles (without caching, a few seconds) the loop over lanes that the lane driver runs for
-    each stage and inspects its optimised LLVM IR.
+    each stage, inlined or called as the driver does it (``Kernels.inline_lanes``), and inspects
+    its optimised LLVM IR.
 
     Parameters
     ----------
     kernels : Kernels
-    lanes : int
+    lanes : int, optional
+        Lane width; default the one the driver chooses for an ensemble (:func:`default_lanes`).
 
     Returns
     -------
@@ -90,7 +108,8 @@ def is_vectorised(kernels, lanes=8):
 
     from rotorlab.integrate._codegen import _in_memory
 
-    ns = _in_memory("rotorlab.integrate._lanes", _roles(kernels), {"LANES": lanes, "N_STATE": kernels.n_state})
+    lanes = default_lanes(kernels, 2) if lanes is None else lanes
+    ns = _in_memory("rotorlab.integrate._lanes", _roles(kernels), _lane_consts(kernels, lanes))
     probe = ns["_probe"]
     W = np.zeros(ns["_W_SIZE"])
     PL = np.zeros(lanes)

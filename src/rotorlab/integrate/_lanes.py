@@ -73,7 +73,7 @@ from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
 from rotorlab.integrate import _core
 from rotorlab.integrate._core import (
     ACT_OFF, MAX_STEPS, NONFINITE, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NREJECT, STEP_UNDERFLOW,
-    SUCCESS, _all_finite, _dense, _own, with_kernels,
+    SUCCESS, _all_finite, _crosses, _dense, _own, with_kernels,
 )  # fmt: skip
 from rotorlab.integrate._tableau import (
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65,
@@ -209,11 +209,18 @@ def _fetch_add(typingctx, counter, delta):
     return types.int64(counter, delta), codegen
 
 
-# Not inlined into the worker: inlined (numba-IR level) the machine's generated kernels no longer
-# vectorised (tests/unit/test_machine.py::test_kernel_vectorises_in_the_lane_driver; the
-# benchmark and jeffcott_balls kernels did, 0.234 -> 0.215 CPU-s on the benchmark). Called from
-# one site of the worker's stage loop, with constant rows: compiled once per driver.
-@njit(cache=True, nogil=True, error_model="numpy")
+INLINE_RHS = 0  # @const INLINE_RHS
+"""1: the loop over lanes that calls the kernel is inlined into the worker (set per generated copy
+from ``Kernels.inline_lanes``, see :mod:`rotorlab.integrate._drivers`)."""
+
+
+# Called from one site of the worker's stage loop, with constant rows: compiled once per driver.
+# Inlined into the worker (numba-IR level) where INLINE_RHS says so: the kernel's constants
+# (broadcast coefficients, sincos's polynomial) then stay in registers across the stages instead
+# of being reloaded by six calls a step (benchmark kernel, one thread: 0.68x the CPU time, same
+# bits). Large kernels (the machine's generated ones, hundreds of parameter loads) no longer
+# vectorise when inlined, so they keep the call (Kernels.inline_lanes = False).
+@njit(cache=True, nogil=True, error_model="numpy", inline="always" if INLINE_RHS else "never")
 def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
     """``K[:, l] = rhs(t[l], Y[:, l], p[:, l])`` for every lane, rows of the workspace ``W``.
 
@@ -583,6 +590,19 @@ def _worker(counter, inputs, settings, event_table, outputs):
             _events_lanes(W, _tn, _YN, g_end, PL, nl, ne)
             for lane in range(L):
                 if W[_M + lane] == 0.0:
+                    continue
+                # A step in which no active event function changes sign in its direction and
+                # none starts at zero has no event: _events_in_step would only hand g_new back
+                # (nothing located, counted or recorded). Taking that exit here spares the call
+                # (two dozen array arguments) in the steps of every lane without an event.
+                quiet = True
+                for k in range(n_ev):
+                    ga = g_old[lane * ne + k]
+                    if ev_act[k] != ACT_OFF and (ga == 0.0 or _crosses(ga, g_end[k * L + lane], ev_dir[k])):
+                        quiet = False
+                if quiet:
+                    for k in range(n_ev):
+                        g_old[lane * ne + k] = g_end[k * L + lane]
                     continue
                 for k in range(n_ev):
                     g_new[k] = g_end[k * L + lane]

@@ -130,6 +130,12 @@ class Kernels:
         One per event function, in the order ``events`` fills ``g``.
     vectorises : bool
         True if ``rhs`` is lane-friendly (vectorised by the lane driver, checked by the tests).
+    inline_lanes : bool
+        True (the default): the lane driver inlines its loop over lanes that calls ``rhs`` into
+        its step loop (faster: the kernel's constants stay in registers across the stages).
+        False keeps it a call, for kernels that LLVM no longer vectorises inlined (the machine's
+        generated kernels, with hundreds of parameter loads); ``tests/unit/test_vectorise.py``
+        checks each kernel as its driver compiles it. Same results either way, bit for bit.
     """
 
     rhs: Any
@@ -139,6 +145,7 @@ class Kernels:
     reset: Any = no_reset
     event_specs: tuple[EventSpec, ...] = ()
     vectorises: bool = False
+    inline_lanes: bool = True
 
     def __post_init__(self) -> None:
         if self.n_state < 1:

@@ -267,7 +267,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame):
             if self.clearances:
                 self._cache["kernels"] = Kernels(
                     rhs=mod.rhs, n_state=self.n_state, n_discrete=self.layout.n_discrete,
-                    events=mod.events, reset=mod.reset, vectorises=True,
+                    events=mod.events, reset=mod.reset, vectorises=True, inline_lanes=self._inline_lanes,
                     event_specs=tuple(EventSpec(n, -1, "reset") for n in CLEARANCE_EVENTS))
             elif self.has_friction:
                 specs = []
@@ -275,10 +275,23 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame):
                     specs += [EventSpec(f"stick_{name}", -1, "reset"), EventSpec(f"slip_{name}", -1, "reset")]
                 self._cache["kernels"] = Kernels(
                     rhs=mod.rhs, n_state=self.n_state, n_discrete=self.layout.n_discrete,
-                    events=mod.events, reset=mod.reset, vectorises=True, event_specs=tuple(specs))
+                    events=mod.events, reset=mod.reset, vectorises=True, event_specs=tuple(specs),
+                    inline_lanes=self._inline_lanes)
             else:
-                self._cache["kernels"] = Kernels(rhs=mod.rhs, n_state=self.n_state, vectorises=True)
+                self._cache["kernels"] = Kernels(rhs=mod.rhs, n_state=self.n_state, vectorises=True,
+                                                 inline_lanes=self._inline_lanes)
         return self._cache["kernels"]
+
+    @property
+    def _inline_lanes(self) -> bool:
+        """Whether the lane driver inlines this machine's kernel (``Kernels.inline_lanes``).
+
+        Measured with :func:`rotorlab.integrate._drivers.is_vectorised`: inlined, the generated
+        kernels of up to 12 states (the planar machine, a two-plane rigid rotor with one ball per
+        race) still vectorise, an 18-state two-plane rotor with two balls per race does not (it
+        does as a call). ``tests/unit/test_vectorise.py`` checks machines on both sides.
+        """
+        return self.n_state <= 12
 
     @property
     def coordinate_names(self) -> tuple[str, ...]:
