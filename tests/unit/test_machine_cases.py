@@ -99,3 +99,48 @@ def test_readme_machine_case_and_python_example():
         exec(compile(code, "README", "exec"), {})  # noqa: S102
     # 314 rad/s against a critical speed sqrt(2e5 / 8.04) = 158 rad/s: above it, stable
     assert out.getvalue().strip() == "True"
+
+
+FE_MACHINE = """
+schema_version = 1
+name = "fe-machine"
+
+[model]
+type = "machine"
+
+[model.structure]
+type = "fe_rotor"
+material = { youngs_modulus = "211 GPa", shear_modulus = "81.2 GPa", density = "7810 kg/m^3" }
+shaft = [{ length = "1.5 m", outer_diameter = "50 mm", elements = 12 }]
+discs = [{ name = "disc", position = "0.75 m", outer_diameter = "280 mm", width = "70 mm", inner_diameter = "50 mm" }]
+bearings = [{ name = "A", position = "0 m", kxx = "1 MN/m" }, { name = "B", position = "1.5 m", kxx = "1 MN/m" }]
+
+[[model.races]]
+at = "disc"
+radius = "100 mm"
+balls = [{ mass = "20 g", count = 2 }]
+
+[model.drive]
+profile = "constant"
+speed = "3000 rpm"
+"""
+
+
+def test_n_modes_the_machine_cannot_take_is_a_case_error_not_a_crash(tmp_path):
+    """What ``Machine`` refuses about ``n_modes`` is refused by the case with its key path and
+    exit code 2 (before, the model raised on build: 'internal error', exit code 1): an odd count on
+    an isotropic structure (its modes come in x/y pairs), and none for a structure with more DOFs
+    than the compiled kernel takes (12 Timoshenko elements: 13 nodes x 4 = 52 DOFs > 40)."""
+    with pytest.raises(CaseError) as err:
+        load_case("pico21-balancer", overrides={"model.n_modes": 3})
+    assert "model.n_modes = 3: must be even for an isotropic structure" in str(err.value)
+    assert load_case("pico21-balancer", overrides={"model.n_modes": 4}).model.n_modes == 4
+    with pytest.raises(CaseError) as err:
+        parse_case(FE_MACHINE)
+    assert "model.n_modes: required: the structure has 52 DOFs" in str(err.value)
+    assert parse_case(FE_MACHINE.replace('type = "machine"\n', 'type = "machine"\nn_modes = 8\n')).model.n_modes == 8
+    path = tmp_path / "fe.toml"
+    path.write_text(FE_MACHINE)
+    for args in (["validate", str(path)], ["simulate", "pico21-balancer", "--set", "model.n_modes=3"]):
+        res = CliRunner().invoke(app, args)
+        assert res.exit_code == 2 and "model.n_modes" in res.output and "internal error" not in res.output
