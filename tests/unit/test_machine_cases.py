@@ -90,6 +90,16 @@ def test_readme_machine_case_and_python_example():
     (toml,) = re.findall(r"^```toml\n(.*?)^```", sec, re.S | re.M)
     case = parse_case(toml)
     assert case.model.type == "machine" and [a.type for a in case.analyses] == ["stability-chart", "simulate"]
+    # its start-ups balance as the README promises: each start ends in the balanced state of two
+    # equal balls, U + 2 m l cos(psi) = 0 (psi = +-128.68 deg for U = 1.5 g m, m = 20 g, l = 60 mm),
+    # which the slowest ball mode (Re = -2.49 1/s at 3000 rpm) reaches well within t_end = 4 s
+    (ball,) = case.model.races[0].balls[:1]
+    psi = np.arccos(-case.model.unbalances[0].magnitude / (2 * ball.mass * case.model.races[0].radius))
+    assert np.degrees(psi) == pytest.approx(128.68, abs=0.01)
+    start_up = run_analysis(case.model, case.analysis("start-up"))
+    rows = summarize(start_up)
+    assert [r["outcome"] for r in rows] == ["balanced", "balanced"] and all(r["status"] == 0 for r in rows)
+    np.testing.assert_allclose(np.sort(np.abs(start_up.final_ball_angle.values), axis=1), psi, atol=1e-6)
     (code,) = re.findall(r"^```python\n(.*?)^```", sec, re.S | re.M)
     import contextlib
     import io
