@@ -292,10 +292,17 @@ def machine_figures(ds: Any, name: str) -> dict[str, Any]:
         return {f"{name}-stability": fig}
     if kind == "run-up":
         fig, (a1, a2) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
-        for i in range(ds.sizes["ic"]):
-            a1.plot(ds.time.values, ds.speed.values[i] * _RPM, label=f"start {i}")
-            for s in ds.station.values:
-                a2.plot(ds.time.values, ds.amplitude.sel(station=s).values[i] * 1e3, label=f"{s}, start {i}")
+        # the start that ends with the largest vibration is drawn first, so that a balanced
+        # start's thin band is not hidden under an unbalanced one's (same colour per start)
+        residual = np.asarray(ds.residual_amplitude.values, dtype=float).reshape(ds.sizes["ic"], -1)
+        order = np.argsort(-residual.max(axis=1), kind="stable")
+        for rank, i in enumerate(order):
+            colour = f"C{i % 10}"
+            a1.plot(ds.time.values, ds.speed.values[i] * _RPM, color=colour, label=f"start {i}")
+            for k, s in enumerate(ds.station.values):
+                a2.plot(ds.time.values, ds.amplitude.sel(station=s).values[i] * 1e3, color=colour,
+                        ls=("-", "--", ":", "-.")[k % 4], zorder=2 + rank,
+                        label=f"{s}, start {i}: {ds.outcome.values[i]}")
         for w in ds.attrs["critical_speeds"]:
             a1.axhline(w * _RPM, color="r", lw=0.6, ls="--")
         a1.set_ylabel("speed (rpm)")
