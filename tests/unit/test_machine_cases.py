@@ -154,3 +154,21 @@ def test_n_modes_the_machine_cannot_take_is_a_case_error_not_a_crash(tmp_path):
     for args in (["validate", str(path)], ["simulate", "pico21-balancer", "--set", "model.n_modes=3"]):
         res = CliRunner().invoke(app, args)
         assert res.exit_code == 2 and "model.n_modes" in res.output and "internal error" not in res.output
+
+
+def test_derived_quantities_give_the_static_unbalance_and_the_reduction_check():
+    """Pico 21's unbalances: 50 g mm static plus a couple of 20 g mm at phases 90 and 270 deg
+    (at +-15 mm): the static resultant a race must cancel is |50 + 20 i - 20 i| = 50 g mm, not the
+    sum of magnitudes 90 g mm; its structure is reduced to 6 modes, and the report says how much
+    the unbalance response at the drive speed moves when they double (the case file: 2.8 %)."""
+    from rotorlab.analyses import build_model
+    from rotorlab.analyses._machine_common import machine_quantities
+
+    case = load_case("pico21-balancer")
+    rows = {r["quantity"]: r["value"] for r in machine_quantities(case.model)}
+    assert rows["static unbalance |sum m e exp(i phase)|"] == pytest.approx(50e-6, rel=1e-12)
+    change = rows["change of the unbalance response at the drive speed when n_modes = 6 doubles"]
+    assert change == build_model(case.model).reduction_change(10000 * np.pi / 30)
+    assert 0.02 < change < 0.03
+    rows = {r["quantity"] for r in machine_quantities(load_case("rcfw-two-plane").model)}
+    assert not any("n_modes" in q for q in rows)  # unreduced: nothing to check
