@@ -172,3 +172,23 @@ def test_derived_quantities_give_the_static_unbalance_and_the_reduction_check():
     assert 0.02 < change < 0.03
     rows = {r["quantity"] for r in machine_quantities(load_case("rcfw-two-plane").model)}
     assert not any("n_modes" in q for q in rows)  # unreduced: nothing to check
+
+
+def test_a_stability_chart_verdict_does_not_depend_on_the_speeds_before_it():
+    """Several partly balanced steady motions coexist (Pico 21 with one race: the couple is left);
+    each speed of a chart is solved on its own, so 2300 rpm gets the same motion and verdict in a
+    chart from 1300 rpm as alone (continuing the motion from speed to speed stayed on an unstable
+    branch from 1700 to 2400 rpm while the motion found at each speed alone is stable there)."""
+    case = load_case("pico21-balancer")
+    one = case.analysis("stability-one-race")
+
+    def chart(lo, hi, n):
+        a = one.model_copy(update={"speeds": (lo * np.pi / 30, hi * np.pi / 30, n)})
+        return {round(r["speed"] * 30 / np.pi): r for r in summarize(run_analysis(case.model, a))}
+
+    long, alone = chart(1300, 2400, 12), chart(2300, 2400, 2)
+    for rpm in (2300, 2400):
+        assert long[rpm]["exists"] and alone[rpm]["exists"]
+        assert long[rpm]["stable"] == alone[rpm]["stable"]
+        np.testing.assert_allclose(long[rpm]["ball_angles_deg"]["race 0"], alone[rpm]["ball_angles_deg"]["race 0"],
+                                   atol=1e-6)
