@@ -238,8 +238,8 @@ MACHINE = [
      ["analysis[1].speeds", ">= 1"]),
     ("mc-negative-t-end", ["validate", FILE], ("washer-horizontal", 't_end = "40 s"', 't_end = "-40 s"'),
      ["analysis[0].t_end", "> 0"]),
-    ("mc-steady-under-gravity", ["validate", FILE], ("washer-horizontal", "n_save = 800\n",
-                                                      'n_save = 800\n\n[[analysis]]\ntype = "steady"\n'
+    ("mc-steady-under-gravity", ["validate", FILE], ("washer-horizontal", "n_save = 8000\n",
+                                                      'n_save = 8000\n\n[[analysis]]\ntype = "steady"\n'
                                                       'speed = "100 rad/s"\n'),
      ["analysis[1].type", "gravity acts across the axis", "simulate"]),
     ("run-up-no-analysis", ["run-up", "pico21"], None, ["no run-up analysis"]),
@@ -253,7 +253,7 @@ MACHINE = [
                                                    'initial_ball_angles = [["-100 deg", "-80 deg"], ["-90 deg", "-90 deg"]]',
                                                    "initial_ball_angles = []"),
      ["analysis[1].initial_ball_angles", "empty"]),
-    ("mc-n-save-absurd", ["run", FILE, "--out", "{d}/o"], ("washer-horizontal", "n_save = 800", "n_save = 1e12"),
+    ("mc-n-save-absurd", ["run", FILE, "--out", "{d}/o"], ("washer-horizontal", "n_save = 8000", "n_save = 1e12"),
      ["n_save = 1000000000000", "memory"]),
     ("mc-unknown-key", ["validate", FILE], ("washer-horizontal", 'stall_torque = "10 N*m"',
                                              'stall_torque = "10 N*m"\nstall_torq = 3'),

@@ -178,3 +178,33 @@ def test_the_unit_an_angle_was_written_in_is_recorded_from_the_case_and_the_comm
     assert _input_units(spec, "psi_1=0:6.1:8", None, ["psi_3=2 rad"]) == {"psi_1": "rad", "psi_2": "deg",
                                                                          "psi_3": "rad"}
     assert _input_units(None, "psi_2=0:350deg:8", "dpsi_1=0:1:2", None) == {"psi_2": "deg"}
+
+
+def test_a_balanced_run_up_start_is_drawn_over_an_unbalanced_one():
+    """The machine run-up figure: the start that ends with the smallest residual vibration is
+    drawn last (on top), so that its thin band shows inside a larger one; each start keeps one
+    colour in both panels and its outcome in the legend (washer-horizontal: the balanced start 0
+    was hidden under start 1's 10 mm band)."""
+    import numpy as np
+    import xarray as xr
+
+    from rotorlab.report._machine import machine_figures
+
+    t = np.linspace(0.0, 1.0, 50)
+    amp = np.stack([0.016 + 3e-5 * np.sin(40 * t), 0.016 + 0.01 * np.sin(40 * t)])[..., None]
+    ds = xr.Dataset(
+        {"speed": (("ic", "time"), np.stack([100 * t, 80 * t])),
+         "amplitude": (("ic", "time", "station"), amp),
+         "residual_amplitude": (("ic", "station"), np.array([[3e-5], [1e-2]])),
+         "outcome": (("ic",), np.array(["balanced", "non-synchronous"]))},
+        coords={"time": t, "station": ["drum"]},
+        attrs={"analysis": "run-up", "critical_speeds": np.array([25.0])})
+    fig = machine_figures(ds, "up")["up-run-up"]
+    speed_ax, vib_ax = fig.axes
+    lines = {ln.get_label(): ln for ln in vib_ax.get_lines()}
+    top = max(lines.values(), key=lambda ln: ln.get_zorder())
+    assert top.get_label() == "drum, start 0: balanced"
+    assert lines["drum, start 1: non-synchronous"].get_zorder() < top.get_zorder()
+    colours = {ln.get_label(): ln.get_color() for ln in speed_ax.get_lines() if ln.get_label().startswith("start")}
+    assert colours["start 0"] == top.get_color()
+    assert colours["start 1"] == lines["drum, start 1: non-synchronous"].get_color() != top.get_color()

@@ -34,6 +34,12 @@ EDITS = [
     ("friswell-rotor", "model.bearings[1].kxx", "3 MN/m", ('position = "1.5 m"\nkxx = "1 MN/m"',
                                                            'position = "1.5 m"\nkxx = "3 MN/m"')),
     ("krasnov-crusher", "model.housing.gap", "6 mm", ('gap = "4.5 mm"', 'gap = "6 mm"')),
+    # the machine model (issue 12): a race's plane, a ball entry written with count = 2, the motor
+    ("pico21-balancer", "model.races[1].axial_offset", "20 mm", ('axial_offset = "30 mm"', 'axial_offset = "20 mm"')),
+    ("rcfw-two-plane", "model.races[0].balls[0].mass", "0.025 kg",
+     ('axial_offset = "2 m"\nradius = "1 m"\nballs = [{ mass = "0.005 kg"',
+      'axial_offset = "2 m"\nradius = "1 m"\nballs = [{ mass = "0.025 kg"')),
+    ("washer-horizontal", "model.drive.stall_torque", "5 N*m", ('stall_torque = "10 N*m"', 'stall_torque = "5 N*m"')),
 ]
 
 

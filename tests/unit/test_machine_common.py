@@ -274,6 +274,10 @@ def test_sweep_over_any_number_of_the_model_by_key_path(tmp_path):
     key = "model.unbalances[0].magnitude"
     np.testing.assert_allclose(ds[key].values, [0.01, 0.06], rtol=1e-15)
     assert ds[key].attrs["units"] == "kg*m"
+    # and so does what rotorlab.sweep reads back (``rotorlab show``: it printed no unit)
+    from rotorlab.sweep import open_sweep
+
+    assert open_sweep(store)[key].attrs["units"] == "kg*m"
     labels = ds.attrs["result_attrs"]["labels"]
     assert [labels[int(k)] for k in ds.outcome.values] == ["balanced", "not balanced"]
     # the reference (locked unbalance response) follows the key: U w^2 / |c - M w^2 + i d w|

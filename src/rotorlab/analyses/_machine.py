@@ -56,9 +56,12 @@ __all__ = ["machine_simulate", "machine_steady", "machine_motions", "locked_stru
 _SAMPLES_PER_REV = 32
 
 
+_HISTORY_BYTES = 256e6  # largest saved time history of machine_simulate (n_save)
+
+
 def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float = 1e-8,
                      atol: float = 1e-10, window_revolutions: float = 2.0,
-                     threads: int | None = None,
+                     n_save: int | None = None, threads: int | None = None,
                      progress: Callable[[int, int], None] | None = None):
     """Simulate the machine from many ball starts and report where each ends.
 
@@ -76,6 +79,11 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     window_revolutions : float
         Length of the final window (revolutions at the final speed) over which the vibration
         amplitude is taken (its maximum).
+    n_save : int, optional
+        Also keep ``n_save`` equally spaced states over [0, t_end] as the time history
+        ``displacement`` (ic, time, station): each node's distance from the axis (m), what the
+        report plots; kept while the saved states take at most 256 MB (else, as with None, only
+        the final window is kept).
 
     Returns
     -------
@@ -111,19 +119,29 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     else:
         om_end = float(machine.drive.spin_speed(t_end))
     window = min(t_end, window_revolutions * 2 * np.pi / max(abs(om_end), 1e-12))
-    n_save = int(max(16, min(2000, window_revolutions * _SAMPLES_PER_REV)))
-    ts = np.linspace(t_end - window, t_end, n_save)
-    sol = solve_ensemble(machine, y0, (0.0, t_end), save_at=SaveAt(ts=ts),
+    n_window = int(max(16, min(2000, window_revolutions * _SAMPLES_PER_REV)))
+    ts = np.linspace(t_end - window, t_end, n_window)
+    ts_all, hist = ts, None
+    if n_save is not None:
+        if isinstance(n_save, bool) or int(n_save) != n_save or n_save < 2:
+            raise ValueError(f"n_save must be an integer >= 2, got {n_save!r}")
+        # the history is for the report's figure: kept while its states fit in _HISTORY_BYTES
+        if 8.0 * len(ang) * int(n_save) * machine.n_state <= _HISTORY_BYTES:
+            hist = np.linspace(0.0, t_end, int(n_save))
+            ts_all = np.union1d(hist, ts)
+    sol = solve_ensemble(machine, y0, (0.0, t_end), save_at=SaveAt(ts=ts_all),
                          control=StepControl(rtol=rtol, atol=atol), threads=threads,
                          progress=progress)
-    amp = orbit_amplitude(machine, sol.ys)
+    ys_all = sol.ys
+    ys = ys_all[:, np.searchsorted(ts_all, ts)]  # the final window
+    amp = orbit_amplitude(machine, ys)
     th = np.array([machine.spin(t_end, y)[0] for y in sol.y_final])
     om = np.array([machine.spin(t_end, y)[1] for y in sol.y_final])
     rel = _wrap(sol.y_final[:, lay.i_phi:lay.i_phi + lay.n_balls] - th[:, None])
     ref = unbalance_amplitudes(machine, float(om[0])) if om.size else np.zeros(machine.structure.n_nodes)
     # ball rates relative to the rotor over the final window (largest |psi'|)
-    om_t = np.array([[machine.spin(t, y)[1] for t, y in zip(ts, traj)] for traj in sol.ys])
-    rates = sol.ys[:, :, lay.i_w:lay.i_w + lay.n_balls] - om_t[:, :, None]
+    om_t = np.array([[machine.spin(t, y)[1] for t, y in zip(ts, traj)] for traj in ys])
+    rates = ys[:, :, lay.i_w:lay.i_w + lay.n_balls] - om_t[:, :, None]
     max_rate = np.abs(rates).reshape(len(ang), -1).max(axis=1, initial=0.0)
     outcome = [_outcome(int(st), a, ref, r, w, lay.n_balls)
                for st, a, r, w in zip(sol.status, amp, max_rate, om)]
@@ -143,6 +161,11 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
         attrs={"analysis": "simulate", "model": "machine", "t_end": float(t_end),
                "window": float(window)},
     )
+    if hist is not None:
+        ds = ds.assign_coords(time=("time", hist, {"units": "s"}))
+        ds["displacement"] = (("ic", "time", "station"),
+                              machine.station_amplitudes(ys_all[:, np.searchsorted(ts_all, hist)]),
+                              {"units": "m"})
     return ds
 
 
@@ -152,7 +175,7 @@ def _run_simulate(case_model, analysis, progress=None):
     sets = analysis.ball_angle_sets(m.n_balls)
     angles = np.array(sets, dtype=float).reshape(len(sets), m.n_balls)
     ds = machine_simulate(m, angles, t_end=analysis.duration(case_model), rtol=analysis.rtol,
-                          atol=analysis.atol, progress=progress)
+                          atol=analysis.atol, n_save=analysis.n_save, progress=progress)
     return _annotate(ds, case_model, analysis)
 
 

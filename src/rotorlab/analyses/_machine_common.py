@@ -197,16 +197,35 @@ def machine_model(case_model):
 
 
 def machine_quantities(case_model) -> list[dict[str, Any]]:
-    """Derived quantities: critical speeds (balls locked), unbalance, capacity per race."""
+    """Derived quantities: critical speeds (balls locked), the static unbalance (the resultant of
+    every unbalance, what the races together must cancel; a couple adds nothing to it), capacity
+    per race and, for a reduced structure, how much the unbalance response moves when ``n_modes``
+    doubles (:meth:`~rotorlab.models.Machine.reduction_change`, at a constant drive's speed, else
+    at the first critical speed)."""
+    from rotorlab.models import ConstantSpeed
+
     m = machine_model(case_model)
+    crit = structure_critical_speeds(m)
+    static = abs(sum(u.mass_eccentricity * np.exp(1j * u.phase) for u in m.unbalances))
     rows = [{"quantity": "critical speeds (forward 1x, balls locked)",
-             "value": ", ".join(f"{w:.4g}" for w in structure_critical_speeds(m)[:6]),
+             "value": ", ".join(f"{w:.4g}" for w in crit[:6]),
              "unit": "rad/s", "sign": ""},
-            {"quantity": "unbalance sum m e", "value": sum(u.mass_eccentricity for u in m.unbalances),
+            {"quantity": "static unbalance |sum m e exp(i phase)|", "value": float(static),
              "unit": "kg*m", "sign": ""}]
     for i, r in enumerate(m.races):
         rows.append({"quantity": f"capacity of race {i} (sum m l)", "value": r.capacity,
                      "unit": "kg*m", "sign": ""})
+    if m.n_modes is not None and m.n_modes < m.structure.n_dof and m.unbalances:
+        if isinstance(m.drive, ConstantSpeed):
+            om, where = float(m.drive.speed), "the drive speed"
+        elif crit.size:
+            om, where = float(crit[0]), "the first critical speed"
+        else:
+            om = None
+        if om is not None:
+            rows.append({"quantity": f"change of the unbalance response at {where} when n_modes "
+                                     f"= {m.n_modes} doubles", "value": m.reduction_change(om),
+                         "unit": "1", "sign": ""})
     return rows
 
 

@@ -42,7 +42,8 @@ def machine_steady(machine, speeds, *, ball_angles=None):
     -------
     xarray.Dataset
         ``exists`` (speed): a steady motion was found (the balanced one when the balls can
-        cancel the unbalance, else the one that starts from the best partial balance);
+        cancel the unbalance, else the one that starts from the best partial balance at that
+        speed, or, where that does not converge, from the motion at the previous speed);
         ``balanced`` (speed): it has no vibration; ``amplitude`` (speed, station): its whirl
         radius per node (m); ``ball_angle`` (speed, ball) (rad); ``max_real_eigenvalue`` (speed) (1/s) of the linearised co-rotating equations;
         ``stable`` (speed); ``status`` (speed): 0, or ``NO_STEADY_STATUS`` with
@@ -75,7 +76,14 @@ def machine_steady(machine, speeds, *, ball_angles=None):
         guess, near = ball_angles, None
         for i, w in enumerate(om):
             m = machine.with_drive(ConstantSpeed(float(w)))
-            y = m.steady_state(guess, near=near)
+            # each speed on its own first (from the best partial balance), so that a verdict does
+            # not depend on the speeds before it: several partly balanced motions may coexist and
+            # continuing one from the previous speed can stay on an unstable branch where the
+            # steady_state of that speed alone is stable (Pico 21, one race, 2300 rpm); the
+            # previous speed's motion is the fallback start where the solver does not converge
+            y = m.steady_state(guess)
+            if y is None and near is not None:
+                y = m.steady_state(guess, near=near)
             if y is None:
                 continue
             nz = m.n_coordinates

@@ -347,12 +347,32 @@ class MachineSpec(AbstractModelSpec):
                             issues.append(Issue(("races", i, "balls", j, k), "must be 0 with a "
                                                 "clearance: ball friction (stick-slip) together with "
                                                 "rotor-stator contact is not implemented", getattr(b, k)))
-        if self.n_modes is not None and self.n_modes > self.structure.n_dof:
-            issues.append(Issue(("n_modes",), f"must be <= {self.structure.n_dof} (the "
-                                              "structure's DOFs)", self.n_modes))
+        issues += self._n_modes_issues()
         if issues:
             raise IssueGroup(issues)
         return self
+
+    def _n_modes_issues(self) -> list[Issue]:
+        """What ``Machine`` requires of ``n_modes`` for this structure, as key-path issues (the
+        model would otherwise raise on build: an internal error instead of exit code 2)."""
+        from rotorlab.models._machine import MAX_COORDINATES
+
+        n_dof, k = self.structure.n_dof, self.n_modes
+        if k is None:
+            if n_dof > MAX_COORDINATES:
+                return [Issue(("n_modes",), f"required: the structure has {n_dof} DOFs and the compiled "
+                                            f"kernel takes at most {MAX_COORDINATES} coordinates; keep "
+                                            "its lowest modes (e.g. n_modes = 8)", show_value=False)]
+            return []
+        if k > n_dof:
+            return [Issue(("n_modes",), f"must be <= {n_dof} (the structure's DOFs)", k)]
+        if k % 2:
+            from rotorlab.analyses._linear_build import build_linear_system
+
+            if build_linear_system(self.structure).is_isotropic:
+                return [Issue(("n_modes",), "must be even for an isotropic structure (its modes come "
+                                            "in x/y pairs)", k)]
+        return []
 
     def node_of(self, item) -> int:
         """Node index of a race or unbalance spec."""

@@ -263,8 +263,46 @@ def machine_findings(ds: Any, rows: Rows) -> Findings:
     return _FINDINGS[ds.attrs["analysis"]](ds, rows)
 
 
+def _simulate_figure(ds: Any, name: str, plt) -> Any:
+    """Each station's distance from the axis over time (log scale), one colour per start and one
+    line style per station, and dotted the same without balancing (the locked unbalance response,
+    as in the table); starts ending with the largest vibration are drawn first."""
+    n_ic, stations = ds.sizes["ic"], list(ds.station.values)
+    fig, ax = plt.subplots(figsize=(6.5, 3.6))
+    t = np.asarray(ds.time.values, dtype=float)
+    disp = np.asarray(ds.displacement.values, dtype=float) * 1e3
+    order = np.argsort(-np.asarray(ds.amplitude.values, dtype=float).max(axis=1), kind="stable")
+    styles = ("-", "--", ":", "-.")
+    legend = n_ic * len(stations) <= 12
+    for rank, i in enumerate(order):
+        for k, s in enumerate(stations):
+            ax.plot(t, disp[i, :, k], color=f"C{i % 10}", lw=0.8, ls=styles[k % 4],
+                    zorder=2 + rank, label=f"{s}, start {i}: {ds.outcome.values[i]}" if legend else None)
+    for k, s in enumerate(stations):
+        ref = float(ds.reference_amplitude.values[k]) * 1e3
+        if ref > 0:
+            ax.axhline(ref, color="k", lw=0.8, ls=styles[k % 4], alpha=0.6,
+                       label=f"{s}, without balancing" if legend else None)
+    ax.set_yscale("log")
+    # from the smallest distance after the start at rest (0) up: seven decades at most
+    later = disp[:, 1:, :]
+    top = max(float(later.max(initial=0.0)), float(ds.reference_amplitude.max()) * 1e3)
+    low = float(later[later > 0].min(initial=top))
+    if top > 0:
+        ax.set_ylim(max(0.5 * low, 1e-7 * top), 2.0 * top)
+    ax.set_xlabel("time (s)")
+    ax.set_ylabel("distance from the axis (mm)")
+    ax.set_title(f"{name}: vibration (black: without balancing)", fontsize=10)
+    ax.grid(alpha=0.3)
+    if legend:
+        ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
+    fig.tight_layout()
+    return fig
+
+
 def machine_figures(ds: Any, name: str) -> dict[str, Any]:
-    """Stability over speed (steady) or speed and vibration over time (run-up); none otherwise."""
+    """Stability over speed (steady), vibration over time (simulate with its time history) or
+    speed and vibration over time (run-up); none otherwise."""
     import matplotlib
 
     matplotlib.use("Agg")
@@ -290,12 +328,21 @@ def machine_figures(ds: Any, name: str) -> dict[str, Any]:
         ax.set_title(f"{name}: balanced state stable below the line")
         fig.tight_layout()
         return {f"{name}-stability": fig}
+    if kind == "simulate" and "displacement" in ds:
+        return {f"{name}-vibration": _simulate_figure(ds, name, plt)}
     if kind == "run-up":
         fig, (a1, a2) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
-        for i in range(ds.sizes["ic"]):
-            a1.plot(ds.time.values, ds.speed.values[i] * _RPM, label=f"start {i}")
-            for s in ds.station.values:
-                a2.plot(ds.time.values, ds.amplitude.sel(station=s).values[i] * 1e3, label=f"{s}, start {i}")
+        # the start that ends with the largest vibration is drawn first, so that a balanced
+        # start's thin band is not hidden under an unbalanced one's (same colour per start)
+        residual = np.asarray(ds.residual_amplitude.values, dtype=float).reshape(ds.sizes["ic"], -1)
+        order = np.argsort(-residual.max(axis=1), kind="stable")
+        for rank, i in enumerate(order):
+            colour = f"C{i % 10}"
+            a1.plot(ds.time.values, ds.speed.values[i] * _RPM, color=colour, label=f"start {i}")
+            for k, s in enumerate(ds.station.values):
+                a2.plot(ds.time.values, ds.amplitude.sel(station=s).values[i] * 1e3, color=colour,
+                        ls=("-", "--", ":", "-.")[k % 4], zorder=2 + rank,
+                        label=f"{s}, start {i}: {ds.outcome.values[i]}")
         for w in ds.attrs["critical_speeds"]:
             a1.axhline(w * _RPM, color="r", lw=0.6, ls="--")
         a1.set_ylabel("speed (rpm)")

@@ -272,6 +272,9 @@ class ZarrSink:
             n_chunks = len(sweep.chunks(self.chunk_size))
             coords = sweep.coordinates()
             units = sweep.analysis.coordinate_units
+            # the named units and those of the varied coordinates: a mapper may know a unit only
+            # when asked (a machine's ``model.<key path>``), which dict(units) would drop
+            stored_units = {**dict(units), **{n: units.get(n, "") for n in coords}}
             for name, values in coords.items():
                 self._array(name, ("point",), values.shape, values.dtype, {"units": units.get(name, "")})[:] = values
             for dim, (values, cattrs) in sweep.analysis.trailing_coords().items():
@@ -288,7 +291,7 @@ class ZarrSink:
                 "sweep": sweep.describe(), "fingerprint": sweep.fingerprint(), "versions": versions(),
                 "dims": list(sweep.dims), "shape": list(sweep.shape), "n_points": self.n,
                 "chunk_size": self.chunk_size, "n_chunks": n_chunks, "runs": 1,
-                "result_attrs": sweep.analysis.result_attrs(), "coordinate_units": dict(units),
+                "result_attrs": sweep.analysis.result_attrs(), "coordinate_units": stored_units,
                 "grid": bool(sweep.axes), "fixed": dict(sweep.fixed), "variables": [],
                 "input_units": dict(sweep.input_units),
             }))  # fmt: skip
