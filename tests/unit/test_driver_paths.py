@@ -43,27 +43,27 @@ def used(monkeypatch):
 
 def test_simulate_runs_on_lanes(used):
     simulate(MODEL, speeds=[150.0, 250.0], initial_ball_angles=[[0.0, 1.6], [0.8, 3.5]], t_end=0.05, n_save=3)
-    assert used and set(used) == {_drivers.WIDE_LANES}  # 8 states: the wide lane groups
+    assert used and set(used) == {_drivers.DEFAULT_LANES}
 
 
 def test_balancer_mapper_runs_on_lanes(used):
     mapper = BalancerRegimes(MODEL, t_end=0.05, n_horizons=1)
     map_starts(mapper, {"psi_1": [0.5, 1.0, 2.0], "psi_2": [2.5, 3.0, 0.1]})
-    assert used and set(used) == {_drivers.WIDE_LANES}
+    assert used and set(used) == {_drivers.DEFAULT_LANES}
 
 
 def test_event_models_run_on_lanes_single_trajectories_scalar(used):
     # basin of the toroidal ball (stick/slip modes and events)
     mapper = TorusRegimes(strautmanis_torus(1e-4), t_end=0.05, n_horizons=1)
     map_starts(mapper, {"psi": [0.5, 1.0], "dpsi": [10.0, -10.0], "alpha": [0.1, 0.1]})
-    assert used == [_drivers.WIDE_LANES]  # 7 states
+    assert used == [_drivers.DEFAULT_LANES]
     # sweep of the rub model (impacts, sustained contact)
     rub = RubRegimes(JeffcottRub(RUB, spin_speed=1.2), t_end=2.0, window=1.0, position=(0.5, 0.0), n_samples=8)
     rub.run_chunk({"spin_speed": np.array([1.2, 2.0])})
-    assert used[1:] == [_drivers.DEFAULT_LANES]  # 9 states
+    assert used[1:] == [_drivers.DEFAULT_LANES]
     # sweep of the crusher rotor (stone pushes, impacts, sliding, terminal whirl event)
     ImpactAnalysis(krasnov_crusher(), t_end=0.05).run_chunk({"stone_mass": np.array([0.5, 3.0])})
-    assert used[2:] == [_drivers.DEFAULT_LANES]  # 28 states
+    assert used[2:] == [_drivers.DEFAULT_LANES]
     solve(MODEL, MODEL.initial_state([0.0, 1.0]), (0.0, 0.01))
     assert used[3:] == [None]  # one trajectory: the scalar driver
 
@@ -76,7 +76,7 @@ def test_jeffcott_lanes_bit_identical_to_scalar(frame):
     kw = dict(control=StepControl(rtol=1e-8, atol=1e-10), threads=2)
     auto = solve_ensemble(model, y0, (0.0, 0.1), **kw)
     ref = solve_ensemble(model, y0, (0.0, 0.1), lanes=None, **kw)
-    assert auto.driver == "lanes8" and ref.driver == "scalar"  # 10 states: 8 lanes
+    assert auto.driver == "lanes8" and ref.driver == "scalar"
     np.testing.assert_array_equal(auto.y_final, ref.y_final)
     np.testing.assert_array_equal(auto.stats, ref.stats)
     np.testing.assert_array_equal(auto.status, ref.status)

@@ -76,7 +76,7 @@ def bench_case():
 
 @pytest.mark.parametrize("width", [8, 16])
 def test_bench_lanes_bit_identical_to_scalar(bench_case, width):
-    """Both widths the driver chooses (16 for kernels of at most 8 states, else 8)."""
+    """The default width and another one (``solve_ensemble(lanes=...)``): the lanes are independent."""
     idx, t1, kw, scalar = bench_case
     assert np.all(scalar.status == Status.SUCCESS)
     lanes = solve_ensemble(BENCH_KERNELS, _bench_y0(idx), (0.0, t1), threads=2, lanes=width, **kw)

@@ -50,3 +50,46 @@ def test_models_choose_the_lane_friendly_kernel():
     # a Hill run-up needs exp/log (scalar library calls): the generic kernel, scalar driver
     hill = JeffcottBalls(rotor, (ball, ball), speed=HillRunUp(200.0, 1.0, 2.0))
     assert not hill.kernels.vectorises
+
+
+def _machines():
+    """Machines of 8, 12 and 18 states: inlined into the lane driver up to 12, called above."""
+    import numpy as np
+
+    from rotorlab.linear import LinearSystem
+    from rotorlab.models import Ball, BallRace, ConstantSpeed, Machine, Unbalance
+
+    planar = Machine(
+        LinearSystem(M=np.diag([1.0, 1.0, 0.3, 0.3]), C=np.diag([0.02, 0.02, 0.0, 0.0]), G=np.zeros((4, 4)),
+                     K=np.diag([1.0, 1.0, 5.0, 5.0])),
+        races=(BallRace(0, 1.0, (Ball(0.02, damping=0.01),) * 2),), unbalances=(Unbalance(0, 0.01),),
+        drive=ConstantSpeed(2.5), n_modes=2,
+    )  # fmt: skip
+    M = np.diag([1.0, 1.0, 3.25, 3.25])
+    G = np.zeros((4, 4))
+    G[2, 3], G[3, 2] = 0.5, -0.5
+    K = np.zeros((4, 4))
+    for zs in (3.0, -3.0):
+        for j in (0, 1):
+            T = np.zeros((1, 4))
+            T[0, j], T[0, j + 2] = 1.0, zs
+            K += 0.5 * T.T @ T
+    rigid = LinearSystem(M=M, C=0.02 * K, G=G, K=K)
+
+    def two_plane(balls):
+        races = tuple(BallRace(0, 1.0, (Ball(0.02, damping=0.01),) * balls, axial_offset=a) for a in (2.0, -2.0))
+        return Machine(rigid, races=races, unbalances=(Unbalance(0, 0.01, 0.0, axial_offset=1.0),),
+                       drive=ConstantSpeed(2.0))
+
+    return [("planar machine", planar, True), ("two-plane, 1 ball a race", two_plane(1), True),
+            ("two-plane, 2 balls a race", two_plane(2), False)]  # fmt: skip
+
+
+@pytest.mark.parametrize("i", range(3), ids=["planar", "two-plane-1", "two-plane-2"])
+def test_machine_kernel_vectorises_as_its_lane_driver_calls_it(i):
+    """The machine's generated kernel vectorises inlined into the lane driver (up to 12 states)
+    or as a call (larger: inlined, LLVM no longer vectorises it; ``Machine._inline_lanes``)."""
+    name, machine, inlined = _machines()[i]
+    kernels = machine.kernels
+    assert kernels.vectorises and kernels.inline_lanes is inlined, name
+    assert is_vectorised(kernels), f"{name}: the lane driver's loop did not vectorise"

@@ -20,25 +20,18 @@ from rotorlab.integrate._codegen import build
 __all__ = ["driver", "check_lanes", "default_lanes", "is_vectorised"]
 
 DEFAULT_LANES = 8  # a multiple of the SIMD width in doubles: 4 (AVX2), 8 (AVX-512)
-WIDE_LANES = 16
-"""Lane width for small kernels (at most :data:`WIDE_STATES` states): two registers of AVX-512
-per value give the out-of-order core two independent chains and halve the driver's per-lane
-bookkeeping per step. Measured at one thread (``bench/README.md``, issue 11): benchmark kernel
-0.90 of the CPU time at 8 lanes, the toroidal ball's basin 0.77; larger kernels (the machine's)
-already spill registers at 8 lanes."""
-WIDE_STATES = 8
 
 
 def default_lanes(kernels, n_traj):
-    """The lane width ``lanes="auto"`` chooses for an ensemble (more than one trajectory):
-    :data:`WIDE_LANES` for a kernel of at most :data:`WIDE_STATES` states, else
-    :data:`DEFAULT_LANES`; None for one trajectory (the scalar driver). Events, resets and modes
-    run on lanes too; a kernel that does not vectorise (``Kernels.vectorises`` False) gives the
-    same numbers there, at about scalar speed. The width never changes a result (lanes are
-    independent)."""
-    if n_traj <= 1:
-        return None
-    return WIDE_LANES if kernels.n_state <= WIDE_STATES else DEFAULT_LANES
+    """The lane width ``lanes="auto"`` chooses: :data:`DEFAULT_LANES` for an ensemble (more than
+    one trajectory), else None (one trajectory: the scalar driver). Events, resets and modes run
+    on lanes too; a kernel that does not vectorise (``Kernels.vectorises`` False) gives the same
+    numbers there, at about scalar speed.
+
+    16 lanes (two AVX-512 registers per value) were measured against 8 with the kernel inlined
+    (``bench/README.md``, issue 11): the same CPU time on the benchmark kernel and on the
+    toroidal ball's basin, so every model keeps 8 (one compiled driver per model)."""
+    return DEFAULT_LANES if n_traj > 1 else None
 
 
 def check_lanes(lanes):
