@@ -238,7 +238,7 @@ def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
         )  # fmt: skip
 
 
-@njit(cache=True, nogil=True, error_model="numpy")
+@njit(cache=True, nogil=True, error_model="numpy", inline="always" if INLINE_RHS else "never")
 def _events_lanes(W, row_t, row_y, G, PL, nl, ne):
     """``G[:, l] = events(t[l], Y[:, l], p[:, l])`` for every lane (``G`` lane-interleaved, ``ne``
     rows): the event functions at the end of every lane's step in one loop, which vectorises
@@ -329,7 +329,7 @@ def _prologue(W, lane, max_step, max_steps):
     W[_habs + lane] = abs(h) if live else habs
 
 
-@njit(cache=True, nogil=True)
+@njit(cache=True, nogil=True, inline="always")  # on every step: a call would cost registers
 def _min_steps(W, Wi, nl):
     """``W[_ms + l] = 10 * abs(np.nextafter(t, inf) - t)`` for every lane, vectorised.
 
@@ -650,7 +650,12 @@ def _worker(counter, inputs, settings, event_table, outputs):
         if n_save > 0:  # save points in (t, tn] from the dense output of accepted steps
             for lane in range(L):
                 if W[_M + lane] != 0.0:
-                    _save(W, lane, ids[lane], TS, YS, i_save, ybuf)
+                    # _save's own loop condition, checked here: most steps hold no save point,
+                    # and a call on the step loop's common path costs the kernel's constants
+                    # their registers (every vector register is caller-saved)
+                    its = ids[lane] if TS.shape[0] > 1 else 0
+                    if i_save[lane] < n_save and TS[its, i_save[lane]] <= W[_tn + lane]:
+                        _save(W, lane, ids[lane], TS, YS, i_save, ybuf)
         for lane in range(nl):
             tn = W[_tn + lane]
             t = W[_t + lane]
