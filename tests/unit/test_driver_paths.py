@@ -81,3 +81,25 @@ def test_jeffcott_lanes_bit_identical_to_scalar(frame):
     np.testing.assert_array_equal(auto.stats, ref.stats)
     np.testing.assert_array_equal(auto.status, ref.status)
     assert np.all(ref.status == 0)
+
+
+def test_verify_run_up_and_machine_paths_run_on_lanes(used):
+    """The steady-state verification, the run-up of a rotor with balls and the composed
+    machine's simulation from several ball starts: every ensemble on lanes (the run-up's one
+    reference trajectory without balls on the scalar driver)."""
+    from rotorlab.analyses._machine import machine_simulate
+    from rotorlab.linear import LinearSystem
+    from rotorlab.models import Ball, BallRace, Machine, Unbalance
+    from rotorlab.steady import run_up, verify
+
+    p = MODEL.critical_speed
+    verify(MODEL, [2.0 * p], points=2, t_end=[0.05])
+    assert used == [_drivers.DEFAULT_LANES]
+    run_up(MODEL, LinearRamp(0.3 * p, 2.0 * p, 0.05), t_end=0.05, n_save=5, initial_ball_angles=[[0.0, 1.0], [0.5, 2.0]])
+    assert used[1:] == [_drivers.DEFAULT_LANES, None]
+    s = LinearSystem(M=np.diag([1.0, 1.0, 0.3, 0.3]), C=np.diag([0.05, 0.05, 0.0, 0.0]), G=np.zeros((4, 4)),
+                     K=np.diag([1.0, 1.0, 5.0, 5.0]))  # fmt: skip
+    mac = Machine(s, races=(BallRace(0, 0.5, (Ball(0.02, damping=0.005),) * 2),), unbalances=(Unbalance(0, 0.05),),
+                  drive=ConstantSpeed(2.0), n_modes=2)  # fmt: skip
+    machine_simulate(mac, [[0.0, 1.0], [0.5, 2.5]], t_end=1.0)
+    assert used[3:] == [_drivers.DEFAULT_LANES]
