@@ -39,7 +39,9 @@ For implementers
    library calls, ``error_model="numpy"`` when a discarded arm may divide by zero) and declare
    it with ``Kernels(..., vectorises=True)``. Every ensemble runs on the lane driver by default
    (same numbers as the scalar driver, events included); a lane-friendly kernel makes it fast. ``tests/unit/test_vectorise.py`` asserts that every
-   kernel so declared vectorises.
+   kernel so declared vectorises, inlined into the lane driver's step loop (the default) or
+   called, as ``Kernels(inline_lanes=...)`` says; set it False only for a kernel that no longer
+   vectorises inlined (the large generated machine kernels).
 """
 
 from __future__ import annotations
