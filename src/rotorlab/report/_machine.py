@@ -300,16 +300,11 @@ def _simulate_figure(ds: Any, name: str, plt) -> Any:
     return fig
 
 
-def machine_figures(ds: Any, name: str) -> dict[str, Any]:
-    """Stability over speed (steady), vibration over time (simulate with its time history) or
-    speed and vibration over time (run-up); none otherwise."""
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    kind = ds.attrs["analysis"]
-    if kind == "stability-chart" and "parameter" in ds.dims and bool(ds.exists.any()):
+def _stability_figures(ds: Any, name: str, plt: Any) -> dict[str, Any]:
+    """A stability chart: stable region over speed x parameter, or max Re(lambda) over speed."""
+    if not bool(ds.exists.any()):
+        return {}
+    if "parameter" in ds.dims:
         fig, ax = plt.subplots(figsize=(6, 3.5))
         st = np.where(ds.exists.values, ds.stable.values.astype(float), np.nan)
         ax.pcolormesh(ds.speed.values * _RPM, ds.parameter.values, st, shading="nearest", cmap="RdYlGn",
@@ -319,7 +314,7 @@ def machine_figures(ds: Any, name: str) -> dict[str, Any]:
         ax.set_title(f"{name}: balanced state stable (green)")
         fig.tight_layout()
         return {f"{name}-stability": fig}
-    if kind == "stability-chart" and ds.sizes["speed"] > 1 and bool(ds.exists.any()):
+    if ds.sizes["speed"] > 1:
         fig, ax = plt.subplots(figsize=(6, 3.5))
         ax.plot(ds.speed.values * _RPM, ds.max_real_eigenvalue.values, ".-")
         ax.axhline(0.0, color="k", lw=0.8)
@@ -328,27 +323,52 @@ def machine_figures(ds: Any, name: str) -> dict[str, Any]:
         ax.set_title(f"{name}: balanced state stable below the line")
         fig.tight_layout()
         return {f"{name}-stability": fig}
-    if kind == "simulate" and "displacement" in ds:
-        return {f"{name}-vibration": _simulate_figure(ds, name, plt)}
-    if kind == "run-up":
-        fig, (a1, a2) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
-        # the start that ends with the largest vibration is drawn first, so that a balanced
-        # start's thin band is not hidden under an unbalanced one's (same colour per start)
-        residual = np.asarray(ds.residual_amplitude.values, dtype=float).reshape(ds.sizes["ic"], -1)
-        order = np.argsort(-residual.max(axis=1), kind="stable")
-        for rank, i in enumerate(order):
-            colour = f"C{i % 10}"
-            a1.plot(ds.time.values, ds.speed.values[i] * _RPM, color=colour, label=f"start {i}")
-            for k, s in enumerate(ds.station.values):
-                a2.plot(ds.time.values, ds.amplitude.sel(station=s).values[i] * 1e3, color=colour,
-                        ls=("-", "--", ":", "-.")[k % 4], zorder=2 + rank,
-                        label=f"{s}, start {i}: {ds.outcome.values[i]}")
-        for w in ds.attrs["critical_speeds"]:
-            a1.axhline(w * _RPM, color="r", lw=0.6, ls="--")
-        a1.set_ylabel("speed (rpm)")
-        a2.set_ylabel("radial displacement (mm)")
-        a2.set_xlabel("time (s)")
-        a2.legend(fontsize="small")
-        fig.tight_layout()
-        return {f"{name}-run-up": fig}
     return {}
+
+
+def _simulate_figures(ds: Any, name: str, plt: Any) -> dict[str, Any]:
+    """A simulation with its time history: vibration over time."""
+    return {f"{name}-vibration": _simulate_figure(ds, name, plt)} if "displacement" in ds else {}
+
+
+def _run_up_figures(ds: Any, name: str, plt: Any) -> dict[str, Any]:
+    """A run-up: speed and vibration over time, per start."""
+    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
+    # the start that ends with the largest vibration is drawn first, so that a balanced
+    # start's thin band is not hidden under an unbalanced one's (same colour per start)
+    residual = np.asarray(ds.residual_amplitude.values, dtype=float).reshape(ds.sizes["ic"], -1)
+    order = np.argsort(-residual.max(axis=1), kind="stable")
+    for rank, i in enumerate(order):
+        colour = f"C{i % 10}"
+        a1.plot(ds.time.values, ds.speed.values[i] * _RPM, color=colour, label=f"start {i}")
+        for k, s in enumerate(ds.station.values):
+            a2.plot(ds.time.values, ds.amplitude.sel(station=s).values[i] * 1e3, color=colour,
+                    ls=("-", "--", ":", "-.")[k % 4], zorder=2 + rank,
+                    label=f"{s}, start {i}: {ds.outcome.values[i]}")
+    for w in ds.attrs["critical_speeds"]:
+        a1.axhline(w * _RPM, color="r", lw=0.6, ls="--")
+    a1.set_ylabel("speed (rpm)")
+    a2.set_ylabel("radial displacement (mm)")
+    a2.set_xlabel("time (s)")
+    a2.legend(fontsize="small")
+    fig.tight_layout()
+    return {f"{name}-run-up": fig}
+
+
+# The machine presentation's figures, by the analysis that made the Dataset (ds.attrs["analysis"]);
+# an analysis without an entry has no figure.
+_FIGURES = {"stability-chart": _stability_figures, "simulate": _simulate_figures, "run-up": _run_up_figures}
+
+
+def machine_figures(ds: Any, name: str) -> dict[str, Any]:
+    """Stability over speed (steady), vibration over time (simulate with its time history) or
+    speed and vibration over time (run-up); none otherwise."""
+    draw = _FIGURES.get(ds.attrs["analysis"])
+    if draw is None:
+        return {}
+    import matplotlib
+
+    matplotlib.use("Agg")
+    import matplotlib.pyplot as plt
+
+    return draw(ds, name, plt)
