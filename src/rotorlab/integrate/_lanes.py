@@ -149,7 +149,7 @@ _rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func
 # compiled kernels (_own), so the same event times, states and records bit for bit.
 _EV = dict(vars(_core))
 _EV.update(rhs=_own(rhs), events=_own(events), reset=_own(reset))
-for _name in ("_g_at", "_locate", "_events_in_step", "_resolve_cut"):
+for _name in ("_g_at", "_locate", "_events_in_step", "_resolve_cut", "_initial_step"):
     _EV[_name] = with_kernels(getattr(_core, _name), _EV)
 _events_at = _EV["events"]
 # The scalar evaluations (a trajectory's first slope, the initial step's trial slope) call the
@@ -160,6 +160,8 @@ _rhs_once = _EV["rhs"]
 _events_inline = njit(inline="always", nogil=True, error_model="numpy")(events.py_func)
 _events_in_step = _EV["_events_in_step"]
 _resolve_cut = _EV["_resolve_cut"]
+# Hairer's initial step of a trajectory starting in a lane: the scalar driver's own function
+_initial_step = _EV["_initial_step"]
 del _name
 
 
@@ -254,40 +256,6 @@ def _events_lanes(W, row_t, row_y, G, PL, nl, ne):
 def _probe(W, PL, nl):
     """One stage's kernel call as the worker makes it (constant rows): see :func:`rotorlab.integrate._drivers.is_vectorised`."""
     _rhs_lanes(W, _tt, _T, _K2, PL, nl)
-
-
-@njit(cache=True, nogil=True)
-def _initial_step(p, t0, y0, f0, t1, rtol, atol, n_cont, ytmp, f1):
-    """Hairer's initial step; arithmetic identical to ``_core._initial_step`` (kept in sync by
-    ``tests/unit/test_lanes.py``, which compares both drivers bit for bit)."""
-    n = y0.shape[0]
-    interval = abs(t1 - t0)
-    d0 = 0.0
-    d1 = 0.0
-    for i in range(n_cont):
-        sc = atol[i] + abs(y0[i]) * rtol
-        d0 += (y0[i] / sc) ** 2
-        d1 += (f0[i] / sc) ** 2
-    d0 = math.sqrt(d0 / n_cont)
-    d1 = math.sqrt(d1 / n_cont)
-    if d0 < 1e-5 or d1 < 1e-5:
-        h0 = 1e-6
-    else:
-        h0 = 0.01 * d0 / d1
-    h0 = min(h0, interval)
-    for i in range(n):
-        ytmp[i] = y0[i] + h0 * f0[i]
-    _rhs_once(t0 + h0, ytmp, p, f1)
-    d2 = 0.0
-    for i in range(n_cont):
-        sc = atol[i] + abs(y0[i]) * rtol
-        d2 += ((f1[i] - f0[i]) / sc) ** 2
-    d2 = math.sqrt(d2 / n_cont) / h0
-    if d1 <= 1e-15 and d2 <= 1e-15:
-        h1 = max(1e-6, h0 * 1e-3)
-    else:
-        h1 = (0.01 / max(d1, d2)) ** (1.0 / 5.0)
-    return min(100.0 * h0, h1, interval)
 
 
 @njit(cache=True, nogil=True, inline="always", error_model="numpy")
