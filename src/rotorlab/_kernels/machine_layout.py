@@ -110,6 +110,14 @@ class Layout:
         if self.friction and self.clearance:
             raise ValueError("ball friction and a clearance together are not implemented")
 
+    @property
+    def vectorises(self) -> bool:
+        """Whether the generated kernel vectorises in the lane driver (``Kernels.vectorises``):
+        every part is straight arithmetic with :func:`rotorlab._kernels._vmath.sincos`, except
+        the profile of a Hill run-up (``exp``, ``log`` and series with branches: scalar library
+        calls). ``tests/unit/test_vectorise.py`` checks machines of every other part."""
+        return not (self.drive == "profile" and self.speed_kind == "hill")
+
     # ---- counts
     @property
     def n_balls(self) -> int:

@@ -104,14 +104,14 @@ def is_vectorised(kernels, lanes=None):
     lanes = default_lanes(kernels, 2) if lanes is None else lanes
     ns = _in_memory("rotorlab.integrate._lanes", _roles(kernels), _lane_consts(kernels, lanes))
     probe = ns["_probe"]
-    W = np.zeros(ns["_W_SIZE"])
-    PL = np.zeros(lanes)
-    probe.compile((typeof(W), typeof(PL), typeof(lanes)))
+    W = np.zeros(ns["_W_SIZE"] + lanes)
+    probe.compile((typeof(W), typeof(lanes)))
     ir = probe.inspect_llvm(probe.signatures[0])
-    # the compiled loop (in _rhs_lanes, or inlined into _probe), not the CPython wrappers
+    # the compiled loop (in _rhs_lanes, or inlined into _probe), not the CPython wrappers; the
+    # return attributes before the name may hold parentheses (``range(i32 -1, -2)``)
     body = "\n".join(
         f for f in re.split(r"^define ", ir, flags=re.M)
-        if re.match(r"[^(]*@_ZN[^(]*(_probe|_rhs_lanes)", f)
+        if re.match(r"[^@\n]*@_ZN(?!7cpython)[^(\n]*(_probe|_rhs_lanes)", f)
     )
     packed = re.findall(r"= f(?:mul|add|sub|div) (?:[a-z]+ )*<\d+ x double>", body)
     libm = re.findall(

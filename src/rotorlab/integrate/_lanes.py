@@ -129,6 +129,7 @@ _nacc = _R + 15 * LANES
 _nrej = _R + 16 * LANES
 _code = _R + 17 * LANES  # prologue verdict: 0 step, 1 ended, 2 step too small, 3 max steps
 _W_SIZE = _R + 18 * LANES
+_P = _W_SIZE  # then the lane-interleaved parameters (_P), as many rows as p has
 
 _NEG_ZERO_BITS = -(2**63)  # -0.0 seen as int64
 
@@ -223,7 +224,7 @@ from ``Kernels.inline_lanes``, see :mod:`rotorlab.integrate._drivers`)."""
 # bits). Large kernels (the machine's generated ones, hundreds of parameter loads) no longer
 # vectorise when inlined, so they keep the call (Kernels.inline_lanes = False).
 @njit(cache=True, nogil=True, error_model="numpy", inline="always" if INLINE_RHS else "never")
-def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
+def _rhs_lanes(W, nl):
     """``K[:, l] = rhs(t[l], Y[:, l], p[:, l])`` for every lane, rows of the workspace ``W``.
 
     Parameters are lane-interleaved in ``PL`` even when all trajectories share them: loads
@@ -232,30 +233,30 @@ def _rhs_lanes(W, row_t, row_y, row_k, PL, nl):
     purpose: with a constant trip count this small, LLVM treats the loop as "optimise for size"
     and will not emit the alias checks it needs to vectorise.
     """
-    n_par = PL.shape[0] // LANES
+    n_par = (W.shape[0] - _P) // LANES
     for lane in range(nl):
         _rhs_inline(
-            W[row_t + lane], _lane(W, row_y + lane, N_STATE), _lane(PL, lane, n_par),
-            _lane(W, row_k + lane, N_STATE),
+            W[_tt + lane], _lane(W, _T + lane, N_STATE), _lane(W, _P + lane, n_par),
+            _lane(W, _Q + lane, N_STATE),
         )  # fmt: skip
 
 
 @njit(cache=True, nogil=True, error_model="numpy", inline="always" if INLINE_RHS else "never")
-def _events_lanes(W, row_t, row_y, G, PL, nl, ne):
+def _events_lanes(W, row_t, row_y, G, nl, ne):
     """``G[:, l] = events(t[l], Y[:, l], p[:, l])`` for every lane (``G`` lane-interleaved, ``ne``
     rows): the event functions at the end of every lane's step in one loop, which vectorises
     when the model's ``events`` is lane-friendly (as :func:`_rhs_lanes`)."""
-    n_par = PL.shape[0] // LANES
+    n_par = (W.shape[0] - _P) // LANES
     for lane in range(nl):
         _events_inline(
-            W[row_t + lane], _lane(W, row_y + lane, N_STATE), _lane(PL, lane, n_par), _lane(G, lane, ne),
+            W[row_t + lane], _lane(W, row_y + lane, N_STATE), _lane(W, _P + lane, n_par), _lane(G, lane, ne),
         )  # fmt: skip
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
-def _probe(W, PL, nl):
+def _probe(W, nl):
     """One stage's kernel call as the worker makes it (constant rows): see :func:`rotorlab.integrate._drivers.is_vectorised`."""
-    _rhs_lanes(W, _tt, _T, _K2, PL, nl)
+    _rhs_lanes(W, nl)
 
 
 @njit(cache=True, nogil=True, inline="always", error_model="numpy")
@@ -329,13 +330,12 @@ def _worker(counter, inputs, settings, event_table, outputs):
     n_save = TS.shape[1]
     shared = P.shape[0] == 1
     fmax_steps = float(max_steps)
-    W = np.zeros(_W_SIZE)
+    W = np.zeros(_P + n_par * L)
     Wi = W.view(np.int64)  # the same memory, for the bits of t in _min_steps
     for k in range(NL):
         W[_AT + k] = atol[k // L]
-    PL = np.zeros(n_par * L)  # lane-interleaved parameters (idle lanes keep P[0])
-    for k in range(n_par * L):
-        PL[k] = P[0, k // L]
+    for k in range(n_par * L):  # lane-interleaved parameters (idle lanes keep P[0])
+        W[_P + k] = P[0, k // L]
     ids = np.full(L, _EMPTY, dtype=np.int64)
     i_save = np.zeros(L, dtype=np.int64)
     ybuf = np.empty(n)
@@ -393,7 +393,7 @@ def _worker(counter, inputs, settings, event_table, outputs):
                     W[_Y + i * L + lane] = ybuf[i]
                 if not shared:
                     for k in range(n_par):
-                        PL[k * L + lane] = P[ip, k]
+                        W[_P + k * L + lane] = P[ip, k]
                 t1 = T1[it1]
                 s = 0
                 while s < n_save and TS[its, s] <= t0:
@@ -498,7 +498,7 @@ def _worker(counter, inputs, settings, event_table, outputs):
                     W[_T + k] = W[_YN + k]
             # constant rows (LLVM proves the lanes' loads and stores apart and vectorises the
             # kernel without run-time alias checks); _Q is free until the error norm
-            _rhs_lanes(W, _tt, _T, _Q, PL, nl)
+            _rhs_lanes(W, nl)
             ks = _K2 + s * NL
             for k in range(n * nl):
                 W[ks + k] = W[_Q + k]
@@ -555,7 +555,7 @@ def _worker(counter, inputs, settings, event_table, outputs):
             W[_M + lane] = 1.0 if take else 0.0
         # ---- events of the accepted steps, one lane at a time (the others wait this step) ---
         if has_ev:
-            _events_lanes(W, _tn, _YN, g_end, PL, nl, ne)
+            _events_lanes(W, _tn, _YN, g_end, nl, ne)
             for lane in range(L):
                 if W[_M + lane] == 0.0:
                     continue

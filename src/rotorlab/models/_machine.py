@@ -264,22 +264,20 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame):
         """Compiled kernels, generated for this machine's sizes (shared between equal sizes)."""
         if "kernels" not in self._cache:
             mod = _cg.kernel_module(self.layout)
+            common = dict(rhs=mod.rhs, n_state=self.n_state, vectorises=self.layout.vectorises,
+                          inline_lanes=self._inline_lanes)
             if self.clearances:
                 self._cache["kernels"] = Kernels(
-                    rhs=mod.rhs, n_state=self.n_state, n_discrete=self.layout.n_discrete,
-                    events=mod.events, reset=mod.reset, vectorises=True, inline_lanes=self._inline_lanes,
+                    **common, n_discrete=self.layout.n_discrete, events=mod.events, reset=mod.reset,
                     event_specs=tuple(EventSpec(n, -1, "reset") for n in CLEARANCE_EVENTS))
             elif self.has_friction:
                 specs = []
                 for name in self._ball_labels:
                     specs += [EventSpec(f"stick_{name}", -1, "reset"), EventSpec(f"slip_{name}", -1, "reset")]
-                self._cache["kernels"] = Kernels(
-                    rhs=mod.rhs, n_state=self.n_state, n_discrete=self.layout.n_discrete,
-                    events=mod.events, reset=mod.reset, vectorises=True, event_specs=tuple(specs),
-                    inline_lanes=self._inline_lanes)
+                self._cache["kernels"] = Kernels(**common, n_discrete=self.layout.n_discrete, events=mod.events,
+                                                 reset=mod.reset, event_specs=tuple(specs))
             else:
-                self._cache["kernels"] = Kernels(rhs=mod.rhs, n_state=self.n_state, vectorises=True,
-                                                 inline_lanes=self._inline_lanes)
+                self._cache["kernels"] = Kernels(**common)
         return self._cache["kernels"]
 
     @property
