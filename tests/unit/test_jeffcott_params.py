@@ -107,14 +107,14 @@ def test_model_rejects_bad_configuration():
 def test_packed_order_and_round_trip(speed, frame):
     model = JeffcottBalls(ROTOR, BALLS, speed=speed, frame=frame)
     p = model.to_array()
-    assert p.dtype == np.float64 and p.shape == (12 + 5 * 2,)
+    assert p.dtype == np.float64 and p.shape == (12 + 6 * 2,)
     assert p[0] == 2.0 and p[1] == 1.0  # n, friction modes present
     np.testing.assert_array_equal(p[2:6], [3.0, 2e-3, 1.2e4, 5.0])
     np.testing.assert_array_equal(p[6:12], speed.to_array())
-    for i, b in enumerate(BALLS):
-        block = p[12 + 5 * i : 17 + 5 * i]
-        np.testing.assert_array_equal(block, [b.mass, b.radius, b.inertia, b.damping, b.friction])
-    assert p[12 + 4] == 0.3 and p[17 + 2] == 0.06 * 0.11**2 + 1e-5
+    for i, b in enumerate(BALLS):  # the sixth entry is derived: 1 / J
+        block = p[12 + 6 * i : 18 + 6 * i]
+        np.testing.assert_array_equal(block, [b.mass, b.radius, b.inertia, b.damping, b.friction, 1.0 / b.inertia])
+    assert p[12 + 4] == 0.3 and p[18 + 2] == 0.06 * 0.11**2 + 1e-5
     again = JeffcottBalls.from_array(p, frame=frame)
     assert again == model
     np.testing.assert_array_equal(again.to_array(), p)

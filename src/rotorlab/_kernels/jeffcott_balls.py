@@ -3,7 +3,7 @@
 Physics and conventions are documented in :mod:`rotorlab.models._jeffcott_balls`; this module is
 the allocation-free numerics.
 
-Packed parameters ``p`` (float64, length ``12 + 5 n``)
+Packed parameters ``p`` (float64, length ``12 + 6 n``)
 ------------------------------------------------------
 ======================  =========================================================================
 ``p[0]``                n, number of balls (stored as float)
@@ -13,7 +13,9 @@ Packed parameters ``p`` (float64, length ``12 + 5 n``)
 ``p[4]``                c, lateral shaft stiffness (N/m)
 ``p[5]``                d, external viscous damping on the disc centre (N s/m)
 ``p[6:12]``             speed profile block (:mod:`rotorlab._kernels.speed`)
-``p[12 + 5 i + 0..4]``  ball i: m_i (kg), l_i (m), J_i (kg m^2), b_i (N m s/rad), f_i (1)
+``p[12 + 6 i + 0..4]``  ball i: m_i (kg), l_i (m), J_i (kg m^2), b_i (N m s/rad), f_i (1)
+``p[12 + 6 i + 5]``     1 / J_i (1/(kg m^2)), derived: the kernels multiply by it (a division
+                        per use measured 7 % of the lane driver's time on the two-ball sweep)
 ======================  =========================================================================
 
 States
@@ -64,7 +66,7 @@ relative velocity is set exactly to zero in both cases.
 from numba import njit
 
 from rotorlab._kernels._vmath import sincos
-from rotorlab._kernels.speed import profile, profile_arithmetic
+from rotorlab._kernels.speed import profile, profile_arithmetic, profile_constant
 
 __all__ = [
     "P_N",
@@ -80,6 +82,8 @@ __all__ = [
     "rhs_rotating",
     "rhs_fixed_free",
     "rhs_rotating_free",
+    "rhs_fixed_constant",
+    "rhs_rotating_constant",
     "events_fixed",
     "events_rotating",
     "reset_fixed",
@@ -95,12 +99,18 @@ P_C = 4
 P_D = 5
 P_SPEED = 6
 P_BALLS = 12
-BALL_STRIDE = 5
+BALL_STRIDE = 6
 B_M = 0
 B_L = 1
 B_J = 2
 B_B = 3
 B_F = 4
+B_IJ = 5  # 1 / J, derived by the model's to_array
+
+# the speed profiles a lane-friendly kernel computes (_rhs_free's literal ``speed``)
+SPEED_ANY = 0
+SPEED_ARITHMETIC = 1
+SPEED_CONSTANT = 2
 
 # state layout
 I_X = 0
@@ -184,7 +194,7 @@ def _solve(t, y, p, rotating, forced, scr, ks, kc, stride):
         w = rate + om if rotating else rate
         rel = rate if rotating else rate - om
         g0, A, B = _free_coefficients(k, rel, w, s, c, mode, p, has_modes)
-        q = ml / p[k + B_J]
+        q = ml * p[k + B_IJ]
         a11 -= q * s * A
         a12 -= q * s * B
         a21 += q * c * A
@@ -240,22 +250,26 @@ def _rhs(t, y, p, out, rotating):
         w = rate + om if rotating else rate
         rel = rate if rotating else rate - om
         g0, A, B = _free_coefficients(k, rel, w, s, c, mode, p, has_modes)
-        acc = (g0 + A * ax + B * ay) / p[k + B_J]
+        acc = (g0 + A * ax + B * ay) * p[k + B_IJ]
         out[I_ANGLE + i] = rate
         out[I_ANGLE + n + i] = acc - dom if rotating else acc
 
 
 @njit(cache=True, nogil=True, inline="always")
-def _rhs_free(t, y, p, out, rotating, arithmetic_speed):
+def _rhs_free(t, y, p, out, rotating, speed):
     """Right-hand side without stick/slip modes (the common, fast path; same equations).
 
     The ball count is taken from the state's length (``4 + 2 n``), which the lane driver makes a
     compile-time constant: its loops over the balls then unroll and the loop over lanes
-    vectorises. ``arithmetic_speed`` (a literal) restricts the speed profile to the kinds
-    computed without library calls (constant, ramp).
+    vectorises. ``speed`` (a literal) is the speed profiles the kernel computes: ``SPEED_ANY``
+    (:func:`profile`), ``SPEED_ARITHMETIC`` (constant or ramp, no library call,
+    :func:`profile_arithmetic`) or ``SPEED_CONSTANT`` (:func:`profile_constant`); a kind
+    outside them gives NaN.
     """
     n = (y.shape[0] - 4) // 2
-    if arithmetic_speed:
+    if speed == SPEED_CONSTANT:
+        theta, om, dom = profile_constant(t, p, P_SPEED)
+    elif speed == SPEED_ARITHMETIC:
         theta, om, dom = profile_arithmetic(t, p, P_SPEED)
     else:
         theta, om, dom = profile(t, p, P_SPEED)
@@ -288,7 +302,7 @@ def _rhs_free(t, y, p, out, rotating, arithmetic_speed):
         out[I_ANGLE + n + i] = c
         w = rate + om if rotating else rate
         g0 = -p[k + B_B] * (rate if rotating else rate - om)
-        q = ml / p[k + B_J]
+        q = ml * p[k + B_IJ]
         qs = q * s
         qc = q * c
         sss += qs * ml * s
@@ -317,7 +331,7 @@ def _rhs_free(t, y, p, out, rotating, arithmetic_speed):
         rate = y[I_ANGLE + n + i]
         ml = p[k + B_M] * p[k + B_L]
         g0 = -p[k + B_B] * (rate if rotating else rate - om)
-        acc = (g0 + ml * (ax * s - ay * c)) / p[k + B_J]
+        acc = (g0 + ml * (ax * s - ay * c)) * p[k + B_IJ]
         out[I_ANGLE + i] = rate
         out[I_ANGLE + n + i] = acc - dom if rotating else acc
 
@@ -328,7 +342,7 @@ def rhs_fixed(t, y, p, out):
     if p[P_MODES] != 0.0:
         _rhs(t, y, p, out, False)
     else:
-        _rhs_free(t, y, p, out, False, False)
+        _rhs_free(t, y, p, out, False, SPEED_ANY)
 
 
 @njit(cache=True, nogil=True, fastmath=False)
@@ -337,7 +351,7 @@ def rhs_rotating(t, y, p, out):
     if p[P_MODES] != 0.0:
         _rhs(t, y, p, out, True)
     else:
-        _rhs_free(t, y, p, out, True, False)
+        _rhs_free(t, y, p, out, True, SPEED_ANY)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
@@ -345,13 +359,26 @@ def rhs_fixed_free(t, y, p, out):
     """Lane-friendly right-hand side in the fixed frame: no stick/slip modes, constant or ramp
     speed (a Hill run-up gives NaN: use :func:`rhs_fixed`). Same equations and numbers as
     :func:`rhs_fixed` for those models."""
-    _rhs_free(t, y, p, out, False, True)
+    _rhs_free(t, y, p, out, False, SPEED_ARITHMETIC)
 
 
 @njit(cache=True, nogil=True, error_model="numpy")
 def rhs_rotating_free(t, y, p, out):
     """Lane-friendly right-hand side in the co-rotating frame (see :func:`rhs_fixed_free`)."""
-    _rhs_free(t, y, p, out, True, True)
+    _rhs_free(t, y, p, out, True, SPEED_ARITHMETIC)
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def rhs_fixed_constant(t, y, p, out):
+    """:func:`rhs_fixed_free` for a constant speed only (another kind gives NaN): no select
+    between profile kinds. Same numbers as :func:`rhs_fixed` for those models."""
+    _rhs_free(t, y, p, out, False, SPEED_CONSTANT)
+
+
+@njit(cache=True, nogil=True, error_model="numpy")
+def rhs_rotating_constant(t, y, p, out):
+    """Lane-friendly right-hand side in the co-rotating frame (see :func:`rhs_fixed_constant`)."""
+    _rhs_free(t, y, p, out, True, SPEED_CONSTANT)
 
 
 @njit(cache=True, nogil=True, inline="always")

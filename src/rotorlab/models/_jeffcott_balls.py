@@ -134,18 +134,23 @@ from rotorlab.models._speed import ConstantSpeed, SpeedProfile, speed_from_array
 __all__ = ["JeffcottBalls", "fixed_to_rotating", "rotating_to_fixed"]
 
 Frame = Literal["fixed", "rotating"]
-_KERNELS: dict[tuple[str, int, bool], Kernels] = {}
+_KERNELS: dict[tuple[str, int, bool, int], Kernels] = {}
+# the lane-friendly kernel of each frame and speed class, and the class of each profile kind
+_LANE_RHS = {("fixed", _k.SPEED_CONSTANT): _k.rhs_fixed_constant, ("rotating", _k.SPEED_CONSTANT): _k.rhs_rotating_constant,
+             ("fixed", _k.SPEED_ARITHMETIC): _k.rhs_fixed_free, ("rotating", _k.SPEED_ARITHMETIC): _k.rhs_rotating_free}
+_SPEED_OF_KIND = {KIND_CONSTANT: _k.SPEED_CONSTANT, KIND_RAMP: _k.SPEED_ARITHMETIC}
 
 
-def _kernels_for(frame: str, n_balls: int, friction: bool, arithmetic_speed: bool = False) -> Kernels:
+def _kernels_for(frame: str, n_balls: int, friction: bool, speed: int = _k.SPEED_ANY) -> Kernels:
     """Return the (shared) Kernels bundle of one frame / size / friction / speed configuration.
 
-    Without friction and with a constant or ramp speed (``arithmetic_speed``) the lane-friendly
-    kernels (:func:`rotorlab._kernels.jeffcott_balls.rhs_fixed_free`) are used: same numbers,
-    vectorised by the lane driver.
+    Without friction, the lane-friendly kernels are used for a constant speed
+    (``speed = SPEED_CONSTANT``: :func:`rotorlab._kernels.jeffcott_balls.rhs_fixed_constant`) and
+    a ramp (``SPEED_ARITHMETIC``: :func:`rotorlab._kernels.jeffcott_balls.rhs_fixed_free`): same
+    numbers, vectorised by the lane driver.
     """
-    arithmetic_speed = arithmetic_speed and not friction
-    key = (frame, n_balls, friction, arithmetic_speed)
+    speed = _k.SPEED_ANY if friction else speed
+    key = (frame, n_balls, friction, speed)
     if key not in _KERNELS:
         rhs = _k.rhs_fixed if frame == "fixed" else _k.rhs_rotating
         if friction:
@@ -160,8 +165,8 @@ def _kernels_for(frame: str, n_balls: int, friction: bool, arithmetic_speed: boo
                 reset=_k.reset_fixed if frame == "fixed" else _k.reset_rotating,
                 event_specs=tuple(specs),
             )
-        elif arithmetic_speed:
-            rhs = _k.rhs_fixed_free if frame == "fixed" else _k.rhs_rotating_free
+        elif speed != _k.SPEED_ANY:
+            rhs = _LANE_RHS[frame, speed]
             _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n_balls, vectorises=True)
         else:
             _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n_balls, events=no_events, reset=no_reset)
@@ -234,7 +239,7 @@ class JeffcottBalls:
     def kernels(self) -> Kernels:
         """Compiled kernels for this frame and friction configuration (shared, cached)."""
         kind = float(self.speed.to_array()[0])
-        return _kernels_for(self.frame, self.n_balls, self.has_friction, kind in (KIND_CONSTANT, KIND_RAMP))
+        return _kernels_for(self.frame, self.n_balls, self.has_friction, _SPEED_OF_KIND.get(kind, _k.SPEED_ANY))
 
     @property
     def n_state(self) -> int:
@@ -280,7 +285,8 @@ class JeffcottBalls:
         r = self.rotor
         head = [float(self.n_balls), 1.0 if self.has_friction else 0.0, r.disc_mass,
                 r.eccentricity, r.stiffness, r.damping]  # fmt: skip
-        balls = [[b.mass, b.radius, b.inertia, b.damping, b.friction] for b in self.balls]
+        balls = [[b.mass, b.radius, b.inertia, b.damping, b.friction, 1.0 / b.inertia if b.inertia else math.inf]
+                 for b in self.balls]  # fmt: skip
         return np.concatenate([head, self.speed.to_array(), np.ravel(balls)]).astype(float)
 
     @classmethod
@@ -289,7 +295,7 @@ class JeffcottBalls:
 
         Parameters
         ----------
-        p : array_like, shape (12 + 5 n,)
+        p : array_like, shape (12 + 6 n,)
         frame : {"fixed", "rotating"}
 
         Returns
@@ -299,10 +305,10 @@ class JeffcottBalls:
         p = np.asarray(p, dtype=float)
         n = int(p[_k.P_N]) if p.size else -1
         if p.ndim != 1 or n < 0 or p.size != _k.P_BALLS + _k.BALL_STRIDE * n:
-            raise ValueError(f"p must have 12 + 5 n entries with n = p[0]; got shape {p.shape}")
+            raise ValueError(f"p must have 12 + 6 n entries with n = p[0]; got shape {p.shape}")
         rotor = RotorParams(p[_k.P_M1], p[_k.P_E], p[_k.P_C], p[_k.P_D])
         balls = tuple(
-            BallParams(*p[_k.P_BALLS + _k.BALL_STRIDE * i : _k.P_BALLS + _k.BALL_STRIDE * (i + 1)])
+            BallParams(*p[_k.P_BALLS + _k.BALL_STRIDE * i : _k.P_BALLS + _k.BALL_STRIDE * i + _k.B_IJ])
             for i in range(n)
         )
         speed = speed_from_array(p[_k.P_SPEED : _k.P_SPEED + 6])
