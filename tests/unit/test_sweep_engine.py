@@ -108,6 +108,59 @@ def test_dask_worker_count_invariance(reference):
     same(reference, run_sweep(SWEEP, chunk_size=11, executor=DaskExecutor(workers=1)))
 
 
+def _where(analysis, k, coords, threads):
+    """A chunk function that reports the process it ran in."""
+    return k, os.getpid()
+
+
+def _pids(executor: DaskExecutor) -> set[int]:
+    return {pid for _, pid in executor.imap(_where, None, ((k, {}) for k in range(4)))}
+
+
+def test_dask_local_workers_are_threads_unless_numba_cannot_run_parallel_regions_from_threads(reference, monkeypatch):
+    from rotorlab.sweep import _executors
+
+    # one integrator thread a task: no parallel region, the workers are threads of this process
+    assert _pids(DaskExecutor(workers=2, threads=1)) == {os.getpid()}
+    same(reference, run_sweep(SWEEP, chunk_size=11, executor=DaskExecutor(workers=2, threads=1)))
+    # parallel regions from several threads at once abort the process under numba's workqueue
+    # layer: then the workers are processes
+    monkeypatch.setattr(_executors, "_parallel_regions_threadsafe", lambda: True)
+    assert _pids(DaskExecutor(workers=1, threads=2)) == {os.getpid()}
+    monkeypatch.setattr(_executors, "_parallel_regions_threadsafe", lambda: False)
+    assert os.getpid() not in _pids(DaskExecutor(workers=1, threads=2))
+
+
+def test_first_chunk_of_a_run_runs_alone_then_chunks_run_concurrently():
+    import threading
+    import uuid
+
+    from rotorlab.sweep._executors import _first_chunk_alone
+
+    run = uuid.uuid4().hex
+    started = [threading.Event() for _ in range(3)]
+    release = [threading.Event() for _ in range(3)]
+
+    def chunk(i):
+        started[i].set()
+        assert release[i].wait(30)
+        return i
+
+    def call(i):
+        threading.Thread(target=_first_chunk_alone, args=(run, chunk, i), daemon=True).start()
+
+    call(0)
+    assert started[0].wait(30)
+    call(1)
+    assert not started[1].wait(0.3)  # waits for the first chunk to finish
+    release[0].set()
+    assert started[1].wait(30)
+    call(2)  # a chunk has finished: the next ones no longer wait
+    assert started[2].wait(30)
+    for e in release:
+        e.set()
+
+
 def _interrupt_after(n_chunks: int):
     def progress(p):
         if p.computed == n_chunks:

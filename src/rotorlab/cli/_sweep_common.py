@@ -23,7 +23,7 @@ __all__ = ["SchedulerOpt", "WorkersOpt", "scheduler_is_safe", "check_store_path"
 SchedulerOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
     "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")]
 WorkersOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
-    "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N worker processes.")]
+    "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N workers (threads of this command).")]
 
 
 def check_store_path(out: Path, resume: bool, option: str = "--out") -> None:

@@ -1,4 +1,5 @@
-"""Where the chunk function runs: in this process, in local worker processes, or on Dask.
+"""Where the chunk function runs: in this process, in local worker processes, or on Dask (whose
+local cluster runs its workers as threads of this process).
 
 An executor is a frozen value; :meth:`imap` yields the results of the chunk tasks as they
 finish (in any order) and cancels what is left when it is closed early (Ctrl-C, an error). The
@@ -9,6 +10,7 @@ the executor changes only the wall time.
 from __future__ import annotations
 
 import os
+import threading
 import uuid
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
@@ -114,7 +116,8 @@ class LocalProcesses:
 # event-loop "tick" monitor runs every 20 ms, the system monitor every 0.5 s), which an idle
 # 2-worker cluster measured as ~0.1 CPU-s per wall-second (bench/README.md). Nobody looks at them
 # here (no dashboard), so they are slowed down or off. The memory monitor (pausing and restarting
-# a worker that runs out of memory) keeps its default.
+# a worker process that runs out of memory) keeps its default; thread workers have none
+# (local_cluster).
 _QUIET = {
     "distributed.worker.profile.enabled": False,
     "distributed.admin.tick.interval": "1s",
@@ -123,18 +126,64 @@ _QUIET = {
 }
 
 
-def local_cluster(workers: int):
+def local_cluster(workers: int, processes: bool = False):
     """The ``LocalCluster`` of :class:`DaskExecutor` (and of ``bench/sweep.py --idle-cluster``):
-    ``workers`` single-threaded worker processes, no dashboard, quiet diagnostics (``_QUIET``,
-    passed to the worker processes by their nannies)."""
+    ``workers`` single-threaded workers, no dashboard, quiet diagnostics (``_QUIET``).
+
+    By default the workers are threads of this process: the compiled integrator releases the GIL
+    (``nogil=True``), so they integrate in parallel, and nothing has to start. Worker processes
+    (``processes=True``, each with its nanny) import rotorlab and load the compiled integrator
+    again, which cost a 2-worker sweep ~3.4 CPU-s more than in-process against ~0.4 CPU-s for
+    thread workers (bench/README.md, issue 11 session 8).
+
+    Thread workers have no memory limit: Dask measures a worker's memory as its process's, which
+    for a thread is the whole command with the results it holds, and it pauses a worker above
+    80 % of its share of the RAM: the sweep would wait as long as the command holds that much
+    (seen: a 300 MB limit and a 320 MB array in the process, the task never ran). Worker processes
+    keep Dask's default.
+    """
     import logging
 
     import dask
     from distributed import LocalCluster
 
     with dask.config.set(_QUIET):
-        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=True, dashboard_address=None,
-                            silence_logs=logging.ERROR)  # fmt: skip
+        return LocalCluster(n_workers=workers, threads_per_worker=1, processes=processes, dashboard_address=None,
+                            memory_limit="auto" if processes else 0, silence_logs=logging.ERROR)  # fmt: skip
+
+
+def _parallel_regions_threadsafe() -> bool:
+    """Whether numba's threading layer runs parallel regions launched from several threads at once
+    (``tbb`` and ``omp`` do; ``workqueue``, the only one numba guarantees, aborts the process)."""
+    import numba
+
+    numba.get_num_threads()  # starts the threading layer, so that it can be asked for its name
+    return numba.threading_layer() != "workqueue"
+
+
+# Run ids whose first chunk has finished in this process (see _first_chunk_alone).
+_WARM: set[str] = set()
+_WARMING = threading.Lock()
+
+
+def _first_chunk_alone(run: str, fn: Callable, *args: Any) -> Any:
+    """``fn(*args)``; until one chunk of ``run`` has finished in this process, one at a time.
+
+    The first chunk of a sweep builds and loads the compiled drivers it needs, and that is not
+    safe from two threads at once: the second thread can be handed the generated driver module
+    while the first is still executing it (``rotorlab.integrate._codegen``: KeyError
+    'integrate_lanes_serial' in 8 of 8 fresh processes whose two threads started their first
+    chunk together). Later chunks find everything loaded and run concurrently. This concerns every
+    worker that runs several tasks at once: the local thread workers, and a remote ``dask worker``
+    with more than one thread.
+    """
+    if run not in _WARM:
+        with _WARMING:
+            if run not in _WARM:
+                result = fn(*args)
+                _WARM.add(run)
+                return result
+    return fn(*args)
 
 
 @dataclass(frozen=True)
@@ -146,8 +195,10 @@ class DaskExecutor:
     scheduler : str, optional
         Address of a running scheduler (``tcp://HOST:PORT``).
     workers : int, optional
-        Without ``scheduler``: start a ``LocalCluster`` of this many single-threaded worker
-        processes for the sweep (default 2) and close it afterwards.
+        Without ``scheduler``: start a ``LocalCluster`` of this many single-threaded workers for
+        the sweep (default 2) and close it afterwards. They are threads of this process
+        (:func:`local_cluster`), or processes where each task runs a parallel region
+        (``threads`` > 1) and numba's threading layer cannot run two at once (``workqueue``).
     threads : int, optional
         Integrator threads per task (default: cores // workers on a local cluster, numba's
         default on a remote one). Results do not depend on it.
@@ -191,16 +242,17 @@ class DaskExecutor:
             owned.append(client)
         else:
             n = self.workers or 2
-            cluster = local_cluster(n)
+            threads = threads or max(1, _cores() // n)
+            cluster = local_cluster(n, processes=threads > 1 and not _parallel_regions_threadsafe())
             owned.append(cluster)
             client = Client(cluster)
             owned.insert(0, client)
-            threads = threads or max(1, _cores() // n)
         run = uuid.uuid4().hex[:12]
         futures = []
         try:
             for k, coords in tasks:
-                futures.append(client.submit(fn, analysis, k, coords, threads, key=f"rotorlab-chunk-{run}-{k}"))
+                futures.append(client.submit(_first_chunk_alone, run, fn, analysis, k, coords, threads,
+                                             key=f"rotorlab-chunk-{run}-{k}"))  # fmt: skip
             for fut in as_completed(futures):
                 result = fut.result()
                 fut.release()
