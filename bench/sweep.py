@@ -131,8 +131,9 @@ def _cli(case_file: Path, store: Path, workers: int | None, env: dict) -> tuple[
 
 
 def _idle_cluster(workers: int, seconds: float) -> dict:
-    """CPU cost of an idle local Dask cluster (the one ``--workers`` starts): scheduler and client in
-    this process, nannies and workers as children, per wall-second of waiting."""
+    """CPU cost of an idle local Dask cluster (the one ``--workers`` starts): scheduler, client and
+    (thread) workers in this process, per wall-second of waiting; worker processes and their
+    nannies, where ``local_cluster`` starts them, as children."""
     from dask.distributed import Client
 
     from rotorlab.sweep._executors import local_cluster
