@@ -133,8 +133,8 @@ def local_cluster(workers: int, processes: bool = False):
     By default the workers are threads of this process: the compiled integrator releases the GIL
     (``nogil=True``), so they integrate in parallel, and nothing has to start. Worker processes
     (``processes=True``, each with its nanny) import rotorlab and load the compiled integrator
-    again, which cost a 2-worker sweep ~3.4 CPU-s more than in-process against ~0.4 CPU-s for
-    thread workers (bench/README.md, issue 11 session 8).
+    again: ``rotorlab sweep --workers 2`` cost 4.3-4.6 CPU-s more than in-process with worker
+    processes, 0.1-0.65 CPU-s more with thread workers (bench/README.md, issue 11 session 8).
 
     Thread workers have no memory limit: Dask measures a worker's memory as its process's, which
     for a thread is the whole command with the results it holds, and it pauses a worker above
@@ -170,12 +170,14 @@ def _first_chunk_alone(run: str, fn: Callable, *args: Any) -> Any:
     """``fn(*args)``; until one chunk of ``run`` has finished in this process, one at a time.
 
     The first chunk of a sweep builds and loads the compiled drivers it needs, and that is not
-    safe from two threads at once: the second thread can be handed the generated driver module
-    while the first is still executing it (``rotorlab.integrate._codegen``: KeyError
+    safe from two threads at once (``rotorlab.integrate._codegen``): the second thread can be
+    handed the generated driver module while the first is still executing it (KeyError
     'integrate_lanes_serial' in 8 of 8 fresh processes whose two threads started their first
-    chunk together). Later chunks find everything loaded and run concurrently. This concerns every
-    worker that runs several tasks at once: the local thread workers, and a remote ``dask worker``
-    with more than one thread.
+    chunk together), and ``ast.parse`` from two threads raises SystemError on Python 3.11
+    (``--workers 4`` in a fresh process: 6 failures in 6 runs). Later chunks find everything
+    loaded and run concurrently; the wait costs at most one chunk's wall time, no CPU. This
+    concerns every worker that runs several tasks at once: the local thread workers, and a remote
+    ``dask worker`` with more than one thread.
     """
     if run not in _WARM:
         with _WARMING:
