@@ -122,9 +122,9 @@ def test_sweep_cli_local_dask_cluster_matches_in_process(tmp_path):
 
 def test_sweep_cli_thread_workers_of_a_fresh_process_match_in_process(tmp_path):
     """``--workers`` runs its workers as threads of the command. In a fresh process their first
-    chunks load the compiled drivers at the same moment, which is not thread-safe: with 4 workers
-    this command failed in 6 of 6 runs (KeyError 'integrate_lanes_serial', SystemError from
-    ``ast``) until a run's first chunk ran alone (``sweep._executors._first_chunk_alone``)."""
+    chunks ask for the compiled drivers at the same moment: with 4 workers this command failed in
+    6 of 6 runs (KeyError 'integrate_lanes_serial', SystemError from ``ast``) until generating and
+    importing a driver took a lock (``rotorlab.integrate._codegen.BUILD_LOCK``)."""
     args = ["sweep", "autobalancer", "--speed-ratio", "2", "--ic", "psi_1=0deg:300deg:6", "--param",
             "ball_damping=1e-3:4e-3:2", "--t-end", "0.5", "--chunk", "2"]  # fmt: skip
     one = invoke(*args, "--out", str(tmp_path / "one.zarr"), "--json")

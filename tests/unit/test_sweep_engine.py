@@ -131,36 +131,6 @@ def test_dask_local_workers_are_threads_unless_numba_cannot_run_parallel_regions
     assert os.getpid() not in _pids(DaskExecutor(workers=1, threads=2))
 
 
-def test_first_chunk_of_a_run_runs_alone_then_chunks_run_concurrently():
-    import threading
-    import uuid
-
-    from rotorlab.sweep._executors import _first_chunk_alone
-
-    run = uuid.uuid4().hex
-    started = [threading.Event() for _ in range(3)]
-    release = [threading.Event() for _ in range(3)]
-
-    def chunk(i):
-        started[i].set()
-        assert release[i].wait(30)
-        return i
-
-    def call(i):
-        threading.Thread(target=_first_chunk_alone, args=(run, chunk, i), daemon=True).start()
-
-    call(0)
-    assert started[0].wait(30)
-    call(1)
-    assert not started[1].wait(0.3)  # waits for the first chunk to finish
-    release[0].set()
-    assert started[1].wait(30)
-    call(2)  # a chunk has finished: the next ones no longer wait
-    assert started[2].wait(30)
-    for e in release:
-        e.set()
-
-
 def _interrupt_after(n_chunks: int):
     def progress(p):
         if p.computed == n_chunks:

@@ -389,14 +389,21 @@ def _deps_hash(source: str) -> str:
 
 def kernel_module(lay: Layout):
     """Return the imported kernel module for ``lay`` (generated and written on first use)."""
+    from rotorlab.integrate._codegen import BUILD_LOCK
     from rotorlab.integrate._codegen import cache_dir as _cache_dir
 
     source = generate(lay)
     digest = _deps_hash(source)
     if digest in _LOADED:
         return _LOADED[digest]
+    with BUILD_LOCK:  # one thread at a time, as the drivers (rotorlab.integrate._codegen)
+        if digest not in _LOADED:
+            _LOADED[digest] = _import(lay, source, digest, _cache_dir())
+    return _LOADED[digest]
+
+
+def _import(lay: Layout, source: str, digest: str, directory: Path | None):
     name = f"_rotorlab_machine_{lay.key}_{digest}"
-    directory = _cache_dir()
     if directory is None:  # pragma: no cover - no writable directory at all
         directory = Path(tempfile.mkdtemp(prefix="rotorlab-machine-"))
     path = directory / f"{name}.py"
@@ -409,5 +416,4 @@ def kernel_module(lay: Layout):
     module = importlib.util.module_from_spec(spec)
     sys.modules[name] = module
     spec.loader.exec_module(module)
-    _LOADED[digest] = module
     return module

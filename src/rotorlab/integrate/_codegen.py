@@ -40,6 +40,7 @@ import inspect
 import os
 import sys
 import tempfile
+import threading
 import types
 from pathlib import Path
 from typing import Any
@@ -50,6 +51,12 @@ __all__ = ["build", "dependencies", "source_digest", "cache_dir", "announce_comp
 _VERSIONED = ("numba", "numpy", "llvmlite")
 _SKIP_TOP = {"numba", "numpy", "llvmlite", "scipy", "typing_extensions", "_pytest", "pytest"}
 _LOADED: dict[tuple, tuple[tuple, dict[str, Any]]] = {}
+# Generating and importing a copy is done by one thread at a time (threads of one process, e.g.
+# the thread workers of rotorlab.sweep's local Dask cluster, may ask for the same driver at once):
+# unlocked, a second thread was handed the module half-executed from sys.modules (KeyError
+# 'integrate_lanes_serial') or ast.parse raised SystemError on Python 3.11 (4 thread workers of a
+# fresh process: 6 failures in 6 runs). Reentrant: importing a copy may build another.
+BUILD_LOCK = threading.RLock()
 
 
 def _importable_name(dispatcher: Any) -> tuple[str, str] | None:
@@ -217,14 +224,18 @@ def build(template: str, kernels: dict[str, Any], consts: dict[str, int] | None 
     hit = _LOADED.get(key)
     if hit is not None and all(a is b for a, b in zip(hit[0], disp)):
         return hit[1]
-    names = {role: _importable_name(d) for role, d in kernels.items()}
-    directory = cache_dir()
-    if directory is None or any(n is None for n in names.values()):
-        namespace = _in_memory(template, kernels, consts)
-    else:
-        namespace = _cached(template, names, consts, directory)  # type: ignore[arg-type]
-    _LOADED[key] = (disp, namespace)
-    return namespace
+    with BUILD_LOCK:
+        hit = _LOADED.get(key)  # built by another thread meanwhile
+        if hit is not None and all(a is b for a, b in zip(hit[0], disp)):
+            return hit[1]
+        names = {role: _importable_name(d) for role, d in kernels.items()}
+        directory = cache_dir()
+        if directory is None or any(n is None for n in names.values()):
+            namespace = _in_memory(template, kernels, consts)
+        else:
+            namespace = _cached(template, names, consts, directory)  # type: ignore[arg-type]
+        _LOADED[key] = (disp, namespace)
+        return namespace
 
 
 def _cached(template: str, names: dict[str, tuple[str, str]], consts: dict[str, int], directory: Path) -> dict[str, Any]:

@@ -10,7 +10,6 @@ the executor changes only the wall time.
 from __future__ import annotations
 
 import os
-import threading
 import uuid
 from collections.abc import Callable, Iterable, Iterator
 from dataclasses import dataclass, field
@@ -161,33 +160,6 @@ def _parallel_regions_threadsafe() -> bool:
     return numba.threading_layer() != "workqueue"
 
 
-# Run ids whose first chunk has finished in this process (see _first_chunk_alone).
-_WARM: set[str] = set()
-_WARMING = threading.Lock()
-
-
-def _first_chunk_alone(run: str, fn: Callable, *args: Any) -> Any:
-    """``fn(*args)``; until one chunk of ``run`` has finished in this process, one at a time.
-
-    The first chunk of a sweep builds and loads the compiled drivers it needs, and that is not
-    safe from two threads at once (``rotorlab.integrate._codegen``): the second thread can be
-    handed the generated driver module while the first is still executing it (KeyError
-    'integrate_lanes_serial' in 8 of 8 fresh processes whose two threads started their first
-    chunk together), and ``ast.parse`` from two threads raises SystemError on Python 3.11
-    (``--workers 4`` in a fresh process: 6 failures in 6 runs). Later chunks find everything
-    loaded and run concurrently; the wait costs at most one chunk's wall time, no CPU. This
-    concerns every worker that runs several tasks at once: the local thread workers, and a remote
-    ``dask worker`` with more than one thread.
-    """
-    if run not in _WARM:
-        with _WARMING:
-            if run not in _WARM:
-                result = fn(*args)
-                _WARM.add(run)
-                return result
-    return fn(*args)
-
-
 @dataclass(frozen=True)
 class DaskExecutor:
     """Run the chunks as tasks on a Dask cluster (``dask.distributed``).
@@ -253,8 +225,7 @@ class DaskExecutor:
         futures = []
         try:
             for k, coords in tasks:
-                futures.append(client.submit(_first_chunk_alone, run, fn, analysis, k, coords, threads,
-                                             key=f"rotorlab-chunk-{run}-{k}"))  # fmt: skip
+                futures.append(client.submit(fn, analysis, k, coords, threads, key=f"rotorlab-chunk-{run}-{k}"))
             for fut in as_completed(futures):
                 result = fut.result()
                 fut.release()
