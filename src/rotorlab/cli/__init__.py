@@ -52,10 +52,14 @@ def main() -> None:
     import sys
     import threading
 
+    from rotorlab import _interrupt
+
     try:
         if threading.current_thread() is threading.main_thread():
             signal.signal(signal.SIGTERM, _terminated)
+            signal.signal(signal.SIGINT, _interrupt.handler)
         app = _load_app()
+        _interrupt.check()  # a Ctrl-C during the imports that Python swallowed
         app(prog_name="rotorlab")
     except KeyboardInterrupt:
         sys.stderr.write("interrupted\n")

@@ -225,13 +225,18 @@ from ``Kernels.inline_lanes``, see :mod:`rotorlab.integrate._drivers`)."""
 # vectorise when inlined, so they keep the call (Kernels.inline_lanes = False).
 @njit(cache=True, nogil=True, error_model="numpy", inline="always" if INLINE_RHS else "never")
 def _rhs_lanes(W, nl):
-    """``K[:, l] = rhs(t[l], Y[:, l], p[:, l])`` for every lane, rows of the workspace ``W``.
+    """``Q[:, l] = rhs(tt[l], T[:, l], p[:, l])`` for every lane, rows of the workspace ``W``.
 
-    Parameters are lane-interleaved in ``PL`` even when all trajectories share them: loads
-    from memory measured faster than LLVM's hoisting of the parameter arithmetic out of the
-    loop (which keeps too many values in registers). ``nl`` (= LANES) is a run-time value on
-    purpose: with a constant trip count this small, LLVM treats the loop as "optimise for size"
-    and will not emit the alias checks it needs to vectorise.
+    Every row is a constant offset into ``W``, the parameters included (lane-interleaved from
+    ``_P`` on): LLVM then proves all loads and stores of the loop apart without run-time alias
+    checks. With the parameters in an array of their own (or the rows passed as arguments) a
+    kernel with hundreds of parameter loads, such as the 28-state Pico 21 machine's, needed more
+    pointer checks than LLVM allows ("too many memory checks needed") and did not vectorise at
+    all. Parameters are lane-interleaved even when all trajectories share them: loads from
+    memory measured faster than LLVM's hoisting of the parameter arithmetic out of the loop
+    (which keeps too many values in registers). ``nl`` (= LANES) is a run-time value on purpose:
+    with a constant trip count this small, LLVM treats the loop as "optimise for size" and will
+    not emit the alias checks it needs to vectorise.
     """
     n_par = (W.shape[0] - _P) // LANES
     for lane in range(nl):

@@ -127,6 +127,7 @@ def write_report(
         ``out_dir`` is not usable (see :func:`check_output_dir`), or a name would not make a
         plain file name.
     """
+    from rotorlab import _interrupt
     from rotorlab.io import dump_case, save_netcdf
 
     target = check_output_dir(out_dir)
@@ -153,6 +154,7 @@ def write_report(
         (staging / REPORT_NAME).write_text(page, encoding="utf-8")
         (staging / MANIFEST_NAME).write_text("".join(f"{n}\n" for n in names), encoding="utf-8")
         _apply_umask(staging, names)
+        _interrupt.check()  # a Ctrl-C that Python swallowed: nothing is put in place
         if not target.exists():
             os.rename(staging, target)
         else:
