@@ -48,7 +48,9 @@ from dataclasses import dataclass
 
 __all__ = ["Layout", "SPEED_KINDS", "DRIVE_KINDS"]
 
-SPEED_KINDS = ("constant", "ramp", "hill")
+# the prescribed speed kinds, each with whether its generated profile is plain arithmetic (the
+# kernel then vectorises in the lane driver); a Hill run-up needs exp, log and series with branches
+SPEED_KINDS = {"constant": True, "ramp": True, "hill": False}
 DRIVE_KINDS = ("profile", "linear", "table")
 
 
@@ -113,10 +115,10 @@ class Layout:
     @property
     def vectorises(self) -> bool:
         """Whether the generated kernel vectorises in the lane driver (``Kernels.vectorises``):
-        every part is straight arithmetic with :func:`rotorlab._kernels._vmath.sincos`, except
-        the profile of a Hill run-up (``exp``, ``log`` and series with branches: scalar library
-        calls). ``tests/unit/test_vectorise.py`` checks machines of every other part."""
-        return not (self.drive == "profile" and self.speed_kind == "hill")
+        every part is straight arithmetic with :func:`rotorlab._kernels._vmath.sincos`; the speed
+        profile says so in :data:`SPEED_KINDS` (a motor's layout has kind ``"constant"``).
+        ``tests/unit/test_vectorise.py`` checks machines of every part."""
+        return SPEED_KINDS[self.speed_kind]
 
     # ---- counts
     @property

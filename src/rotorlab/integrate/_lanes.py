@@ -227,16 +227,12 @@ from ``Kernels.inline_lanes``, see :mod:`rotorlab.integrate._drivers`)."""
 def _rhs_lanes(W, nl):
     """``Q[:, l] = rhs(tt[l], T[:, l], p[:, l])`` for every lane, rows of the workspace ``W``.
 
-    Every row is a constant offset into ``W``, the parameters included (lane-interleaved from
-    ``_P`` on): LLVM then proves all loads and stores of the loop apart without run-time alias
-    checks. With the parameters in an array of their own (or the rows passed as arguments) a
-    kernel with hundreds of parameter loads, such as the 28-state Pico 21 machine's, needed more
-    pointer checks than LLVM allows ("too many memory checks needed") and did not vectorise at
-    all. Parameters are lane-interleaved even when all trajectories share them: loads from
-    memory measured faster than LLVM's hoisting of the parameter arithmetic out of the loop
-    (which keeps too many values in registers). ``nl`` (= LANES) is a run-time value on purpose:
-    with a constant trip count this small, LLVM treats the loop as "optimise for size" and will
-    not emit the alias checks it needs to vectorise.
+    All rows, the lane-interleaved parameters (``_P`` on) included, are constant offsets into
+    ``W``: LLVM proves every access apart without run-time checks (a separate parameter array
+    made the 28-state Pico 21 kernel need more than LLVM allows: not vectorised). Parameters
+    are interleaved even when shared: faster than LLVM hoisting them (register pressure). ``nl``
+    is run-time on purpose: a constant trip count this small is "optimise for size" (no alias
+    checks, no vectorisation).
     """
     n_par = (W.shape[0] - _P) // LANES
     for lane in range(nl):
