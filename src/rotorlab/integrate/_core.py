@@ -28,18 +28,17 @@ import math
 import numpy as np
 from numba import njit, prange
 
-from rotorlab._kernels._vmath import inv_fifth_root
+from rotorlab._kernels._vmath import fma, inv_fifth_root
 from rotorlab.models._base import no_events as events  # @kernel events
 from rotorlab.models._base import no_reset as reset  # @kernel reset
 from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
+from rotorlab.integrate._dp5 import _all_finite, _crosses, _dense, _rms_scaled, _save_until
 from rotorlab.integrate._tableau import (  # the step-size factor err^(-1/5): _vmath.inv_fifth_root
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65,
     B1, B3, B4, B5, B6,
     C2, C3, C4, C5,
     E1, E3, E4, E5, E6, E7,
     MAX_FACTOR, MIN_FACTOR, SAFETY,
-    P11, P12, P13, P14, P32, P33, P34, P42, P43, P44, P52, P53, P54, P62, P63, P64,
-    P72, P73, P74,
 )  # fmt: skip
 
 # status codes (mirrored by rotorlab.integrate.Status)
@@ -100,73 +99,6 @@ reset = _own(reset)
 
 _MAX_RESETS_WITHOUT_PROGRESS = 1000
 _PROBES = (1e-7, 1e-10, 1e-13)  # step fractions probing an event function that starts at zero
-
-
-@njit(cache=True, nogil=True)
-def _dense(y, h, k1, k3, k4, k5, k6, k7, s, out):
-    """State at ``t + s h`` from the quartic continuous extension of the last step."""
-    s2 = s * s
-    s3 = s2 * s
-    s4 = s3 * s
-    b1 = P11 * s + P12 * s2 + P13 * s3 + P14 * s4
-    b3 = P32 * s2 + P33 * s3 + P34 * s4
-    b4 = P42 * s2 + P43 * s3 + P44 * s4
-    b5 = P52 * s2 + P53 * s3 + P54 * s4
-    b6 = P62 * s2 + P63 * s3 + P64 * s4
-    b7 = P72 * s2 + P73 * s3 + P74 * s4
-    for i in range(y.shape[0]):
-        out[i] = y[i] + h * (
-            b1 * k1[i] + b3 * k3[i] + b4 * k4[i] + b5 * k5[i] + b6 * k6[i] + b7 * k7[i]
-        )
-
-
-@njit(cache=True, nogil=True)
-def _save_until(t_end, y_end, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, buf):
-    """Write the states at the save times in (t, t_end] of the last step; return the next index.
-
-    ``y_end`` is the state at ``t_end`` (saved exactly there); other save times use the dense
-    output, with ``buf`` as scratch.
-    """
-    n = y.shape[0]
-    while i_save < ts.shape[0] and ts[i_save] <= t_end:
-        if ts[i_save] == t_end:
-            for j in range(n):
-                ys_out[i_save, j] = y_end[j]
-        else:
-            _dense(y, h, k1, k3, k4, k5, k6, k7, (ts[i_save] - t) / h, buf)
-            for j in range(n):
-                ys_out[i_save, j] = buf[j]
-        i_save += 1
-    return i_save
-
-
-@njit(cache=True, nogil=True)
-def _rms_scaled(v, a, b, atol, rtol, n_cont):
-    """RMS over the continuous components of ``v / (atol + rtol max(|a|, |b|))``."""
-    acc = 0.0
-    for i in range(n_cont):
-        sc = atol[i] + rtol * max(abs(a[i]), abs(b[i]))
-        q = v[i] / sc
-        acc += q * q
-    return math.sqrt(acc / n_cont)
-
-
-@njit(cache=True, nogil=True)
-def _all_finite(v):
-    for i in range(v.shape[0]):
-        if not math.isfinite(v[i]):
-            return False
-    return True
-
-
-@njit(cache=True, nogil=True)
-def _crosses(ga, gb, direction):
-    """True if the event function changes sign from ``ga`` to ``gb`` in the allowed direction."""
-    if direction <= 0 and ga > 0.0 and gb <= 0.0:
-        return True
-    if direction >= 0 and ga < 0.0 and gb >= 0.0:
-        return True
-    return False
 
 
 @njit(cache=True, nogil=True)
@@ -493,32 +425,32 @@ def integrate_one(
             h = tn - t
             habs = abs(h)
             for i in range(n):
-                ytmp[i] = y[i] + h * (A21 * k1[i])
-            rhs(t + C2 * h, ytmp, p, k2)
+                ytmp[i] = fma(h, A21 * k1[i], y[i])
+            rhs(fma(C2, h, t), ytmp, p, k2)
             for i in range(n):
-                ytmp[i] = y[i] + h * (A31 * k1[i] + A32 * k2[i])
-            rhs(t + C3 * h, ytmp, p, k3)
+                ytmp[i] = fma(h, fma(A32, k2[i], A31 * k1[i]), y[i])
+            rhs(fma(C3, h, t), ytmp, p, k3)
             for i in range(n):
-                ytmp[i] = y[i] + h * (A41 * k1[i] + A42 * k2[i] + A43 * k3[i])
-            rhs(t + C4 * h, ytmp, p, k4)
+                ytmp[i] = fma(h, fma(A43, k3[i], fma(A42, k2[i], A41 * k1[i])), y[i])
+            rhs(fma(C4, h, t), ytmp, p, k4)
             for i in range(n):
-                ytmp[i] = y[i] + h * (A51 * k1[i] + A52 * k2[i] + A53 * k3[i] + A54 * k4[i])
-            rhs(t + C5 * h, ytmp, p, k5)
+                a = fma(A53, k3[i], fma(A52, k2[i], A51 * k1[i]))
+                ytmp[i] = fma(h, fma(A54, k4[i], a), y[i])
+            rhs(fma(C5, h, t), ytmp, p, k5)
             for i in range(n):
-                ytmp[i] = y[i] + h * (
-                    A61 * k1[i] + A62 * k2[i] + A63 * k3[i] + A64 * k4[i] + A65 * k5[i]
-                )
+                a = fma(A63, k3[i], fma(A62, k2[i], A61 * k1[i]))
+                a = fma(A65, k5[i], fma(A64, k4[i], a))
+                ytmp[i] = fma(h, a, y[i])
             rhs(tn, ytmp, p, k6)
             for i in range(n):
-                ynew[i] = y[i] + h * (
-                    B1 * k1[i] + B3 * k3[i] + B4 * k4[i] + B5 * k5[i] + B6 * k6[i]
-                )
+                a = fma(B4, k4[i], fma(B3, k3[i], B1 * k1[i]))
+                a = fma(B6, k6[i], fma(B5, k5[i], a))
+                ynew[i] = fma(h, a, y[i])
             rhs(tn, ynew, p, k7)
             nfev += 6
             for i in range(n):
-                err[i] = h * (
-                    E1 * k1[i] + E3 * k3[i] + E4 * k4[i] + E5 * k5[i] + E6 * k6[i] + E7 * k7[i]
-                )
+                a = fma(E4, k4[i], fma(E3, k3[i], E1 * k1[i]))
+                err[i] = h * fma(E7, k7[i], fma(E6, k6[i], fma(E5, k5[i], a)))
             err_norm = _rms_scaled(err, y, ynew, atol, rtol, n_cont)
             if not math.isfinite(err_norm) or not _all_finite(k7):
                 last_nonfinite = True

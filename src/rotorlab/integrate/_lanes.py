@@ -52,9 +52,11 @@ Why not a lane kernel ``rhs_lanes`` written by the model? It would be a second h
 side per model to keep in sync with the first; the loop above vectorises the existing one.
 
 This module is the template of per-model copies and holds only compiled code:
-:mod:`rotorlab.integrate._codegen` writes a copy in which the import line marked ``# @kernel``
-imports the model's ``rhs`` and the ``# @const`` lines set the lane width and the state size, so
-numba caches it across processes. The entry points take the argument groups of
+:mod:`rotorlab.integrate._codegen` writes a copy in which the import lines marked ``# @kernel``
+import the model's kernels, so numba caches it across processes. The workspace layout and the
+per-lane bookkeeping are the sibling template :mod:`rotorlab.integrate._lane_rows` (its
+``# @const`` lines set the lane width and the state size), imported from its copy for the same
+model by the line marked ``# @template``. The entry points take the argument groups of
 :mod:`rotorlab.integrate._driver_args`, as the scalar drivers of :mod:`rotorlab.integrate._core`.
 """
 
@@ -63,17 +65,17 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange, types
-from numba.extending import intrinsic
+from numba import njit, prange
 
-from rotorlab._kernels._vmath import inv_fifth_root
+from rotorlab._kernels._vmath import fma, inv_fifth_root
+from rotorlab.integrate._lane_intrinsics import fetch_add as _fetch_add
 from rotorlab.models._base import no_events as events  # @kernel events
 from rotorlab.models._base import no_reset as reset  # @kernel reset
 from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
 from rotorlab.integrate import _core
 from rotorlab.integrate._core import (
-    ACT_OFF, MAX_STEPS, NONFINITE, ST_NACCEPT, ST_NEVENTS, ST_NFEV, ST_NREJECT, STEP_UNDERFLOW,
-    SUCCESS, _all_finite, _crosses, _dense, _own, with_kernels,
+    ACT_OFF, MAX_STEPS, NONFINITE, STEP_UNDERFLOW, SUCCESS, _all_finite, _crosses, _own,
+    with_kernels,
 )  # fmt: skip
 from rotorlab.integrate._tableau import (
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65,
@@ -82,60 +84,13 @@ from rotorlab.integrate._tableau import (
     E1, E3, E4, E5, E6, E7,
     MAX_FACTOR, MIN_FACTOR, SAFETY,
 )  # fmt: skip
+from rotorlab.integrate._lane_rows import (  # @template
+    _AT, _DONE, _EMPTY, _H, _K1, _K2, _K3, _K4, _K5, _K6, _K7, _M, _P, _Q, _T, _W_SIZE, _Y, _YN,
+    LANES, N_STATE, NL,
+    _code, _en, _h, _habs, _live, _lnf, _nacc, _new, _nfev, _nrej, _pw, _rej, _t, _t1, _tn, _tt,
+    _finish, _lane, _min_steps, _prologue, _save,
+)  # fmt: skip
 
-LANES = 8  # @const LANES
-"""Trajectories per worker stepped together (set per generated copy, see :mod:`rotorlab.integrate._drivers`)."""
-N_STATE = 1  # @const N_STATE
-"""Length of the model's state vector (set per generated copy)."""
-NL = N_STATE * LANES
-
-# The workspace of a worker is one float64 array, so that every vector loop below addresses a
-# single base pointer at compile-time-constant offsets: LLVM then proves the loops free of
-# aliasing without run-time checks (with separate arrays it needs one check per pair, gives up
-# beyond eight, or refuses them for short loops). Rows of NL doubles, lane-interleaved
-# (element i of lane l at row + i * LANES + l):
-_Y = 0 * NL  # state at t
-_YN = 1 * NL  # 5th-order solution at t + h
-_T = 2 * NL  # stage argument
-_H = 3 * NL  # step size of each lane, broadcast over the state
-_K1 = 4 * NL
-_K2 = 5 * NL
-_K3 = 6 * NL
-_K4 = 7 * NL
-_K5 = 8 * NL
-_K6 = 9 * NL
-_K7 = 10 * NL
-_AT = 11 * NL  # atol, broadcast over the lanes
-_Q = 12 * NL  # squared scaled errors, then running sums over the state
-_M = 13 * NL  # accept mask, broadcast over the state
-# ... then rows of LANES doubles, one number per lane (counters are exact as floats)
-_R = 14 * NL
-_t = _R + 0 * LANES  # time
-_t1 = _R + 1 * LANES  # end time
-_tn = _R + 2 * LANES  # end of the step being attempted
-_h = _R + 3 * LANES  # its signed length
-_habs = _R + 4 * LANES  # |step| proposed by the controller
-_mins = _R + 5 * LANES  # smallest step at t
-_ms = _R + 6 * LANES  # 10 ulp(t), scratch
-_tt = _R + 7 * LANES  # stage time
-_en = _R + 8 * LANES  # error norm
-_pw = _R + 9 * LANES  # error norm ** ERROR_EXPONENT
-_rej = _R + 10 * LANES  # 1: an attempt of this step was rejected
-_lnf = _R + 11 * LANES  # 1: the last rejection was for a non-finite error
-_new = _R + 12 * LANES  # 1: the lane starts a new step
-_live = _R + 13 * LANES  # 1: the lane holds a trajectory
-_nfev = _R + 14 * LANES
-_nacc = _R + 15 * LANES
-_nrej = _R + 16 * LANES
-_code = _R + 17 * LANES  # prologue verdict: 0 step, 1 ended, 2 step too small, 3 max steps
-_W_SIZE = _R + 18 * LANES
-_P = _W_SIZE  # then the lane-interleaved parameters (_P), as many rows as p has
-
-_NEG_ZERO_BITS = -(2**63)  # -0.0 seen as int64
-
-# lane slots: ids[l] >= 0 is the trajectory in lane l; these mark empty and exhausted lanes
-_EMPTY = -1
-_DONE = -2
 
 # The model's kernel inlined at numba-IR level: LLVM does not inline a separately compiled
 # dispatcher of this size, and a call is opaque to the loop vectoriser. error_model="numpy"
@@ -164,52 +119,6 @@ _resolve_cut = _EV["_resolve_cut"]
 # Hairer's initial step of a trajectory starting in a lane: the scalar driver's own function
 _initial_step = _EV["_initial_step"]
 del _name
-
-
-@intrinsic
-def _lane(typingctx, buf, start, n):
-    """1-D view of ``n`` elements ``buf[start + i * LANES]`` (a lane of a lane-interleaved row).
-
-    The stride is the compile-time constant ``LANES * 8`` bytes, so that LLVM's dependence
-    analysis sees all accesses of one row as one range (runtime-stride views defeat it). The
-    view carries no meminfo: it lives only for one kernel call inside the owning function.
-    """
-    if not (isinstance(buf, types.Array) and buf.ndim == 1 and buf.layout == "C"):
-        return None
-    view = types.Array(buf.dtype, 1, "A")
-
-    def codegen(context, builder, sig, args):
-        ary = context.make_array(sig.args[0])(context, builder, args[0])
-        start_v = context.cast(builder, args[1], sig.args[1], types.intp)
-        n_v = context.cast(builder, args[2], sig.args[2], types.intp)
-        out = context.make_array(view)(context, builder)
-        itemsize = context.get_abi_sizeof(context.get_data_type(view.dtype))
-        context.populate_array(
-            out,
-            data=builder.gep(ary.data, [start_v]),
-            shape=[n_v],
-            strides=[context.get_constant(types.intp, LANES * itemsize)],
-            itemsize=context.get_constant(types.intp, itemsize),
-            meminfo=None,
-            parent=None,
-        )
-        return out._getvalue()
-
-    return view(buf, start, n), codegen
-
-
-@intrinsic
-def _fetch_add(typingctx, counter, delta):
-    """Atomically add ``delta`` to ``counter[0]`` (int64 array) and return the old value."""
-    if not (isinstance(counter, types.Array) and counter.dtype == types.int64):
-        return None
-
-    def codegen(context, builder, sig, args):
-        ary = context.make_array(sig.args[0])(context, builder, args[0])
-        d = context.cast(builder, args[1], sig.args[1], types.int64)
-        return builder.atomic_rmw("add", ary.data, d, "monotonic")
-
-    return types.int64(counter, delta), codegen
 
 
 INLINE_RHS = 0  # @const INLINE_RHS
@@ -258,60 +167,6 @@ def _events_lanes(W, row_t, row_y, G, nl, ne):
 def _probe(W, nl):
     """One stage's kernel call as the worker makes it (constant rows): see :func:`rotorlab.integrate._drivers.is_vectorised`."""
     _rhs_lanes(W, nl)
-
-
-@njit(cache=True, nogil=True, inline="always", error_model="numpy")
-def _prologue(W, lane, max_step, max_steps):
-    """Start of a step attempt in one lane (as integrate_one's loops); sets the verdict ``_code``.
-
-    Branch-free, so that the loop over lanes that calls it vectorises; the scalar pass of the
-    worker calls it too for a lane it has just (re)filled.
-    """
-    # every load comes first: a load inside one arm of an ``if`` keeps LLVM from turning the
-    # ``if`` into a select, and then from vectorising the loop
-    live = W[_live + lane] != 0.0
-    new_flag = W[_new + lane]
-    t = W[_t + lane]
-    t1 = W[_t1 + lane]
-    habs = W[_habs + lane]
-    ms = W[_ms + lane]
-    mins = W[_mins + lane]
-    rej = W[_rej + lane]
-    lnf = W[_lnf + lane]
-    attempts = W[_nacc + lane] + W[_nrej + lane]
-    new = live and new_flag != 0.0
-    ended = new and not t < t1
-    clamped = max_step if habs > max_step else (ms if habs < ms else habs)
-    habs = clamped if new else habs
-    mins = ms if new else mins
-    W[_mins + lane] = mins
-    W[_rej + lane] = 0.0 if new else rej
-    W[_lnf + lane] = 0.0 if new else lnf
-    W[_new + lane] = 0.0 if live else new_flag
-    small = habs < mins
-    maxed = attempts >= max_steps
-    W[_code + lane] = 1.0 if ended else (2.0 if small else (3.0 if maxed else 0.0))
-    tn = t + habs
-    tn = t1 if tn > t1 else tn
-    h = tn - t
-    W[_tn + lane] = tn
-    W[_h + lane] = h if live else 0.0
-    W[_habs + lane] = abs(h) if live else habs
-
-
-@njit(cache=True, nogil=True, inline="always")  # on every step: a call would cost registers
-def _min_steps(W, Wi, nl):
-    """``W[_ms + l] = 10 * abs(np.nextafter(t, inf) - t)`` for every lane, vectorised.
-
-    ``nextafter(t, +inf)`` of a finite ``t`` has the bits of ``t`` plus one (``t > 0``), minus
-    one (``t < 0``), or 1 (``t = +-0``: the smallest subnormal). ``Wi`` is ``W`` seen as int64;
-    each loop touches only one of the two views (LLVM's alias check between them would fail).
-    """
-    for lane in range(nl):
-        bits = Wi[_t + lane]  # > 0 for t > 0; < 0 for t < 0 and for -0.0 (the minimum)
-        Wi[_ms + lane] = bits + 1 if bits > 0 else (bits - 1 if bits > _NEG_ZERO_BITS else 1)
-    for lane in range(nl):
-        W[_ms + lane] = 10.0 * abs(W[_ms + lane] - W[_t + lane])
 
 
 @njit(cache=True, nogil=True, error_model="numpy")  # no ZeroDivisionError branch in the loops
@@ -457,40 +312,37 @@ def _worker(counter, inputs, settings, event_table, outputs):
         for s in range(6):
             if s == 0:
                 for k in range(n * nl):
-                    W[_T + k] = W[_Y + k] + W[_H + k] * (A21 * W[_K1 + k])
+                    W[_T + k] = fma(W[_H + k], A21 * W[_K1 + k], W[_Y + k])
                 for lane in range(nl):
-                    W[_tt + lane] = W[_t + lane] + C2 * W[_h + lane]
+                    W[_tt + lane] = fma(C2, W[_h + lane], W[_t + lane])
             elif s == 1:
                 for k in range(n * nl):
-                    W[_T + k] = W[_Y + k] + W[_H + k] * (A31 * W[_K1 + k] + A32 * W[_K2 + k])
+                    a = fma(A32, W[_K2 + k], A31 * W[_K1 + k])
+                    W[_T + k] = fma(W[_H + k], a, W[_Y + k])
                 for lane in range(nl):
-                    W[_tt + lane] = W[_t + lane] + C3 * W[_h + lane]
+                    W[_tt + lane] = fma(C3, W[_h + lane], W[_t + lane])
             elif s == 2:
                 for k in range(n * nl):
-                    W[_T + k] = W[_Y + k] + W[_H + k] * (
-                        A41 * W[_K1 + k] + A42 * W[_K2 + k] + A43 * W[_K3 + k]
-                    )
+                    a = fma(A43, W[_K3 + k], fma(A42, W[_K2 + k], A41 * W[_K1 + k]))
+                    W[_T + k] = fma(W[_H + k], a, W[_Y + k])
                 for lane in range(nl):
-                    W[_tt + lane] = W[_t + lane] + C4 * W[_h + lane]
+                    W[_tt + lane] = fma(C4, W[_h + lane], W[_t + lane])
             elif s == 3:
                 for k in range(n * nl):
-                    W[_T + k] = W[_Y + k] + W[_H + k] * (
-                        A51 * W[_K1 + k] + A52 * W[_K2 + k] + A53 * W[_K3 + k] + A54 * W[_K4 + k]
-                    )
+                    a = fma(A53, W[_K3 + k], fma(A52, W[_K2 + k], A51 * W[_K1 + k]))
+                    W[_T + k] = fma(W[_H + k], fma(A54, W[_K4 + k], a), W[_Y + k])
                 for lane in range(nl):
-                    W[_tt + lane] = W[_t + lane] + C5 * W[_h + lane]
+                    W[_tt + lane] = fma(C5, W[_h + lane], W[_t + lane])
             elif s == 4:
                 for k in range(n * nl):
-                    W[_T + k] = W[_Y + k] + W[_H + k] * (
-                        A61 * W[_K1 + k] + A62 * W[_K2 + k] + A63 * W[_K3 + k] + A64 * W[_K4 + k]
-                        + A65 * W[_K5 + k]
-                    )  # fmt: skip
+                    a = fma(A63, W[_K3 + k], fma(A62, W[_K2 + k], A61 * W[_K1 + k]))
+                    a = fma(A65, W[_K5 + k], fma(A64, W[_K4 + k], a))
+                    W[_T + k] = fma(W[_H + k], a, W[_Y + k])
             else:
                 for k in range(n * nl):
-                    W[_YN + k] = W[_Y + k] + W[_H + k] * (
-                        B1 * W[_K1 + k] + B3 * W[_K3 + k] + B4 * W[_K4 + k] + B5 * W[_K5 + k]
-                        + B6 * W[_K6 + k]
-                    )  # fmt: skip
+                    a = fma(B4, W[_K4 + k], fma(B3, W[_K3 + k], B1 * W[_K1 + k]))
+                    a = fma(B6, W[_K6 + k], fma(B5, W[_K5 + k], a))
+                    W[_YN + k] = fma(W[_H + k], a, W[_Y + k])
             if s >= 4:  # the last two stages at t + h (a copy: the same bits)
                 for lane in range(nl):
                     W[_tt + lane] = W[_tn + lane]
@@ -509,10 +361,8 @@ def _worker(counter, inputs, settings, event_table, outputs):
         # row holds the sums). K7 * 0.0 (NaN unless K7 is finite) folds in _core's
         # "not _all_finite(k7)": adding +-0.0 leaves a finite sum unchanged.
         for k in range(n_cont * nl):
-            e = W[_H + k] * (
-                E1 * W[_K1 + k] + E3 * W[_K3 + k] + E4 * W[_K4 + k] + E5 * W[_K5 + k]
-                + E6 * W[_K6 + k] + E7 * W[_K7 + k]
-            )  # fmt: skip
+            a = fma(E4, W[_K4 + k], fma(E3, W[_K3 + k], E1 * W[_K1 + k]))
+            e = W[_H + k] * fma(E7, W[_K7 + k], fma(E6, W[_K6 + k], fma(E5, W[_K5 + k], a)))
             ya = abs(W[_Y + k])
             yb = abs(W[_YN + k])
             sc = W[_AT + k] + rtol * (yb if yb > ya else ya)  # max(ya, yb) as numba's max
@@ -639,45 +489,6 @@ def _worker(counter, inputs, settings, event_table, outputs):
             k1 = W[_K1 + k]
             W[_Y + k] = yn if a else y
             W[_K1 + k] = k7 if a else k1
-
-
-@njit(cache=True, nogil=True)
-def _save(W, lane, j, TS, YS, i_save, ybuf):
-    """Write the save points of trajectory ``j`` in (t, tn] of the accepted step of ``lane``."""
-    n = N_STATE
-    L = LANES
-    its = j if TS.shape[0] > 1 else 0
-    t = W[_t + lane]
-    tn = W[_tn + lane]
-    h = W[_h + lane]
-    s = i_save[lane]
-    while s < TS.shape[1] and TS[its, s] <= tn:
-        if TS[its, s] == tn:
-            for i in range(n):
-                YS[j, s, i] = W[_YN + i * L + lane]
-        else:
-            _dense(
-                _lane(W, _Y + lane, n), h, _lane(W, _K1 + lane, n), _lane(W, _K3 + lane, n),
-                _lane(W, _K4 + lane, n), _lane(W, _K5 + lane, n), _lane(W, _K6 + lane, n),
-                _lane(W, _K7 + lane, n), (TS[its, s] - t) / h, ybuf,
-            )  # fmt: skip
-            for i in range(n):
-                YS[j, s, i] = ybuf[i]
-        s += 1
-    i_save[lane] = s
-
-
-@njit(cache=True, nogil=True)
-def _finish(W, lane, j, status, n_events, YF, STATUS, TEND, STATS):
-    """Write the outputs of trajectory ``j``, which ends in ``lane``."""
-    for i in range(N_STATE):
-        YF[j, i] = W[_Y + i * LANES + lane]
-    STATUS[j] = status
-    TEND[j] = W[_t + lane]
-    STATS[j, ST_NFEV] = int(W[_nfev + lane])
-    STATS[j, ST_NACCEPT] = int(W[_nacc + lane])
-    STATS[j, ST_NREJECT] = int(W[_nrej + lane])
-    STATS[j, ST_NEVENTS] = n_events
 
 
 @njit(cache=True, nogil=True, parallel=True)
