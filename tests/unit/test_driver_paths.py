@@ -10,6 +10,8 @@ on every event model).
 
 from __future__ import annotations
 
+import functools
+
 import numpy as np
 import pytest
 
@@ -29,10 +31,15 @@ RUB = RubRotor(mass=1.0, stiffness=1.0, clearance=1.0, damping=0.1, eccentricity
 
 @pytest.fixture
 def used(monkeypatch):
-    """The ``lanes`` argument of every compiled driver looked up, in order."""
+    """The ``lanes`` argument of every compiled driver looked up, in order.
+
+    The spy keeps the real function's module (``functools.wraps``): the name of a generated
+    driver copy hashes the modules of the integrate package's globals, so a spy from this test
+    module would give every driver looked up here a copy of its own, compiled again."""
     seen = []
     real = _drivers.driver
 
+    @functools.wraps(real)
     def spy(kernels, lanes, serial):
         seen.append(lanes)
         return real(kernels, lanes, serial)

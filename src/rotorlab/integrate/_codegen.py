@@ -18,7 +18,8 @@ The templates stay the single source of the integrators; the copies are never ed
 
 The cache key
 -------------
-The copy's file name carries a hash of its own text, of the source of **every module the kernels
+The copy's file name carries the model's rhs, a short hash of the names of all its kernels (its
+events and reset map too), and a hash of its own text, of the source of **every module the kernels
 and the template depend on, transitively** (found through their import statements and globals; the
 standard library and installed third-party packages are left out, the versions of Python, numba,
 NumPy and llvmlite are hashed instead), and of the Python, numba and NumPy versions. Editing e.g.
@@ -308,7 +309,12 @@ def _cached(
     tag = template.rsplit(".", 1)[-1].lstrip("_") + "".join(f"{k[0].lower()}{v}" for k, v in sorted(all_consts.items()))
     if names:
         mod, fn = names.get("rhs", next(iter(names.values())))
-        stem = f"{tag}_{mod.rsplit('.', 1)[-1]}_{fn}_{digest}"
+        # The name is that of the whole kernel set, not of its rhs alone: models that share an
+        # rhs but not their events or reset map (Jeffcott balls with and without friction) get
+        # copies of different names, and neither prunes the other's as "older" (which made each
+        # recompile the driver every time the other had run).
+        kset = hashlib.sha256(repr(sorted(names.items())).encode()).hexdigest()[:6]
+        stem = f"{tag}_{mod.rsplit('.', 1)[-1]}_{fn}_{kset}_{digest}"
     else:  # a sibling template without kernels (the lane driver's workspace layout)
         stem = f"{tag}_{digest}"
     path = directory / f"{stem}.py"
