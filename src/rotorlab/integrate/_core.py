@@ -13,6 +13,11 @@ rejection, ``max(0.2, ...)`` on rejection, Hairer's initial-step heuristic), so 
 round-off. ``err^-1/5`` is :func:`rotorlab._kernels._vmath.inv_fifth_root` (within 1.1 ulp of the
 fifth root; SciPy's ``err ** -0.2`` is a libm ``pow`` with the double nearest -1/5), shared with
 the lane driver, where it is one vector computation for all lanes instead of a ``pow`` per lane.
+The stage sums, the solution, the error estimate, the stage times and the dense output are
+chains of fused multiply-adds (``_vmath.fma``: ``llvm.fma``, rounded once, one instruction that
+vectorises), written the same way in both drivers so that they give the same bits; the C
+references are compiled with contraction too. SciPy rounds each product separately, hence
+"to round-off".
 
 Events (see :mod:`rotorlab.models._base`): after each accepted step every active event function
 is compared at both ends; a sign change in the allowed direction is located to round-off on the
