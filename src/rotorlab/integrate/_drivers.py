@@ -103,7 +103,10 @@ def is_vectorised(kernels, lanes=None):
 
     lanes = default_lanes(kernels, 2) if lanes is None else lanes
     ns = _in_memory("rotorlab.integrate._lanes", _roles(kernels), _lane_consts(kernels, lanes))
-    probe = ns["_probe"]
+    # A called _rhs_lanes is compiled on its own, and the worker runs that machine code in the
+    # process that compiled it (its copy linked into _probe or the worker is optimised again and
+    # may vectorise where the original does not): inspect the original.
+    probe = ns["_probe"] if kernels.inline_lanes else ns["_rhs_lanes"]
     W = np.zeros(ns["_W_SIZE"] + lanes)
     probe.compile((typeof(W), typeof(lanes)))
     ir = probe.inspect_llvm(probe.signatures[0])
