@@ -111,3 +111,26 @@ def test_unwritable_cache_compiles_in_memory(tmp_path, monkeypatch):
     blocker.write_text("not a directory")
     monkeypatch.setenv("ROTORLAB_CACHE_DIR", str(blocker))
     assert _codegen.cache_dir() is None
+
+
+def test_functions_bound_to_a_copys_kernels_carry_the_copys_module_name():
+    """numba names a compiled function by module, qualified name and a per-process counter, and a
+    process links every caller to the first definition of a name it loads. The lane driver binds
+    the scalar driver's event location and reset functions to its own model's kernels; under
+    _core's module name, a copy loaded from numba's cache could call another model's copy compiled
+    in another process with the same counter value (the fresh-clone suite saw the bouncing ball's
+    lanes end in another model's states). Each bound function must carry its copy's module."""
+    from rotorlab.integrate._drivers import _lane_consts, _roles
+    from rotorlab.models.examples import BouncingBall, FrictionBlock
+
+    names = set()
+    for model in (BouncingBall(), FrictionBlock()):
+        k = model.kernels
+        ns = _codegen.build("rotorlab.integrate._lanes", _roles(k), _lane_consts(k, 8))
+        for fn in ("_events_in_step", "_resolve_cut", "_initial_step", "_events_at", "_rhs_once"):
+            assert ns[fn].py_func.__module__ in (ns["__name__"], k.rhs.py_func.__module__), fn
+        for fn in ("_events_in_step", "_resolve_cut", "_initial_step"):
+            assert ns[fn].py_func.__module__ == ns["__name__"], fn
+        assert ns["_EV"]["_g_at"].py_func.__module__ == ns["__name__"]
+        names.add(ns["__name__"])
+    assert len(names) == 2

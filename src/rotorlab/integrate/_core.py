@@ -88,6 +88,8 @@ def with_kernels(fn, namespace):
     the functions of this module, bound to its own model's ``rhs``/``events``/``reset`` (the
     template's globals here are placeholders): one source for both drivers, so that they use the
     same arithmetic. Compiled without caching, as :func:`_own`: the caller's cache holds the code.
+    ``namespace["__name__"]`` must be the caller's own (generated) module name: it becomes the
+    function's module, which numba's symbol names carry (see ``_lanes._EV``).
     """
     import types as _types
 

@@ -103,7 +103,12 @@ _rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func
 # Events and resets: the scalar driver's own functions (rotorlab.integrate._core), bound to this
 # copy's kernels, called for one lane at a time after its accepted step. Same source, same
 # compiled kernels (_own), so the same event times, states and records bit for bit.
-_EV = dict(vars(_core))
+# They take this copy's module name: numba names a compiled function by module, qualified name
+# and a per-process counter, and the first definition of a name loaded in a process is the one
+# every caller gets. Under _core's name, a lane driver loaded from numba's cache could call
+# another model's event location compiled in another process under the same counter value
+# (seen: the bouncing ball's lanes ended in another model's states, fresh-clone suite).
+_EV = dict(vars(_core), __name__=__name__)
 _EV.update(rhs=_own(rhs), events=_own(events), reset=_own(reset))
 for _name in ("_g_at", "_locate", "_events_in_step", "_resolve_cut", "_initial_step"):
     _EV[_name] = with_kernels(getattr(_core, _name), _EV)
