@@ -233,6 +233,7 @@ def solve_ensemble(
     chunk_size: int | None = None,
     progress: Callable[[int, int], None] | None = None,
     lanes: int | Literal["auto"] | None = "auto",
+    backend: Any = "auto",
 ) -> EnsembleSolution:
     """Integrate many trajectories of one model in one compiled, parallel call.
 
@@ -257,13 +258,17 @@ def solve_ensemble(
     chunk_size : int, optional
         Integrate in chunks of this many trajectories (results do not depend on it); with
         ``progress`` the callback is called after each chunk as ``progress(done, total)``.
+    backend : "auto", "scalar", "lanes", Lanes or Scalar
+        Where the ensemble runs (:mod:`rotorlab.integrate._backends`). ``Lanes(width)`` steps
+        ``width`` trajectories together per thread in SIMD lanes (8 suits AVX2 and AVX-512): the
+        same numbers as the scalar driver, several times faster when the model's ``rhs``
+        vectorises (see :mod:`rotorlab.integrate._lanes`, "Lane-friendly kernels"); events,
+        reset maps and modes included. ``Scalar()``: one trajectory per thread at a time (the
+        reference). ``"auto"`` (default): ``Lanes(8)`` when there are several trajectories,
+        else ``Scalar()``.
     lanes : int, "auto" or None
-        Step this many trajectories together per thread in SIMD lanes (lane driver of
-        :mod:`rotorlab.integrate._lanes`; 8 suits AVX2 and AVX-512). Same numbers as the scalar
-        driver, several times faster when the model's ``rhs`` vectorises (see that module's
-        "Lane-friendly kernels"); events, reset maps and modes included. ``"auto"`` (default):
-        8 lanes when there are several trajectories, else the scalar driver. ``None``: the
-        scalar driver (the reference).
+        The older spelling of ``backend``: ``lanes=8`` is ``backend=Lanes(8)``, ``lanes=None``
+        is ``backend=Scalar()``; give one of the two.
 
     Returns
     -------
@@ -281,8 +286,8 @@ def solve_ensemble(
     array([[1., 0.],
            [0., 1.]])
     """
+    from rotorlab.integrate._backends import resolve_backend
     from rotorlab.integrate._driver_args import EventTable, Inputs, Outputs, Settings
-    from rotorlab.integrate._drivers import check_lanes, default_lanes, driver
 
     kernels = _kernels_of(model)
     n = kernels.n_state
@@ -300,6 +305,7 @@ def solve_ensemble(
     if len(sizes) > 1:
         raise ValueError(f"y0, params and t1 disagree on the number of trajectories: {sorted(sizes)}")
     N = sizes.pop() if sizes else 1
+    chosen = resolve_backend(backend, lanes, kernels, N)
     TS = _save_grid(save_at, model, t0, T1, P)
     if TS.shape[0] not in (1, N):
         raise ValueError(f"per-trajectory save times must have {N} rows, got {TS.shape[0]}")
@@ -324,11 +330,7 @@ def solve_ensemble(
     RECK = np.full((N, max_rec), -1, dtype=np.int64)
     STATS = np.zeros((N, 4), dtype=np.int64)
     first_step = -1.0 if control.first_step is None else float(control.first_step)
-    if isinstance(lanes, str) and lanes == "auto":
-        lanes = default_lanes(kernels, N)
-    elif lanes is not None:
-        check_lanes(lanes)
-    run = driver(kernels, lanes, serial=threads == 1)
+    run = chosen.driver(kernels, serial=threads == 1)
     settings = Settings(
         t0, float(control.rtol), n_cont, first_step, float(control.max_step), int(control.max_steps)
     )
@@ -371,7 +373,7 @@ def solve_ensemble(
         event_names=names,
         state_names=state_names,
         notes=notes,
-        driver="scalar" if lanes is None else f"lanes{int(lanes)}",
+        driver=chosen.name,
     )
 
 
