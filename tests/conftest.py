@@ -48,3 +48,40 @@ def pytest_unconfigure(config):
 settings.register_profile("rotorlab", deadline=None)
 settings.register_profile("rotorlab-ci", deadline=None, derandomize=True, database=None)
 settings.load_profile("rotorlab-ci" if os.environ.get("CI") else "rotorlab")
+
+
+# The compile budget: most of the suite's time is numba compiling driver copies (one per model
+# kernel set and driver kind, 15-70 CPU-s each), so a test that builds a model layout of its own
+# costs more than its assertions. A run that builds more copies than this fails at its end,
+# naming the copies; a new layout should reuse one of the canonical test models instead (or the
+# budget is raised in the same commit, with the reason).
+DRIVER_COPY_BUDGET = 200
+
+
+def _driver_copies(folder):
+    drivers = os.path.join(folder, "drivers")
+    if not os.path.isdir(drivers):
+        return []
+    return sorted(f for f in os.listdir(drivers) if f.endswith(".py") and f.startswith(("core_", "lanes")))
+
+
+def pytest_sessionfinish(session, exitstatus):
+    folder = os.environ.get(_RUN_CACHE)
+    if os.environ.get("PYTEST_XDIST_WORKER") or not folder:
+        return
+    copies = _driver_copies(folder)
+    session.config._rotorlab_copies = copies
+    if len(copies) > DRIVER_COPY_BUDGET and session.exitstatus == 0:
+        session.exitstatus = 1
+
+
+def pytest_terminal_summary(terminalreporter, exitstatus, config):
+    copies = getattr(config, "_rotorlab_copies", None)
+    if copies is None:
+        return
+    over = len(copies) > DRIVER_COPY_BUDGET
+    terminalreporter.write_line(
+        f"rotorlab compile budget: {len(copies)} driver copies built (budget {DRIVER_COPY_BUDGET})"
+        + (": OVER BUDGET, this run fails; the copies: " + ", ".join(copies) if over else ""),
+        red=over,
+    )
