@@ -1,0 +1,36 @@
+"""Continuation of steady motions and periodic orbits in any named parameter.
+
+The numerical core (:mod:`rotorlab.continuation._core`) follows solution curves of
+``F(x, lam) = 0`` by pseudo-arclength continuation and locates the zeros of test functions along
+them (folds, branch points, Hopf points); the model-specific residuals (equilibria of a machine in
+its co-rotating frame, periodic orbits by shooting) are built on it.
+"""
+
+from rotorlab.continuation._core import (
+    ContinuationSettings,
+    Crossing,
+    Curve,
+    CurvePoint,
+    branch_point_test,
+    continue_curve,
+    fold_test,
+    numerical_jacobian,
+    switch_branch,
+)
+from rotorlab.continuation._result import SPECIAL_POINT_TYPES, Branch, ContinuationResult, SpecialPoint
+
+__all__ = [
+    "SPECIAL_POINT_TYPES",
+    "Branch",
+    "ContinuationResult",
+    "SpecialPoint",
+    "ContinuationSettings",
+    "Crossing",
+    "Curve",
+    "CurvePoint",
+    "branch_point_test",
+    "continue_curve",
+    "fold_test",
+    "numerical_jacobian",
+    "switch_branch",
+]

@@ -1,0 +1,206 @@
+"""What a continuation returns: branches of equilibria or periodic orbits and their special points.
+
+A :class:`Branch` is the user's view of one continued curve (SI units): the parameter's values
+along it, the solution's states, its stability, the vibration amplitude, the period of a periodic
+orbit, the eigenvalues (equilibria) or Floquet multipliers (periodic orbits), and the located
+special points with a sentence each. :class:`ContinuationResult` holds every branch of one run
+and gives the JSON document of ``rotorlab continue --json`` (:meth:`ContinuationResult.to_dict`)
+and an :class:`xarray.Dataset` (:meth:`ContinuationResult.to_dataset`).
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass, field
+from typing import Any, Literal
+
+import numpy as np
+
+__all__ = ["SPECIAL_POINT_TYPES", "SpecialPoint", "Branch", "ContinuationResult"]
+
+#: Special point types and what each means (the report explains them with these words).
+SPECIAL_POINT_TYPES: dict[str, str] = {
+    "fold": "fold (limit point): the branch turns back; two steady motions meet and vanish",
+    "hopf": "Hopf point: a pair of eigenvalues crosses the imaginary axis; a periodic orbit (whirl) is born",
+    "branch": "branch point: another branch of steady motions crosses this one (symmetry breaking)",
+    "fold-of-cycles": "fold of periodic orbits: the orbit branch turns back",
+    "period-doubling": "period doubling: a Floquet multiplier crosses -1",
+    "torus": "torus (Neimark-Sacker) point: a complex pair of Floquet multipliers crosses the unit circle",
+}
+
+
+@dataclass(frozen=True)
+class SpecialPoint:
+    """A located special point of a branch.
+
+    Parameters
+    ----------
+    type : str
+        A key of :data:`SPECIAL_POINT_TYPES`.
+    parameter : str
+        The continued parameter's name (the model's key-path spelling).
+    value : float
+        The parameter's value there (SI).
+    state : ndarray
+        The solution there (an equilibrium's state, or a periodic orbit's state at phase 0).
+    description : str
+        One sentence for people ("balancing becomes stable above 1460 rpm").
+    index : int
+        Position on the branch: the special point lies between points ``index - 1`` and ``index``.
+    frequency : float
+        The crossing eigenvalue's imaginary part (rad/s) at a Hopf or torus point, else NaN.
+    parameter2 : str, optional
+        The second parameter of a two-parameter curve, and ``value2`` its value.
+    """
+
+    type: str
+    parameter: str
+    value: float
+    state: np.ndarray
+    description: str
+    index: int
+    frequency: float = math.nan
+    parameter2: str | None = None
+    value2: float = math.nan
+
+    def __post_init__(self) -> None:
+        if self.type not in SPECIAL_POINT_TYPES:
+            raise ValueError(f"unknown special point type {self.type!r}; known: {', '.join(SPECIAL_POINT_TYPES)}")
+
+    def to_dict(self) -> dict[str, Any]:
+        d: dict[str, Any] = {"type": self.type, self.parameter: _num(self.value), "description": self.description}
+        if math.isfinite(self.frequency):
+            d["frequency_rad_s"] = self.frequency
+        if self.parameter2 is not None:
+            d[self.parameter2] = _num(self.value2)
+        return d
+
+
+@dataclass(frozen=True)
+class Branch:
+    """One continued branch.
+
+    Parameters
+    ----------
+    kind : {"equilibrium", "periodic"}
+    parameter : str
+        The continued parameter (the model's key-path spelling, SI).
+    values : ndarray, shape (n,)
+        The parameter along the branch, in the order continued.
+    states : ndarray, shape (n, n_state)
+        The equilibrium (or the orbit's state at phase 0) at each point.
+    stable : ndarray of bool, shape (n,)
+    amplitude : ndarray, shape (n,)
+        The largest whirl radius of the structure (m).
+    spectrum : ndarray of complex, shape (n, m)
+        Eigenvalues of the linearisation (1/s, equilibria) or Floquet multipliers (periodic).
+    period : ndarray, shape (n,)
+        Period of a periodic orbit (s); NaN for equilibria.
+    special_points : tuple of SpecialPoint
+    label : str
+        What the branch is, for people ("balanced", "balls together", "whirl").
+    end : str
+        Why the continuation stopped (``"bound"``, ``"max_points"``, ``"step"``, ``"closed"``).
+    extra : dict
+        Further per-point arrays of the model (e.g. ``"ball_angle"``: (n, n_balls), rad).
+    """
+
+    kind: Literal["equilibrium", "periodic"]
+    parameter: str
+    values: np.ndarray
+    states: np.ndarray
+    stable: np.ndarray
+    amplitude: np.ndarray
+    spectrum: np.ndarray
+    period: np.ndarray
+    special_points: tuple[SpecialPoint, ...] = ()
+    label: str = ""
+    end: str = ""
+    extra: dict[str, np.ndarray] = field(default_factory=dict)
+
+    def __post_init__(self) -> None:
+        if self.kind not in ("equilibrium", "periodic"):
+            raise ValueError(f"kind must be 'equilibrium' or 'periodic', got {self.kind!r}")
+        n = np.asarray(self.values).shape[0]
+        for name in ("states", "stable", "amplitude", "spectrum", "period"):
+            if np.asarray(getattr(self, name)).shape[0] != n:
+                raise ValueError(f"Branch.{name} must have {n} rows (one per point)")
+
+    def to_dict(self) -> dict[str, Any]:
+        """The branch as JSON-ready data (SI; non-finite numbers as None)."""
+        points = []
+        for i in range(len(self.values)):
+            pt: dict[str, Any] = {self.parameter: _num(self.values[i]), "stable": bool(self.stable[i]),
+                                  "amplitude_m": _num(self.amplitude[i])}
+            if self.kind == "periodic":
+                pt["period_s"] = _num(self.period[i])
+                pt["multipliers"] = [[_num(z.real), _num(z.imag)] for z in np.asarray(self.spectrum[i])]
+            else:
+                ev = np.asarray(self.spectrum[i])
+                pt["max_real_eigenvalue"] = _num(float(np.max(ev.real))) if ev.size else None
+            for k, v in self.extra.items():
+                pt[k] = [_num(x) for x in np.atleast_1d(v[i])]
+            points.append(pt)
+        return {"kind": self.kind, "label": self.label, "parameter": self.parameter, "end": self.end,
+                "points": points, "special_points": [s.to_dict() for s in self.special_points]}
+
+
+@dataclass(frozen=True)
+class ContinuationResult:
+    """Every branch of one continuation run, with the model's units of the parameters."""
+
+    branches: tuple[Branch, ...]
+    units: dict[str, str] = field(default_factory=dict)
+
+    def to_dict(self) -> dict[str, Any]:
+        return {"branches": [b.to_dict() for b in self.branches], "units": dict(self.units)}
+
+    def to_dataset(self):
+        """One Dataset: dims ``branch`` and ``point`` (padded with NaN), coordinates ``kind``,
+        ``label`` and ``parameter`` per branch; the special points in ``attrs["special_points"]``
+        (JSON text)."""
+        import json
+
+        import xarray as xr
+
+        n = max((len(b.values) for b in self.branches), default=0)
+        nb = len(self.branches)
+
+        def pad(get, dtype=float, fill=math.nan):
+            out = np.full((nb, n), fill, dtype=dtype)
+            for i, b in enumerate(self.branches):
+                v = np.asarray(get(b))
+                out[i, : v.shape[0]] = v
+            return out
+
+        max_re = pad(lambda b: np.array([np.max(np.abs(z)) if b.kind == "periodic" else np.max(np.real(z))
+                                         for z in b.spectrum]) if len(b.values) else np.array([]))
+        ds = xr.Dataset(
+            {
+                "value": (("branch", "point"), pad(lambda b: b.values)),
+                "stable": (("branch", "point"), pad(lambda b: b.stable, dtype=float)),
+                "amplitude": (("branch", "point"), pad(lambda b: b.amplitude)),
+                "period": (("branch", "point"), pad(lambda b: b.period)),
+                "spectral_abscissa": (("branch", "point"), max_re),
+            },
+            coords={
+                "branch": np.arange(nb),
+                "kind": ("branch", [b.kind for b in self.branches]),
+                "label": ("branch", [b.label for b in self.branches]),
+                "parameter": ("branch", [b.parameter for b in self.branches]),
+            },
+            attrs={"analysis": "continuation",
+                   "special_points": json.dumps([[s.to_dict() for s in b.special_points] for b in self.branches])},
+        )
+        units = {"amplitude": "m", "period": "s", "stable": "1 (true/false)",
+                 "spectral_abscissa": "1/s (equilibria: largest real part) or 1 (orbits: largest |multiplier|)"}
+        for k, u in units.items():
+            ds[k].attrs["units"] = u
+        params = {b.parameter for b in self.branches}
+        ds["value"].attrs["units"] = self.units.get(params.pop(), "") if len(params) == 1 else "per branch"
+        return ds
+
+
+def _num(x: Any) -> float | None:
+    x = float(x)
+    return x if math.isfinite(x) else None
