@@ -90,7 +90,7 @@ def test_fig4_translational_regimes():
     contact at 2.3 kg, most do at 3 kg), and at 5 kg most runs slide for >= 2 % of the run, with
     200-350 impacts (median; every located impact counted) where an independent event-located
     simulation of the same equations finds about 250 and all 16 sliding. Landing the stones at
-    0.15 m instead (the general case's start radius) no run slides at 5 kg (~150 impacts): see
+    0.15 m instead (the former default) no run slides at 5 kg (~150 impacts): see
     dev/crusher_choices.py."""
     ds = impact_sweep(_fig4_case(), [1.3, 1.8, 2.3, 3.0, 5.0], n_sequences=16, t_end=2.0, seed=0)
     assert _fraction(ds, 1.3, "none") == 1.0

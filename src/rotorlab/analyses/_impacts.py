@@ -442,7 +442,8 @@ def sweep_summary(ds: xarray.Dataset) -> dict[str, Any]:
             "impacts_max": int(done.max()) if done.size else None,
             "sliding_time_median_s": _num(ds.sliding_time_median.values[i]),
             "energy_ratio_median": _num(ds.eta_median.values[i]),
-            "energy_ratio_before_runaway_median": _num(ds.eta_before_runaway_median.values[i]),
+            "energy_ratio_before_runaway_median": (_num(ds.eta_before_runaway_median.values[i])
+                                                   if "eta_before_runaway_median" in ds else None),
             "regimes": counts,
             "regime": max(counts, key=counts.get),  # the most frequent outcome, "failed" included
         })  # fmt: skip
