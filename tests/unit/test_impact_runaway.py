@@ -36,6 +36,11 @@ def test_the_runaway_is_reported_apart_from_the_run_before_it(mass, restitution,
     assert s["energy_ratio"] > 20.0 and s["energy_ratio_before_runaway"] < 2.0
     assert s["energy_friction_runaway_J"] > 0.98 * s["energy_friction_J"]
     assert s["impacts_before_runaway"] + s["impacts_runaway"] == s["impacts"]
+    from rotorlab.report._findings import impact_findings
+
+    eta_line = impact_findings(ds, [s]).numbers[1]
+    assert eta_line.startswith(f"energy ratio eta = {s['energy_ratio_before_runaway']:.3g} before the runaway")
+    assert f"({s['energy_ratio']:.3g} at the stop;" in eta_line
     # the same stones, integrated only to the runaway's start
     run = model.with_stones(10.0, seed)
     t_run = s["runaway_start_s"] + 1e-6
