@@ -556,14 +556,10 @@ def reset(k, t, y, p, y_new):
 
 
 # --------------------------------------------------------------- the shared contact law at P
-# The impact map (3.9) and the sliding force above are the shared law of
-# rotorlab._kernels.contact (Newton restitution on the normal speed, Coulomb impulse: P_n =
-# (1 + k) v / w_nn, P_t = -f sign(s) P_n while P slides) at the Delassus entries below;
-# tests/unit/test_impact_shared_law.py checks that it equals the printed (3.9) on random states.
-# P slides forwards in every run of the paper (r_P omega0 = 100 m/s against vibration speeds
-# below about 1 m/s); the stick branch is reached only when a backward whirl brings the slip of P
-# to zero, the rolling dry-friction backward whirl, where a run is stopped (with restitution 1
-# and heavy stones, issue 16: the rotor reaches it through impacts, not sliding).
+# The impact map (3.9) and the sliding force above are the shared law of rotorlab._kernels.contact
+# at the Delassus entries below (tests/unit/test_impact_shared_law.py: equal to the printed (3.9)
+# on random states). P slides forwards (r_P omega0 = 100 m/s against vibration speeds below about
+# 1 m/s) until a backward whirl brings its slip to zero, where a run is stopped (issue 16).
 
 
 @njit(cache=True, nogil=True)
