@@ -44,9 +44,13 @@ def test_housing_validation():
                             ("cone_angle", 2.0, "Housing.cone_angle must be a finite number > 0 and <= 1.5708"),
                             ("restitution", 1.2, "Housing.restitution must be a finite number >= 0 and <= 1"),
                             ("friction", -0.1, "Housing.friction must be a finite number >= 0"),
-                            ("rest_speed", 0.01, "Housing.rest_speed must be < count_speed")):  # fmt: skip
+                            ("count_speed", -1e-3, "Housing.count_speed must be a finite number >= 0 (m/s)")):  # fmt: skip
         with pytest.raises(ValueError, match=words.replace("(", r"\(").replace(")", r"\)")):
             Housing(**{**ok, key: bad})
+    # issue 30: every located impact counts by default; a positive count threshold must lie above rest_speed
+    assert Housing(**ok).count_speed == 0.0 and Housing(**ok, rest_speed=0.01).rest_speed == 0.01
+    with pytest.raises(ValueError, match=r"Housing.rest_speed must be < count_speed \(0.001 m/s\), got 0.01"):
+        Housing(**ok, rest_speed=0.01, count_speed=1e-3)
     assert Housing(**ok).lever() == pytest.approx(0.625 * math.cos(math.radians(55)) - 0.2 * math.sin(math.radians(55)))
 
 

@@ -41,9 +41,11 @@ def reference():
 
 def test_reference_has_all_three_regimes_growing_with_mass(reference):
     # the sweep is not trivial: no impacts at 0.6 kg in 1 s, rebounds at 1.5 kg, sliding at 3 kg
+    # (1.5 kg: one run of 3 already slides for 2 % of the second; 3 kg: two of 3)
     assert reference.impacts.values[0].tolist() == [0, 0, 0]
     assert (reference.impacts.values[1] > 0).all() and (reference.impacts.values[2] > reference.impacts.values[1]).all()
-    assert reference.regime.values.tolist() == [[0, 0, 0], [1, 1, 1], [2, 2, 2]]
+    reg = reference.regime.values.tolist()
+    assert reg[0] == [0, 0, 0] and 1 in reg[1] and 0 not in reg[1] and 2 in reg[2] and min(reg[2]) >= 1
     assert reference.seed.values.tolist() == [7, 8, 9]
 
 

@@ -65,23 +65,43 @@ def test_three_regimes_appear_as_stone_mass_grows(table):
     heavy = _fraction(table, 2.0, "sliding") + _fraction(table, 2.0, "backward_whirl")
     assert heavy >= 0.75
     assert _fraction(table, 2.0, "sliding") >= 0.25
-    # at 3 kg sliding contact runs into the dry-friction backward whirl in most sequences
-    assert _fraction(table, 3.0, "backward_whirl") >= 0.5
+    # at 3 kg ("sliding, a series of very frequent impacts") every sequence is in sustained
+    # contact: most slide for the 10 s (~950 impacts, median), some run into the dry-friction
+    # backward whirl, where they are stopped (4 of 16 with these seeds)
+    assert _fraction(table, 3.0, "sliding") >= 0.5
+    assert 0.1 <= _fraction(table, 3.0, "backward_whirl") <= 0.5
     assert _fraction(table, 3.0, "rebounds") == 0.0
+    assert 600 <= table.impacts_median.values[-1] <= 1500
     assert table.max_penetration.values.max() < 1e-6 * 4.5e-3
 
 
+def _fig4_case():
+    from rotorlab.analyses import impact_model
+    from rotorlab.io import load_case
+
+    return impact_model(load_case("krasnov-crusher-translational").model)
+
+
 def test_fig4_translational_regimes():
-    # Fig. 4: Delta t = 0.07 s, gamma = 0.5, k = 0.7, f = 0.3, 2 s; 1.3 kg no impacts, then impacts
-    model = krasnov_crusher(translational=True, interval=0.07, internal_friction=0.5,
-                            restitution=0.7, friction=0.3)  # fmt: skip
-    ds = impact_sweep(model, [1.3, 1.8, 3.0, 5.0, 8.0], n_sequences=8, t_end=2.0, seed=100)
+    """Fig. 4 (Delta t = 0.07 s, gamma = 0.5, k = 0.7, f = 0.3, 2 s) from the case
+    ``krasnov-crusher-translational``, 16 seeded sequences (seeds 0-15): "at 1.3 kg no impacts,
+    at 3 kg the sliding regime begins, at 5 kg it is strongly expressed". Sustained contact begins
+    between 2.3 and 3 kg (within a factor 1.3 of the paper's 3 kg: no run touches in sustained
+    contact at 2.3 kg, most do at 3 kg), and at 5 kg most runs slide for >= 2 % of the run, with
+    200-350 impacts (median; every located impact counted) where an independent event-located
+    simulation of the same equations finds about 250 and all 16 sliding. Landing the stones at
+    0.15 m instead (the former default) no run slides at 5 kg (~150 impacts): see
+    dev/crusher_choices.py."""
+    ds = impact_sweep(_fig4_case(), [1.3, 1.8, 2.3, 3.0, 5.0], n_sequences=16, t_end=2.0, seed=0)
     assert _fraction(ds, 1.3, "none") == 1.0
     assert _fraction(ds, 1.8, "rebounds") == 1.0
+    touched = (ds.sliding_time.values > 0).mean(axis=1)
+    assert touched[2] < 0.25 and touched[3] >= 0.5, touched
+    assert _fraction(ds, 5.0, "sliding") >= 0.75
     med = ds.impacts_median.values
-    assert np.all(np.diff(med) > 0)
-    assert ds.sliding_time_median.values[-1] > ds.sliding_time_median.values[2]
-    assert _fraction(ds, 8.0, "sliding") >= 0.5
+    assert np.all(np.diff(med) > 0) and 200 <= med[-1] <= 350, med
+    assert np.array_equal(ds.impacts.values, ds.impacts_all.values)  # every located impact counts
+    assert ds.sliding_time_median.values[-1] > 0.02 * 2.0
 
 
 def test_fig5_friction_losses_rise_earlier_with_tilt():

@@ -69,7 +69,7 @@ def test_normal_force_is_curvature_plus_coriolis_plus_centrifugal():
 def test_tabulated_push_interpolates_the_exact_solution():
     model = krasnov_crusher()
     p = model.to_array()
-    fine = stone_push(0.25, A, 0.5, n_table=16385)
+    fine = stone_push(model.stones.start_radius / model.stones.radius, A, 0.5, n_table=16385)
     taus = np.linspace(0.0, fine.tau_end, 997)[1:-1]
     got = np.array([K.push(t, p) for t in taus])
     ref = np.column_stack([np.interp(taus, fine.tau, fine.jx), np.interp(taus, fine.tau, fine.jy)])

@@ -27,7 +27,7 @@ def test_detection_flags_exactly_the_runs_that_run_away():
     stopped = flagged.whirl.values == 1
     # without the limit the same runs end with a whirl of 1e12 rad/s (or the integrator gives up)
     ran_away = (free.whirl.values == 1) | (free.status.values < 0)
-    assert stopped.sum() >= 4
+    assert stopped.sum() >= 3
     assert np.array_equal(stopped, ran_away)
     # stopped shortly before the blow-up, with the counts up to there
     assert np.all(flagged.t_final.values[stopped] <= free.t_final.values[stopped])

@@ -3,7 +3,7 @@
 Physics, conventions and every correction to the printed equations are documented in
 :mod:`rotorlab.models._impact_rotor`; this module is the allocation-free numerics.
 
-State ``y`` (length ``N_STATE`` = 28, the last ``N_DISCRETE`` = 17 discrete)
+State ``y`` (length ``N_STATE`` = 33, the last ``N_DISCRETE`` = 22 discrete)
 -----------------------------------------------------------------------------
 ==========  ===================================================================================
 ``0, 1``    u1, u2: displacement of the centre of mass in the frame rotating at omega0 (m)
@@ -30,7 +30,16 @@ State ``y`` (length ``N_STATE`` = 28, the last ``N_DISCRETE`` = 17 discrete)
 ``25``      W_DRIVE: work of the drive through the impulses' friction, sum of -P_t r_P omega0 (J)
 ``26``      E_FRIC: heat of friction at the impulses, sum of -P_t (s- + s+) / 2 (J)
 ``27``      E_PROJ: energy changed by projections of P back onto the housing (J, numerical)
+``28``      R_T: last time P touched the housing whirling forwards (s; 0 if never): the run's
+            state before a backward-whirl runaway (see "Runaway" below)
+``29 .. 32`` R_NIMP, R_NALL, R_WDRIVE, R_INTN: N_IMP, N_ALL, W_DRIVE and INT_N at R_T
 ==========  ===================================================================================
+
+Runaway: a run stopped at the backward whirl gets there through a runaway (the contact point
+whirls backwards on the housing, friction feeds the whirl, N grows with its square), where
+nearly all its friction work can come in the last milliseconds. ``R_*`` are the run's records
+at the last moment P touched the housing whirling forwards (after an impact, a slide's start or
+a lift-off with a forward whirl, or where a slide's whirl turns backwards: ``whirl_reverse``).
 
 Energy ledger
 -------------
@@ -63,6 +72,10 @@ every step); ``3 backward_whirl``: sliding, ``g`` = the slip of P (:func:`slip_s
 ``whirl_limit``, ``whirl_limit + dphi/dt + omega0``, the inertial angular speed of the contact
 point; :func:`whirl_stop`), stops the run. An impact whose impulse sticks (the slip of
 P stops: P rolls on the housing, the dry-friction backward whirl) also stops the run.
+``4 whirl_reverse``: sliding, ``g`` = the inertial whirl speed of the contact point
+(:func:`whirl_speed`): where it turns backwards the ``R_*`` records are taken. A stone leaving
+its guide while P slides may leave the housing pulling (``N < 0`` right after the breakpoint):
+the rotor lifts off there.
 
 Impacts and sliding are the shared contact law of :mod:`rotorlab._kernels.contact` at P
 (:func:`delassus`, :func:`slip_speed`); see the note before :func:`delassus`.
@@ -74,14 +87,15 @@ from numba import njit
 
 from rotorlab._kernels.contact import delassus_forces, impulse_energy, newton_coulomb_impulse
 
-N_STATE = 28
-N_DISCRETE = 17
+N_STATE = 33
+N_DISCRETE = 22
 N_CONT = N_STATE - N_DISCRETE
 
 U1, U2, T1, T2, DU1, DU2, DT1, DT2, INT_N, W_ST, W_NC = 0, 1, 2, 3, 4, 5, 6, 7, 8, 9, 10
 MODE, I_BP, T_RESET, N_IMP, N_ALL, N_SLIDE, T_START, T_SLIDE = 11, 12, 13, 14, 15, 16, 17, 18
 S_SUM, E_REST, V_MAX, PEN_MAX, WHIRL = 19, 20, 21, 22, 23
 E_0, W_DRIVE, E_FRIC, E_PROJ = 24, 25, 26, 27
+R_T, R_NIMP, R_NALL, R_WDRIVE, R_INTN = 28, 29, 30, 31, 32
 
 P_M, P_A1, P_A3, P_W0, P_C, P_NM, P_CS, P_GAM = 0, 1, 2, 3, 4, 5, 6, 7
 P_SB, P_CB, P_LP, P_HP, P_RP, P_GAP, P_K, P_F = 8, 9, 10, 11, 12, 13, 14, 15
@@ -92,7 +106,7 @@ P_NST, P_OST, P_NBP, P_OBP, P_OACT, P_NACT, P_NTAB, P_OTAB, P_DTAU = (
 P_SLIPSTOP = 32
 P_HEADER = 33
 
-EV_IMPACT, EV_LIFT, EV_STONE, EV_WHIRL = 0, 1, 2, 3
+EV_IMPACT, EV_LIFT, EV_STONE, EV_WHIRL, EV_REVERSE = 0, 1, 2, 3, 4
 
 
 @njit(cache=True, nogil=True)
@@ -347,11 +361,13 @@ def events(t, y, p, g):
             g[EV_IMPACT] = p[P_GAP] - math.sqrt(w1 * w1 + w2 * w2)
         g[EV_LIFT] = 1.0
         g[EV_WHIRL] = 1.0
+        g[EV_REVERSE] = 1.0
     else:
         g[EV_IMPACT] = 1.0
         n, e1, e2 = contact_force(t, y, p)
         g[EV_LIFT] = n
         g[EV_WHIRL] = whirl_stop(y, p, e1, e2)
+        g[EV_REVERSE] = whirl_speed(y, p)
     i_bp = int(y[I_BP])
     if i_bp < int(p[P_NBP]):
         g[EV_STONE] = p[int(p[P_OBP]) + i_bp] - t
@@ -449,6 +465,23 @@ def _count(y_new, p, v):
 
 
 @njit(cache=True, nogil=True)
+def _record(y_new, t):
+    """Take the ``R_*`` records: the state of the run before a backward-whirl runaway."""
+    y_new[R_T] = t
+    y_new[R_NIMP] = y_new[N_IMP]
+    y_new[R_NALL] = y_new[N_ALL]
+    y_new[R_WDRIVE] = y_new[W_DRIVE]
+    y_new[R_INTN] = y_new[INT_N]
+
+
+@njit(cache=True, nogil=True)
+def _lift_off(t, y, y_new):
+    y_new[MODE] = 0.0
+    y_new[T_RESET] = t
+    y_new[T_SLIDE] += t - y[T_START]
+
+
+@njit(cache=True, nogil=True)
 def reset(k, t, y, p, y_new):
     for i in range(N_STATE):
         y_new[i] = y[i]
@@ -456,6 +489,16 @@ def reset(k, t, y, p, y_new):
         y_new[I_BP] = y[I_BP] + 1.0
         if y[MODE] != 0.0:
             _project(y_new, p, True)
+            n, _, _ = contact_force(t, y_new, p)
+            if n <= 0.0:
+                # the stone that left (or arrived) took the normal force with it: the housing
+                # would pull, the rotor lifts off here
+                _lift_off(t, y, y_new)
+                if whirl_speed(y_new, p) >= 0.0:
+                    _record(y_new, t)
+        return 0
+    if k == EV_REVERSE:
+        _record(y_new, t)
         return 0
     if k == EV_IMPACT:
         e1, e2 = _project(y_new, p, False)
@@ -483,6 +526,8 @@ def reset(k, t, y, p, y_new):
                     y_new[WHIRL] = 1.0
                     y_new[MODE] = 0.0
                     return 1
+                if whirl_speed(y_new, p) >= 0.0:
+                    _record(y_new, t)
                 return 0
             for i in range(N_STATE):  # it would pull: an ordinary rebound instead
                 y_new[i] = y[i]
@@ -494,12 +539,14 @@ def reset(k, t, y, p, y_new):
             # (Black 1968, Crandall 1990) that the sliding law cannot carry: stop, as in sliding
             y_new[WHIRL] = 1.0
             return 1
+        if whirl_speed(y_new, p) >= 0.0:
+            _record(y_new, t)
         return 0
     if k == EV_LIFT:
         _project(y_new, p, True)
-        y_new[MODE] = 0.0
-        y_new[T_RESET] = t
-        y_new[T_SLIDE] += t - y[T_START]
+        _lift_off(t, y, y_new)
+        if whirl_speed(y_new, p) >= 0.0:
+            _record(y_new, t)
         return 0
     # EV_WHIRL: self-feeding backward whirl, stop
     y_new[WHIRL] = 1.0
@@ -509,14 +556,10 @@ def reset(k, t, y, p, y_new):
 
 
 # --------------------------------------------------------------- the shared contact law at P
-# The impact map (3.9) and the sliding force above are the shared law of
-# rotorlab._kernels.contact (Newton restitution on the normal speed, Coulomb impulse: P_n =
-# (1 + k) v / w_nn, P_t = -f sign(s) P_n while P slides) at the Delassus entries below;
-# tests/unit/test_impact_shared_law.py checks that it equals the printed (3.9) on random states.
-# P slides forwards in every run of the paper (r_P omega0 = 100 m/s against vibration speeds
-# below about 1 m/s); the stick branch is reached only when a backward whirl brings the slip of P
-# to zero, the rolling dry-friction backward whirl, where a run is stopped (with restitution 1
-# and heavy stones, issue 16: the rotor reaches it through impacts, not sliding).
+# The impact map (3.9) and the sliding force above are the shared law of rotorlab._kernels.contact
+# at the Delassus entries below (tests/unit/test_impact_shared_law.py: equal to the printed (3.9)
+# on random states). P slides forwards (r_P omega0 = 100 m/s against vibration speeds below about
+# 1 m/s) until a backward whirl brings its slip to zero, where a run is stopped (issue 16).
 
 
 @njit(cache=True, nogil=True)

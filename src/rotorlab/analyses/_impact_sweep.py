@@ -44,8 +44,10 @@ __all__ = ["ImpactAnalysis", "impact_sweep", "impact_sweep_definition", "summari
 
 #: Result variables of a point, in order (see :func:`rotorlab.analyses.impact_run`).
 POINT_VARIABLES = ("impacts", "impacts_all", "slides", "sliding_time", "max_penetration", "max_approach_speed",
-                   "energy_stones", "energy_friction", "energy_restitution", "eta", "whirl", "t_final", "status",
-                   "n_steps", "regime")  # fmt: skip
+                   "energy_stones", "energy_friction", "energy_restitution", "eta", "runaway_start",
+                   "impacts_before_runaway", "energy_friction_before_runaway", "eta_before_runaway",
+                   "impacts_runaway", "energy_friction_runaway", "whirl", "t_final", "status", "n_steps",
+                   "regime")  # fmt: skip
 
 
 def _with_params(model: ImpactRotor, values: Mapping[str, float]) -> ImpactRotor:
@@ -252,7 +254,7 @@ def impact_sweep(model: ImpactRotor, values: Sequence[float], *, param: str = "s
     --------
     >>> from rotorlab.models import krasnov_crusher
     >>> ds = impact_sweep(krasnov_crusher(), [0.5, 1.0], n_sequences=2, t_end=2.0)
-    >>> ds.impacts.values[0].tolist(), bool((ds.impacts.values[1] > 10).all()), ds.attrs["param"]
+    >>> ds.impacts.values[0].tolist(), bool((ds.impacts.values[1] > 5).all()), ds.attrs["param"]
     ([0, 0], True, 'stone_mass')
     """
     from rotorlab.sweep import InProcess, run_sweep
@@ -282,7 +284,7 @@ def summarize_impact_sweep(runs: xarray.Dataset, model: ImpactRotor, *, param: s
     sc = {k: np.asarray(runs[k].values) for k in POINT_VARIABLES}
     data = {k: (("value", "sequence"), v, {"units": _UNITS[k], "description": _DESCRIPTIONS[k]})
             for k, v in sc.items()}  # fmt: skip
-    for name in ("impacts", "eta", "sliding_time"):
+    for name in ("impacts", "eta", "eta_before_runaway", "sliding_time"):
         arr = np.where(sc["regime"] < 0, np.nan, sc[name].astype(float))  # a failed run has no value
         with warnings.catch_warnings():  # a value whose runs all failed has no quantiles (NaN), as meant
             warnings.simplefilter("ignore", RuntimeWarning)

@@ -36,7 +36,11 @@ Energy (seed 001, Fig. 5)
 -------------------------
 ``energy_stones``: what the motor spends on accelerating the stones (``m_n omega0^2 R_q^2 W``,
 partial for a stone still on its guide); ``energy_friction``: what it spends against the
-friction at the housing, ``f r_P omega0 (sum S_n + int N dt)``; ``eta`` their ratio.
+friction at the housing, ``f r_P omega0 (sum S_n + int N dt)``; ``eta`` their ratio. A run
+stopped at the backward whirl ends in a runaway (the contact point whirling backwards, friction
+feeding it) that can hold nearly all of its friction work in the last milliseconds: its values
+before the runaway (``*_before_runaway``, up to ``runaway_start``, the last time P touched the
+housing whirling forwards) and the runaway's own (``*_runaway``) are reported apart.
 """
 
 from __future__ import annotations
@@ -180,8 +184,15 @@ def _scalars(models: Sequence[ImpactRotor], sol: Any) -> dict[str, np.ndarray]:
     slide = np.array([m.housing.friction * m.housing.radius * m.rotor.spin_speed for m in models])
     e_fr = yf[:, _k.W_DRIVE] + slide * yf[:, _k.INT_N]
     e_vib = np.array([m.fixed_energy(y) for m, y in zip(models, yf)])
+    # a run stopped at the backward whirl: its records before the runaway (issue 28, item 5)
+    stopped = yf[:, _k.WHIRL] != 0.0
+    t_run = np.where(stopped, yf[:, _k.R_T], tf)
+    e_st_pre = np.array([m.stone_energy(t) for m, t in zip(models, t_run)])
+    e_fr_pre = np.where(stopped, yf[:, _k.R_WDRIVE] + slide * yf[:, _k.R_INTN], e_fr)
+    imp_pre = np.where(stopped, yf[:, _k.R_NIMP], yf[:, _k.N_IMP]).astype(np.int64)
     with np.errstate(divide="ignore", invalid="ignore"):
         eta = np.where(e_st > 0, e_fr / e_st, np.nan)
+        eta_pre = np.where(e_st_pre > 0, e_fr_pre / e_st_pre, np.nan)
     return {
         "impacts": yf[:, _k.N_IMP].astype(np.int64),
         "impacts_all": yf[:, _k.N_ALL].astype(np.int64),
@@ -195,6 +206,12 @@ def _scalars(models: Sequence[ImpactRotor], sol: Any) -> dict[str, np.ndarray]:
         "energy_vibration": e_vib - yf[:, _k.E_0],
         "work_stones": yf[:, _k.W_ST],
         "eta": eta,
+        "runaway_start": np.where(stopped, t_run, np.nan),
+        "impacts_before_runaway": imp_pre,
+        "energy_friction_before_runaway": e_fr_pre,
+        "eta_before_runaway": eta_pre,
+        "impacts_runaway": yf[:, _k.N_IMP].astype(np.int64) - imp_pre,
+        "energy_friction_runaway": e_fr - e_fr_pre,
         "whirl": yf[:, _k.WHIRL].astype(np.int64),
         "t_final": tf,
         "status": sol.status.astype(np.int64),
@@ -206,10 +223,18 @@ _UNITS = {
     "impacts": "1", "impacts_all": "1", "slides": "1", "sliding_time": "s", "max_penetration": "m",
     "max_approach_speed": "m/s", "energy_stones": "J", "energy_friction": "J",
     "energy_restitution": "J", "energy_vibration": "J", "work_stones": "J", "eta": "1", "whirl": "1", "t_final": "s", "status": "1",
+    "runaway_start": "s", "impacts_before_runaway": "1", "energy_friction_before_runaway": "J",
+    "eta_before_runaway": "1", "impacts_runaway": "1", "energy_friction_runaway": "J",
     "n_steps": "1", "regime": "1",
 }  # fmt: skip
 _DESCRIPTIONS = {
-    "impacts": "impacts with approach speed >= count_speed",
+    "impacts": "located impacts with approach speed >= count_speed (default 0: every one)",
+    "runaway_start": "run stopped at the backward whirl: last time P touched the housing whirling forwards (NaN: not stopped)",
+    "impacts_before_runaway": "impacts up to runaway_start (every impact of a run not stopped)",
+    "energy_friction_before_runaway": "energy_friction up to runaway_start",
+    "eta_before_runaway": "eta up to runaway_start (eta of a run not stopped)",
+    "impacts_runaway": "impacts from runaway_start to the backward-whirl stop",
+    "energy_friction_runaway": "energy_friction from runaway_start to the backward-whirl stop",
     "impacts_all": "every impact, chatter included",
     "slides": "number of sliding-contact episodes",
     "sliding_time": "total time in sliding contact",
@@ -373,6 +398,11 @@ def impact_summary(ds: xarray.Dataset) -> dict[str, Any]:
         "slides": int(ds.slides),
         "sliding_time_s": float(ds.sliding_time),
         "energy_ratio": _num(ds.eta.values),
+        "energy_ratio_before_runaway": _num(ds.eta_before_runaway.values),
+        "runaway_start_s": _num(ds.runaway_start.values),
+        "impacts_before_runaway": int(ds.impacts_before_runaway),
+        "impacts_runaway": int(ds.impacts_runaway),
+        "energy_friction_runaway_J": float(ds.energy_friction_runaway),
         "energy_stones_J": float(ds.energy_stones),
         "energy_friction_J": float(ds.energy_friction),
         "energy_vibration_J": float(ds.energy_vibration),
@@ -412,6 +442,8 @@ def sweep_summary(ds: xarray.Dataset) -> dict[str, Any]:
             "impacts_max": int(done.max()) if done.size else None,
             "sliding_time_median_s": _num(ds.sliding_time_median.values[i]),
             "energy_ratio_median": _num(ds.eta_median.values[i]),
+            "energy_ratio_before_runaway_median": (_num(ds.eta_before_runaway_median.values[i])
+                                                   if "eta_before_runaway_median" in ds else None),
             "regimes": counts,
             "regime": max(counts, key=counts.get),  # the most frequent outcome, "failed" included
         })  # fmt: skip

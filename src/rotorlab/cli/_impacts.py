@@ -302,6 +302,8 @@ def impact_tables(results: dict[str, Any], rows: dict[str, Any] | None = None) -
                         "max penetration (m)"):  # fmt: skip
                 t.add_column(col, justify="left" if col == "regime" else "right")
             eta = "-" if s["energy_ratio"] is None else f"{s['energy_ratio']:.3g}"
+            if s["runaway_start_s"] is not None and s["energy_ratio_before_runaway"] is not None:
+                eta = f"{s['energy_ratio_before_runaway']:.3g} before runaway, {eta} at stop"
             t.add_row(s["regime"] + (" (stopped)" if s["backward_whirl"] else ""), str(s["impacts"]),
                       str(s["impacts_all"]), str(s["slides"]), f"{s['sliding_time_s']:.4g}", eta,
                       f"{s['max_approach_speed_m_s']:.3g}", f"{s['max_penetration_m']:.2g}")  # fmt: skip

@@ -68,7 +68,9 @@ class HousingSpec(_Spec):
     restitution: quantity("dimensionless", ge=0, le=1) = Field(0.5, description="restitution k (-)")
     friction: quantity("dimensionless", ge=0) = Field(0.2, description="friction f at the housing (-)")
     rest_speed: quantity("velocity", gt=0) = Field(1e-4, description="rebound speed turning chatter into sliding (m/s)")
-    count_speed: quantity("velocity", gt=0) = Field(1e-3, description="approach speed from which impacts count (m/s)")
+    count_speed: quantity("velocity", ge=0) = Field(
+        0.0, description="approach speed from which impacts count (m/s); 0: every located impact"
+    )
     whirl_limit: quantity("angular_speed", gt=0) | None = Field(
         None, description="backward whirl speed that stops a run (rad/s); default: the run stops where the "
                           "slip of P over the housing vanishes (without tilt at r_P sin(beta) omega0 / gap)"
@@ -76,7 +78,7 @@ class HousingSpec(_Spec):
 
     @model_validator(mode="after")
     def _check_speeds(self) -> HousingSpec:
-        if self.rest_speed >= self.count_speed:
+        if 0.0 < self.count_speed <= self.rest_speed:
             raise IssueGroup([Issue(("rest_speed",), f"must be < count_speed ({self.count_speed:g} m/s)", self.rest_speed)])
         return self
 
@@ -90,7 +92,7 @@ class StonesSpec(_Spec):
     height: quantity("length") = Field(description="height h_q of the accelerator above the centre of mass (m)")
     spiral_angle: quantity("angle", gt=0, lt=math.pi / 2) = Field(description="angle a of the guides to the radius (rad)")
     guide_friction: quantity("dimensionless", ge=0) = Field(description="friction f_q between stone and guide (-)")
-    start_radius: quantity("length", gt=0) = Field(0.15, description="radius where a stone lands on its guide (m)")
+    start_radius: quantity("length", gt=0) = Field(0.1, description="radius where a stone lands on its guide (m)")
     start_speed: quantity("velocity", ge=0) = Field(0.0, description="speed of a landing stone along its guide (m/s)")
     n_guides: integer(ge=1) = Field(4, description="number N of guides (-)")
     guides: _choice("random", "cyclic") = Field("random", description="guide of each stone: random or in turn")

@@ -109,10 +109,11 @@ class Housing:
         f, Coulomb friction coefficient between rotor and housing, >= 0.
     rest_speed : float
         Rebound speed (m/s) below which a run of impacts is taken as accumulated and the rotor
-        slides on the housing; default 1e-4 m/s. Must be < count_speed.
+        slides on the housing; default 1e-4 m/s. Must be < count_speed when that is > 0.
     count_speed : float
-        Approach speed (m/s) from which an impact is counted; default 1e-3 m/s (the impacts of
-        a chatter below it are not counted, so counts do not depend on the tolerance).
+        Approach speed (m/s) from which an impact is counted, >= 0; default 0: every located
+        impact counts, the chatter before a sliding contact included (issue 30; a positive
+        value leaves slow chatter out of the count, e.g. 1e-3 m/s, the former default).
     whirl_limit : float or None
         Backward angular speed (rad/s) of the contact point in the fixed frame during sliding
         above which the run is stopped and flagged as dry-friction backward whirl; ``None``
@@ -136,7 +137,7 @@ class Housing:
     restitution: float = 0.5
     friction: float = 0.2
     rest_speed: float = 1e-4
-    count_speed: float = 1e-3
+    count_speed: float = 0.0
     whirl_limit: float | None = None
 
     def __post_init__(self) -> None:
@@ -148,8 +149,8 @@ class Housing:
         object.__setattr__(self, "restitution", _num(o, "restitution", self.restitution, lo_open=False, hi=1.0))
         object.__setattr__(self, "friction", _num(o, "friction", self.friction, lo_open=False))
         object.__setattr__(self, "rest_speed", _num(o, "rest_speed", self.rest_speed, unit="m/s"))
-        object.__setattr__(self, "count_speed", _num(o, "count_speed", self.count_speed, unit="m/s"))
-        if self.rest_speed >= self.count_speed:
+        object.__setattr__(self, "count_speed", _num(o, "count_speed", self.count_speed, lo_open=False, unit="m/s"))
+        if 0.0 < self.count_speed <= self.rest_speed:
             raise ValueError(
                 f"Housing.rest_speed must be < count_speed ({self.count_speed:g} m/s), got {self.rest_speed!r}"
             )

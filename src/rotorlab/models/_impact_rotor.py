@@ -157,14 +157,16 @@ __all__ = [
 ]
 
 #: Event functions of the model, in kernel order.
-EVENT_NAMES = ("impact", "lift_off", "stone", "backward_whirl")
+EVENT_NAMES = ("impact", "lift_off", "stone", "backward_whirl", "whirl_reverse")
 
 #: Names of the state entries, in kernel order.
 STATE_NAMES = (
     "u1", "u2", "t1", "t2", "du1", "du2", "dt1", "dt2", "int_contact_force", "work_stones",
     "work_nonconservative", "mode", "i_breakpoint", "t_reset", "n_impacts", "n_impacts_all", "n_slides",
     "t_slide_start", "t_sliding", "impulse_sum", "e_restitution", "v_max", "penetration_max", "whirl",
-    "energy_start", "work_drive", "e_friction", "e_projection",
+    "energy_start", "work_drive", "e_friction", "e_projection", "t_before_runaway",
+    "n_impacts_before_runaway", "n_impacts_all_before_runaway", "work_drive_before_runaway",
+    "int_contact_force_before_runaway",
 )  # fmt: skip
 
 _KERNELS = Kernels(
@@ -193,13 +195,14 @@ class ImpactRotor:
     Notes
     -----
     State and packed parameters: :mod:`rotorlab._kernels.impact_rotor`. Events
-    ``impact, lift_off, stone, backward_whirl`` (all resets; the last stops the run).
+    ``impact, lift_off, stone, backward_whirl, whirl_reverse`` (all resets; ``backward_whirl``
+    stops the run).
 
     Examples
     --------
     >>> model = krasnov_crusher().with_stones(t_end=0.2, seed=3)
     >>> model.n_state, len(model.sequence), round(model.equivalent_mass, 2)
-    (28, 5, 627.3)
+    (33, 5, 627.3)
     """
 
     rotor: CentrifugeRotor

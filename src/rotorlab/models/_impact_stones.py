@@ -160,7 +160,10 @@ class StoneFeed:
         f_q, friction between stone and guide, >= 0.
     start_radius : float
         Radius where a stone lands on its guide (m), in (0, R_q). Not given in the paper;
-        default 0.15 m (a quarter of the paper's R_q).
+        default 0.1 m (the feed tube's radius). It decides Fig. 4 (issue 30): sustained contact
+        whirls forwards and lasts only while a stone pushes, and a stone landing at 0.1 m pushes
+        for 34.5 ms of the 70 ms between stones (27.5 ms from 0.15 m, the former default, with
+        which no run slides at 5 kg); see ``dev/crusher_choices.py``.
     start_speed : float
         Speed of a landing stone along its guide (m/s), >= 0; default 0 (not given).
     n_guides : int
@@ -191,7 +194,7 @@ class StoneFeed:
     height: float
     spiral_angle: float
     guide_friction: float
-    start_radius: float = 0.15
+    start_radius: float = 0.1
     start_speed: float = 0.0
     n_guides: int = 4
     guides: Literal["random", "cyclic"] = "random"

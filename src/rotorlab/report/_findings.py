@@ -211,6 +211,11 @@ def steady_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
 def _impact_run(ds: xarray.Dataset, rows: Rows) -> Findings:
     s = rows[0]
     eta = "–" if s["energy_ratio"] is None else f"{s['energy_ratio']:.3g}"
+    if s.get("runaway_start_s") is not None:  # eta at the stop is the runaway's: give the run's before it
+        pre = "–" if s["energy_ratio_before_runaway"] is None else f"{s['energy_ratio_before_runaway']:.3g}"
+        eta = (f"{pre} before the runaway to the backward whirl from t = {s['runaway_start_s']:.4g} s ({eta} at the "
+               f"stop; the runaway: {_count(s['impacts_runaway'], 'impact')}, "
+               f"{s['energy_friction_runaway_J']:.3g} J against friction)")  # fmt: skip
     numbers = (f"sliding for {s['sliding_time_s']:.3g} s", f"energy ratio eta = {eta}",
                f"largest approach speed {s['max_approach_speed_m_s']:.3g} m/s")  # fmt: skip
     if s["regime"] == "failed":  # no regime and no count to trust: say why, nothing else

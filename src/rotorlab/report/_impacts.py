@@ -29,6 +29,20 @@ def _table(header: list[str], rows: list[list[Any]], numeric: set[int] = frozens
     return f"<table><thead><tr>{head}</tr></thead><tbody>{body}</tbody></table>"
 
 
+def _runaway_rows(s: dict[str, Any]) -> list[list[Any]]:
+    """Rows of a run stopped at the backward whirl: before its runaway and the runaway itself."""
+    if s["runaway_start_s"] is None:
+        return []
+    eta = "-" if s["energy_ratio_before_runaway"] is None else f"{s['energy_ratio_before_runaway']:.4g}"
+    return [
+        ["runaway to the backward whirl from", f"{s['runaway_start_s']:.6g}", "s"],
+        ["eta before the runaway", eta, "1"],
+        ["impacts before the runaway", s["impacts_before_runaway"], ""],
+        ["impacts in the runaway", s["impacts_runaway"], ""],
+        ["energy against friction in the runaway", f"{s['energy_friction_runaway_J']:.4g}", "J"],
+    ]
+
+
 def _run_html(ds: xarray.Dataset) -> str:
     from rotorlab.analyses import impact_summary
 
@@ -36,7 +50,7 @@ def _run_html(ds: xarray.Dataset) -> str:
     eta = "-" if s["energy_ratio"] is None else f"{s['energy_ratio']:.4g}"
     rows = [
         ["regime", s["regime"] + (" (run stopped at the backward whirl)" if s["backward_whirl"] else ""), ""],
-        ["impacts (approach >= count_speed)", s["impacts"], ""],
+        ["impacts (every located one, or approach >= count_speed)", s["impacts"], ""],
         ["impacts, chatter included", s["impacts_all"], ""],
         ["sliding episodes", s["slides"], ""],
         ["time in sliding contact", f"{s['sliding_time_s']:.4g}", "s"],
@@ -45,6 +59,7 @@ def _run_html(ds: xarray.Dataset) -> str:
         ["work of the stones on the vibration", f"{s['work_stones_J']:.4g}", "J"],
         ["vibration energy gained (fixed frame)", f"{s['energy_vibration_J']:.4g}", "J"],
         ["eta (seed 001, Fig. 5)", eta, "1"],
+        *_runaway_rows(s),
         ["largest approach speed", f"{s['max_approach_speed_m_s']:.4g}", "m/s"],
         ["largest penetration (should be 0)", f"{s['max_penetration_m']:.3g}", "m"],
         ["stones", s["n_stones"], ""],
