@@ -329,6 +329,55 @@ KNOCK = [
 if resources.files("rotorlab.cases").joinpath("washer-knock.toml").is_file():
     CORPUS += KNOCK
 
+# ---- unbounded counts, ranges, nesting and key paths (issue 28, items 12 and 14): each bounded where it is read --
+HUGE = "1" + "0" * 30
+DEEP = "[" * 5000 + "]" * 5000
+BOUNDS = [
+    ("basin-workers-absurd", ["basin", "autobalancer", "--workers", "100000"], None,
+     ["--workers = 100000", "must be an integer >= 1 and <= 256"]),
+    ("sweep-workers-absurd", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--ic", "psi_1=0:6:4", "--workers",
+                              "100000"], None, ["--workers = 100000", "<= 256"]),
+    ("sweep-chunk-absurd", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--ic", "psi_1=0:6:4", "--chunk", HUGE],
+     None, [f"--chunk = {HUGE}", "<= 1000000"]),
+    ("basin-chunk-1e30", ["basin", "autobalancer", "--chunk", "1e30"], None, ["--chunk = 1e30", "<= 1000000"]),
+    ("isweep-chunk-absurd", ["impacts-sweep", "krasnov-crusher", "--out", "{d}/i.zarr", "--chunk", HUGE], None,
+     ["--chunk", "<= 1000000"]),
+    ("isweep-sequences-absurd", ["impacts-sweep", "krasnov-crusher", "--sequences", HUGE], None,
+     ["--sequences", "<= 1000000000"]),
+    ("impacts-seed-absurd", ["impacts", "krasnov-crusher", "--seed", HUGE], None, ["--seed", "<= 9223372036854775807"]),
+    ("campbell-speed-overflow", ["campbell", "rcfw-two-plane", "--speeds-rpm", "0:1e300:5"], None,
+     ["--speeds-rpm = 0:1e300:5", "STOP must be <= 1e+07 rpm"]),
+    ("campbell-speeds-count-absurd", ["campbell", "pico21", "--speeds-rpm", f"0:100:{HUGE}"], None,
+     ["--speeds-rpm", "N must be <= 100000"]),
+    ("chart-speed-overflow", ["stability-chart", "zhakash-k2", "--speeds-rpm", "1:1e300:3"], None,
+     ["--speeds-rpm = 1:1e300:3", "<= 1e+07 rpm"]),
+    ("modes-speed-overflow", ["modes", "pico21", "--speed-rpm", "1e300"], None, ["--speed-rpm = 1e+300", "<= 1e+07"]),
+    ("sweep-axis-count-absurd", ["sweep", "autobalancer", "--out", "{d}/s.zarr", "--ic", f"psi_1=0:6:{HUGE}"], None,
+     ["--ic", "N must be <= 1000000"]),
+    ("toml-deep-array", ["validate", FILE], ("autobalancer", "schema_version = 1", "schema_version = 1\nq = " + DEEP),
+     ["case.toml", "nested", "at most 32"]),
+    ("toml-deep-inline-tables", ["run", FILE, "--out", "{d}/o"],
+     ("autobalancer", "schema_version = 1", "schema_version = 1\nq = " + "{a=" * 3000 + "1" + "}" * 3000),
+     ["case.toml", "nested", "at most 32"]),
+    ("toml-deep-table-header", ["validate", FILE],
+     ("autobalancer", "", builtin("autobalancer") + "\n[" + ".".join(["a"] * 5000) + "]\nb = 1\n"),
+     ["case.toml", "a.a.a", "nested deeper than 32 levels"]),
+    ("toml-deep-but-parsable", ["validate", FILE], ("autobalancer", "schema_version = 1",
+                                                    "schema_version = 1\nq = " + "[" * 40 + "]" * 40),
+     ["q[0][0]", "nested deeper than 32 levels"]),
+    ("set-deep-value", ["validate", "autobalancer", "--set", "model.x=" + DEEP], None, ["--set model.x=[[[", "at most 32"]),
+    ("set-long-key-path", ["simulate", "autobalancer", "--set", ".".join(["model"] * 5000) + "=1"], None,
+     ["--set model.model", "5000 keys and indices, at most 32"]),
+    ("set-key-path-deeper-than-allowed", ["validate", "autobalancer", "--set", ".".join(["model"] * 20) + "=" + "[" * 20
+                                          + "]" * 20], None, ["nested deeper than 32 levels"]),  # fmt: skip
+]
+CORPUS += BOUNDS
+if resources.files("rotorlab.cases").joinpath("washer-knock.toml").is_file():
+    CORPUS.append(("mk-center-outside-gap", ["validate", FILE], ("washer-knock", "center_at_rest = true",
+                                                                 'center = ["0 mm", "12 mm"]'),
+                   ["model.clearances[0].center", '["0 mm", "12 mm"]', "12 mm from the axis",
+                    "at most the gap, 10 mm"]))  # fmt: skip
+
 
 def _tree(folder: Path) -> set[str]:
     return {str(p.relative_to(folder)) for p in folder.rglob("*")}

@@ -18,12 +18,14 @@ from pathlib import Path
 from typing import Annotated, Any, Optional
 
 import typer
+from typer.core import TyperGroup
 
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab._version import __version__
 from rotorlab.cli._output import (
     BadInput,
     Settings,
+    clean_click_errors,
     emit_json,
     exit_if_failed,
     handled,
@@ -39,7 +41,21 @@ __all__ = ["app", "main"]
 DEFAULT_CASE = "autobalancer"
 DEFAULT_OUT = "rotorlab-out"
 
+class _Group(TyperGroup):
+    """The app's command group: click's own usage errors (an unknown option, a value it cannot
+    read) are cleaned like every other echo (:func:`~rotorlab.cli._output.clean_text`)."""
+
+    def make_context(self, *args: Any, **kwargs: Any) -> Any:
+        with clean_click_errors():
+            return super().make_context(*args, **kwargs)
+
+    def invoke(self, ctx: Any) -> Any:
+        with clean_click_errors():
+            return super().invoke(ctx)
+
+
 app = typer.Typer(
+    cls=_Group,
     name="rotorlab",
     help="Dynamics of centrifuge rotors and automatic ball balancers.",
     add_completion=False,

@@ -16,7 +16,8 @@ import typer
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, emit_json, exit_if_failed, handled, info, progress_bar, stdout
 from rotorlab.cli._steady import _check_plot, parse_range
-from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
+from rotorlab.cli._options import MAX_SEED, count_option
+from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt
 
 
 def _names(known: Any) -> str:
@@ -131,14 +132,13 @@ def basin_command(
         "--fix", metavar="NAME=VALUE", help="Fix another coordinate (repeatable): --fix rolling_friction=1e-4.")] = None,
     analysis: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--analysis", metavar="NAME", help="Which basin analysis of the case to start from (default: the first).")] = None,
-    random: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--random", metavar="N", help="N random starts over the x and y ranges (basin stability) instead of the grid.")] = None,
-    seed: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--seed", metavar="S", help="Seed of the random starts.")] = None,
+    random: Annotated[Optional[int], count_option(  # noqa: UP007
+        "--random", what="random starts", metavar="N", help="N random starts over the x and y ranges (basin stability) instead of the grid.")] = None,
+    seed: Annotated[Optional[int], count_option(  # noqa: UP007
+        "--seed", low=0, high=MAX_SEED, metavar="S", help="Seed of the random starts.")] = None,
     t_end: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--t-end", metavar="S", help="Simulated time (s).")] = None,
-    chunk: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--chunk", metavar="N", help="Trajectories integrated together (results do not depend on it).")] = None,
+    chunk: ChunkOpt("Trajectories integrated together (results do not depend on it).") = None,
     out: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--out", "-o", metavar="FILE.nc", help="Write the basin Dataset to this NetCDF file.")] = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
@@ -162,9 +162,6 @@ def basin_command(
     """
     settings = _settings(ctx)
     with handled(settings):
-        for option, value, low in (("--random", random, 1), ("--seed", seed, 0), ("--chunk", chunk, 1)):
-            if value is not None and value < low:
-                raise BadInput(f"{option} = {value}: must be an integer >= {low}")
         if t_end is not None and not (t_end > 0 and t_end < float("inf")):
             raise BadInput(f"--t-end = {t_end:g}: must be a finite number > 0 (s)")
         _check_plot("--plot", plot)

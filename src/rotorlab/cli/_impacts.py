@@ -16,7 +16,8 @@ import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, console_or_json, exit_if_failed, handled, info, status
-from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
+from rotorlab.cli._options import MAX_SEED, count_option
+from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt
 
 __all__ = ["impacts_command", "impacts_sweep_command", "impact_tables"]
 
@@ -28,8 +29,8 @@ OutOpt = Annotated[Optional[Path], typer.Option(  # noqa: UP007
     "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")]
 TEndOpt = Annotated[Optional[float], typer.Option(  # noqa: UP007
     "--t-end", metavar="SECONDS", help="Duration of a run (s).")]
-SeedOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
-    "--seed", metavar="N", help="Seed of the (first) stone sequence, >= 0.")]
+SeedOpt = Annotated[Optional[int], count_option(  # noqa: UP007
+    "--seed", low=0, high=MAX_SEED, metavar="N", help="Seed of the (first) stone sequence, >= 0.")]
 
 
 def _check(stone_mass: float | None, t_end: float | None, seed: int | None, plot: Path | None,
@@ -40,8 +41,6 @@ def _check(stone_mass: float | None, t_end: float | None, seed: int | None, plot
 
     for option, value, unit in (("--stone-mass", stone_mass, "kg"), ("--t-end", t_end, "s")):
         _positive(option, None if value is None else [value], unit)
-    if seed is not None and seed < 0:
-        raise BadInput(f"--seed = {seed}: must be an integer >= 0")
     _check_plot("--plot", plot)
     _check_plot("--out", out)
 
@@ -168,8 +167,6 @@ def _executor(workers: int | None, scheduler: str | None, chunk: int | None, sto
     """The executor of ``--workers`` / ``--scheduler`` (None: in-process), after checking the options."""
     from rotorlab.cli._sweep_common import check_store_path, executor_from_options
 
-    if chunk is not None and chunk < 1:
-        raise BadInput(f"--chunk = {chunk}: must be an integer >= 1")
     executor = executor_from_options(scheduler, workers)
     if resume and store is None:
         raise BadInput("--resume needs --out STORE.zarr (the store of the sweep to continue)")
@@ -221,8 +218,8 @@ def impacts_sweep_command(
     param: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--param", metavar="NAME=A:B:N", help="Sweep another parameter: interval, internal_friction, "
         "restitution or friction (SI, or with a unit).")] = None,
-    sequences: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--sequences", metavar="N", help="Random stone sequences per value (>= 1).")] = None,
+    sequences: Annotated[Optional[int], count_option(  # noqa: UP007
+        "--sequences", what="stone sequences per value", metavar="N", help="Random stone sequences per value (>= 1).")] = None,
     t_end: TEndOpt = None,
     seed: SeedOpt = None,
     analysis: AnalysisOpt = None,
@@ -234,9 +231,7 @@ def impacts_sweep_command(
                                          "missing chunks.")] = False,  # fmt: skip
     workers: WorkersOpt = None,
     scheduler: SchedulerOpt = None,
-    chunk: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--chunk", metavar="N", help="Runs per chunk (default: one value's sequences; a resumed store keeps "
-        "its own).")] = None,
+    chunk: ChunkOpt("Runs per chunk (default: one value's sequences; a resumed store keeps its own).") = None,
     json_out: JsonOpt = False,
 ) -> None:
     """Impact counts over many random stone sequences per stone mass (seed 001's table, Fig. 5).
@@ -249,8 +244,6 @@ def impacts_sweep_command(
     settings = _settings(ctx)
     with handled(settings):
         name, values = _param(stone_mass, param)
-        if sequences is not None and sequences < 1:
-            raise BadInput(f"--sequences = {sequences}: must be an integer >= 1")
         store = out if out is not None and out.suffix == ".zarr" else None
         _check(None, t_end, seed, plot, None if store is not None else out)
         executor = _executor(workers, scheduler, chunk, store, resume)

@@ -19,7 +19,7 @@ import typer
 
 from rotorlab._constants import RAD_S_PER_RPM
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app
-from rotorlab.cli._options import check_plot_path, check_speed, parse_speed_range
+from rotorlab.cli._options import check_plot_path, check_speed, count_option, parse_speed_range
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
 __all__ = ["campbell_command", "modes_command", "linear_tables", "write_figure"]
@@ -138,10 +138,10 @@ def campbell_command(
         "--speeds-rpm", metavar="START:STOP:N",
         help="N equally spaced speeds from START to STOP (rpm); default: the case's campbell "
              "analysis.")] = None,
-    modes: Annotated[Optional[int], typer.Option(  # noqa: UP007
+    modes: Annotated[Optional[int], count_option(  # noqa: UP007
         "--modes", metavar="K",
         help="Number of mode branches (default: the case's, or 6).")] = None,
-    harmonic: Annotated[Optional[list[int]], typer.Option(  # noqa: UP007
+    harmonic: Annotated[Optional[list[int]], count_option(  # noqa: UP007
         "--harmonic", metavar="H", help="Excitation line H x for critical speeds, added to the "
                                         "case's lines (or 1x); repeatable.")] = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
@@ -156,11 +156,6 @@ def campbell_command(
     settings = _settings(ctx)
     with handled(settings):
         rng = None if speeds_rpm is None else parse_speed_range(speeds_rpm)
-        if modes is not None and modes < 1:
-            raise BadInput(f"--modes = {modes}: must be an integer >= 1")
-        for h in harmonic or ():
-            if h < 1:
-                raise BadInput(f"--harmonic = {h}: must be an integer >= 1")
         if plot is not None:
             check_plot_path(plot)
         loaded = _linear_case(case, "campbell", sets)
@@ -215,7 +210,7 @@ def modes_command(
     speed_rpm: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Spin speed (rpm); default: the case's modes "
                                            "analysis, or 0.")] = None,
-    modes: Annotated[Optional[int], typer.Option(  # noqa: UP007
+    modes: Annotated[Optional[int], count_option(  # noqa: UP007
         "--modes", metavar="K", help="Number of modes, the lowest (default: all).")] = None,
     json_out: JsonOpt = False,
 ) -> None:
@@ -228,8 +223,6 @@ def modes_command(
     with handled(settings):
         if speed_rpm is not None:
             check_speed(speed_rpm)
-        if modes is not None and modes < 1:
-            raise BadInput(f"--modes = {modes}: must be an integer >= 1")
         loaded = _linear_case(case, "modes", sets)
         _check_modes(modes, loaded.model.linear_structure().n_dof)
         spec = _first(loaded, "modes")

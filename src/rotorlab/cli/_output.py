@@ -24,6 +24,9 @@ import typer
 __all__ = [
     "Settings",
     "BadInput",
+    "OptionError",
+    "clean_click_errors",
+    "say",
     "EXIT_BAD_INPUT",
     "EXIT_INTERNAL",
     "EXIT_FAILED_RESULTS",
@@ -37,6 +40,8 @@ __all__ = [
     "status",
     "summary_table",
     "outcome_table",
+    "clean_text",
+    "TEXT_LIMIT",
 ]
 
 EXIT_INTERNAL = 1
@@ -50,8 +55,81 @@ _SYSTEM_REFUSALS = frozenset(getattr(errno, n) for n in ("ENOSPC", "EDQUOT", "EA
                                                          "EFBIG", "EMFILE", "ENFILE") if hasattr(errno, n))
 
 
+#: Longest text from a user or a file (a case's description, a store's attribute) printed on one
+#: line of a table or message; error messages get :data:`LINE_LIMIT` per line.
+TEXT_LIMIT = 200
+LINE_LIMIT = 1000
+
+# ANSI/VT escape sequences: CSI (ESC [ ... final), OSC (ESC ] ... BEL or ESC \), two-byte ESC x, C1 CSI
+_ESCAPES = r"\x1b\[[0-?]*[ -/]*[@-~]|\x1b\][^\x07\x1b]*(?:\x07|\x1b\\)?|\x1b[@-_]?|\x9b[0-?]*[ -/]*[@-~]"
+
+
+def clean_text(value: Any, limit: int | None = TEXT_LIMIT, *, lines: bool = False) -> str:
+    """``value`` as text safe for a terminal: escape sequences removed, other control characters
+    shown as ``?``, cut to ``limit`` characters (the length of the rest said).
+
+    Every echo of text that came from a user or a file goes through this (the consoles of
+    :func:`stdout` and :func:`stderr`, error messages, warnings, progress lines), so that a case
+    file, a ``--set`` value or a store's attributes cannot move the cursor, retitle the window
+    or hide text.
+
+    Parameters
+    ----------
+    value : Any
+        Shown with ``str``.
+    limit : int or None
+        Longest text kept (per line with ``lines``); None: no limit.
+    lines : bool
+        Keep line breaks (each line cleaned and cut on its own).
+
+    Examples
+    --------
+    >>> clean_text("disc\x1b[2J\x1b]0;pwned\x07 mass\x08")
+    'disc mass?'
+    >>> clean_text("x" * 300, limit=5)
+    'xxxxx... (300 characters)'
+    """
+    import re
+    import unicodedata
+
+    text = str(value)
+    if lines:
+        return "\n".join(clean_text(line, limit) for line in text.split("\n"))
+    cut = 0
+    if limit is not None and len(text) > 4 * limit:  # never scan megabytes of a hostile text
+        text, cut = text[: 4 * limit], len(text)
+    text = re.sub(_ESCAPES, "", text)
+    text = "".join(c if c == " " or unicodedata.category(c) not in ("Cc", "Cf", "Co", "Cs") else "?" for c in text)
+    total = cut or len(text)
+    if limit is not None and len(text) > limit:
+        return text[:limit] + f"... ({total} characters)"
+    return text if not cut else text + f"... ({total} characters)"
+
+
 class BadInput(ValueError):
     """A command-line option has a value that is not allowed (message names option and value)."""
+
+
+class OptionError(typer.BadParameter):
+    """An option's value refused while the command line is read (before the command runs):
+    ``error: <message>`` on stderr, cleaned, exit code 2, like :class:`BadInput`."""
+
+    exit_code = EXIT_BAD_INPUT
+
+    def show(self, file: Any = None) -> None:
+        say(f"error: {self.message}")
+
+
+@contextlib.contextmanager
+def clean_click_errors() -> Iterator[None]:
+    """Clean the message of a click error raised in the block (click's usage errors repeat what
+    was typed: an unknown option, a value it cannot read) before click prints it."""
+    try:
+        yield
+    except typer.TyperException as exc:  # click's errors (typer bundles its own click)
+        if isinstance(getattr(exc, "message", None), str):
+            exc.message = clean_text(exc.message, LINE_LIMIT, lines=True)
+        raise
 
 
 @dataclass(frozen=True, slots=True)
@@ -70,21 +148,42 @@ class Settings:
     verbose: bool = False
 
 
-def stdout() -> Any:
-    """Return a rich console on the current ``sys.stdout`` (120 columns when not a terminal)."""
-    from rich.console import Console
+def _clean_console_class() -> Any:
+    """A rich ``Console`` whose every printed string (messages, table cells, titles) is cleaned
+    by :func:`clean_text` first (created once, on first use: rich is imported late)."""
+    global _CleanConsole
+    if _CleanConsole is None:
+        from rich.console import Console
 
-    console = Console(file=sys.stdout, highlight=False, soft_wrap=True)
+        class CleanConsole(Console):
+            def render_str(self, text: str, **kwargs: Any) -> Any:
+                return super().render_str(clean_text(text, None, lines=True), **kwargs)
+
+        _CleanConsole = CleanConsole
+    return _CleanConsole
+
+
+_CleanConsole: Any = None
+
+
+def stdout() -> Any:
+    """Return a rich console on the current ``sys.stdout`` (120 columns when not a terminal);
+    every string it prints is cleaned of escape sequences (:func:`clean_text`)."""
+    console = _clean_console_class()(file=sys.stdout, highlight=False, soft_wrap=True)
     if not console.is_terminal:
         console.width = max(console.width, 120)
     return console
 
 
 def stderr() -> Any:
-    """Return a rich console on the current ``sys.stderr``."""
-    from rich.console import Console
+    """Return a rich console on the current ``sys.stderr`` (strings cleaned as by :func:`stdout`)."""
+    return _clean_console_class()(file=sys.stderr, highlight=False, soft_wrap=True)
 
-    return Console(file=sys.stderr, highlight=False, soft_wrap=True)
+
+def say(message: Any, *, limit: int | None = LINE_LIMIT) -> None:
+    """Write ``message`` and a line break to stderr, cleaned (:func:`clean_text`, line breaks
+    kept, each line cut to ``limit``): the one way plain messages reach the terminal."""
+    sys.stderr.write(clean_text(message, limit, lines=True) + "\n")
 
 
 def info(settings: Settings, message: str, *, json_mode: bool = False) -> None:
@@ -141,12 +240,12 @@ def handled(settings: Settings) -> Iterator[None]:
         from rotorlab.io import CaseError
 
         if isinstance(exc, (CaseError, BadInput, TooLarge)):
-            sys.stderr.write(f"error: {exc}\n")
+            say(f"error: {exc}")
             raise typer.Exit(EXIT_BAD_INPUT) from None
         if isinstance(exc, OSError) and exc.errno in _SYSTEM_REFUSALS:
             text = str(exc) if type(exc).__str__ is not OSError.__str__ else (
                 f"cannot write {exc.filename}: {exc.strerror}" if exc.filename else f"{exc.strerror or exc}")
-            sys.stderr.write(f"error: {text}\n")
+            say(f"error: {text}")
             raise typer.Exit(EXIT_INTERNAL) from None
         _internal(settings, exc)
 
@@ -157,14 +256,14 @@ _interrupt_reported = False
 
 def _warning_line(message: Any, category: Any, filename: str, lineno: int, file: Any = None,
                   line: Any = None) -> None:  # fmt: skip
-    sys.stderr.write(f"warning: {message}\n")
+    say(f"warning: {message}")
 
 
 def _internal(settings: Settings, exc: BaseException) -> None:
     """Report an unexpected exception (traceback with ``-v``) and exit 1."""
     if settings.verbose:
-        sys.stderr.write("".join(traceback.format_exception(exc)))
-    sys.stderr.write(f"internal error: {type(exc).__name__}: {exc}\n")
+        say("".join(traceback.format_exception(exc)).rstrip("\n"), limit=None)
+    say(f"internal error: {type(exc).__name__}: {exc}")
     if not settings.verbose:
         sys.stderr.write("(run with -v for the traceback)\n")
     raise typer.Exit(EXIT_INTERNAL) from None
@@ -208,7 +307,7 @@ def exit_if_failed(datasets: Mapping[str, Any]) -> None:
         lines.append(f"{name}: {bad.size} of {codes.size} failed ({'; '.join(kinds)})"
                      + (f"; first: {detail}" if detail else ""))  # fmt: skip
     if lines:
-        sys.stderr.write("failed results: " + "\n  ".join(["", *lines]).lstrip("\n ") + "\n")
+        say("failed results: " + "\n  ".join(["", *lines]).lstrip("\n "))
         raise typer.Exit(EXIT_FAILED_RESULTS)
 
 
@@ -254,12 +353,16 @@ def progress_bar(settings: Settings, tasks: Mapping[str, int],
         disable=settings.quiet or not console.is_terminal,
     )
     words = dict(units or {})
-    ids = {name: bar.add_task(name, total=total, unit=words.get(name, "trajectories"))
-           for name, total in tasks.items()}
+    def add(name: str, total: int) -> Any:  # the description is rich markup: cleaned and escaped
+        from rich.markup import escape
+
+        return bar.add_task(escape(clean_text(name)), total=total, unit=clean_text(words.get(name, "trajectories")))
+
+    ids = {name: add(name, total) for name, total in tasks.items()}
 
     def update(name: str, done: int, total: int) -> None:
         if name not in ids:
-            ids[name] = bar.add_task(name, total=total, unit=words.get(name, "trajectories"))
+            ids[name] = add(name, total)
         bar.update(ids[name], completed=done, total=total)
 
     with bar, compile_notices(settings):
@@ -277,7 +380,7 @@ def _plain_progress(tasks: Mapping[str, int],
     last: dict[str, tuple[float, float]] = {}  # name -> (time, fraction) of the last line
 
     def line(name: str, done: int, total: int) -> None:
-        sys.stderr.write(f"{name}: {done}/{total} {words.get(name, 'trajectories')}\n")
+        say(f"{name}: {done}/{total} {words.get(name, 'trajectories')}", limit=TEXT_LIMIT)
         sys.stderr.flush()
 
     def update(name: str, done: int, total: int) -> None:
@@ -298,7 +401,7 @@ class _StderrHandler(logging.Handler):
     up at each record: test runners swap it)."""
 
     def emit(self, record: logging.LogRecord) -> None:
-        sys.stderr.write(self.format(record) + "\n")
+        say(self.format(record))
         sys.stderr.flush()
 
 
@@ -329,12 +432,14 @@ def status(settings: Settings, text: str) -> Iterator[None]:
         yield
         return
     if not console.is_terminal:
-        sys.stderr.write(text + "\n")
+        say(text)
         sys.stderr.flush()
         with compile_notices(settings):
             yield
         return
-    with console.status(text), compile_notices(settings):
+    from rich.markup import escape
+
+    with console.status(escape(clean_text(text, LINE_LIMIT))), compile_notices(settings):
         yield
 
 

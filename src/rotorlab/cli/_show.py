@@ -9,34 +9,10 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab.cli._app import JsonOpt, _settings, app
-from rotorlab.cli._output import BadInput, console_or_json, handled
+from rotorlab.cli._output import BadInput, clean_text, console_or_json, handled
 from rotorlab.cli._sweep_common import regime_fractions, stability_line
 
-__all__ = ["show_command", "clean_text"]
-
-#: Longest attribute text ``show`` prints (a store's attributes are data, possibly hostile).
-TEXT_LIMIT = 200
-
-
-def clean_text(value: Any, limit: int = TEXT_LIMIT) -> str:
-    """``value`` as text safe for a terminal: escape sequences removed, other control characters
-    shown as ``?``, cut to ``limit`` characters (the length of the rest said)."""
-    import re
-    import unicodedata
-
-    text = str(value)
-    if len(text) > 4 * limit:  # never scan megabytes of a hostile attribute
-        text, cut = text[: 4 * limit], len(text)
-    else:
-        cut = 0
-    # ANSI/VT escape sequences: CSI (ESC [ ... final), OSC (ESC ] ... BEL or ESC \), two-byte ESC x
-    text = re.sub(r"\x1b\[[0-?]*[ -/]*[@-~]|\x1b\][^\x07\x1b]*(?:\x07|\x1b\\)?|\x1b[@-_]?|\x9b[0-?]*[ -/]*[@-~]",
-                  "", text)  # fmt: skip
-    text = "".join(c if unicodedata.category(c) not in ("Cc", "Cf", "Co", "Cs") or c == " " else "?" for c in text)
-    total = cut or len(text)
-    if len(text) > limit:
-        return text[:limit] + f"... ({total} characters)"
-    return text if not cut else text + f"... ({total} characters)"
+__all__ = ["show_command"]
 
 
 def _clean_tree(value: Any) -> Any:

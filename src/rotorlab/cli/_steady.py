@@ -17,6 +17,7 @@ import typer
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.cli._app import (CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis, own_entry,
                                run_through_entry)
+from rotorlab.cli._options import parse_range, parse_speed_range
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
 __all__ = ["steady_command", "stability_chart_command", "run_up_command", "parse_range", "regime_overrides", "steady_tables"]
@@ -26,60 +27,6 @@ _METHODS = ("exact", "hamilton", "averaged")
 RegimeOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
     "--regime", metavar="R", help="Use the eccentricity / support damping of the case's analyses labelled "
     "regime = R.")]  # fmt: skip
-
-
-def parse_range(option: str, text: str, dimension: str | None = None) -> tuple[float, float, int]:
-    """Read ``START:STOP:N`` (N evenly spaced values, START < STOP unless N = 1).
-
-    Parameters
-    ----------
-    option : str
-        Option name for messages.
-    text : str
-        The value; START and STOP are plain numbers, or with ``dimension`` numbers in SI or
-        with a unit (``0.05mm``).
-    dimension : str, optional
-        A key of :data:`rotorlab.io.DIMENSIONS` to convert START and STOP to SI.
-
-    Returns
-    -------
-    (float, float, int)
-
-    Raises
-    ------
-    BadInput
-        Malformed value (or :class:`rotorlab.io.CaseError` for a unit of the wrong dimension).
-
-    Examples
-    --------
-    >>> parse_range("--speeds-rpm", "300:3000:10")
-    (300.0, 3000.0, 10)
-    >>> parse_range("--param", "0:2.5mm:3", "length")
-    (0.0, 0.0025, 3)
-    """
-    parts = text.split(":")
-    if len(parts) != 3:
-        raise BadInput(f"{option} = {text}: must be START:STOP:N")
-    try:
-        count = int(parts[2])
-    except ValueError:
-        raise BadInput(f"{option} = {text}: N must be an integer >= 1") from None
-    ends = []
-    for part in parts[:2]:
-        try:
-            ends.append(float(part))
-        except ValueError:
-            if dimension is None:
-                raise BadInput(f"{option} = {text}: START and STOP must be numbers") from None
-            from rotorlab.io import to_si
-
-            ends.append(to_si(part.strip(), dimension, option))
-    start, stop = ends
-    if not (math.isfinite(start) and math.isfinite(stop)) or count < 1:
-        raise BadInput(f"{option} = {text}: START and STOP must be finite and N >= 1")
-    if (count == 1 and start != stop) or (count > 1 and not stop > start):
-        raise BadInput(f"{option} = {text}: STOP must be > START (or equal with N = 1)")
-    return start, stop, count
 
 
 def regime_overrides(loaded: Any, regime: str | None) -> dict[str, float]:
@@ -303,7 +250,7 @@ def stability_chart_command(
     with handled(settings):
         if speeds_rpm is not None and speed_ratios is not None:
             raise BadInput("--speeds-rpm and --speed-ratios exclude each other: give only one")
-        rpm = None if speeds_rpm is None else parse_range("--speeds-rpm", speeds_rpm)
+        rpm = None if speeds_rpm is None else parse_speed_range(speeds_rpm, min_count=1)
         ratios = None if speed_ratios is None else parse_range("--speed-ratios", speed_ratios)
         for option, grid in (("--speeds-rpm", rpm), ("--speed-ratios", ratios)):
             if grid is not None and not grid[0] > 0:

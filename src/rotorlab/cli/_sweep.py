@@ -20,7 +20,9 @@ import typer
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._output import BadInput, console_or_json, exit_if_failed, handled, info
+from rotorlab.cli._options import MAX_SEED, count_option, parse_range
 from rotorlab.cli._sweep_common import (
+    ChunkOpt,
     SchedulerOpt,
     WorkersOpt,
     check_store_path,
@@ -84,33 +86,8 @@ def parse_axis(option: str, text: str, kind: str, sample: bool,
         allowed = _allowed(kind) if dimensions is None else ", ".join(dimensions)
         raise BadInput(f"{option} = {text}: unknown {'parameter' if kind == 'param' else 'initial condition'} "
                        f"{name!r} (allowed: {allowed})")  # fmt: skip
-    parts = rest.split(":")
-    if len(parts) != (2 if sample else 3):
-        raise BadInput(f"{option} = {text}: must be {form}" + (" (with --sample)" if sample else ""))
-    ends = []
-    for part in parts[:2]:
-        try:
-            ends.append(float(part))
-        except ValueError:
-            from rotorlab.io import CaseError, to_si
-
-            try:
-                ends.append(to_si(part.strip(), dimension, option))
-            except (CaseError, ValueError) as exc:
-                raise BadInput(f"{option} = {text}: {exc}") from None
-    if not all(math.isfinite(v) for v in ends):
-        raise BadInput(f"{option} = {text}: START and STOP must be finite")
-    if sample:
-        if not ends[1] >= ends[0]:
-            raise BadInput(f"{option} = {text}: HIGH must be >= LOW")
-        return name, (ends[0], ends[1])
-    try:
-        count = int(parts[2])
-    except ValueError:
-        count = 0
-    if count < 1:
-        raise BadInput(f"{option} = {text}: N must be an integer >= 1")
-    return name, (ends[0], ends[1], count)
+    return name, parse_range(option, rest, dimension, sample=sample, head=f"{option} = {text}: ",
+                             form=f"must be {form}" + (" (with --sample)" if sample else ""))
 
 
 def _report(settings: Any, json_out: bool, loaded: Any, out: Path, sweep: Any, where: str, p: Any, seconds: float,
@@ -149,10 +126,10 @@ def sweep_command(
     ic: Annotated[Optional[list[str]], typer.Option(  # noqa: UP007
         "--ic", metavar="NAME=A:B:N", help="Initial condition psi_<i> (ball angle) or dpsi_<i> (ball rate) over N "
         "values; repeatable. With --sample: NAME=LOW:HIGH.")] = None,
-    sample: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--sample", metavar="N", help="Draw N random points from the --param/--ic ranges instead of a grid.")] = None,
-    seed: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--seed", metavar="S", help="Seed of --sample (default: the case's, else 0).")] = None,
+    sample: Annotated[Optional[int], count_option(  # noqa: UP007
+        "--sample", what="random points", metavar="N", help="Draw N random points from the --param/--ic ranges instead of a grid.")] = None,
+    seed: Annotated[Optional[int], count_option(  # noqa: UP007
+        "--seed", low=0, high=MAX_SEED, metavar="S", help="Seed of --sample (default: the case's, else 0).")] = None,
     analysis: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--analysis", metavar="NAME", help="Which sweep analysis of the case gives the defaults (default: the "
         "first).")] = None,
@@ -166,9 +143,7 @@ def sweep_command(
                                          "missing chunks.")] = False,  # fmt: skip
     scheduler: SchedulerOpt = None,
     workers: WorkersOpt = None,
-    chunk: Annotated[Optional[int], typer.Option(  # noqa: UP007
-        "--chunk", metavar="N", help="Points per chunk (default: the case's, else 1024; a resumed store keeps "
-        "its own).")] = None,
+    chunk: ChunkOpt("Points per chunk (default: the case's, else 1024; a resumed store keeps its own).") = None,
     per_point: Annotated[str, typer.Option(
         "--per-point", metavar="ANALYSIS", help="What each point computes: 'regimes' (integrate and classify) or "
         "'stability' (existence and stability of every steady motion; --param over speed_rpm, speed_ratio or "
@@ -188,9 +163,6 @@ def sweep_command(
         if per_point not in ("regimes", "stability"):
             raise BadInput(f"--per-point = {per_point}: must be 'regimes' or 'stability'")
         executor = executor_from_options(scheduler, workers)
-        for option, value in (("--chunk", chunk), ("--sample", sample)):
-            if value is not None and value < 1:
-                raise BadInput(f"{option} = {value}: must be an integer >= 1")
         for option, value in (("--speed-rpm", speed_rpm), ("--speed-ratio", speed_ratio), ("--t-end", t_end)):
             if value is not None and not (math.isfinite(value) and value > 0):
                 raise BadInput(f"{option} = {value:g}: must be a finite number > 0")

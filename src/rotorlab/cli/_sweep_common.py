@@ -14,16 +14,26 @@ from typing import Annotated, Any, Optional
 
 import typer
 
-from rotorlab.cli._output import BadInput, stderr
+from rotorlab.cli._options import MAX_CHUNK, MAX_WORKERS, count_option
+from rotorlab.cli._output import BadInput, clean_text, say, stderr
 
-__all__ = ["SchedulerOpt", "WorkersOpt", "scheduler_is_safe", "check_store_path", "executor_from_options", "run_into_store",
+__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "scheduler_is_safe", "check_store_path", "executor_from_options", "run_into_store",
            "SweepBar", "run_with_bar", "stability_line", "regime_fractions"]
 
 # options shared by the commands that run on the sweep engine (sweep, basin)
 SchedulerOpt = Annotated[Optional[str], typer.Option(  # noqa: UP007
     "--scheduler", metavar="ADDR", help="Run the chunks on the Dask cluster at ADDR (tcp://HOST:PORT).")]
-WorkersOpt = Annotated[Optional[int], typer.Option(  # noqa: UP007
-    "--workers", metavar="N", help="Run the chunks on a local Dask cluster of N workers (threads of this command).")]
+WorkersOpt = Annotated[Optional[int], count_option(  # noqa: UP007
+    "--workers", high=MAX_WORKERS, what="threads of a local Dask cluster", metavar="N",
+    help="Run the chunks on a local Dask cluster of N workers (threads of this command).")]
+
+
+
+def ChunkOpt(what: str) -> Any:  # noqa: N802 - an option type, named like the others
+    """The ``--chunk N`` option (``what`` is its help), bounded to [1, MAX_CHUNK]: a chunk is
+    allocated whole in a store."""
+    return Annotated[Optional[int], count_option(  # noqa: UP007
+        "--chunk", high=MAX_CHUNK, what="points per chunk", metavar="N", help=what)]
 
 
 def check_store_path(out: Path, resume: bool, option: str = "--out") -> None:
@@ -48,8 +58,6 @@ def executor_from_options(scheduler: str | None, workers: int | None) -> Any:
         raise BadInput("--scheduler and --workers exclude each other: give only one")
     if scheduler is not None and "://" not in scheduler:
         raise BadInput(f"--scheduler = {scheduler}: must be an address like tcp://HOST:PORT")
-    if workers is not None and workers < 1:
-        raise BadInput(f"--workers = {workers}: must be an integer >= 1")
     if scheduler is not None and not scheduler_is_safe(scheduler):
         stderr().print(f"warning: --scheduler = {scheduler}: not a local address and not TLS (tls://). Dask moves "
                        "work and results as pickles: whoever runs or intercepts that cluster can run code in this "
@@ -143,14 +151,17 @@ class SweepBar:
     def __call__(self, p: Any) -> None:
         elapsed = time.perf_counter() - self.start
         if self.task is None:
+            from rich.markup import escape
+
             self.first = p.done
-            self.task = self.progress.add_task(self.title, total=p.total, completed=p.done, rate="")
+            self.task = self.progress.add_task(escape(clean_text(self.title)), total=p.total, completed=p.done,
+                                               rate="")  # fmt: skip
         rate = (p.done - self.first) / elapsed if elapsed > 0 else 0.0
         self.progress.update(self.task, completed=p.done, rate=f"{rate:.3g}/s")
         if self.plain:
             fraction = p.done / p.total if p.total else 1.0
             if p.done >= p.total or fraction - self.shown[1] >= 0.1 or elapsed - self.shown[0] >= 10.0:
-                sys.stderr.write(f"{self.title}: {p.done}/{p.total} points\n")
+                say(f"{self.title}: {p.done}/{p.total} points")
                 sys.stderr.flush()
                 self.shown = (elapsed, fraction)
 

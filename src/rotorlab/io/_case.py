@@ -31,6 +31,7 @@ from rotorlab.io._errors import (
     format_value,
 )
 from rotorlab.io._overrides import apply_overrides, describe_overrides
+from rotorlab.io._toml import read_toml, toml_depth_problem
 from rotorlab.io._schema import (
     ANALYSIS_SPECS,
     MODEL_SPECS,
@@ -285,9 +286,11 @@ def _builtin_files() -> dict[str, Any]:
 
 def _parse(text: str, origin: str, source: str, default: str, overrides: Mapping[Any, Any] | None = None) -> Case:
     try:
-        doc = tomllib.loads(text)
+        doc = read_toml(text)
     except tomllib.TOMLDecodeError as exc:
         raise CaseError(_toml_message(str(exc), text, origin), origin=origin) from None
+    except ValueError as exc:  # nested too deep
+        raise CaseError(f"{origin}: {exc}", origin=origin) from None
     return _validate(doc, origin=origin, source=source, text=text, default=default, overrides=overrides)
 
 
@@ -309,6 +312,9 @@ def _validate(data: Mapping[str, Any], origin: str, source: str, text: str, defa
         raise CaseError(f"{origin}: a case must be a table of keys, got {format_value(data)}")
     overrides = dict(overrides or {})
     doc = apply_overrides(data, overrides, origin) if overrides else dict(data)
+    deep = toml_depth_problem(doc)  # the messages and pydantic walk it recursively
+    if deep:
+        raise CaseError(f"invalid case {origin}: {deep}", [deep], origin)
     doc.setdefault("name", default)
     try:
         case = Case.model_validate(doc, by_alias=True, by_name=False)

@@ -45,6 +45,8 @@ Layout::
 
 from __future__ import annotations
 
+import math
+
 from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import Field, field_validator, model_validator
@@ -226,6 +228,14 @@ class ClearanceSpec(_Station):
         if self.center is not None and self.center_at_rest:
             raise IssueGroup([Issue(("center_at_rest",), "give either center or center_at_rest = true, "
                                                          "not both", self.center_at_rest)])
+        off = math.hypot(*self.center) if self.center is not None else 0.0
+        if off > self.gap and (self.stator is None or self.stator.mass > 0):
+            # the structure starts at rest on the axis: it would start beyond the stator it strikes
+            kind = "rigid stator" if self.stator is None else "housing"
+            raise IssueGroup([Issue(("center",), f"lies {off * 1e3:.6g} mm from the axis, where the rotor "
+                                                 f"starts at rest: outside the gap of the {kind}; allowed: "
+                                                 f"at most the gap, {self.gap * 1e3:.6g} mm, from the axis "
+                                                 "(or center_at_rest = true)", self.center)])
         return self
 
 

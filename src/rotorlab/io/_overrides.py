@@ -26,6 +26,7 @@ from collections.abc import Iterable, Mapping
 from typing import Any
 
 from rotorlab.io._errors import CaseError, did_you_mean, format_path, format_value
+from rotorlab.io._toml import check_key_depth, read_toml
 
 __all__ = ["parse_key_path", "parse_override", "parse_value", "apply_overrides", "describe_overrides"]
 
@@ -84,6 +85,7 @@ def parse_key_path(text: str) -> tuple[str | int, ...]:
             parts.append(int(match.group(1)))
             pos = match.end()
         if pos == n:
+            check_key_depth(parts)
             return tuple(parts)
         if text[pos] != ".":
             raise ValueError(f"not a key path at {text[pos:]!r}: keys are separated by '.', list "
@@ -126,7 +128,7 @@ def parse_value(text: str) -> Any:
     if not stripped:
         raise ValueError("no value after '=' (give a number, a string such as 20 g, true/false or a [list])")
     try:
-        return tomllib.loads(f"v = {stripped}")["v"]
+        return read_toml(f"v = {stripped}")["v"]
     except tomllib.TOMLDecodeError as exc:
         if stripped[0] in "[{\"'":
             reason = re.sub(r"\s*\((at line \d+, column \d+|at end of document)\)\s*$", "", str(exc))
@@ -144,7 +146,8 @@ def parse_override(text: str, option: str = "--set") -> tuple[str, Any]:
         names the option and the text.
     """
     key, sep, value = _split(text)
-    head = f"{option} {text}: "
+    shown = text if len(text) <= 120 else f"{text[:120]}... ({len(text)} characters)"
+    head = f"{option} {shown}: "
     if not sep:
         raise CaseError(head + "give KEY=VALUE, with KEY a key path of the case file as in its error "
                         "messages, e.g. model.balls[0].mass=20g")  # fmt: skip
@@ -177,6 +180,7 @@ def describe_overrides(overrides: Mapping[Any, Any]) -> list[str]:
 def _path(key: str | Iterable[str | int]) -> tuple[str | int, ...]:
     if isinstance(key, str):
         return parse_key_path(key)
+    check_key_depth(tuple(key))
     return tuple(key)
 
 

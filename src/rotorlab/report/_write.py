@@ -126,6 +126,9 @@ def write_report(
     ValueError
         ``out_dir`` is not usable (see :func:`check_output_dir`), or a name would not make a
         plain file name.
+    OSError
+        The system refused a write (a full disk, permissions): its ``filename`` is the file of
+        ``out_dir`` being written (nothing is left behind).
     """
     from rotorlab import _interrupt
     from rotorlab.io import dump_case, save_netcdf
@@ -141,20 +144,26 @@ def write_report(
     parent = target.absolute().parent
     parent.mkdir(parents=True, exist_ok=True)
     staging = Path(tempfile.mkdtemp(prefix=f".{target.name}.tmp-", dir=parent))
+    writing = target  # the file being written, as the user will find it: named when the system refuses
     try:
         for name, ds in results.items():
+            writing = target / f"{name}.nc"
             save_netcdf(ds, staging / f"{name}.nc")
         pngs: dict[str, dict[str, bytes]] = {}
         for name, by_stem in figures.items():
             for key, fig in by_stem.items():
+                writing = target / f"{key}.png"
                 pngs.setdefault(name, {})[key] = _png(fig, dpi)
                 (staging / f"{key}.png").write_bytes(pngs[name][key])
         text = case.text or dump_case(case)
         page = render_report(case, results, pngs, summary_tables, names[:-1], text)
+        writing = target / REPORT_NAME
         (staging / REPORT_NAME).write_text(page, encoding="utf-8")
+        writing = target / MANIFEST_NAME
         (staging / MANIFEST_NAME).write_text("".join(f"{n}\n" for n in names), encoding="utf-8")
         _apply_umask(staging, names)
         _interrupt.check()  # a Ctrl-C that Python swallowed: nothing is put in place
+        writing = target
         if not target.exists():
             os.rename(staging, target)
         else:
@@ -165,6 +174,12 @@ def write_report(
             for name in stale:
                 with contextlib.suppress(FileNotFoundError):
                     (target / name).unlink()
+    except OSError as exc:
+        shutil.rmtree(staging, ignore_errors=True)
+        if exc.filename is None or str(exc.filename).startswith(str(staging)):
+            # a refused write (a full disk) says which file, as the user will look for it
+            raise OSError(exc.errno, exc.strerror or str(exc), str(writing)) from exc
+        raise
     except BaseException:
         shutil.rmtree(staging, ignore_errors=True)
         raise
