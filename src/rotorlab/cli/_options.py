@@ -12,6 +12,7 @@ import os
 from pathlib import Path
 from typing import Any
 
+from rotorlab._limits import MAX_CHUNK, MAX_COUNT, MAX_SEED, MAX_SPEED_RPM, MAX_WORKERS
 from rotorlab.cli._output import BadInput
 
 __all__ = ["MAX_SPEEDS", "MAX_RANGE_POINTS", "MAX_SPEED_RPM", "MAX_WORKERS", "MAX_CHUNK", "MAX_COUNT", "MAX_SEED",
@@ -24,17 +25,6 @@ MAX_SPEEDS = 100_000
 #: Upper limit of N in any other range ``START:STOP:N`` (a grid axis; whole grids are checked
 #: against the memory too).
 MAX_RANGE_POINTS = 1_000_000
-
-#: Fastest spin speed an option takes (rpm): ten times the fastest machine rotors (turbine and
-#: dental-drill rotors, ~1e6 rpm); beyond it the structure's matrices overflow.
-MAX_SPEED_RPM = 1e7
-
-#: Count options: ``--workers`` (threads of a local cluster: 100000 never starts), ``--chunk``
-#: (a chunk is allocated whole in a store), any other count, and a random seed.
-MAX_WORKERS = 256
-MAX_CHUNK = 1_000_000
-MAX_COUNT = 1_000_000_000
-MAX_SEED = 2**63 - 1
 
 #: File types ``--plot`` writes.
 PLOT_SUFFIXES = (".png", ".pdf", ".svg")
@@ -137,7 +127,7 @@ def parse_range(option: str, text: str, dimension: str | None = None, *, sample:
     >>> parse_range("--speeds-rpm", "0:1e300:5", high=1e7, unit=" rpm")
     Traceback (most recent call last):
     ...
-    rotorlab.cli._output.BadInput: --speeds-rpm = 0:1e300:5: STOP must be <= 1e+07 rpm
+    rotorlab.cli._output.BadInput: --speeds-rpm = 0:1e300:5: STOP must be a finite number <= 1e+07 rpm
     """
     head = f"{option} = {text}: " if head is None else head
     fields = text.split(":")
@@ -163,9 +153,9 @@ def parse_range(option: str, text: str, dimension: str | None = None, *, sample:
         if not math.isfinite(value):
             problems.append(f"{name} must be a finite number")
         elif low is not None and value < low:
-            problems.append(f"{name} must be >= {low:g}{unit}")
+            problems.append(f"{name} must be a finite number >= {low:g}{unit}")
         elif high is not None and value > high:
-            problems.append(f"{name} must be <= {high:g}{unit}")
+            problems.append(f"{name} must be a finite number <= {high:g}{unit}")
     if sample:
         if math.isfinite(start) and math.isfinite(stop) and not stop >= start:
             problems.append(f"HIGH must be >= LOW ({start:g}{unit})")
@@ -209,8 +199,8 @@ def check_speed(value: float, option: str = "--speed-rpm", *, positive: bool = F
     """Return ``value`` if it is a finite speed >= 0 (> 0 with ``positive``) and at most
     :data:`MAX_SPEED_RPM` (rpm), else raise :class:`BadInput`."""
     if not (math.isfinite(value) and (value > 0 if positive else value >= 0) and value <= MAX_SPEED_RPM):
-        raise BadInput(f"{option} = {value:g}: must be a finite number {'>' if positive else '>='} 0 and "
-                       f"<= {MAX_SPEED_RPM:g} (rpm)")
+        raise BadInput(f"{option} = {value:g}: must be a finite number {'>' if positive else '>='} 0 (rpm), "
+                       f"at most {MAX_SPEED_RPM:g} rpm")
     return float(value)
 
 

@@ -170,32 +170,33 @@ def quantity(
 
 
 class _IntegerValidator:
-    def __init__(self, ge: int | None) -> None:
-        self.ge = ge
+    def __init__(self, ge: int | None, le: int | None = None) -> None:
+        self.ge, self.le = ge, le
 
     def __call__(self, value: Any) -> int:
-        allowed = "an integer" + (f" >= {self.ge}" if self.ge is not None else "")
+        allowed = ("an integer" + (f" >= {self.ge}" if self.ge is not None else "")
+                   + (f" and <= {self.le}" if self.le is not None else ""))
         if isinstance(value, bool) or not isinstance(value, (int, float)):
             raise _error(f"must be {allowed}")
         if isinstance(value, float):
             if not (math.isfinite(value) and value.is_integer()):
                 raise _error(f"must be {allowed}")
             value = int(value)
-        if self.ge is not None and value < self.ge:
+        if (self.ge is not None and value < self.ge) or (self.le is not None and value > self.le):
             raise _error(f"must be {allowed}")
         return int(value)
 
 
-def integer(*, ge: int | None = None) -> Any:
+def integer(*, ge: int | None = None, le: int | None = None) -> Any:
     """Return the annotated type of an integer field (an integral float such as 2e3 is accepted).
 
     Parameters
     ----------
-    ge : int, optional
-        Lower bound.
+    ge, le : int, optional
+        Lower and upper bounds.
     """
     return Annotated[
-        int, PlainValidator(_IntegerValidator(ge)), WithJsonSchema({"type": "integer"})
+        int, PlainValidator(_IntegerValidator(ge, le)), WithJsonSchema({"type": "integer"})
     ]
 
 

@@ -19,6 +19,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
+from rotorlab._limits import MAX_CHUNK
 from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, RecordsInputUnits, _any_dimension,
                                      coordinate_dimensions, coordinates_text, key_quantity, mappable_text)
 from rotorlab.io._errors import Issue
@@ -207,7 +208,7 @@ class SweepSpec(RecordsInputUnits):
     window_revolutions: quantity("dimensionless", gt=0) | None = Field(None, description="classification window (-)")
     spare_turns: quantity("dimensionless", gt=0) | None = Field(
         None, description="turns in the window that make a moving ball spare (toroidal ball)")
-    chunk: integer(ge=1) = Field(1024, description="points per chunk")
+    chunk: integer(ge=1, le=MAX_CHUNK) = Field(1024, description="points per chunk")
     rtol: quantity("dimensionless", gt=0, lt=1) | None = Field(None, description="relative tolerance")
     atol: quantity("dimensionless", gt=0) | None = Field(None, description="absolute tolerance")
     races: RaceIndices | None = Field(None, description="ball races that take part (machine; default all)")
