@@ -217,6 +217,103 @@ def test_backward_whirl_below_the_friction_to_roll_slips_and_loses_contact():
     assert np.all(np.hypot(sol.ys[:, 0], sol.ys[:, 1]) < ROLL.clearance) and np.all(sol.ys[:, 8] == 0.0)
 
 
+# ---- starts pressed into the stator -------------------------------------------------------------
+
+
+def _slip_sign(z: complex, v: complex, surface_speed: float) -> float:
+    """Sign of the contact point's slip, the tangential speed ``Im(conj(z) v) / |z|`` (the tangent
+    90 degrees ahead of the normal ``z / |z|``) plus the rotor's surface speed; 0 counts as +."""
+    return 1.0 if (z.conjugate() * v).imag / abs(z) + surface_speed >= 0.0 else -1.0
+
+
+def test_a_start_pressed_into_the_stator_slides_along_its_slip_as_the_machine_does():
+    """Issue 28 item 1: the slip of a pressed start had its tangent wrong (``(-x vx + y vy) / r``),
+    so that friction pushed along the slip for the whole contact. Forward, backward and radial
+    starts all round the circle take the sign of their slip, as the machine's clearance does."""
+    from rotorlab.linear import LinearSystem
+    from rotorlab.models import ConstantSpeed
+    from rotorlab.models._machine import Clearance, ElasticStator, Machine, Unbalance
+
+    p, w = replace(ROLL, friction=0.02), 0.3
+    model = JeffcottRub(p, w)
+    s = LinearSystem(M=np.diag([p.mass, p.mass, 1.0, 1.0]), C=np.diag([p.damping, p.damping, 0.0, 0.0]),
+                     G=np.zeros((4, 4)), K=np.diag([p.stiffness, p.stiffness, 1.0, 1.0]))  # fmt: skip
+    cl = Clearance(0, p.clearance, ElasticStator(p.stator_stiffness, 0.0), friction=p.friction,
+                   rotor_radius=p.rotor_radius)  # fmt: skip
+    machine = Machine(s, unbalances=(Unbalance(0, 0.0),), drive=ConstantSpeed(w), clearances=(cl,))
+    seen = set()
+    for angle in np.linspace(0.0, 2.0 * math.pi, 12, endpoint=False):
+        z = 1.02 * p.clearance * np.exp(1j * angle)
+        for whirl in (1.5, -1.5, -5.0, 0.0):
+            for radial in (0.0, 0.3):
+                v = (1j * whirl + radial) * z
+                want = _slip_sign(z, v, p.rotor_radius * w)
+                seen.add(want)
+                y0 = model.initial_state((z.real, z.imag), (v.real, v.imag))
+                assert y0[8] == want, (angle, whirl, radial)
+                ym = machine.initial_state(z=[z.real, z.imag, 0.0, 0.0], dz=[v.real, v.imag, 0.0, 0.0])
+                assert ym[-1] == want, (angle, whirl, radial)
+    assert seen == {1.0, -1.0}
+    # a backward whirl faster than the surface speed (-5 rad/s x 10.2 mm > 0.1 m x 0.3 rad/s)
+    assert model.whirl_state(1.02 * p.clearance, -5.0)[8] == -1.0
+    assert machine.whirl_state(1.02 * p.clearance, -5.0)[-1] == -1.0
+
+
+def test_a_backward_whirl_pressed_into_the_stator_dissipates_from_the_first_instant():
+    """Friction opposes the slip: the friction work ``-F_t s = mu N |s|`` only grows. With the
+    slip's sign wrong the start slid with ``F_t`` along the slip and the dissipated energy fell."""
+    model = JeffcottRub(ROLL, 0.3)
+    y0 = model.whirl_state(1.02 * ROLL.clearance, -5.0)
+    ts = np.linspace(0.0, 0.2, 201)
+    sol = _run(model, y0, 0.2, ts)
+    diss = sol.ys[:, 4]
+    assert diss[-1] > 0.0 and np.all(np.diff(diss) >= -1e-15 * diss[-1])
+
+
+def test_full_rub_from_a_start_pressed_into_the_stator_settles_on_the_closed_form_for_plus_mu():
+    """mu = 0.02, started 2 % beyond the synchronous full-rub radius on a synchronous whirl: the run
+    settles on the closed form for +mu (the old slip sign settled on the one for -mu, 1.5e-3 away)."""
+    w = 1.5
+    p = replace(RUB, friction=0.02)
+    (branch,) = full_rub(p, w)
+    # the closed form for -mu, from the same quadratic (full_rub takes mu >= 0 only)
+    m_, k_, c_, ks, d = p.mass, p.stiffness, p.damping, p.stator_stiffness, p.clearance
+    a_, b_, f = k_ - m_ * w * w + ks, c_ * w - p.friction * ks, m_ * p.eccentricity * w * w
+    r_minus = max(np.roots([a_ * a_ + b_ * b_, -2 * ks * d * (a_ - p.friction * b_),
+                            (ks * d) ** 2 * (1 + p.friction**2) - f * f]).real)  # fmt: skip
+    assert abs(r_minus / branch.radius - 1.0) > 1e-3
+    model = JeffcottRub(p, w)
+    ts = np.linspace(280.0, 300.0, 41)
+    for angle in (-math.pi / 3, 2 * math.pi / 3, 0.0):
+        z0 = 1.02 * branch.radius * np.exp(1j * angle)
+        v0 = 1j * w * z0
+        sol = _run(model, model.initial_state((z0.real, z0.imag), (v0.real, v0.imag)), 300.0, ts)
+        assert np.allclose(np.hypot(sol.ys[:, 0], sol.ys[:, 1]), branch.radius, rtol=1e-4), angle  # the -mu radius is 15x further
+        assert np.all(sol.ys[:, 8] == 1.0)
+
+
+def test_a_rub_map_gives_each_point_the_contact_mode_of_its_own_spin_and_clearance(monkeypatch):
+    """A rub map from a pressed start: the slip depends on each point's spin speed (its surface
+    speed ``R_r Omega``) and the contact on its clearance; the old map gave every point the mode
+    of the base model's start."""
+    import rotorlab.integrate as integrate
+    from rotorlab.contact import RubRegimes
+
+    z, v = 1.02 * ROLL.clearance, -2.5j * 1.02 * ROLL.clearance  # slip -0.0255 + 0.1 Omega
+    rub = RubRegimes(JeffcottRub(ROLL, 0.3), t_end=1.0, window=0.5, position=(z, 0.0), velocity=(v.real, v.imag))
+    seen = {}
+
+    def capture(model, y0, *args, **kwargs):
+        seen["y0"] = np.asarray(y0)
+        raise RuntimeError("captured")
+
+    monkeypatch.setattr(integrate, "solve_ensemble", capture)
+    with pytest.raises(RuntimeError, match="captured"):
+        rub.run_chunk({"spin_speed": np.array([0.3, 0.1, 0.3]), "clearance": np.array([0.01, 0.01, 0.011])})
+    assert seen["y0"][:, 8].tolist() == [1.0, -1.0, 0.0]
+    assert [_slip_sign(complex(z), v, ROLL.rotor_radius * om) for om in (0.3, 0.1)] == [1.0, -1.0]
+
+
 def test_bad_values_are_rejected_with_the_field_named():
     with pytest.raises(ValueError, match=r"JeffcottRub.restitution must be a finite number >= 0 and <= 1, got 1.5"):
         JeffcottRub(RUB, 1.0, restitution=1.5)

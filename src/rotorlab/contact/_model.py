@@ -29,6 +29,7 @@ from rotorlab._kernels import jeffcott_rub as _k
 from rotorlab.contact._theory import RubRotor
 from rotorlab.models._base import EventSpec, Kernels
 from rotorlab.models._checks import check_number as _num
+from rotorlab.models._machine_clearance import pressed_contact_mode
 
 __all__ = ["JeffcottRub"]
 
@@ -127,20 +128,28 @@ class JeffcottRub:
         ])  # fmt: skip
 
     def initial_state(self, position=(0.0, 0.0), velocity=(0.0, 0.0)) -> np.ndarray:
-        """State at rest in the contact accounting, free (mode 0); the position must be inside
-        the clearance for a rigid stator."""
+        """State at rest in the contact accounting: free (mode 0) inside the clearance, pressed
+        into an elastic stator sliding with the sign of its slip (:meth:`start_mode`); the position
+        must be inside the clearance for a rigid stator."""
         x, y = (float(v) for v in position)
         if self.rotor.rigid_stator and math.hypot(x, y) > self.rotor.clearance:
             raise ValueError(
                 f"JeffcottRub.initial_state: position {position!r} lies outside the rigid stator "
                 f"(clearance {self.rotor.clearance:g} m)"
             )
-        mode = 0.0
-        rad = math.hypot(x, y)
-        if not self.rotor.rigid_stator and rad > self.rotor.clearance:  # pressed: slide along the slip
-            slip = (-x * float(velocity[0]) + y * float(velocity[1])) / rad + self.rotor.rotor_radius * self.spin_speed
-            mode = 1.0 if slip >= 0.0 else -1.0
-        return np.array([x, y, float(velocity[0]), float(velocity[1]), 0.0, 0.0, 0.0, 0.0, mode])
+        y0 = np.array([x, y, float(velocity[0]), float(velocity[1]), 0.0, 0.0, 0.0, 0.0, 0.0])
+        y0[_k.MODE] = self.start_mode(y0, self.to_array())
+        return y0
+
+    def start_mode(self, y, params) -> float:
+        """Contact mode that the start ``y`` takes under the packed parameters ``params`` (a rub
+        map's point): 0 inside the clearance (or beyond a rigid stator: the sanity check then fails
+        the run); pressed into an elastic stator, sliding with the sign of its slip
+        (:func:`rotorlab.models._machine_clearance.pressed_contact_mode`, as the machine's)."""
+        p = np.asarray(params, dtype=float)
+        if p[_k.P_RIGID] != 0.0 or math.hypot(y[_k.X], y[_k.Y]) <= p[_k.P_D]:
+            return 0.0
+        return pressed_contact_mode(y[_k.X:_k.Y + 1], y[_k.VX:_k.VY + 1], p[_k.P_R] * p[_k.P_W])
 
     def impossible_states(self, ys, y_final, t_final, params) -> list[str]:
         """Sanity monitor (kernel contract item 6): runs where the rotor went through a rigid stator.

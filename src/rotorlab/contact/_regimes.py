@@ -222,7 +222,9 @@ class RubRegimes:
         Length of the classified window at the end (s), < ``t_end``.
     position, velocity : (float, float)
         Initial gap vector and its rate at every point (m, m/s; the model's ``gap_state``);
-        inside the clearance for a rigid stator.
+        inside the clearance for a rigid stator. A start pressed into an elastic stator takes
+        each point's contact mode (the model's ``start_mode``: the sign of the slip at that
+        point's spin speed, or free where that point's clearance holds it).
     n_samples : int
         Samples in the window.
     rtol, atol : float
@@ -273,7 +275,11 @@ class RubRegimes:
         for name, values in coords.items():
             idx, _ = self.model.rub_parameters[name]
             params[:, idx] = np.asarray(values, dtype=float)
-        y0 = self.model.gap_state(self.position, self.velocity)
+        # a start pressed into the stator slides along its slip, which depends on the point's spin
+        # speed and clearance: its contact mode is set per point, as the model's own start would
+        base_y0 = self.model.gap_state(self.position, self.velocity)
+        y0 = np.tile(base_y0, (n, 1))
+        y0[:, -1] = [self.model.start_mode(base_y0, row) for row in params]
         ts = np.linspace(self.t_end - self.window, self.t_end, int(self.n_samples))
         ens = solve_ensemble(self.model, y0, (0.0, self.t_end), params=params, save_at=SaveAt(ts=ts),
                              control=StepControl(rtol=self.rtol, atol=self.atol), threads=threads)  # fmt: skip

@@ -10,7 +10,28 @@ import math
 import numpy as np
 
 from rotorlab._kernels import machine_codegen as _cg
+from rotorlab._kernels.contact import circular_gap, contact_velocities
 from rotorlab.models._speed import ConstantSpeed
+
+
+def pressed_contact_mode(gap_vector, gap_rate, surface_speed: float) -> float:
+    """Sliding mode of a start pressed into an elastic stator: +1 or -1, the sign of its slip.
+
+    The slip is the contact law's own (:func:`rotorlab._kernels.contact.contact_velocities`):
+    ``s = u . t + R_r Omega`` with ``t`` 90 degrees ahead of the normal ``n = w / |w|``, so that
+    sliding friction ``F_t = -mu sign(s) N`` opposes it from the first instant and the stick event
+    (``sign * s`` falling through 0) can fire. A slip of exactly 0 counts as positive.
+
+    Parameters
+    ----------
+    gap_vector, gap_rate : array_like, shape (2,)
+        ``w`` (m) and ``w'`` (m/s), the gap vector and its rate.
+    surface_speed : float
+        ``R_r Omega``, the rotor's surface speed at the contact (m/s).
+    """
+    _, nx, ny = circular_gap.py_func(float(gap_vector[0]), float(gap_vector[1]), 0.0)
+    _, s = contact_velocities.py_func(nx, ny, float(gap_rate[0]), float(gap_rate[1]), float(surface_speed))
+    return 1.0 if s >= 0.0 else -1.0
 
 
 class _ClearanceParts:
@@ -21,17 +42,32 @@ class _ClearanceParts:
         stator, sliding along its slip; beyond a rigid one, an error."""
         c = self.clearances[0]
         w = self.gap_vector(y)
-        rad = math.hypot(w[0], w[1])
-        if rad <= c.gap:
-            return
-        if c.kind != "elastic":
+        if c.kind != "elastic" and math.hypot(w[0], w[1]) > c.gap:
             raise ValueError(f"Machine.initial_state: the gap vector {w.tolist()!r} m lies outside the "
                              f"{c.kind} stator (clearance {c.gap:g} m)")
+        y[-1] = self._clearance_mode(y, c.gap, c.rotor_radius * om)
+
+    def _clearance_mode(self, y: np.ndarray, gap: float, surface_speed: float) -> float:
+        """0 inside the clearance ``gap`` (m) or beyond a rigid stator or housing (the sanity
+        check then fails the run), else :func:`pressed_contact_mode` of the gap vector and its rate."""
+        c = self.clearances[0]
+        w = self.gap_vector(y)
+        if c.kind != "elastic" or math.hypot(w[0], w[1]) <= gap:
+            return 0.0
         u = self.gap_matrix(c) @ y[self.n_coordinates:2 * self.n_coordinates]
-        if c.kind == "housing":
-            u = u - y[self.layout.i_clearance + 2:self.layout.i_clearance + 4]
-        slip = (-w[1] * u[0] + w[0] * u[1]) / rad + c.rotor_radius * om
-        y[-1] = 1.0 if slip >= 0.0 else -1.0
+        return pressed_contact_mode(w, u, surface_speed)
+
+    def start_mode(self, y, params, t0: float = 0.0) -> float:
+        """Contact mode that the start ``y`` takes under the packed parameters ``params`` (a rub
+        map's point: its clearance, rotor radius and, with a prescribed speed, spin at ``t0``);
+        see :func:`pressed_contact_mode`."""
+        from rotorlab._kernels.speed import profile
+
+        lay = self.layout
+        p = np.ascontiguousarray(params, dtype=float)
+        kc = lay.offsets["clearance"]
+        om = y[lay.i_theta + 1] if self.is_motor else profile(float(t0), p, lay.offsets["speed"])[1]
+        return self._clearance_mode(np.asarray(y, dtype=float), float(p[kc]), float(p[kc + 3] * om))
 
     def _clearance_energy(self, y: np.ndarray) -> float:
         """Energy stored by the clearance: a massless elastic stator's ``k_s p^2 / 2``, a moving
