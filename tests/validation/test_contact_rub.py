@@ -26,6 +26,7 @@ from rotorlab.contact import (
     grazing_speeds,
     no_rub_radius,
     rolling_whirl,
+    slipping_whip,
 )
 from rotorlab.integrate import SaveAt, StepControl, solve
 
@@ -215,6 +216,39 @@ def test_backward_whirl_below_the_friction_to_roll_slips_and_loses_contact():
     sol = _run(model, model.initial_state((z0, 0.0), (0.0, -2.5 * z0)), 60.0, np.linspace(40.0, 60.0, 201))
     assert sol.event_counts["stick"] == 0 and sol.event_counts["lift_off"] >= 1
     assert np.all(np.hypot(sol.ys[:, 0], sol.ys[:, 1]) < ROLL.clearance) and np.all(sol.ys[:, 8] == 0.0)
+
+
+def test_the_slipping_whip_of_a_massless_stator_is_a_saddle_that_the_simulation_leaves():
+    """Issue 28 item 6: started on the closed-form slipping whip (m = k = 1, zeta = 0.05,
+    mu = 0.3: w = -(zeta + sqrt(zeta^2 + mu^2)) / mu = -1.1805) the rotor stays on it to round-off,
+    so the state exists; 1e-9 along the unstable eigenvector it departs at the positive eigenvalue
+    and ends by losing contact: a saddle, not a whirl that locks near the coupled frequency."""
+    p = RubRotor(mass=1.0, stiffness=1.0, clearance=0.01, damping=0.1, stator_stiffness=100.0, friction=0.3,
+                 rotor_radius=0.1)  # fmt: skip
+    whip = slipping_whip(p)
+    assert whip.whirl_speed == pytest.approx(-(0.05 + math.hypot(0.05, 0.3)) / 0.3, rel=1e-14)
+    spin = 1.0
+    assert spin > whip.min_spin_speed  # positive slip: friction drives the backward whirl
+    model = JeffcottRub(p, spin)
+    om, r = whip.whirl_speed, whip.radius
+    ts = np.linspace(0.0, 60.0, 601)
+    on = _run(model, model.whirl_state(r, om), 10.0, ts[ts <= 10.0])
+    z = on.ys[:, 0] + 1j * on.ys[:, 1]
+    assert np.allclose(z, r * np.exp(1j * om * ts[ts <= 10.0]), rtol=0.0, atol=1e-9 * r)  # integration error 3e-11 r
+    lam, vec = np.linalg.eig(full_rub_jacobian(p, om, r))
+    i = int(np.argmax(lam.real))
+    assert lam[i].real == pytest.approx(whip.growth_rate, rel=1e-12) and abs(lam[i].imag) < 1e-12
+    d = 1e-9 * r * vec[:, i].real / np.abs(vec[:2, i].real).max()
+    z0 = complex(r + d[0], d[1])
+    v0 = complex(d[2], d[3]) + 1j * om * z0
+    sol = _run(model, model.initial_state((z0.real, z0.imag), (v0.real, v0.imag)), 60.0, ts)
+    dev = np.abs((sol.ys[:, 0] + 1j * sol.ys[:, 1]) * np.exp(-1j * om * ts) - r)
+    grow = (ts >= 2.0) & (dev < 1e-3 * r)
+    assert grow.sum() > 100
+    rate = np.polyfit(ts[grow], np.log(dev[grow]), 1)[0]
+    assert rate == pytest.approx(whip.growth_rate, rel=0.02)
+    assert sol.event_counts["lift_off"] >= 1 and sol.ys[-1, 8] == 0.0
+    assert np.hypot(sol.ys[-1, 0], sol.ys[-1, 1]) < p.clearance
 
 
 # ---- starts pressed into the stator -------------------------------------------------------------

@@ -36,6 +36,7 @@ from rotorlab.contact import (
     hurwitz_stable,
     no_rub_radius,
     rolling_whirl,
+    slipping_whip,
 )
 from rotorlab.models.examples import BouncingBall
 
@@ -299,6 +300,76 @@ def test_dry_whip_at_the_coupled_backward_natural_frequency_with_a_moving_housin
     # the rolling whirl's radius diverges as the whirl approaches the coupled frequency
     assert rolling_whirl(p, 0.999 * spin_whip).radius > 100 * rolling_whirl(p, 0.5 * spin_whip).radius
     assert rolling_whirl(p, 1.001 * spin_whip) is None
+
+
+# slipping whip of a massless stator: m = k = 1 (omega in units of sqrt(k/m)), zeta = 0.05
+WHIP = RubRotor(mass=1.0, stiffness=1.0, clearance=0.01, damping=0.1, stator_stiffness=100.0, friction=0.3,
+                rotor_radius=0.1)  # fmt: skip
+
+
+def test_slipping_whip_solves_the_force_balance_derived_with_sympy():
+    """Issue 28 item 6. The whirl z = r e^{i w t} in permanent contact, sliding with a positive
+    slip (F_t = -mu N), put into m z'' + c z' + k z = (-N + i F_t) z / |z| with sympy: the radial
+    and tangential parts give N = r (m w^2 - k) and c w = mu (k - m w^2); the backward root, with
+    N = k_s (r - delta) > 0, is the closed form. Its linearisation, taken by sympy from the
+    equations of motion in the whirling frame (not from full_rub_jacobian), has a zero (the
+    phase), and a3 = mu (k + m w^2)(k + k_s - m w^2) / w < 0: a real positive eigenvalue, a saddle."""
+    import sympy as sp
+
+    m, k, c, ks, d, mu, r, w, t = sp.symbols("m k c k_s delta mu r w t", real=True)
+    n_ = sp.Symbol("N", real=True)
+    z = r * sp.exp(sp.I * w * t)
+    res = sp.simplify((m * z.diff(t, 2) + c * z.diff(t) + k * z - (-n_ - sp.I * mu * n_) * sp.exp(sp.I * w * t)) / z)
+    n_sol = sp.solve(sp.re(sp.expand(res)), n_)[0]
+    assert sp.simplify(n_sol - r * (m * w**2 - k)) == 0
+    w_roots = sp.solve(sp.im(sp.expand(res)).subs(n_, n_sol), w)
+    vals = {m: 1, k: 1, c: WHIP.damping, mu: WHIP.friction, ks: WHIP.stator_stiffness, d: WHIP.clearance}
+    back = [float(x.subs(vals)) for x in w_roots if float(x.subs(vals)) < 0.0]
+    whip = slipping_whip(WHIP)
+    zeta = WHIP.damping / 2.0
+    assert whip.whirl_speed == pytest.approx(-(zeta + math.sqrt(zeta**2 + WHIP.friction**2)) / WHIP.friction, rel=1e-14)
+    assert back == [pytest.approx(whip.whirl_speed, rel=1e-13)]
+    r_val = WHIP.stator_stiffness * WHIP.clearance / (1.0 + WHIP.stator_stiffness - whip.whirl_speed**2)
+    assert whip.radius == pytest.approx(r_val, rel=1e-14)
+    assert whip.normal_force == pytest.approx(r_val * (whip.whirl_speed**2 - 1.0), rel=1e-12) and whip.normal_force > 0
+    assert whip.min_spin_speed == pytest.approx(r_val * abs(whip.whirl_speed) / WHIP.rotor_radius, rel=1e-14)
+    # linearisation in the frame whirling at w: q = u + i v, z = q e^{i w t}
+    u, v, du, dv = sp.symbols("u v du dv", real=True)
+    q, dq = u + sp.I * v, du + sp.I * dv
+    rad = sp.sqrt(u**2 + v**2)
+    force = -ks * (rad - d) * (1 + sp.I * mu) * q / rad
+    acc = (force - c * (dq + sp.I * w * q) - k * q) / m - 2 * sp.I * w * dq + w**2 * q
+    f = sp.Matrix([du, dv, sp.re(sp.expand(acc)), sp.im(sp.expand(acc))])
+    vals.update({w: whip.whirl_speed, r: whip.radius})
+    at = {u: whip.radius, v: 0, du: 0, dv: 0}
+    assert max(abs(float(x.subs(vals).subs(at))) for x in f) < 1e-12  # the whip is an equilibrium there
+    jac = np.array(f.jacobian([u, v, du, dv]).subs(vals).subs(at).evalf(), dtype=float)
+    lam = np.sort_complex(np.linalg.eigvals(jac))
+    assert np.allclose(lam, np.sort_complex(whip.eigenvalues), atol=1e-10)
+    assert np.min(np.abs(lam)) < 1e-10  # the phase
+    a3 = WHIP.friction * (1 + whip.whirl_speed**2) * (1 + WHIP.stator_stiffness - whip.whirl_speed**2) / whip.whirl_speed
+    assert a3 < 0 and np.prod([x for x in lam if abs(x) > 1e-10]).real == pytest.approx(-a3, rel=1e-9)
+    assert whip.growth_rate == pytest.approx(max(lam.real), rel=1e-10) and whip.growth_rate > 0.3
+
+
+def test_slipping_whip_exists_below_the_coupled_frequency_and_needs_damping_and_friction():
+    # |w| -> sqrt((k + k_s) / m): the radius diverges; beyond it no whip (nondimensional w^2 < 1 + k_s / k = 101)
+    mu = 0.3
+    seen = []
+    for zeta in (0.05, 0.5, 2.0, 5.0):
+        om = -(zeta + math.sqrt(zeta**2 + mu**2)) / mu
+        whip = slipping_whip(replace(WHIP, damping=2.0 * zeta))
+        if om * om < 101.0:
+            assert whip.whirl_speed == pytest.approx(om, rel=1e-14) and whip.growth_rate > 0.0
+            assert whip.whirl_speed > -dry_whip_frequency(WHIP)
+        else:
+            assert whip is None
+        seen.append(whip is None)
+    assert seen == [False, False, True, True]
+    assert slipping_whip(replace(WHIP, friction=0.0)) is None
+    assert slipping_whip(replace(WHIP, damping=0.0)) is None  # w = -1, N = 0: no contact force
+    with pytest.raises(ValueError, match="massless elastic stator"):
+        slipping_whip(replace(WHIP, stator_mass=0.5))
 
 
 # ---- chatter ------------------------------------------------------------------------------------

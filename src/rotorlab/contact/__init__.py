@@ -1,6 +1,7 @@
 """Rotor-stator contact: the closed forms every rub simulation is checked against.
 
-See :mod:`rotorlab.contact._theory` for the physics and references (Black 1968; Choy & Padovan
+See :mod:`rotorlab.contact._theory` (and :mod:`rotorlab.contact._whirl` for the backward whirl
+and dry whip) for the physics and references (Black 1968; Choy & Padovan
 1987; Crandall 1990; Nordmark & Piiroinen 2009).
 """
 
@@ -16,14 +17,11 @@ from rotorlab.contact._regimes import (
     rub_features,
 )
 from rotorlab.contact._theory import (
-    RollingWhirl,
     RubBranch,
     RubRotor,
     chatter_impact_times,
     chatter_time,
     critical_friction,
-    dry_whip_frequency,
-    friction_to_roll,
     full_rub,
     full_rub_characteristic,
     full_rub_fold_speeds,
@@ -31,7 +29,14 @@ from rotorlab.contact._theory import (
     grazing_speeds,
     hurwitz_stable,
     no_rub_radius,
+)
+from rotorlab.contact._whirl import (
+    RollingWhirl,
+    SlippingWhip,
+    dry_whip_frequency,
+    friction_to_roll,
     rolling_whirl,
+    slipping_whip,
 )
 
 __all__ = [
@@ -47,6 +52,7 @@ __all__ = [
     "RubRotor",
     "RubBranch",
     "RollingWhirl",
+    "SlippingWhip",
     "no_rub_radius",
     "grazing_speeds",
     "full_rub",
@@ -58,6 +64,7 @@ __all__ = [
     "rolling_whirl",
     "friction_to_roll",
     "dry_whip_frequency",
+    "slipping_whip",
     "chatter_time",
     "chatter_impact_times",
 ]

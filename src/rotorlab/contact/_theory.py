@@ -27,20 +27,9 @@ Synchronous full annular rub (Black 1968; Choy & Padovan 1987)
     coefficient (:func:`critical_friction`). With ``mu = 0`` the contact is a conservative radial
     spring and the upper branch decays at ``-c / (2 m)`` like the free Jeffcott rotor.
 
-Dry-friction backward whirl (Black 1968; Crandall 1990)
-    Rolling without slip, the rotor's contact point is at rest on the stator:
-    ``r omega_w + R_r Omega = v_stator``. Rigid, fixed stator: ``omega_w = -(R_r / delta) Omega``.
-    With a contact compliance ``k_s`` the whirl radius grows to ``r = delta + N / k_s`` and
-    ``omega_w = -R_r Omega / r`` (:func:`rolling_whirl`); the radial balance
-    ``N = r (m omega_w^2 - k)`` then gives ``(k + k_s) r^2 - k_s delta r - m R_r^2 Omega^2 = 0``.
-    A whirl exists when ``N > 0``, i.e. ``R_r Omega / delta > sqrt(k / m)``; the tangential balance
-    needs the friction ``c r |omega_w|``, so rolling needs ``mu >= c r |omega_w| / N``
-    (:func:`friction_to_roll`); below it the whirl slips. A housing with mass ``m_s`` on
-    ``k_s`` (rigid contact, undamped) moving with the rotor whirls at exactly
-    ``-(R_r / delta) Omega`` with radius ``delta (k_s - m_s w^2) / (k + k_s - (m + m_s) w^2)``,
-    which diverges at the coupled backward natural frequency ``sqrt((k + k_s) / (m + m_s))``:
-    past it the whirl cannot roll any more and locks near that frequency, *dry whip*
-    (:func:`dry_whip_frequency`).
+Dry-friction backward whirl and dry whip (Black 1968; Crandall 1990)
+    The rolling backward whirl, the moving housing's dry whip at the coupled frequency and the
+    slipping whip of a massless stator (a saddle): :mod:`rotorlab.contact._whirl`.
 
 Chatter (Nordmark & Piiroinen 2009)
     A body pressed against a wall by a constant acceleration ``a`` and striking it at ``v0`` with
@@ -73,8 +62,7 @@ from rotorlab.models._checks import check_number as _num
 __all__ = [
     "RubRotor",
     "RubBranch",
-    "RollingWhirl",
-    "no_rub_radius",
+        "no_rub_radius",
     "grazing_speeds",
     "full_rub",
     "full_rub_fold_speeds",
@@ -82,9 +70,6 @@ __all__ = [
     "full_rub_characteristic",
     "hurwitz_stable",
     "critical_friction",
-    "rolling_whirl",
-    "friction_to_roll",
-    "dry_whip_frequency",
     "chatter_time",
     "chatter_impact_times",
 ]
@@ -180,28 +165,6 @@ class RubBranch:
     radius: float
     normal_force: float
     phase: float
-
-
-@dataclass(frozen=True, slots=True)
-class RollingWhirl:
-    """Backward whirl rolling without slip on the stator.
-
-    Parameters
-    ----------
-    whirl_speed : float
-        omega_w, whirl angular speed (rad/s), < 0 (backward) for a positive spin.
-    radius : float
-        r, whirl radius of the rotor centre (m).
-    normal_force : float
-        N, contact normal force (N), > 0.
-    friction_needed : float
-        The smallest friction coefficient that sustains rolling, tangential force over N.
-    """
-
-    whirl_speed: float
-    radius: float
-    normal_force: float
-    friction_needed: float
 
 
 def _speed(speed) -> float:
@@ -460,81 +423,6 @@ def critical_friction(p: RubRotor, speed: float, mu_max: float = 2.0, n_scan: in
         if not stable(b):
             return float(brentq(margin, a, b, xtol=1e-13))
     return math.inf
-
-
-def rolling_whirl(p: RubRotor, speed: float) -> RollingWhirl | None:
-    """Return the backward whirl rolling without slip at spin ``speed``, or None if none exists.
-
-    Fixed stator (``stator_mass = 0``) with contact compliance ``k_s`` (rigid if infinite):
-    ``r = (k_s delta + sqrt(k_s^2 delta^2 + 4 (k + k_s) m R_r^2 Omega^2)) / (2 (k + k_s))``,
-    ``omega_w = -R_r Omega / r`` (``r = delta``, ``omega_w = -(R_r / delta) Omega`` when rigid),
-    ``N = r (m omega_w^2 - k)``. Moving housing (``stator_mass > 0``, rigid contact, no
-    damping): ``omega_w = -(R_r / delta) Omega``,
-    ``r = delta (k_s - m_s omega_w^2) / (k + k_s - (m + m_s) omega_w^2)``.
-    None where ``N <= 0`` (too slow to press the stator) or the radius is not finite and beyond
-    the clearance (past the dry-whip frequency).
-
-    References
-    ----------
-    Black (1968); Crandall (1990), dry friction whirl.
-
-    Examples
-    --------
-    >>> wh = rolling_whirl(RubRotor(1.0, 1.0, 0.01, rotor_radius=0.1), 1.0)
-    >>> round(wh.whirl_speed, 9), round(wh.normal_force, 9)
-    (-10.0, 0.99)
-    """
-    w = _speed(speed)
-    m, k, d, ks, rr = p.mass, p.stiffness, p.clearance, p.stator_stiffness, p.rotor_radius
-    if p.stator_mass > 0.0:
-        if p.damping > 0.0 or p.stator_damping > 0.0:
-            raise ValueError(
-                "rolling_whirl with a moving housing (stator_mass > 0) is the undamped closed form: "
-                f"got damping={p.damping:g}, stator_damping={p.stator_damping:g} N s/m"
-            )
-        om = -rr * w / d
-        kss = math.inf if p.rigid_stator else ks
-        if math.isinf(kss):
-            r = d
-        else:
-            den = k + kss - (m + p.stator_mass) * om * om
-            if den <= 0.0:
-                return None
-            r = d * (kss - p.stator_mass * om * om) / den
-    elif p.rigid_stator:
-        r, om = d, -rr * w / d
-    else:
-        r = (ks * d + math.sqrt((ks * d) ** 2 + 4.0 * (k + ks) * m * (rr * w) ** 2)) / (2.0 * (k + ks))
-        om = -rr * w / r
-    n = r * (m * om * om - k)
-    if not (n > 0.0 and r >= d):
-        return None
-    return RollingWhirl(om, r, n, p.damping * r * abs(om) / n)
-
-
-def friction_to_roll(p: RubRotor, speed: float) -> float:
-    """Return the smallest friction coefficient that sustains the rolling backward whirl.
-
-    Tangential balance of the rotor whirling at constant radius: friction must supply its
-    damping force, ``mu N >= c r |omega_w|``. ``math.inf`` where no rolling whirl exists.
-    """
-    wh = rolling_whirl(p, speed)
-    return math.inf if wh is None else wh.friction_needed
-
-
-def dry_whip_frequency(p: RubRotor) -> float:
-    """Return the backward whirl frequency of dry whip, the coupled natural frequency (rad/s).
-
-    Rotor and stator in permanent contact move as one: ``sqrt((k + k_s) / (m + m_s))`` (the
-    rolling whirl's radius diverges there, see :func:`rolling_whirl`). Elastic stator only.
-
-    References
-    ----------
-    Crandall (1990), dry whip.
-    """
-    if p.rigid_stator:
-        raise ValueError("dry_whip_frequency needs an elastic stator: RubRotor.stator_stiffness is inf")
-    return math.sqrt((p.stiffness + p.stator_stiffness) / (p.mass + p.stator_mass))
 
 
 def chatter_time(impact_speed: float, acceleration: float, restitution: float) -> float:
