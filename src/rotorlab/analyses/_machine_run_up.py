@@ -3,8 +3,10 @@ motor torque that passes the first one (the Sommerfeld effect), with and without
 
 :func:`machine_run_up` integrates one run-up and judges it with :func:`run_up_verdict`;
 :func:`passing_torque` finds, by bracketing and bisection on the motor's torque scale, the
-smallest torque whose run-up passes the first critical speed by that same verdict, each round of
-probes one ensemble on the lane driver. The ``run-up`` analysis of a machine case
+smallest torque whose run-up reaches a target speed (by default 1.05 times the first critical
+speed) with the balls turning with the rotor, each round of probes one ensemble on the lane
+driver, and says which mechanism sets it: the rotor captured below the target (Sommerfeld) or the
+balls left behind (desynchronised). The ``run-up`` analysis of a machine case
 (``passing_torque = true``) reports it with and without the races.
 """
 
@@ -34,20 +36,34 @@ __all__ = ["machine_run_up", "run_up_verdict", "passing_torque", "PassingTorque"
 NO_PASSING_TORQUE = 5
 #: A run-up passes a critical speed when its final speed exceeds it by this factor.
 PASS_MARGIN = 1.05
+#: Capture band: a motor captured at a critical speed w_c holds a speed in
+#: [CAPTURE_BAND w_c, PASS_MARGIN w_c) for the rest of the run ...
+CAPTURE_BAND = 0.85
+#: ... judged over this last fraction of the run ...
+CAPTURE_TAIL = 0.2
+#: ... while its mean acceleration there is at most this fraction of what the motor's torque at
+#: that speed would give the spinning inertia alone (the whirl takes the rest).
+CAPTURE_ACCELERATION = 0.05
+#: The balls of a passing run-up turn with the rotor: each one's rate relative to it at the end
+#: at most this fraction of the spin speed (default of ``passing_torque``'s ``sync_tol``).
+SYNC_TOL = 0.01
+#: What limits a passing torque: the failing probe just below it fell short of the target speed
+#: (the rotor was captured), or reached it with a ball left behind.
+LIMITS = ("rotor capture", "ball desynchronisation")
 
 
 def _critical_speeds(machine) -> np.ndarray:
     return np.unique(np.round(structure_critical_speeds(machine, max_speed=None), 9))
 
 
-def run_up_verdict(machine, final_speed: float, critical_speeds) -> tuple[int, float]:
-    """Judge where a run-up ended.
+def run_up_verdict(machine, times, speeds, critical_speeds) -> tuple[int, float]:
+    """Judge where a run-up ended: the critical speeds passed, or the one it is captured at.
 
     Parameters
     ----------
     machine : Machine
-    final_speed : float
-        Spin speed at the end of the run-up (rad/s).
+    times, speeds : array_like, shape (n,)
+        The run-up's spin speed (rad/s) at increasing times (s); the last is the final speed.
     critical_speeds : array_like
         Forward 1x critical speeds, balls locked, increasing (rad/s).
 
@@ -57,17 +73,33 @@ def run_up_verdict(machine, final_speed: float, critical_speeds) -> tuple[int, f
         Number of critical speeds passed: those the final speed exceeds by the factor
         :data:`PASS_MARGIN` (1.05).
     captured_at : float
-        With a motor, the critical speed just above a final speed that lies within 15 % below it
-        while the motor is short of 95 % of its no-load speed (captured there: the Sommerfeld
-        effect), else NaN (rad/s).
+        With a motor, the critical speed ``w_c`` the run-up is captured at (the Sommerfeld
+        effect), else NaN (rad/s). Captured: over the last :data:`CAPTURE_TAIL` (20 %) of the run
+        every speed lies in the band ``[0.85 w_c, 1.05 w_c)`` around it (on either side: with
+        damping the whirl's drag peaks above the undamped critical speed, so a capture can sit
+        just above it), the motor could still accelerate (its torque ``T(w) > 0`` at the final
+        speed) and yet the mean acceleration over that tail is at most
+        :data:`CAPTURE_ACCELERATION` (5 %) of ``T(w) / J`` (``J`` the motor's polar inertia, all
+        that spins): the whirl absorbs the motor's torque. A run-up still crossing the band at
+        the end is neither passed nor captured.
     """
     crit = np.asarray(critical_speeds, dtype=float)
-    final = float(final_speed)
+    t, w = np.asarray(times, dtype=float), np.asarray(speeds, dtype=float)
+    final = float(w[-1])
     passed = int(np.sum(final > PASS_MARGIN * crit))
-    above = crit[crit >= final]
-    captured = float(above[0]) if above.size and final >= 0.85 * above[0] and machine.is_motor \
-        and final < 0.95 * _motor_top(machine) else math.nan
-    return passed, captured
+    if not machine.is_motor:
+        return passed, math.nan
+    tail = t >= t[-1] - CAPTURE_TAIL * (t[-1] - t[0])
+    lo, hi = float(w[tail].min()), float(w[tail].max())
+    band = crit[(CAPTURE_BAND * crit <= lo) & (hi < PASS_MARGIN * crit)]
+    torque = float(machine.drive.torque_at(final))
+    if band.size == 0 or not torque > 0.0 or tail.sum() < 2:
+        return passed, math.nan
+    tt = t[tail]
+    accel = (w[tail][-1] - w[tail][0]) / (tt[-1] - tt[0])
+    if accel > CAPTURE_ACCELERATION * torque / machine.drive.polar_inertia:
+        return passed, math.nan
+    return passed, float(band[np.argmin(np.abs(band - final))])
 
 
 def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=None,
@@ -104,7 +136,7 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
     rel = _wrap(sol.ys[:, lay.i_phi:lay.i_phi + lay.n_balls] - spin[:, :1])
     final = float(spin[-1, 1])
     crit = _critical_speeds(machine)
-    passed, captured = run_up_verdict(machine, final, crit)
+    passed, captured = run_up_verdict(machine, ts, spin[:, 1], crit)
     tail = ts >= 0.9 * ts[-1]
     ds = xr.Dataset(
         {
@@ -157,6 +189,13 @@ class PassingTorque:
         The same as multiples of the machine's own motor torque (-).
     critical_speed : float
         The first critical speed (forward 1x, balls locked) (rad/s).
+    target_speed : float
+        The final speed a passing run-up exceeds (rad/s).
+    limited_by : str
+        What the probe at ``lower`` failed by (:data:`LIMITS`): ``"rotor capture"`` (it ended
+        below ``target_speed``) or ``"ball desynchronisation"`` (it reached it, a ball did not
+        turn with the rotor). When no probe passes, what the strongest one failed by; ``""``
+        when every probe passes or a run-up failed.
     probes : int
         Run-ups integrated.
     monotone : bool
@@ -178,18 +217,26 @@ class PassingTorque:
     monotone: bool
     status: int
     message: str = ""
+    target_speed: float = math.nan
+    limited_by: str = ""
 
 
 def passing_torque(machine, *, t_end: float, rel_tol: float = 1e-3, ball_angles=None,
                    initial_speed: float = 0.0, probes: int = 8, rtol: float = 1e-8,
                    atol: float = 1e-10, max_factor: float = 2.0**20, min_factor: float = 2.0**-20,
-                   threads: int | None = None) -> PassingTorque:
-    """Find the smallest motor torque that runs the machine past its first critical speed.
+                   threads: int | None = None, target_speed: float | None = None, synchronise: bool = True,
+                   sync_tol: float = SYNC_TOL) -> PassingTorque:
+    """Find the smallest motor torque that runs the machine up past its first critical speed.
 
     Each probe is a run-up from the same start (:meth:`Machine.initial_state` with
     ``ball_angles`` and ``initial_speed``) over ``t_end`` with the motor's characteristic scaled
-    by a factor (:meth:`Motor.scaled`); it *passes* when :func:`run_up_verdict` says it passed
-    the first critical speed (final speed above 1.05 times it). The factors are first bracketed
+    by a factor (:meth:`Motor.scaled`); it *passes* when its final speed exceeds
+    ``target_speed`` (by default 1.05 times the first critical speed, the pass of
+    :func:`run_up_verdict`) and, with ``synchronise`` and balls, every ball turns with the rotor
+    at the end (its rate relative to the rotor at most ``sync_tol`` times the spin speed): a rotor
+    past its critical speed whose balls lag near the resonance has not run up, it is not
+    balancing. :attr:`PassingTorque.limited_by` says which of the two the probe just below the
+    threshold failed. The factors are first bracketed
     on a geometric grid (ratio 4, from 4^-5 to 4^2 times the motor's torque, extended up or down
     while no probe or every probe passes), then the bracket is cut by ``probes`` equally spaced
     interior probes per round until its width is at most ``rel_tol`` times its upper end. All
@@ -216,6 +263,13 @@ def passing_torque(machine, *, t_end: float, rel_tol: float = 1e-3, ball_angles=
     max_factor, min_factor : float
         Give up (status :data:`NO_PASSING_TORQUE`) when no probe up to ``max_factor`` times the
         motor's torque passes, or every one down to ``min_factor`` times it does.
+    target_speed : float, optional
+        Final speed a passing run-up exceeds (rad/s); default 1.05 times the first critical
+        speed. Above the motor's no-load speed no torque passes (status :data:`NO_PASSING_TORQUE`).
+    synchronise : bool
+        Also require the balls to turn with the rotor at the end (no effect without balls).
+    sync_tol : float
+        Largest ball rate relative to the rotor, as a fraction of the spin speed (-), in (0, 1).
 
     Returns
     -------
@@ -236,10 +290,12 @@ def passing_torque(machine, *, t_end: float, rel_tol: float = 1e-3, ball_angles=
     """
     return _passing_torques(machine, [ball_angles], t_end=t_end, rel_tol=rel_tol,
                             initial_speed=initial_speed, probes=probes, rtol=rtol, atol=atol,
-                            max_factor=max_factor, min_factor=min_factor, threads=threads)[0]
+                            max_factor=max_factor, min_factor=min_factor, threads=threads,
+                            target_speed=target_speed, synchronise=synchronise, sync_tol=sync_tol)[0]
 
 
-def _check_passing_settings(machine, t_end, rel_tol, probes, max_factor, min_factor) -> None:
+def _check_passing_settings(machine, t_end, rel_tol, probes, max_factor, min_factor, target_speed,
+                            sync_tol) -> None:
     if not machine.is_motor:
         raise ValueError("passing_torque needs a machine driven by a Motor (its torque is what is "
                          f"scaled), got drive {type(machine.drive).__name__}")
@@ -251,37 +307,54 @@ def _check_passing_settings(machine, t_end, rel_tol, probes, max_factor, min_fac
         raise ValueError(f"probes must be an integer >= 1, got {probes!r}")
     if not 0 < min_factor < 1 < max_factor < math.inf:
         raise ValueError(f"need 0 < min_factor < 1 < max_factor < inf, got {min_factor!r}, {max_factor!r}")
+    if target_speed is not None and not (math.isfinite(target_speed) and target_speed > 0):
+        raise ValueError(f"target_speed must be a finite number > 0 (rad/s), got {target_speed!r}")
+    if not 0 < sync_tol < 1:
+        raise ValueError(f"sync_tol must be in (0, 1), got {sync_tol!r}")
     if not machine.drive.stall_torque > 0:
         raise ValueError(f"passing_torque scales the motor's torque: its stall torque T(0) must be > 0 "
                          f"(N m), got {machine.drive.stall_torque!r}")
 
 
+def _probe_verdict(machine, y, target: float, synchronise: bool, sync_tol: float) -> tuple[bool, bool]:
+    """(reached the target speed, balls turning with the rotor) at a probe's final state."""
+    lay = machine.layout
+    om = float(y[lay.i_theta + 1])
+    rel = np.abs(y[lay.i_w:lay.i_w + lay.n_balls] - om)
+    return om > target, not synchronise or bool(np.all(rel <= sync_tol * abs(om)))
+
+
 def _passing_torques(machine, starts, *, t_end, rel_tol=1e-3, initial_speed=0.0, probes=8, rtol=1e-8,
-                     atol=1e-10, max_factor=2.0**20, min_factor=2.0**-20, threads=None) -> list[PassingTorque]:
+                     atol=1e-10, max_factor=2.0**20, min_factor=2.0**-20, threads=None, target_speed=None,
+                     synchronise=True, sync_tol=SYNC_TOL) -> list[PassingTorque]:
     """:func:`passing_torque` from each of several ball starts (None: the default start), the
     probes of every unfinished start in one ensemble per round."""
     from rotorlab.integrate import StepControl, solve_ensemble
 
-    _check_passing_settings(machine, t_end, rel_tol, probes, max_factor, min_factor)
+    _check_passing_settings(machine, t_end, rel_tol, probes, max_factor, min_factor, target_speed, sync_tol)
     crit = _critical_speeds(machine)
     t0 = machine.drive.stall_torque
     n = len(starts)
-    if crit.size == 0 or _motor_top(machine) <= PASS_MARGIN * crit[0]:
+    target = (PASS_MARGIN * float(crit[0]) if crit.size else math.nan) if target_speed is None else float(target_speed)
+    if crit.size == 0 or _motor_top(machine) <= target:
         why = ("the structure has no forward critical speed" if crit.size == 0 else
-               f"the motor's no-load speed {_motor_top(machine):.6g} rad/s is not above {PASS_MARGIN} times the "
-               f"first critical speed {crit[0]:.6g} rad/s: no torque of this characteristic passes it")
+               f"the motor's no-load speed {_motor_top(machine):.6g} rad/s is not above the target speed "
+               f"{target:.6g} rad/s ({target / crit[0]:.4g} times the first critical speed {crit[0]:.6g} rad/s): "
+               "no torque of this characteristic reaches it")
         return [PassingTorque(math.nan, math.nan, math.nan, math.nan, float(crit[0]) if crit.size else math.nan,
-                              0, True, NO_PASSING_TORQUE, why)] * n
+                              0, True, NO_PASSING_TORQUE, why, target)] * n
     y0 = [machine.initial_state(None if a is None or machine.n_balls == 0 else list(a), spin_speed=initial_speed)
           for a in starts]
     control = StepControl(rtol=rtol, atol=atol)
-    i_speed = machine.layout.i_theta + 1
     seen: list[list[tuple[float, bool]]] = [[] for _ in range(n)]
+    why_not: list[dict[float, str]] = [{} for _ in range(n)]
     lo, hi = [0.0] * n, [math.inf] * n
     grid = [4.0 ** np.arange(-5, 3) for _ in range(n)]
     status, message = [0] * n, [""] * n
     count = [0] * n
     while any(g is not None for g in grid):
+        # no probe beyond the limits: give up there rather than integrate an absurd torque
+        grid = [None if g is None else np.unique(np.clip(g, min_factor, max_factor)) for g in grid]
         rows = [(k, f) for k in range(n) if grid[k] is not None for f in grid[k]]
         P = np.array([machine.with_drive(machine.drive.scaled(f)).to_array() for _, f in rows])
         sol = solve_ensemble(machine, np.array([y0[k] for k, _ in rows]), (0.0, float(t_end)), params=P,
@@ -290,7 +363,10 @@ def _passing_torques(machine, starts, *, t_end, rel_tol=1e-3, initial_speed=0.0,
             if st < 0 and status[k] == 0:
                 status[k], message[k] = int(st), f"the run-up at {f * t0:.6g} N m failed (status {int(st)})"
             count[k] += 1
-            seen[k].append((float(f), run_up_verdict(machine, float(y[i_speed]), crit)[0] >= 1))
+            fast, sync = _probe_verdict(machine, y, target, synchronise and machine.n_balls > 0, sync_tol)
+            seen[k].append((float(f), fast and sync))
+            if not (fast and sync):
+                why_not[k][float(f)] = LIMITS[0] if not fast else LIMITS[1]
         for k in range(n):
             if grid[k] is None:
                 continue
@@ -308,14 +384,15 @@ def _passing_torques(machine, starts, *, t_end, rel_tol=1e-3, initial_speed=0.0,
                 if lo[k] >= max_factor:
                     status[k], grid[k] = NO_PASSING_TORQUE, None
                     message[k] = (f"no run-up up to {lo[k] * t0:.6g} N m ({lo[k]:.6g} times the motor's torque) "
-                                  f"passes the first critical speed {crit[0]:.6g} rad/s within {t_end:g} s")
+                                  f"passes {target:.6g} rad/s{' with the balls in step' if machine.n_balls and synchronise else ''} "
+                                  f"within {t_end:g} s")
                 else:
                     grid[k] = lo[k] * 4.0 ** np.arange(1, 9)
             elif lo[k] == 0.0:
                 if hi[k] <= min_factor:
                     status[k], grid[k] = NO_PASSING_TORQUE, None
                     message[k] = (f"every run-up down to {hi[k] * t0:.6g} N m ({hi[k]:.6g} times the motor's "
-                                  f"torque) passes the first critical speed {crit[0]:.6g} rad/s")
+                                  f"torque) passes {target:.6g} rad/s")
                 else:
                     grid[k] = hi[k] * 4.0 ** np.arange(-8, 0)
             elif hi[k] - lo[k] > rel_tol * hi[k]:
@@ -328,7 +405,8 @@ def _passing_torques(machine, starts, *, t_end, rel_tol=1e-3, initial_speed=0.0,
         mono = all(p for f, p in seen[k] if f >= hi[k]) and not any(p for f, p in seen[k] if f <= lo[k])
         out.append(PassingTorque(hi[k] * t0 if ok else math.nan, lo[k] * t0 if ok else math.nan,
                                  hi[k] if ok else math.nan, lo[k] if ok else math.nan, float(crit[0]),
-                                 count[k], mono, status[k], message[k]))
+                                 count[k], mono, status[k], message[k], target,
+                                 why_not[k].get(lo[k], "") if ok or math.isinf(hi[k]) else ""))
     return out
 
 
@@ -373,11 +451,13 @@ def _run_run_up(case_model, analysis, progress=None):
 def _add_passing_torque(ds, machine, starts, analysis, start_speed) -> None:
     """Add the smallest passing stall torque per start with the analysis' races
     (``passing_torque``, ``passing_torque_lower``), without any race
-    (``passing_torque_without_balls``, ``..._lower``) and their ratio (``passing_torque_ratio``)."""
+    (``passing_torque_without_balls``, ``..._lower``), their ratio (``passing_torque_ratio``), the
+    target speeds and what limits each (``passing_torque_limited_by``, :data:`LIMITS`)."""
     from dataclasses import replace
 
     kw = dict(t_end=analysis.t_end, rel_tol=analysis.passing_torque_rtol, initial_speed=start_speed,
-              rtol=analysis.rtol, atol=analysis.atol)
+              rtol=analysis.rtol, atol=analysis.atol, target_speed=getattr(analysis, "passing_target_speed", None),
+              synchronise=getattr(analysis, "passing_synchronise", True))
     bare = _passing_torques(replace(machine, races=()), [None], **kw)[0]
     with_balls = _passing_torques(machine, starts, **kw) if machine.n_balls else [bare] * len(starts)
     nm = {"units": "N*m"}
@@ -388,8 +468,13 @@ def _add_passing_torque(ds, machine, starts, analysis, start_speed) -> None:
     ratio = np.array([r.torque for r in with_balls]) / bare.torque if machine.n_balls else np.full(len(starts), np.nan)
     ds["passing_torque_ratio"] = (("ic",), ratio, {"units": "1"})
     ds["passing_torque_status"] = (("ic",), np.array([r.status or bare.status for r in with_balls], dtype=np.int64))
+    ds["passing_torque_target_speed"] = (("ic",), np.array([r.target_speed for r in with_balls]), {"units": "rad/s"})
+    ds["passing_torque_without_balls_target_speed"] = ((), bare.target_speed, {"units": "rad/s"})
+    ds["passing_torque_limited_by"] = (("ic",), np.array([r.limited_by for r in with_balls], dtype=object))
+    ds["passing_torque_without_balls_limited_by"] = ((), np.array(bare.limited_by, dtype=object))
     ds.attrs["passing_torque_rtol"] = float(analysis.passing_torque_rtol)
     ds.attrs["motor_stall_torque"] = float(machine.drive.stall_torque)
+    ds.attrs["passing_synchronise"] = int(bool(kw["synchronise"]))
     ds.attrs["passing_torque_probes"] = int(bare.probes + (sum(r.probes for r in with_balls) if machine.n_balls else 0))
     notes = sorted({r.message for r in (bare, *with_balls) if r.message})
     if notes:
@@ -439,7 +524,12 @@ def _run_up_rows(ds) -> list[dict[str, Any]]:
                 "passing_torque_ratio": _num(r.passing_torque_ratio),
                 "passing_torque_rtol": float(ds.attrs["passing_torque_rtol"]),
                 "motor_stall_torque": float(ds.attrs["motor_stall_torque"]),
+                "passing_synchronise": bool(ds.attrs.get("passing_synchronise", 1)),
                 "passing_torque_status": int(r.passing_torque_status),
+                "passing_torque_target_speed": _num(r.passing_torque_target_speed),
+                "passing_torque_without_balls_target_speed": _num(r.passing_torque_without_balls_target_speed),
+                "passing_torque_limited_by": str(r.passing_torque_limited_by.values) or None,
+                "passing_torque_without_balls_limited_by": str(r.passing_torque_without_balls_limited_by.values) or None,
                 **({"passing_torque_message": ds.attrs["passing_torque_message"]}
                    if "passing_torque_message" in ds.attrs else {})})
         rows.append(row)

@@ -479,6 +479,11 @@ class MachineSpec(AbstractModelSpec):
             key = "stall_torque" if d.speeds is None else "torques"
             issues.append(Issue(("passing_torque",), f"scales the motor's torque, whose value at rest ({key}) "
                                                      f"must then be > 0 N*m, got {t0:g} N*m", True))
+        target = getattr(analysis, "passing_target_speed", None)
+        if target is not None and not target < d.final_speed:
+            issues.append(Issue(("passing_target_speed",), f"must be below the motor's no-load speed "
+                                                           f"{d.final_speed:g} rad/s (no torque of its "
+                                                           "characteristic runs faster)", target))
         return issues
 
     def describe(self) -> str:

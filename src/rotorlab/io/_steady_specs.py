@@ -415,9 +415,15 @@ class RunUpSpec(SteadyAnalysisSpec):
     passing_torque : bool
         A machine driven by a motor: also find the smallest motor torque whose run-up (over
         ``t_end``, from each start) passes the first critical speed, with the analysis' races and
-        without any (:func:`rotorlab.analyses.passing_torque`).
+        without any (:func:`rotorlab.analyses.passing_torque`), and what limits it (the rotor
+        captured, or the balls desynchronised).
     passing_torque_rtol : float
         Relative width of that torque's final bracket (-), in (0, 1).
+    passing_target_speed : float, optional
+        The final speed a passing run-up exceeds (rad/s); default 1.05 times the first critical
+        speed (of the machine with the races, and of the one without).
+    passing_synchronise : bool
+        A passing run-up also ends with every ball turning with the rotor (default true).
     """
 
     simulates: ClassVar[bool] = True
@@ -437,6 +443,9 @@ class RunUpSpec(SteadyAnalysisSpec):
                                                     "critical speed, with and without the balls (machine with a motor)")
     passing_torque_rtol: quantity("dimensionless", gt=0, lt=1) = Field(
         1e-3, description="relative width of the passing-torque bracket (-)")
+    passing_target_speed: quantity("angular_speed", gt=0) | None = Field(
+        None, description="final speed a passing run-up exceeds (rad/s); default 1.05 x the first critical speed")
+    passing_synchronise: bool = Field(True, description="a passing run-up ends with the balls turning with the rotor")
 
     def profile(self, model: AbstractModelSpec) -> Any:
         """Return the speed profile spec: this analysis' ``speed``, else the model's."""
@@ -460,6 +469,8 @@ class RunUpSpec(SteadyAnalysisSpec):
         issues += _angle_issues(self.initial_ball_angles, "initial_ball_angles", model.balls_in(self.races))
         if self.passing_torque:
             issues += model.passing_torque_issues(self)
+        elif self.passing_target_speed is not None:
+            issues.append(Issue(("passing_target_speed",), "applies to passing_torque = true only", self.passing_target_speed))
         return issues
 
     def describe(self, model: AbstractModelSpec) -> str:

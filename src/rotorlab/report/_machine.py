@@ -207,7 +207,7 @@ def _run_up_findings(ds, rows):
                 "no balancer": "no balancer", "captured": "not balanced", "failed": "failed"}
     for r in rows:
         if r["captured_at"] is not None:
-            parts.append(f"start {r['ic']}: captured below the critical speed {r['captured_at'] * _RPM:.4g} rpm "
+            parts.append(f"start {r['ic']}: captured at the critical speed {r['captured_at'] * _RPM:.4g} rpm "
                          f"(Sommerfeld effect), final speed {r['final_speed_rpm']:.4g} rpm")
         else:
             parts.append(f"start {r['ic']}: passes {r['passed']} critical speed(s), reaches "
@@ -251,7 +251,25 @@ def _passing_torque_text(ds, rows) -> str:
     own = r0.get("motor_stall_torque")
     mine = f"; this motor's is {own:.4g} N*m" if own is not None else ""
     return (f"The smallest stall torque that passes the first critical speed ({crit}): {withb}, {without}{change} "
-            f"{how}{mine}.{note}")
+            f"{how}{mine}.{note}{_limits_text(rows)}")
+
+
+def _limits_text(rows) -> str:
+    """What limits the passing torques: the rotor captured below the target, or a ball left behind."""
+    r0 = rows[0]
+    target = r0.get("passing_torque_target_speed")
+    limits = sorted({r["passing_torque_limited_by"] for r in rows if r.get("passing_torque_limited_by")})
+    bare = r0.get("passing_torque_without_balls_limited_by")
+    if target is None or not (limits or bare):
+        return ""
+    parts = []
+    if limits and any(r["outcome"] != "no balancer" for r in rows):
+        parts.append(f"with the balls by {' / '.join(limits)}")
+    if bare:
+        parts.append(f"without by {bare}")
+    sync = " with the balls turning with the rotor" if r0.get("passing_synchronise") else ""
+    return (f" A run-up passes when it ends above {target * _RPM:.4g} rpm{sync}; the torque is limited"
+            f" {', '.join(parts)}.")
 
 
 _FINDINGS = {"steady": _steady_findings, "stability-chart": _chart_findings, "simulate": _simulate_findings,
