@@ -122,7 +122,8 @@ def test_passing_torque_of_a_case_is_bracketed_by_the_run_up_verdict_and_the_bal
     and the upper one passes it, by ``run_up_verdict``. Without balls (critical speed 1) the
     threshold is 0.01333 N m, with the balls 0.01106: the balls lower it by 17 %, far beyond the
     1e-3 brackets. Those two agree with the independent grid search of ``bench/machine.py
-    --sommerfeld`` (pass: final speed > 2 rad/s, the case's ``passing_target_speed``; printed to 5 decimals "0.01333-0.01335" and
+    --sommerfeld`` (pass: final speed > 2 rad/s, the case's ``passing_target_speed``; printed to 5
+    decimals "0.01333-0.01335" and
     "0.01105-0.01107", i.e. brackets within [0.013325, 0.013355] and [0.011045, 0.011075]): the
     brackets must overlap. The report's findings say both numbers."""
     from rotorlab.report._machine import machine_findings

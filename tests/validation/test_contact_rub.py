@@ -322,7 +322,8 @@ def test_full_rub_from_a_start_pressed_into_the_stator_settles_on_the_closed_for
         z0 = 1.02 * branch.radius * np.exp(1j * angle)
         v0 = 1j * w * z0
         sol = _run(model, model.initial_state((z0.real, z0.imag), (v0.real, v0.imag)), 300.0, ts)
-        assert np.allclose(np.hypot(sol.ys[:, 0], sol.ys[:, 1]), branch.radius, rtol=1e-4), angle  # the -mu radius is 15x further
+        # rtol 1e-4: the -mu radius is 15 times further
+        assert np.allclose(np.hypot(sol.ys[:, 0], sol.ys[:, 1]), branch.radius, rtol=1e-4), angle
         assert np.all(sol.ys[:, 8] == 1.0)
 
 

@@ -348,6 +348,7 @@ def _passing_torques(machine, starts, *, t_end, rel_tol=1e-3, initial_speed=0.0,
     control = StepControl(rtol=rtol, atol=atol)
     seen: list[list[tuple[float, bool]]] = [[] for _ in range(n)]
     why_not: list[dict[float, str]] = [{} for _ in range(n)]
+    in_step = " with the balls in step" if machine.n_balls and synchronise else ""
     lo, hi = [0.0] * n, [math.inf] * n
     grid = [4.0 ** np.arange(-5, 3) for _ in range(n)]
     status, message = [0] * n, [""] * n
@@ -384,7 +385,7 @@ def _passing_torques(machine, starts, *, t_end, rel_tol=1e-3, initial_speed=0.0,
                 if lo[k] >= max_factor:
                     status[k], grid[k] = NO_PASSING_TORQUE, None
                     message[k] = (f"no run-up up to {lo[k] * t0:.6g} N m ({lo[k]:.6g} times the motor's torque) "
-                                  f"passes {target:.6g} rad/s{' with the balls in step' if machine.n_balls and synchronise else ''} "
+                                  f"passes {target:.6g} rad/s{in_step} "
                                   f"within {t_end:g} s")
                 else:
                     grid[k] = lo[k] * 4.0 ** np.arange(1, 9)
@@ -402,11 +403,12 @@ def _passing_torques(machine, starts, *, t_end, rel_tol=1e-3, initial_speed=0.0,
     out = []
     for k in range(n):
         ok = status[k] == 0
+        unreached = status[k] == NO_PASSING_TORQUE and math.isinf(hi[k])  # no probe passed: say why
         mono = all(p for f, p in seen[k] if f >= hi[k]) and not any(p for f, p in seen[k] if f <= lo[k])
         out.append(PassingTorque(hi[k] * t0 if ok else math.nan, lo[k] * t0 if ok else math.nan,
                                  hi[k] if ok else math.nan, lo[k] if ok else math.nan, float(crit[0]),
                                  count[k], mono, status[k], message[k], target,
-                                 why_not[k].get(lo[k], "") if ok or math.isinf(hi[k]) else ""))
+                                 why_not[k].get(lo[k], "") if ok or unreached else ""))
     return out
 
 

@@ -470,7 +470,8 @@ class RunUpSpec(SteadyAnalysisSpec):
         if self.passing_torque:
             issues += model.passing_torque_issues(self)
         elif self.passing_target_speed is not None:
-            issues.append(Issue(("passing_target_speed",), "applies to passing_torque = true only", self.passing_target_speed))
+            issues.append(Issue(("passing_target_speed",), "applies to passing_torque = true only",
+                                self.passing_target_speed))
         return issues
 
     def describe(self, model: AbstractModelSpec) -> str:
