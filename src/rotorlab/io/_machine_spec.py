@@ -51,6 +51,7 @@ from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import Field, field_validator, model_validator
 
+from rotorlab.io._build import build_machine
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
 from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _Spec, integer, quantity
@@ -377,7 +378,7 @@ class MachineSpec(AbstractModelSpec):
         if k > n_dof:
             return [Issue(("n_modes",), f"must be <= {n_dof} (the structure's DOFs)", k)]
         if k % 2:
-            from rotorlab.analyses._linear_build import build_linear_system
+            from rotorlab.io._linear_build import build_linear_system
 
             if build_linear_system(self.structure).is_isotropic:
                 return [Issue(("n_modes",), "must be even for an isotropic structure (its modes come "
@@ -397,7 +398,7 @@ class MachineSpec(AbstractModelSpec):
 
     def critical_speed(self) -> float | None:
         """The lowest forward 1x critical speed of the structure with the balls locked (rad/s)."""
-        from rotorlab.analyses._machine import structure_critical_speeds
+        from rotorlab.models._machine_physics import structure_critical_speeds
 
         crit = structure_critical_speeds(build_machine(self))
         return float(crit[0]) if crit.size else None
@@ -491,42 +492,3 @@ class MachineSpec(AbstractModelSpec):
         return (f"machine: {self.structure.describe()}; {len(self.races)} race(s) with "
                 f"{self.n_balls} ball(s), {len(self.unbalances)} unbalance(s), "
                 f"{'gravity, ' if self.gravity else ''}{gap}drive {drive}")
-
-
-def build_machine(spec: MachineSpec):
-    """Build the :class:`rotorlab.models.Machine` of a validated ``machine`` spec."""
-    from rotorlab.analyses._linear_build import build_linear_system
-    from rotorlab.models import (Ball, BallRace, ConstantSpeed, Gravity, HillRunUp, LinearRamp,
-                                 Machine, Motor, Unbalance)
-
-    structure = build_linear_system(spec.structure)
-    races = tuple(BallRace(spec.node_of(r), r.radius,
-                           tuple(Ball(b.mass, b.inertia, b.damping, b.coulomb, b.rolling) for b in r.balls),
-                           r.axial_offset) for r in spec.races)
-    unb = tuple(Unbalance(spec.node_of(u), u.magnitude, u.phase, u.axial_offset)
-                for u in spec.unbalances)
-    d = spec.drive
-    drives = {
-        "constant": lambda: ConstantSpeed(d.speed),
-        "ramp": lambda: LinearRamp(d.start, d.stop, d.duration),
-        "hill": lambda: HillRunUp(d.max_speed, d.t_half, d.exponent),
-        "motor": lambda: Motor(d.stall_torque if d.speeds is None else (d.speeds, d.torques),
-                               d.polar_inertia,
-                               float("inf") if d.no_load_speed is None else d.no_load_speed),
-    }
-    drive = drives[d.profile]()
-    gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)
-    return Machine(structure, races=races, unbalances=unb, gravity=gravity, drive=drive,
-                   n_modes=spec.n_modes, clearances=tuple(_clearance(spec, c) for c in spec.clearances))
-
-
-def _clearance(spec: MachineSpec, c: ClearanceSpec):
-    from rotorlab.models import Clearance, ElasticStator
-
-    stator = "rigid" if c.stator is None else ElasticStator(c.stator.stiffness, c.stator.damping,
-                                                             c.stator.mass)
-    conical = None if c.conical is None else (c.conical.half_angle, c.conical.lever)
-    return Clearance(spec.node_of(c), c.gap, stator, restitution=c.restitution, friction=c.friction,
-                     rotor_radius=c.rotor_radius, axial_offset=c.axial_offset, conical=conical,
-                     rest_speed=c.rest_speed,
-                     center="static" if c.center_at_rest else (c.center or (0.0, 0.0)))
