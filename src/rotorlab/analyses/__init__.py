@@ -58,7 +58,7 @@ from rotorlab.analyses._linear import (
     summarize_linear,
 )
 from rotorlab.io._linear_build import build_linear_system
-from rotorlab.analyses._outcome import (
+from rotorlab.explore._outcome import (
     BALANCED_FRACTION,
     SETTLE_RATE,
     SIDE_TOLERANCE,

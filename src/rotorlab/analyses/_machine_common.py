@@ -11,6 +11,8 @@ from typing import Any
 
 import numpy as np
 
+from rotorlab.explore._outcome import NON_SYNCHRONOUS_RATE, wrap_machine_angle as _wrap  # noqa: F401
+from rotorlab.explore._outcome import machine_outcome as _outcome  # noqa: F401
 from rotorlab.models._machine_physics import locked_structure, structure_critical_speeds
 
 __all__ = ["NO_STEADY_STATUS", "CLEARANCE_STATUS", "NON_SYNCHRONOUS_RATE", "clearance_violation",
@@ -22,28 +24,6 @@ NO_STEADY_STATUS = 3
 #: Status of a steady motion whose orbit at a clearance exceeds the gap (it cannot exist without
 #: contact; simulate the rub instead).
 CLEARANCE_STATUS = 4
-#: Balls moving relative to the rotor faster than this fraction of its speed in the final window
-#: of a simulation have not synchronised ("non-synchronous").
-NON_SYNCHRONOUS_RATE = 1e-2
-
-
-def _outcome(status: int, amplitude, reference, max_rate: float, speed: float, n_balls: int) -> str:
-    """Label where one simulation ended (see :func:`machine_simulate`)."""
-    from rotorlab.analyses._outcome import BALANCED_FRACTION
-
-    if status < 0:
-        return "failed"
-    if n_balls == 0:
-        return "no balancer"
-    if np.max(amplitude) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
-        return "balanced"
-    if not max_rate <= NON_SYNCHRONOUS_RATE * abs(speed):
-        return "non-synchronous"
-    return "not balanced"
-
-
-def _wrap(a):
-    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
 
 
 def clearance_violation(machine, y_rotating) -> tuple[float, str | None]:

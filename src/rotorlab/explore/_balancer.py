@@ -20,6 +20,7 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rotorlab._kernels import jeffcott_balls as _jk
+from rotorlab.explore._outcome import classify, reference_amplitude, wrap_angle
 from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import Status, StepControl
 from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, Parameter, fixed_to_rotating
@@ -234,8 +235,6 @@ class BalancerRegimes:
         return first, Y0, P
 
     def features(self, sol, P: np.ndarray) -> dict[str, Feature]:
-        from rotorlab.analyses._outcome import reference_amplitude, wrap_angle
-
         nb = int(P[0, _jk.P_N])
         h = self.horizons()
         ts = self.save_times()
@@ -272,8 +271,6 @@ class BalancerRegimes:
         return out
 
     def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray:
-        from rotorlab.analyses._outcome import classify
-
         names = self.labels
         index = {name: k for k, name in enumerate(names)}
         nb = self.model.n_balls

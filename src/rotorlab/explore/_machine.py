@@ -8,7 +8,7 @@ count), the largest ball rate relative to the rotor, and the ball angles at T re
 rotor. The labels follow :func:`rotorlab.analyses._machine.machine_simulate`: *balanced* (the
 vibration at most :data:`~rotorlab.analyses.BALANCED_FRACTION` of the largest unbalance response
 with the balls locked), *non-synchronous* (balls still moving relative to the rotor faster than
-:data:`~rotorlab.analyses._machine.NON_SYNCHRONOUS_RATE` times its speed), *not balanced*
+:data:`~rotorlab.explore._outcome.NON_SYNCHRONOUS_RATE` times its speed), *not balanced*
 (settled elsewhere) and *other* (a failed integration).
 """
 
@@ -17,10 +17,10 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any
 
 import numpy as np
 
+from rotorlab.explore._outcome import machine_outcome, wrap_machine_angle
 from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import StepControl
 from rotorlab.models import ConstantSpeed, Machine, Parameter
@@ -240,8 +240,6 @@ class MachineRegimes:
                                P[:, o["balls"]:o["balls"] + 4 * nb:4]], axis=1)
 
     def features(self, sol, P: np.ndarray) -> dict[str, Feature]:
-        from rotorlab.analyses._machine import _wrap
-
         lay = self.model.layout
         nb = lay.n_balls
         h = self.horizons()
@@ -278,19 +276,17 @@ class MachineRegimes:
             "status_code": Feature(sol.status.astype(np.int32), "1", "integrator status"),
         }
         for i in range(nb):
-            out[f"ball_angle_{i + 1}"] = Feature(_wrap(ys[:, i_end, lay.i_phi + i] - omega[:, None] * ts[i_end]),
+            out[f"ball_angle_{i + 1}"] = Feature(wrap_machine_angle(ys[:, i_end, lay.i_phi + i] - omega[:, None] * ts[i_end]),
                                                  "rad", f"angle of ball {i + 1} relative to the rotor at the horizon")
         return out
 
     def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray:
-        from rotorlab.analyses._machine import _outcome
-
         index = {name: k for k, name in enumerate(MACHINE_LABELS)}
         amp = features["amplitude"]
         out = np.empty(amp.shape, dtype=np.int16)
         nb = self.model.n_balls
         for i, j in np.ndindex(*amp.shape):
-            text = _outcome(int(features["status_code"][i]), amp[i, j], features["reference_amplitude"][i],
+            text = machine_outcome(int(features["status_code"][i]), amp[i, j], features["reference_amplitude"][i],
                             float(features["max_rate"][i, j]), float(features["rotor_speed"][i]), nb)
             out[i, j] = index.get(text, index["other"])
         return out
