@@ -18,7 +18,8 @@ from rotorlab.io._coordinates import key_quantity
 from rotorlab.io._fields import plain_data
 from rotorlab.io._schema import MODEL_SPECS
 
-CASES = [name for name in builtin_cases() if load_case(name).model.type in ("machine", "jeffcott_balls")]
+CASES = [name for name in builtin_cases()
+         if load_case(name).model.type in ("machine", "jeffcott_balls", "toroidal_ball")]
 
 
 def _edited(case, key, value):
@@ -34,7 +35,7 @@ def _other_values(par):
 
 def test_the_built_in_cases_cover_both_models():
     kinds = {load_case(n).model.type for n in CASES}
-    assert kinds == {"machine", "jeffcott_balls"} and len(CASES) >= 6
+    assert kinds == {"machine", "jeffcott_balls", "toroidal_ball"} and len(CASES) >= 7
 
 
 @pytest.mark.parametrize("name", CASES)
@@ -74,7 +75,7 @@ def test_with_parameters_is_the_edited_case_bit_for_bit(name):
         par = model.parameters[n]
         if par.structural:
             continue
-        if n.startswith("speed.") and case.model.speed is None:
+        if n.startswith("speed.") and getattr(case.model, "speed", 0) is None:
             continue
         for new in _other_values(par):
             try:

@@ -15,7 +15,7 @@ from typing import Any
 from rotorlab.models._protocol import Parameter, Slot
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
 
-__all__ = ["machine_slots", "jeffcott_slots"]
+__all__ = ["machine_slots", "jeffcott_slots", "toroidal_slots"]
 
 _GT0 = (0.0, None, None, None)
 _GE0 = (None, 0.0, None, None)
@@ -50,15 +50,17 @@ def _set_item(items: tuple, i: int, **kw) -> tuple:
 
 
 # ---------------------------------------------------------------------------------------- machine
+def _item_setter(attr: str, i: int, field: str):
+    """A setter of ``field`` of item ``i`` of the model's tuple ``attr`` (a race, an unbalance ...)."""
+    return lambda mm, v: replace(mm, **{attr: _set_item(getattr(mm, attr), i, **{field: v})})
+
+
 def _race_slots(m) -> list[Slot]:
     out = []
     for i, race in enumerate(m.races):
-        def set_race(mm, v, i=i, key="radius"):
-            return replace(mm, races=_set_item(mm.races, i, **{key: v}))
-
-        out.append(_slot(f"races[{i}].radius", "m", race.radius, _GT0, set_race))
+        out.append(_slot(f"races[{i}].radius", "m", race.radius, _GT0, _item_setter("races", i, "radius")))
         out.append(_slot(f"races[{i}].axial_offset", "m", race.axial_offset, _FREE,
-                         lambda mm, v, i=i: replace(mm, races=_set_item(mm.races, i, axial_offset=v))))
+                         _item_setter("races", i, "axial_offset")))
         for j, ball in enumerate(race.balls):
             for key, unit, bounds in (("mass", "kg", _GT0), ("inertia", "kg*m^2", _GE0),
                                       ("damping", "N*m*s/rad", _GE0), ("coulomb", "1", _GE0),
@@ -77,7 +79,7 @@ def _unbalance_slots(m) -> list[Slot]:
         for key, field, unit, bounds in (("magnitude", "mass_eccentricity", "kg*m", _GE0),
                                          ("phase", "phase", "rad", _FREE), ("axial_offset", "axial_offset", "m", _FREE)):
             out.append(_slot(f"unbalances[{i}].{key}", unit, getattr(u, field), bounds,
-                             lambda mm, v, i=i, field=field: replace(mm, unbalances=_set_item(mm.unbalances, i, **{field: v}))))
+                             _item_setter("unbalances", i, field)))
     return out
 
 
@@ -109,14 +111,11 @@ def _drive_slots(m) -> list[Slot]:
 def _clearance_slots(m) -> list[Slot]:
     out = []
     for i, c in enumerate(m.clearances):
-        def setter(field):
-            return lambda mm, v, i=i: replace(mm, clearances=_set_item(mm.clearances, i, **{field: v}))
-
         p = f"clearances[{i}]"
         for key, unit, bounds in (("gap", "m", _GT0), ("restitution", "1", (None, 0.0, None, 1.0)),
                                   ("friction", "1", _GE0), ("rotor_radius", "m", _GE0),
                                   ("axial_offset", "m", _FREE), ("rest_speed", "m/s", _GT0)):
-            out.append(_slot(f"{p}.{key}", unit, getattr(c, key), bounds, setter(key)))
+            out.append(_slot(f"{p}.{key}", unit, getattr(c, key), bounds, _item_setter("clearances", i, key)))
         if not isinstance(c.stator, str):
             for key, unit, bounds in (("stiffness", "N/m", _GT0), ("damping", "N*s/m", _GE0), ("mass", "kg", _GE0)):
                 def set_stator(mm, v, i=i, key=key):
@@ -195,6 +194,16 @@ def jeffcott_slots(m) -> list[Slot]:
     for i, b in enumerate(m.balls):
         for key, unit, bounds in (("mass", "kg", _GT0), ("radius", "m", _GT0), ("inertia", "kg*m^2", _GE0),
                                   ("damping", "N*m*s/rad", _GE0), ("friction", "1", _GE0)):
-            out.append(_slot(f"balls[{i}].{key}", unit, getattr(b, key), bounds,
-                             lambda mm, v, i=i, key=key: replace(mm, balls=_set_item(mm.balls, i, **{key: v}))))
+            out.append(_slot(f"balls[{i}].{key}", unit, getattr(b, key), bounds, _item_setter("balls", i, key)))
     return out + _profile_slots("speed", m.speed, "speed")
+
+
+# ----------------------------------------------------------------------------------- toroidal_ball
+def toroidal_slots(m) -> list[Slot]:
+    """The named parameters of a :class:`rotorlab.models.ToroidalBall` (the ``toroidal_ball``
+    table's keys; ``form`` is a choice, not a number)."""
+    return [_slot(key, unit, getattr(m, key), bounds, lambda mm, v, key=key: replace(mm, **{key: v}))
+            for key, unit, bounds in (("ring_radius", "m", _GT0), ("tube_radius", "m", _GT0),
+                                      ("ball_radius", "m", _GT0), ("spin_speed", "rad/s", _GT0),
+                                      ("offset", "m", _GE0), ("rolling_friction", "m", _GE0),
+                                      ("gravity", "m/s^2", _GE0))]
