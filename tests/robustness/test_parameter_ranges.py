@@ -41,6 +41,9 @@ RANGES = [
      ["--param", "disc_mass = 0", "must be > 0 kg"]),
     ("jeffcott-ball-mass-negative", ["autobalancer", "--param", "ball_mass=-1:0.02:2"],
      ["--param", "ball_mass = -1", "must be > 0 kg"]),
+    ("torus-rolling-friction-negative", ["strautmanis-torus", "--param", "rolling_friction=-1e-4:1e-4:2",
+                                         "--ic", "psi=0:1:2"],
+     ["--param", "rolling_friction = -0.0001", "must be >= 0 m"]),
 ]
 
 

@@ -24,12 +24,13 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field, replace
+from dataclasses import dataclass, field
 
 import numpy as np
 
 from rotorlab.explore._mapper import Feature
 from rotorlab.integrate import StepControl
+from rotorlab.models._protocol import Parameter
 from rotorlab.models._toroidal_ball import ToroidalBall
 
 __all__ = ["TorusRegimes", "TORUS_LABELS"]
@@ -140,6 +141,10 @@ class TorusRegimes:
             return self.base_state[list(_STATE_UNITS).index(name)]
         return float(getattr(self.model, name)) if name in _PARAM_UNITS else None
 
+    def coordinate_parameter(self, name: str) -> Parameter | None:
+        """The model's :class:`~rotorlab.models.Parameter` a coordinate varies (None for a state)."""
+        return self.model.parameters[name] if name in _PARAM_UNITS else None
+
     def starts(self, coords: Mapping[str, np.ndarray]):
         n = max((v.size for v in coords.values()), default=1)
         params = [k for k in _PARAM_UNITS if k in coords]
@@ -153,7 +158,7 @@ class TorusRegimes:
         else:
             uniq, inverse = np.empty((1, 0)), np.zeros(n, dtype=np.int64)
         for j, row in enumerate(uniq):
-            model = replace(self.model, **dict(zip(params, (float(v) for v in row))))
+            model = self.model.with_parameters(**dict(zip(params, (float(v) for v in row))))
             sel = inverse == j
             Y0[sel] = model.initial_state(*(s[sel] for s in state))
             P[sel] = model.to_array()
