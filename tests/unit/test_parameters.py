@@ -19,7 +19,7 @@ from rotorlab.io._fields import plain_data
 from rotorlab.io._schema import MODEL_SPECS
 
 CASES = [name for name in builtin_cases()
-         if load_case(name).model.type in ("machine", "jeffcott_balls", "toroidal_ball")]
+         if load_case(name).model.type in ("machine", "jeffcott_balls", "toroidal_ball", "impact_rotor")]
 
 
 def _edited(case, key, value):
@@ -35,7 +35,7 @@ def _other_values(par):
 
 def test_the_built_in_cases_cover_both_models():
     kinds = {load_case(n).model.type for n in CASES}
-    assert kinds == {"machine", "jeffcott_balls", "toroidal_ball"} and len(CASES) >= 7
+    assert kinds == {"machine", "jeffcott_balls", "toroidal_ball", "impact_rotor"} and len(CASES) >= 9
 
 
 @pytest.mark.parametrize("name", CASES)

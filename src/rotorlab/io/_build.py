@@ -1,5 +1,7 @@
 """From a validated ``machine`` spec to its :class:`rotorlab.models.Machine`: the one place a
-machine is built from a case (the linear structures: :mod:`rotorlab.io._linear_build`).
+machine is built from a case (the linear structures: :mod:`rotorlab.io._linear_build`), and the
+checks of a case that need the built model (``n_modes`` of an isotropic structure, whether the
+machine has steady motions, its first critical speed), which the spec's validators call.
 
 The machine carries a :class:`StructureSource`: its structure's own numbers by key path
 (``bearings[0].kxx``, ``bodies[1].mass``), so that ``Machine.parameters`` names them
@@ -11,7 +13,7 @@ from __future__ import annotations
 
 from typing import Any
 
-__all__ = ["build_machine", "StructureSource"]
+__all__ = ["build_machine", "StructureSource", "n_modes_issues", "why_no_steady_motions", "machine_critical_speed"]
 
 
 def _leaves(data: Any, path: str = ""):
@@ -139,3 +141,40 @@ def _clearance(spec: Any, c: Any) -> Any:
                      rotor_radius=c.rotor_radius, axial_offset=c.axial_offset, conical=conical,
                      rest_speed=c.rest_speed,
                      center="static" if c.center_at_rest else (c.center or (0.0, 0.0)))
+
+
+def n_modes_issues(spec: Any) -> list:
+    """What ``Machine`` requires of ``n_modes`` for the spec's structure, as key-path issues (the
+    model would otherwise raise on build: an internal error instead of exit code 2)."""
+    from rotorlab.io._errors import Issue
+    from rotorlab.io._linear_build import build_linear_system
+    from rotorlab.models._machine import MAX_COORDINATES
+
+    n_dof, k = spec.structure.n_dof, spec.n_modes
+    if k is None:
+        if n_dof > MAX_COORDINATES:
+            return [Issue(("n_modes",), f"required: the structure has {n_dof} DOFs and the compiled "
+                                        f"kernel takes at most {MAX_COORDINATES} coordinates; keep "
+                                        "its lowest modes (e.g. n_modes = 8)", show_value=False)]
+        return []
+    if k > n_dof:
+        return [Issue(("n_modes",), f"must be <= {n_dof} (the structure's DOFs)", k)]
+    if k % 2 and build_linear_system(spec.structure).is_isotropic:
+        return [Issue(("n_modes",), "must be even for an isotropic structure (its modes come "
+                                    "in x/y pairs)", k)]
+    return []
+
+
+def why_no_steady_motions(spec: Any) -> str | None:
+    """Why the spec's machine has no steady motions (no co-rotating frame), None if it has."""
+    from rotorlab.models import ConstantSpeed
+
+    return build_machine(spec).with_drive(ConstantSpeed(1.0)).why_no_rotating_frame()
+
+
+def machine_critical_speed(spec: Any) -> float | None:
+    """The lowest forward 1x critical speed of the spec's structure with the balls locked (rad/s)."""
+    from rotorlab.models._machine_physics import structure_critical_speeds
+
+    crit = structure_critical_speeds(build_machine(spec))
+    return float(crit[0]) if crit.size else None

@@ -364,26 +364,10 @@ class MachineSpec(AbstractModelSpec):
         return self
 
     def _n_modes_issues(self) -> list[Issue]:
-        """What ``Machine`` requires of ``n_modes`` for this structure, as key-path issues (the
-        model would otherwise raise on build: an internal error instead of exit code 2)."""
-        from rotorlab.models._machine import MAX_COORDINATES
+        """What ``Machine`` requires of ``n_modes`` (:func:`rotorlab.io._build.n_modes_issues`)."""
+        from rotorlab.io._build import n_modes_issues
 
-        n_dof, k = self.structure.n_dof, self.n_modes
-        if k is None:
-            if n_dof > MAX_COORDINATES:
-                return [Issue(("n_modes",), f"required: the structure has {n_dof} DOFs and the compiled "
-                                            f"kernel takes at most {MAX_COORDINATES} coordinates; keep "
-                                            "its lowest modes (e.g. n_modes = 8)", show_value=False)]
-            return []
-        if k > n_dof:
-            return [Issue(("n_modes",), f"must be <= {n_dof} (the structure's DOFs)", k)]
-        if k % 2:
-            from rotorlab.io._linear_build import build_linear_system
-
-            if build_linear_system(self.structure).is_isotropic:
-                return [Issue(("n_modes",), "must be even for an isotropic structure (its modes come "
-                                            "in x/y pairs)", k)]
-        return []
+        return n_modes_issues(self)
 
     def node_of(self, item) -> int:
         """Node index of a race or unbalance spec."""
@@ -398,10 +382,9 @@ class MachineSpec(AbstractModelSpec):
 
     def critical_speed(self) -> float | None:
         """The lowest forward 1x critical speed of the structure with the balls locked (rad/s)."""
-        from rotorlab.models._machine_physics import structure_critical_speeds
+        from rotorlab.io._build import machine_critical_speed
 
-        crit = structure_critical_speeds(build_machine(self))
-        return float(crit[0]) if crit.size else None
+        return machine_critical_speed(self)
 
     sweeps_keys: ClassVar[bool] = True
     rub_map_axis: ClassVar[str] = "unbalance"  # what a rub-map varies besides speed and clearance
@@ -445,9 +428,9 @@ class MachineSpec(AbstractModelSpec):
             return [Issue(("type",), "does not run on a machine model (it runs "
                                      f"{', '.join(_STEADY_TYPES)}, simulate, basin and sweep)", analysis.type)]
         if analysis.type != "run-up":
-            from rotorlab.models import ConstantSpeed
+            from rotorlab.io._build import why_no_steady_motions
 
-            why = build_machine(self).with_drive(ConstantSpeed(1.0)).why_no_rotating_frame()
+            why = why_no_steady_motions(self)
             if why is not None:
                 return [Issue(("type",), f"this machine has no steady motions: {why} (analysis type "
                                          "simulate or run-up)", analysis.type)]

@@ -1,4 +1,5 @@
-"""The named parameters of the machine and of ``jeffcott_balls`` (:mod:`rotorlab.models._protocol`).
+"""The named parameters of the machine, ``jeffcott_balls``, the toroidal ball and the impact rotor
+(:mod:`rotorlab.models._protocol`).
 
 Each function lists a model's numbers as :class:`Slot` objects: the name is the key path of the
 model's ``[model]`` table (balls as the case expands ``count``: one index per ball), the bounds
@@ -15,7 +16,7 @@ from typing import Any
 from rotorlab.models._protocol import Parameter, Slot
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
 
-__all__ = ["machine_slots", "jeffcott_slots", "toroidal_slots"]
+__all__ = ["machine_slots", "jeffcott_slots", "toroidal_slots", "impact_slots"]
 
 _GT0 = (0.0, None, None, None)
 _GE0 = (None, 0.0, None, None)
@@ -207,3 +208,41 @@ def toroidal_slots(m) -> list[Slot]:
                                       ("ball_radius", "m", _GT0), ("spin_speed", "rad/s", _GT0),
                                       ("offset", "m", _GE0), ("rolling_friction", "m", _GE0),
                                       ("gravity", "m/s^2", _GE0))]
+
+
+# ------------------------------------------------------------------------------------ impact_rotor
+_ANGLE_BELOW_RIGHT = (0.0, None, math.pi / 2, None)
+#: (part, prefix of the key path, field, unit, bounds) of the impact rotor's numbers: the rotor's
+#: keys are at the top of its table, the housing's and the stone feed's in their own tables.
+_IMPACT_FIELDS = (
+    *(("rotor", "", f, u, b) for f, u, b in (
+        ("mass", "kg", _GT0), ("inertia_transverse", "kg*m^2", _GT0), ("inertia_polar", "kg*m^2", _GT0),
+        ("spin_speed", "rad/s", _GT0), ("stiffness_1", "N/m", _GT0), ("stiffness_2", "N/m", _GT0),
+        ("height_1", "m", _FREE), ("height_2", "m", _FREE), ("internal_friction", "1", _GE0))),
+    *(("housing", "housing.", f, u, b) for f, u, b in (
+        ("radius", "m", _GT0), ("height", "m", _FREE), ("gap", "m", _GT0),
+        ("cone_angle", "rad", (0.0, None, None, math.pi / 2)), ("restitution", "1", (None, 0.0, None, 1.0)),
+        ("friction", "1", _GE0), ("rest_speed", "m/s", _GT0), ("count_speed", "m/s", _GE0),
+        ("whirl_limit", "rad/s", _GT0))),
+    *(("stones", "stones.", f, u, b) for f, u, b in (
+        ("mass", "kg", _GT0), ("interval", "s", _GT0), ("radius", "m", _GT0), ("height", "m", _FREE),
+        ("spiral_angle", "rad", _ANGLE_BELOW_RIGHT), ("guide_friction", "1", _GE0), ("start_radius", "m", _GT0),
+        ("start_speed", "m/s", _GE0), ("first_time", "s", _GT0), ("mass_spread", "1", (None, 0.0, 1.0, None)),
+        ("time_jitter", "1", (None, 0.0, 0.5, None)))),
+)
+
+
+def impact_slots(m) -> list[Slot]:
+    """The named parameters of a :class:`rotorlab.models.ImpactRotor` (the ``impact_rotor``
+    table's numbers; a key left at None, e.g. ``housing.whirl_limit``, is not one)."""
+    out = []
+    for part, prefix, key, unit, bounds in _IMPACT_FIELDS:
+        value = getattr(getattr(m, part), key)
+        if value is None:
+            continue
+
+        def set_(mm, v, part=part, key=key):
+            return replace(mm, **{part: replace(getattr(mm, part), **{key: v})})
+
+        out.append(_slot(prefix + key, unit, value, bounds, set_))
+    return out
