@@ -24,7 +24,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -158,7 +158,7 @@ class TorusRegimes:
         else:
             uniq, inverse = np.empty((1, 0)), np.zeros(n, dtype=np.int64)
         for j, row in enumerate(uniq):
-            model = self.model.with_parameters(**dict(zip(params, (float(v) for v in row))))
+            model = replace(self.model, **dict(zip(params, (float(v) for v in row))))
             sel = inverse == j
             Y0[sel] = model.initial_state(*(s[sel] for s in state))
             P[sel] = model.to_array()
