@@ -343,7 +343,7 @@ def test_run_up_report_says_what_its_result_arrays_say():
     vibration is the tail orbit of the amplitude array, "balanced" iff that is at most
     BALANCED_FRACTION of the locked unbalance response U w^2 / |c - M w^2 + i d w| at the final
     speed; the planar case with a motor is the kernel of test_machine_analyses' run-up test."""
-    from rotorlab.analyses._outcome import BALANCED_FRACTION
+    from rotorlab.explore._outcome import BALANCED_FRACTION
     from rotorlab.report._machine import machine_findings, machine_rows_table
 
     text = PLANAR[:PLANAR.index("[[analysis]]")].replace('profile = "constant"\nspeed = "2.5 rad/s"',

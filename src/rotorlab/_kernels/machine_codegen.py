@@ -389,14 +389,14 @@ def _deps_hash(source: str) -> str:
 
 def kernel_module(lay: Layout):
     """Return the imported kernel module for ``lay`` (generated and written on first use)."""
-    from rotorlab.integrate._codegen import BUILD_LOCK
-    from rotorlab.integrate._codegen import cache_dir as _cache_dir
+    from rotorlab._compile_cache import BUILD_LOCK
+    from rotorlab._compile_cache import cache_dir as _cache_dir
 
     source = generate(lay)
     digest = _deps_hash(source)
     if digest in _LOADED:
         return _LOADED[digest]
-    with BUILD_LOCK:  # one thread at a time, as the drivers (rotorlab.integrate._codegen)
+    with BUILD_LOCK:  # one thread at a time, as the drivers (rotorlab._compile_cache)
         if digest not in _LOADED:
             _LOADED[digest] = _import(lay, source, digest, _cache_dir())
     return _LOADED[digest]

@@ -57,8 +57,8 @@ from rotorlab.analyses._linear import (
     run_linear_analysis,
     summarize_linear,
 )
-from rotorlab.analyses._linear_build import build_linear_system
-from rotorlab.analyses._outcome import (
+from rotorlab.io._linear_build import build_linear_system
+from rotorlab.explore._outcome import (
     BALANCED_FRACTION,
     SETTLE_RATE,
     SIDE_TOLERANCE,

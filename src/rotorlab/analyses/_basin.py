@@ -479,6 +479,6 @@ def _spans(values: Sequence[float], mask: Sequence[bool]) -> str:
     >>> _spans([10.0, 20.0, 30.0, 40.0, 50.0], [True, True, False, True, False])
     '10-20, 40'
     """
-    from rotorlab.analyses._outcome import true_runs
+    from rotorlab.explore._outcome import true_runs
 
     return ", ".join(f"{a:g}" if a == b else f"{a:g}-{b:g}" for a, b in true_runs(values, mask))

@@ -15,7 +15,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rotorlab.analyses._linear_build import build_linear_system
+from rotorlab.io._linear_build import build_linear_system
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:

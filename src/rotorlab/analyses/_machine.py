@@ -228,5 +228,6 @@ def machine_mapper(case_model, analysis, kw):
         omega = case_model.critical_speed()
     if analysis.rtol is not None or analysis.atol is not None:
         kw["control"] = StepControl(rtol=analysis.rtol or 1e-8, atol=analysis.atol or 1e-10)
-    return MachineRegimes(_variant(case_model, analysis, omega), spec=case_model,
+    source = machine_model(case_model)
+    return MachineRegimes(_variant(case_model, analysis, omega, source=source), source=source,
                           races=getattr(analysis, "races", None), **kw)

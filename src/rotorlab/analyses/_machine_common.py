@@ -11,6 +11,10 @@ from typing import Any
 
 import numpy as np
 
+from rotorlab.explore._outcome import NON_SYNCHRONOUS_RATE, wrap_machine_angle as _wrap  # noqa: F401
+from rotorlab.explore._outcome import machine_outcome as _outcome  # noqa: F401
+from rotorlab.models._machine_physics import locked_structure, structure_critical_speeds
+
 __all__ = ["NO_STEADY_STATUS", "CLEARANCE_STATUS", "NON_SYNCHRONOUS_RATE", "clearance_violation",
            "locked_structure", "structure_critical_speeds", "unbalance_amplitudes", "orbit_amplitude",
            "machine_model", "machine_quantities"]
@@ -20,28 +24,6 @@ NO_STEADY_STATUS = 3
 #: Status of a steady motion whose orbit at a clearance exceeds the gap (it cannot exist without
 #: contact; simulate the rub instead).
 CLEARANCE_STATUS = 4
-#: Balls moving relative to the rotor faster than this fraction of its speed in the final window
-#: of a simulation have not synchronised ("non-synchronous").
-NON_SYNCHRONOUS_RATE = 1e-2
-
-
-def _outcome(status: int, amplitude, reference, max_rate: float, speed: float, n_balls: int) -> str:
-    """Label where one simulation ended (see :func:`machine_simulate`)."""
-    from rotorlab.analyses._outcome import BALANCED_FRACTION
-
-    if status < 0:
-        return "failed"
-    if n_balls == 0:
-        return "no balancer"
-    if np.max(amplitude) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
-        return "balanced"
-    if not max_rate <= NON_SYNCHRONOUS_RATE * abs(speed):
-        return "non-synchronous"
-    return "not balanced"
-
-
-def _wrap(a):
-    return (np.asarray(a) + np.pi) % (2 * np.pi) - np.pi
 
 
 def clearance_violation(machine, y_rotating) -> tuple[float, str | None]:
@@ -71,47 +53,6 @@ def clearance_violation(machine, y_rotating) -> tuple[float, str | None]:
     label = machine.structure.node_label[c.node]
     return radius, (f"the steady orbit at the clearance station {label!r} has radius {radius:.4g} m > gap "
                     f"{c.gap:.4g} m: this motion does not exist without contact (simulate the rub instead)")
-
-
-def locked_structure(machine, *, tilt_inertia: bool = False):
-    """Return the structure with the balls locked at their races (``LinearSystem``).
-
-    Each ball of mass m at race radius l and axial offset a from its node is a point mass on the
-    race centre ``(x + a phi_x, y + a phi_y)``: the mass ``m e^T e`` (translation m, coupling
-    m a, tilt m a^2), as in the kernel's ``M0``. With ``tilt_inertia`` the ball's inertia about
-    its place off the axis is added, as for a ring locked to the rotor: ``m l^2 / 2`` about each
-    diametral axis (the mean over the ball's angle of the tilting race's ``m l^2 (e_b . phi')^2``
-    term) and the polar ``J_b = m l^2 + J_c`` in the gyroscopic matrix (``G[phi_x, phi_y] =
-    J_b``, the convention of :class:`rotorlab.linear.RigidBody`; the race-frame term ``J_b phi_b'
-    (phi_y phi_x' - phi_x phi_y') / 2`` with ``phi_b' = Omega``), see :mod:`rotorlab.models._machine`.
-    """
-    from rotorlab.linear import LinearSystem
-
-    s = machine.structure
-    M, G = s.M.copy(), s.G.copy()
-    for r in machine.races:
-        n = 4 * r.node
-        e = np.zeros((2, s.n_dof))
-        e[0, n], e[1, n + 1] = 1.0, 1.0
-        e[0, n + 2] = e[1, n + 3] = r.axial_offset
-        M += sum(b.mass for b in r.balls) * (e.T @ e)
-        if tilt_inertia:
-            for b in r.balls:
-                M[n + 2, n + 2] += 0.5 * b.mass * r.radius**2
-                M[n + 3, n + 3] += 0.5 * b.mass * r.radius**2
-                G[n + 2, n + 3] += b.mass * r.radius**2 + b.inertia
-                G[n + 3, n + 2] -= b.mass * r.radius**2 + b.inertia
-    return LinearSystem(M=M, C=s.C, G=G, K=s.K, node_position=s.node_position,
-                        node_label=s.node_label)
-
-
-def structure_critical_speeds(machine, max_speed: float | None = None) -> np.ndarray:
-    """Forward-whirl 1x critical speeds of the structure with the balls locked (rad/s), their
-    inertia about the tilt axes included (:func:`locked_structure` with ``tilt_inertia``)."""
-    from rotorlab.linear import critical_speeds
-
-    cs = critical_speeds(locked_structure(machine, tilt_inertia=True), max_speed=max_speed)
-    return cs.speed[cs.whirl >= 0]
 
 
 def unbalance_amplitudes(machine, spin_speed: float) -> np.ndarray:
@@ -229,14 +170,14 @@ def machine_quantities(case_model) -> list[dict[str, Any]]:
     return rows
 
 
-def _variant(case_model, analysis, speed: float | None = None):
+def _variant(case_model, analysis, speed: float | None = None, *, source=None):
     """The case's machine with only the analysis' races (all when it names none), at a constant
-    ``speed`` if given."""
+    ``speed`` if given (made from ``source``, the case's machine, when it is built already)."""
     from dataclasses import replace
 
     from rotorlab.models import ConstantSpeed
 
-    m = machine_model(case_model)
+    m = machine_model(case_model) if source is None else source
     races = getattr(analysis, "races", None)
     if races is not None:
         m = replace(m, races=tuple(m.races[i] for i in races))

@@ -488,7 +488,7 @@ def _run_up_outcome(machine, ds, reference) -> str:
     "balanced" (residual vibration at most BALANCED_FRACTION of the locked unbalance response at
     the final speed), "non-synchronous" (balls still circling the rotor over the last 10 %) or
     "not balanced"."""
-    from rotorlab.analyses._outcome import BALANCED_FRACTION
+    from rotorlab.explore._outcome import BALANCED_FRACTION
 
     if int(ds["status"]) < 0:
         return "failed"

@@ -165,7 +165,7 @@ def analysis_entry(model_type: str | None, analysis_type: str) -> AnalysisType:
 
 def _register_builtins() -> None:
     from rotorlab.analyses import _basin, _builders, _impacts, _linear, _machine, _rub, _simulate, _steady, _sweep
-    from rotorlab.analyses._linear_build import build_linear_system
+    from rotorlab.io._linear_build import build_linear_system
 
     machine = {"analyses": _machine.machine_analysis_types()}
     for name, build, quantities, mapper, *own in (

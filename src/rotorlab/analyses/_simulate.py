@@ -8,7 +8,7 @@ from typing import TYPE_CHECKING, Any
 
 import numpy as np
 
-from rotorlab.analyses._outcome import (
+from rotorlab.explore._outcome import (
     BALANCED_FRACTION,
     SETTLE_RATE,
     SIDE_TOLERANCE,

@@ -41,6 +41,20 @@ def _names(known: Any) -> str:
 
 __all__ = ["sweep_command", "parse_axis"]
 
+
+def _check_ranges(mapper: Any, options: Any, axes: dict[str, tuple]) -> None:
+    """Refuse, before any store exists, a range that leaves a parameter's allowed values (a
+    negative mass would fail every chunk of the store, and no --resume could finish it)."""
+    find = getattr(mapper, "coordinate_parameter", None)
+    for option, texts in options:
+        for text in texts or ():
+            name = text.partition("=")[0].strip()
+            par = find(name) if find is not None and name in axes else None
+            bad = [] if par is None else [v for v in axes[name][:2] if not par.admits(v)]
+            if bad:
+                raise BadInput(f"{option} = {text}: {name} = {bad[0]:g} is outside its allowed range: "
+                               f"must be {par.allowed}")
+
 def parse_axis(option: str, text: str, kind: str, sample: bool,
                dimensions: dict[str, str] | None = None) -> tuple[str, tuple]:  # fmt: skip
     """Read ``NAME=START:STOP:N`` (a grid) or, for a sample, ``NAME=LOW:HIGH``.
@@ -237,6 +251,7 @@ def sweep_command(
             sweep = build_sweep(model, spec, axes=axes or None, sample=sample, seed=seed, t_end=t_end)
         except ValueError as exc:
             raise BadInput(str(exc)) from None
+        _check_ranges(sweep.analysis.mapper, (("--param", param), ("--ic", ic)), axes)
         from rotorlab.io._coordinates import record_input_units
 
         # the unit each angle was written in, for figures (``rotorlab show`` draws it in that unit)

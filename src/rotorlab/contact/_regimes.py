@@ -39,30 +39,16 @@ from __future__ import annotations
 import enum
 from collections.abc import Mapping
 from dataclasses import dataclass, replace
-from typing import Any, NamedTuple
+from typing import Any
 
 import numpy as np
 
 from rotorlab.models._checks import check_number as _num
+from rotorlab.models._rub_rotor import ContactSamples
 from rotorlab.sweep._spec import ChunkVar
 
 __all__ = ["RubRegime", "RubFeatures", "RubRegimes", "ContactSamples", "RegimeRule", "WINDOW_RULE",
            "regime_codes", "classify_rub", "rub_features"]
-
-
-class ContactSamples(NamedTuple):
-    """What a model with a clearance says about its contact at saved samples (all shape (n,) or
-    (n, 2)): gap vector ``w`` (m) and its rate ``dw`` (m/s), contact ``mode`` (0 free, +-1
-    sliding, 2 rolling), cumulative ``impacts``, largest normal impulse so far ``peak_impulse``
-    (N s), contact ``normal_force`` (N) and ``spin_speed`` (rad/s)."""
-
-    w: np.ndarray
-    dw: np.ndarray
-    mode: np.ndarray
-    impacts: np.ndarray
-    peak_impulse: np.ndarray
-    normal_force: np.ndarray
-    spin_speed: np.ndarray
 
 
 class RubRegime(enum.IntEnum):

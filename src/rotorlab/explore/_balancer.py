@@ -20,9 +20,10 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rotorlab._kernels import jeffcott_balls as _jk
+from rotorlab.explore._outcome import classify, reference_amplitude, wrap_angle
 from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import Status, StepControl
-from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, fixed_to_rotating
+from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, Parameter, fixed_to_rotating
 
 __all__ = ["BalancerRegimes", "balancer_labels"]
 
@@ -166,6 +167,18 @@ class BalancerRegimes:
     def save_times(self) -> np.ndarray:
         return window_save_times(self.horizons(), self.window, self.samples_per_window)
 
+    def coordinate_parameter(self, name: str) -> Parameter | None:
+        """The :class:`~rotorlab.models.Parameter` whose range a coordinate's values must keep
+        (None for a start angle or rate): the rotor's, the first ball's (``ball_<field>``, every
+        ball takes the value) or the speed (> 0)."""
+        space = self.model.parameters
+        key = f"balls[0].{name[5:]}" if name in _BALL_UNITS else name
+        if key in space:
+            return replace(space[key], name=name)
+        if name == "spin_speed":
+            return Parameter(name, "rad/s", float(self.model.speed.speed), (0.0, None, None, None))
+        return None
+
     def _variant(self, values: Mapping[str, float]) -> JeffcottBalls:
         rotor = replace(self.model.rotor, **{k: v for k, v in values.items() if k in _ROTOR_UNITS})
         ball_kw = {k[5:]: v for k, v in values.items() if k in _BALL_UNITS}
@@ -222,8 +235,6 @@ class BalancerRegimes:
         return first, Y0, P
 
     def features(self, sol, P: np.ndarray) -> dict[str, Feature]:
-        from rotorlab.analyses._outcome import reference_amplitude, wrap_angle
-
         nb = int(P[0, _jk.P_N])
         h = self.horizons()
         ts = self.save_times()
@@ -260,8 +271,6 @@ class BalancerRegimes:
         return out
 
     def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray:
-        from rotorlab.analyses._outcome import classify
-
         names = self.labels
         index = {name: k for k, name in enumerate(names)}
         nb = self.model.n_balls

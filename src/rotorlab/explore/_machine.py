@@ -8,7 +8,7 @@ count), the largest ball rate relative to the rotor, and the ball angles at T re
 rotor. The labels follow :func:`rotorlab.analyses._machine.machine_simulate`: *balanced* (the
 vibration at most :data:`~rotorlab.analyses.BALANCED_FRACTION` of the largest unbalance response
 with the balls locked), *non-synchronous* (balls still moving relative to the rotor faster than
-:data:`~rotorlab.analyses._machine.NON_SYNCHRONOUS_RATE` times its speed), *not balanced*
+:data:`~rotorlab.explore._outcome.NON_SYNCHRONOUS_RATE` times its speed), *not balanced*
 (settled elsewhere) and *other* (a failed integration).
 """
 
@@ -17,19 +17,24 @@ from __future__ import annotations
 import math
 from collections.abc import Mapping
 from dataclasses import dataclass, field, replace
-from typing import Any
 
 import numpy as np
 
+from rotorlab.explore._outcome import machine_outcome, wrap_machine_angle
 from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import StepControl
-from rotorlab.models import ConstantSpeed, Machine
+from rotorlab.models import ConstantSpeed, Machine, Parameter
 
 __all__ = ["MachineRegimes", "MACHINE_LABELS"]
 
 #: Labels of :class:`MachineRegimes`, in code order.
 MACHINE_LABELS = ("balanced", "not balanced", "non-synchronous", "other")
 _PARAMS = {"spin_speed": "rad/s", "ball_mass": "kg", "ball_damping": "N m s/rad"}
+#: Ranges of the coordinates of :data:`_PARAMS` (gt, ge, lt, le), those of a ball's keys.
+_PARAM_BOUNDS = {"spin_speed": (0.0, None, None, None), "ball_mass": (0.0, None, None, None),
+                 "ball_damping": (None, 0.0, None, None)}
+#: Prefix of a coordinate that names a parameter of the source machine (``model.<key path>``).
+KEY_PREFIX = "model."
 
 
 @dataclass(frozen=True)
@@ -58,12 +63,15 @@ class MachineRegimes:
         Ball angles for angle coordinates not given (rad); default equally spaced in each race.
     control : StepControl
         Integrator tolerances.
-    spec : rotorlab.io.MachineSpec, optional
-        The case's model spec the machine was built from: then any number of it is a coordinate
-        too, named ``model.<key path>`` (e.g. ``model.unbalances[0].magnitude``, SI); each value
-        rebuilds the machine from the spec with that key set (validated like the case file).
+    source : Machine, optional
+        The whole machine ``model`` was made from (every race, the case's drive; a machine built
+        from a case, :func:`rotorlab.io.build_machine`): then each of its named parameters
+        (:attr:`Machine.parameters <rotorlab.models.Machine.parameters>`) is a coordinate too,
+        as ``model.<key path>`` (e.g. ``model.unbalances[0].magnitude``, SI); a value makes the
+        variant with :meth:`~rotorlab.models.Machine.with_parameters` (checked against the key's
+        range), never from the case document.
     races : tuple of int, optional
-        The races of ``spec`` that take part (default all), as in ``model``.
+        The races of ``source`` that take part (default all), as in ``model``.
     """
 
     model: Machine
@@ -73,7 +81,7 @@ class MachineRegimes:
     samples_per_window: int = 33
     base_angles: tuple[float, ...] | None = None
     control: StepControl = field(default_factory=lambda: StepControl(rtol=1e-8, atol=1e-10))
-    spec: Any = None
+    source: Machine | None = None
     races: tuple[int, ...] | None = None
 
     def __post_init__(self) -> None:
@@ -107,8 +115,10 @@ class MachineRegimes:
 
     @property
     def coordinate_units(self) -> Mapping[str, str]:
-        units = ball_coordinate_units(self.model.n_balls)
-        return _KeyUnits({**units, **_PARAMS}, self.spec)
+        units = {**ball_coordinate_units(self.model.n_balls), **_PARAMS}
+        if self.source is not None:
+            units.update({KEY_PREFIX + k: u for k, u in self.source.parameters.units.items()})
+        return units
 
     @property
     def window(self) -> float:
@@ -121,18 +131,26 @@ class MachineRegimes:
     def save_times(self) -> np.ndarray:
         return window_save_times(self.horizons(), self.window, self.samples_per_window)
 
-    def _rebuilt(self, keys: Mapping[str, float]) -> Machine:
-        """The machine rebuilt from ``spec`` with the ``model.<key path>`` values set."""
-        from rotorlab.io import CaseError, validate_case
-        from rotorlab.io._fields import plain_data
-        from rotorlab.io._machine_spec import build_machine
+    def coordinate_parameter(self, name: str) -> Parameter | None:
+        """The :class:`~rotorlab.models.Parameter` whose range a coordinate's values must keep
+        (None for a start angle or rate): a ``model.<key path>`` of ``source``, or the speed, mass
+        or damping of the balls."""
+        if name.startswith(KEY_PREFIX) and self.source is not None and name[len(KEY_PREFIX):] in self.source.parameters:
+            return self.source.parameters[name[len(KEY_PREFIX):]]
+        if name in _PARAM_BOUNDS:
+            return Parameter(name, _PARAMS[name], float("nan"), _PARAM_BOUNDS[name])
+        return None
 
-        doc = {"name": "sweep-point", "model": plain_data(self.spec.model_dump(mode="python"))}
+    def _rebuilt(self, keys: Mapping[str, float]) -> Machine:
+        """The variant of ``source`` with the ``model.<key path>`` values set (its named
+        parameters), with ``model``'s races and drive."""
+        if self.source is None:
+            raise ValueError(f"{', '.join(keys)}: a machine built from a case (source) is needed for model.<key path>")
         try:
-            spec = validate_case(doc, overrides={k: float(v) for k, v in keys.items()}).model
-        except CaseError as exc:
-            raise ValueError(f"at {', '.join(f'{k} = {v:g}' for k, v in keys.items())}: {exc}") from None
-        m = build_machine(spec)
+            m = self.source.with_parameters(**{k[len(KEY_PREFIX):]: float(v) for k, v in keys.items()})
+        except (KeyError, ValueError) as exc:
+            text = exc.args[0] if exc.args else str(exc)
+            raise ValueError(f"at {', '.join(f'{k} = {v:g}' for k, v in keys.items())}: {text}") from None
         if self.races is not None:
             m = replace(m, races=tuple(m.races[i] for i in self.races))
         m = m.with_drive(self.model.drive)
@@ -222,8 +240,6 @@ class MachineRegimes:
                                P[:, o["balls"]:o["balls"] + 4 * nb:4]], axis=1)
 
     def features(self, sol, P: np.ndarray) -> dict[str, Feature]:
-        from rotorlab.analyses._machine import _wrap
-
         lay = self.model.layout
         nb = lay.n_balls
         h = self.horizons()
@@ -260,50 +276,17 @@ class MachineRegimes:
             "status_code": Feature(sol.status.astype(np.int32), "1", "integrator status"),
         }
         for i in range(nb):
-            out[f"ball_angle_{i + 1}"] = Feature(_wrap(ys[:, i_end, lay.i_phi + i] - omega[:, None] * ts[i_end]),
+            out[f"ball_angle_{i + 1}"] = Feature(wrap_machine_angle(ys[:, i_end, lay.i_phi + i] - omega[:, None] * ts[i_end]),
                                                  "rad", f"angle of ball {i + 1} relative to the rotor at the horizon")
         return out
 
     def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray:
-        from rotorlab.analyses._machine import _outcome
-
         index = {name: k for k, name in enumerate(MACHINE_LABELS)}
         amp = features["amplitude"]
         out = np.empty(amp.shape, dtype=np.int16)
         nb = self.model.n_balls
         for i, j in np.ndindex(*amp.shape):
-            text = _outcome(int(features["status_code"][i]), amp[i, j], features["reference_amplitude"][i],
+            text = machine_outcome(int(features["status_code"][i]), amp[i, j], features["reference_amplitude"][i],
                             float(features["max_rate"][i, j]), float(features["rotor_speed"][i]), nb)
             out[i, j] = index.get(text, index["other"])
         return out
-
-
-class _KeyUnits(dict):
-    """Coordinate units, plus the SI unit of any ``model.<key path>`` of ``spec`` when asked."""
-
-    def __init__(self, named: dict[str, str], spec: Any) -> None:
-        super().__init__(named)
-        self._spec = spec
-
-    def _key(self, name: Any) -> str | None:
-        if self._spec is None or not isinstance(name, str):
-            return None
-        from rotorlab.io._coordinates import Coordinates
-
-        if name not in Coordinates({}, self._spec):
-            return None
-        from rotorlab.io._coordinates import key_quantity
-
-        return key_quantity(name, type(self._spec)).dimension.si or "1"
-
-    def __contains__(self, name: Any) -> bool:
-        return super().__contains__(name) or self._key(name) is not None
-
-    def __missing__(self, name: Any) -> str:
-        unit = self._key(name)
-        if unit is None:
-            raise KeyError(name)
-        return unit
-
-    def get(self, name: Any, default: Any = None) -> Any:
-        return self[name] if name in self else default

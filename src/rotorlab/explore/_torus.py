@@ -30,6 +30,7 @@ import numpy as np
 
 from rotorlab.explore._mapper import Feature
 from rotorlab.integrate import StepControl
+from rotorlab.models._protocol import Parameter
 from rotorlab.models._toroidal_ball import ToroidalBall
 
 __all__ = ["TorusRegimes", "TORUS_LABELS"]
@@ -139,6 +140,10 @@ class TorusRegimes:
         if name in _STATE_UNITS:
             return self.base_state[list(_STATE_UNITS).index(name)]
         return float(getattr(self.model, name)) if name in _PARAM_UNITS else None
+
+    def coordinate_parameter(self, name: str) -> Parameter | None:
+        """The model's :class:`~rotorlab.models.Parameter` a coordinate varies (None for a state)."""
+        return self.model.parameters[name] if name in _PARAM_UNITS else None
 
     def starts(self, coords: Mapping[str, np.ndarray]):
         n = max((v.size for v in coords.values()), default=1)

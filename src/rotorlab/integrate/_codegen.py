@@ -45,10 +45,11 @@ import inspect
 import os
 import sys
 import tempfile
-import threading
 import types
 from pathlib import Path
 from typing import Any
+
+from rotorlab._compile_cache import BUILD_LOCK, cache_dir
 
 __all__ = ["build", "dependencies", "source_digest", "cache_dir", "announce_compile"]
 
@@ -56,12 +57,6 @@ __all__ = ["build", "dependencies", "source_digest", "cache_dir", "announce_comp
 _VERSIONED = ("numba", "numpy", "llvmlite")
 _SKIP_TOP = {"numba", "numpy", "llvmlite", "scipy", "typing_extensions", "_pytest", "pytest"}
 _LOADED: dict[tuple, tuple[tuple, dict[str, Any]]] = {}
-# Generating and importing a copy is done by one thread at a time (threads of one process, e.g.
-# the thread workers of rotorlab.sweep's local Dask cluster, may ask for the same driver at once):
-# unlocked, a second thread was handed the module half-executed from sys.modules (KeyError
-# 'integrate_lanes_serial') or ast.parse raised SystemError on Python 3.11 (4 thread workers of a
-# fresh process: 6 failures in 6 runs). Reentrant: importing a copy may build another.
-BUILD_LOCK = threading.RLock()
 _UNCACHED = itertools.count()  # numbers the modules compiled in memory
 
 
@@ -79,25 +74,6 @@ def _importable_name(dispatcher: Any) -> tuple[str, str] | None:
     except (ImportError, AttributeError):
         return None
     return mod, name
-
-
-def cache_dir() -> Path | None:
-    """The directory of the generated drivers, created if needed; None if it is not writable."""
-    base = os.environ.get("ROTORLAB_CACHE_DIR")
-    if base:
-        cand = Path(base)
-    else:
-        xdg = os.environ.get("XDG_CACHE_HOME") or os.path.join(os.path.expanduser("~"), ".cache")
-        cand = Path(xdg) / "rotorlab"
-    d = cand / "drivers"
-    try:
-        d.mkdir(parents=True, exist_ok=True)
-        probe = d / f".write-test-{os.getpid()}"
-        probe.write_text("ok")
-        probe.unlink()
-    except OSError:
-        return None
-    return d
 
 
 def _module_of(obj: Any) -> str | None:

@@ -51,6 +51,7 @@ from typing import Annotated, ClassVar, Literal, Union
 
 from pydantic import Field, field_validator, model_validator
 
+from rotorlab.io._build import build_machine
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
 from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _Spec, integer, quantity
@@ -363,26 +364,10 @@ class MachineSpec(AbstractModelSpec):
         return self
 
     def _n_modes_issues(self) -> list[Issue]:
-        """What ``Machine`` requires of ``n_modes`` for this structure, as key-path issues (the
-        model would otherwise raise on build: an internal error instead of exit code 2)."""
-        from rotorlab.models._machine import MAX_COORDINATES
+        """What ``Machine`` requires of ``n_modes`` (:func:`rotorlab.io._build.n_modes_issues`)."""
+        from rotorlab.io._build import n_modes_issues
 
-        n_dof, k = self.structure.n_dof, self.n_modes
-        if k is None:
-            if n_dof > MAX_COORDINATES:
-                return [Issue(("n_modes",), f"required: the structure has {n_dof} DOFs and the compiled "
-                                            f"kernel takes at most {MAX_COORDINATES} coordinates; keep "
-                                            "its lowest modes (e.g. n_modes = 8)", show_value=False)]
-            return []
-        if k > n_dof:
-            return [Issue(("n_modes",), f"must be <= {n_dof} (the structure's DOFs)", k)]
-        if k % 2:
-            from rotorlab.analyses._linear_build import build_linear_system
-
-            if build_linear_system(self.structure).is_isotropic:
-                return [Issue(("n_modes",), "must be even for an isotropic structure (its modes come "
-                                            "in x/y pairs)", k)]
-        return []
+        return n_modes_issues(self)
 
     def node_of(self, item) -> int:
         """Node index of a race or unbalance spec."""
@@ -397,10 +382,9 @@ class MachineSpec(AbstractModelSpec):
 
     def critical_speed(self) -> float | None:
         """The lowest forward 1x critical speed of the structure with the balls locked (rad/s)."""
-        from rotorlab.analyses._machine import structure_critical_speeds
+        from rotorlab.io._build import machine_critical_speed
 
-        crit = structure_critical_speeds(build_machine(self))
-        return float(crit[0]) if crit.size else None
+        return machine_critical_speed(self)
 
     sweeps_keys: ClassVar[bool] = True
     rub_map_axis: ClassVar[str] = "unbalance"  # what a rub-map varies besides speed and clearance
@@ -444,9 +428,9 @@ class MachineSpec(AbstractModelSpec):
             return [Issue(("type",), "does not run on a machine model (it runs "
                                      f"{', '.join(_STEADY_TYPES)}, simulate, basin and sweep)", analysis.type)]
         if analysis.type != "run-up":
-            from rotorlab.models import ConstantSpeed
+            from rotorlab.io._build import why_no_steady_motions
 
-            why = build_machine(self).with_drive(ConstantSpeed(1.0)).why_no_rotating_frame()
+            why = why_no_steady_motions(self)
             if why is not None:
                 return [Issue(("type",), f"this machine has no steady motions: {why} (analysis type "
                                          "simulate or run-up)", analysis.type)]
@@ -496,42 +480,3 @@ class MachineSpec(AbstractModelSpec):
         return (f"machine: {self.structure.describe()}; {len(self.races)} race(s) with "
                 f"{self.n_balls} ball(s), {len(self.unbalances)} unbalance(s), "
                 f"{'gravity, ' if self.gravity else ''}{gap}drive {drive}")
-
-
-def build_machine(spec: MachineSpec):
-    """Build the :class:`rotorlab.models.Machine` of a validated ``machine`` spec."""
-    from rotorlab.analyses._linear_build import build_linear_system
-    from rotorlab.models import (Ball, BallRace, ConstantSpeed, Gravity, HillRunUp, LinearRamp,
-                                 Machine, Motor, Unbalance)
-
-    structure = build_linear_system(spec.structure)
-    races = tuple(BallRace(spec.node_of(r), r.radius,
-                           tuple(Ball(b.mass, b.inertia, b.damping, b.coulomb, b.rolling) for b in r.balls),
-                           r.axial_offset) for r in spec.races)
-    unb = tuple(Unbalance(spec.node_of(u), u.magnitude, u.phase, u.axial_offset)
-                for u in spec.unbalances)
-    d = spec.drive
-    drives = {
-        "constant": lambda: ConstantSpeed(d.speed),
-        "ramp": lambda: LinearRamp(d.start, d.stop, d.duration),
-        "hill": lambda: HillRunUp(d.max_speed, d.t_half, d.exponent),
-        "motor": lambda: Motor(d.stall_torque if d.speeds is None else (d.speeds, d.torques),
-                               d.polar_inertia,
-                               float("inf") if d.no_load_speed is None else d.no_load_speed),
-    }
-    drive = drives[d.profile]()
-    gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)
-    return Machine(structure, races=races, unbalances=unb, gravity=gravity, drive=drive,
-                   n_modes=spec.n_modes, clearances=tuple(_clearance(spec, c) for c in spec.clearances))
-
-
-def _clearance(spec: MachineSpec, c: ClearanceSpec):
-    from rotorlab.models import Clearance, ElasticStator
-
-    stator = "rigid" if c.stator is None else ElasticStator(c.stator.stiffness, c.stator.damping,
-                                                             c.stator.mass)
-    conical = None if c.conical is None else (c.conical.half_angle, c.conical.lever)
-    return Clearance(spec.node_of(c), c.gap, stator, restitution=c.restitution, friction=c.friction,
-                     rotor_radius=c.rotor_radius, axial_offset=c.axial_offset, conical=conical,
-                     rest_speed=c.rest_speed,
-                     center="static" if c.center_at_rest else (c.center or (0.0, 0.0)))

@@ -26,6 +26,7 @@ from rotorlab.models._machine import (
     Motor,
     Unbalance,
 )
+from rotorlab.models._protocol import AbstractParametrisedModel, Parameter, ParameterSpace
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp, speed_from_array
 from rotorlab.models._toroidal_ball import ToroidalBall, WorkingPoint, strautmanis_torus
 
@@ -38,3 +39,4 @@ __all__ += ["ImpactRotor", "CentrifugeRotor", "Housing", "StoneFeed", "StonePush
             "krasnov_crusher", "stone_push"]
 __all__ += ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor",
             "Clearance", "ElasticStator"]
+__all__ += ["AbstractParametrisedModel", "Parameter", "ParameterSpace"]

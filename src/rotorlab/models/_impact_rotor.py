@@ -140,6 +140,8 @@ from rotorlab.models._impact_ledger import impossible_states
 from rotorlab.models._impact_params import CentrifugeRotor, Housing
 from rotorlab.models._impact_reconstructions import RECONSTRUCTIONS, Reconstruction
 from rotorlab.models._impact_stones import StoneFeed, StonePush, StoneSequence, stone_push
+from rotorlab.models._parameters import impact_slots
+from rotorlab.models._protocol import ParametrisedMixin
 
 __all__ = [
     "CentrifugeRotor",
@@ -181,7 +183,7 @@ _KERNELS = Kernels(
 
 # ----------------------------------------------------------------------------------------- model
 @dataclass(frozen=True)
-class ImpactRotor:
+class ImpactRotor(ParametrisedMixin):
     """The centrifuge rotor with stones and housing: the model object the integrator runs.
 
     Parameters
@@ -259,6 +261,9 @@ class ImpactRotor:
     def push(self) -> StonePush:
         """J(tau) of one stone (see :func:`stone_push`)."""
         return self.stones.push(self.rotor.spin_speed)
+
+    def _parameter_slots(self):
+        return impact_slots(self)
 
     def to_array(self) -> np.ndarray:
         """Packed parameters (layout in :mod:`rotorlab._kernels.impact_rotor`)."""

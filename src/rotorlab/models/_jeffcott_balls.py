@@ -129,6 +129,8 @@ from rotorlab._kernels.speed import KIND_CONSTANT, KIND_RAMP
 from rotorlab.models._base import EventSpec, Kernels, no_events, no_reset
 from rotorlab.models._jeffcott_frames import fixed_to_rotating, rotating_to_fixed
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
+from rotorlab.models._parameters import jeffcott_slots
+from rotorlab.models._protocol import ParametrisedMixin
 from rotorlab.models._speed import ConstantSpeed, SpeedProfile, speed_from_array  # noqa: F401
 
 __all__ = ["JeffcottBalls", "fixed_to_rotating", "rotating_to_fixed"]
@@ -174,7 +176,7 @@ def _kernels_for(frame: str, n_balls: int, friction: bool, speed: int = _k.SPEED
 
 
 @dataclass(frozen=True, slots=True)
-class JeffcottBalls:
+class JeffcottBalls(ParametrisedMixin):
     """Jeffcott rotor with n >= 0 balls or pendulums, in the fixed or the co-rotating frame.
 
     Parameters
@@ -317,6 +319,13 @@ class JeffcottBalls:
     def with_speed(self, speed: SpeedProfile) -> JeffcottBalls:
         """Return a copy with another speed profile."""
         return replace(self, speed=speed)
+
+    def _parameter_slots(self):
+        return jeffcott_slots(self)
+
+    def _compiled_layout(self):
+        kind = float(self.speed.to_array()[0])
+        return (self.frame, self.n_balls, self.has_friction, _SPEED_OF_KIND.get(kind, _k.SPEED_ANY))
 
     def with_frame(self, frame: Frame) -> JeffcottBalls:
         """Return a copy whose states are in ``frame``."""

@@ -104,6 +104,8 @@ from rotorlab.models._machine_parts import Ball, BallRace, Clearance, ElasticSta
 from rotorlab.models._machine_clearance import _ClearanceParts
 from rotorlab.models._machine_physics import _Physics
 from rotorlab.models._machine_rotating import MachineLinearization, _RotatingFrame
+from rotorlab.models._parameters import machine_slots
+from rotorlab.models._protocol import ParametrisedMixin
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
 
 __all__ = ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor",
@@ -128,7 +130,7 @@ def _tuple_of(owner: str, items, cls) -> tuple:
 
 
 @dataclass(frozen=True)
-class Machine(_Physics, _ClearanceParts, _RotatingFrame):
+class Machine(_Physics, _ClearanceParts, _RotatingFrame, ParametrisedMixin):
     """A linear structure with ball races, unbalances, gravity and a drive (model ``machine``).
 
     Parameters
@@ -151,6 +153,18 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame):
         Rotor-stator contact; at most one clearance per machine for now. It adds its states
         (see :mod:`rotorlab._kernels.machine_contact`), its events ``contact``, ``lift_off``,
         ``stick``, ``slip`` and their reset maps.
+    structure_source : optional
+        Where ``structure`` came from, when it has named parameters of its own (a machine built
+        from a case: :class:`rotorlab.io.StructureSource`): ``parameters`` lists them as
+        ``structure.<key path>`` and ``with_parameters`` rebuilds the structure from it. It has
+        ``parameters`` (:class:`rotorlab.models.Parameter` objects), ``with_value(name, value)``
+        (a new source) and ``system`` (its :class:`~rotorlab.linear.LinearSystem`).
+
+    Notes
+    -----
+    Named parameters (:mod:`rotorlab.models._protocol`): ``races[i].balls[j].mass``,
+    ``unbalances[i].magnitude``, ``drive.speed``, ``clearances[0].gap``, ``n_modes``
+    (structural) ..., as the case file's ``[model]`` keys.
 
     Examples
     --------
@@ -172,6 +186,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame):
     n_modes: int | None = field(default=None, kw_only=True)
     energy_states: bool = field(default=False, kw_only=True)
     clearances: tuple[Clearance, ...] = field(default=(), kw_only=True)
+    structure_source: Any = field(default=None, kw_only=True, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
     def __post_init__(self) -> None:
@@ -503,6 +518,12 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame):
     def with_drive(self, drive) -> Machine:
         """Return a copy with another drive."""
         return replace(self, drive=drive)
+
+    def _parameter_slots(self):
+        return machine_slots(self)
+
+    def _compiled_layout(self):
+        return self.layout
 
     # ------------------------------------------------------------------ evaluation helpers
     def rhs(self, t: float, y, p=None) -> np.ndarray:

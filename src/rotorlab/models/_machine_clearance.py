@@ -152,7 +152,7 @@ class _ClearanceParts:
         """The clearance's contact at saved samples (:class:`rotorlab.contact.ContactSamples`);
         the normal force from the compiled contact law (the generated ``contact_terms``)."""
         from rotorlab._kernels.speed import profile
-        from rotorlab.contact._regimes import ContactSamples
+        from rotorlab.models._rub_rotor import ContactSamples
 
         if not self.clearances:
             raise ValueError("contact_samples needs a Machine with a clearance")
@@ -199,7 +199,7 @@ class _ClearanceParts:
         couple with its translation (the Jeffcott rotor as a machine); a Rayleigh estimate
         otherwise (the closed forms beside a general machine are then approximate).
         """
-        from rotorlab.contact import RubRotor
+        from rotorlab.models._rub_rotor import RubRotor
 
         if not self.clearances:
             raise ValueError("equivalent_rub_rotor needs a Machine with a clearance")

@@ -1,5 +1,6 @@
 """Initial states, mass matrix and energy of the composed machine (a part of
-:class:`rotorlab.models.Machine`; equations in :mod:`rotorlab.models._machine`).
+:class:`rotorlab.models.Machine`; equations in :mod:`rotorlab.models._machine`), and its
+structure with the balls locked (its critical speeds).
 """
 
 from __future__ import annotations
@@ -189,3 +190,44 @@ class _Physics:
         ys = np.asarray(ys, dtype=float)
         e = np.array([self.energy(y, t) for t, y in zip(np.asarray(ts, float), ys)])
         return ys[:, ie] - (e - e[0]) - ys[:, ie + 1]
+
+
+def locked_structure(machine, *, tilt_inertia: bool = False):
+    """Return the structure with the balls locked at their races (``LinearSystem``).
+
+    Each ball of mass m at race radius l and axial offset a from its node is a point mass on the
+    race centre ``(x + a phi_x, y + a phi_y)``: the mass ``m e^T e`` (translation m, coupling
+    m a, tilt m a^2), as in the kernel's ``M0``. With ``tilt_inertia`` the ball's inertia about
+    its place off the axis is added, as for a ring locked to the rotor: ``m l^2 / 2`` about each
+    diametral axis (the mean over the ball's angle of the tilting race's ``m l^2 (e_b . phi')^2``
+    term) and the polar ``J_b = m l^2 + J_c`` in the gyroscopic matrix (``G[phi_x, phi_y] =
+    J_b``, the convention of :class:`rotorlab.linear.RigidBody`; the race-frame term ``J_b phi_b'
+    (phi_y phi_x' - phi_x phi_y') / 2`` with ``phi_b' = Omega``), see :mod:`rotorlab.models._machine`.
+    """
+    from rotorlab.linear import LinearSystem
+
+    s = machine.structure
+    M, G = s.M.copy(), s.G.copy()
+    for r in machine.races:
+        n = 4 * r.node
+        e = np.zeros((2, s.n_dof))
+        e[0, n], e[1, n + 1] = 1.0, 1.0
+        e[0, n + 2] = e[1, n + 3] = r.axial_offset
+        M += sum(b.mass for b in r.balls) * (e.T @ e)
+        if tilt_inertia:
+            for b in r.balls:
+                M[n + 2, n + 2] += 0.5 * b.mass * r.radius**2
+                M[n + 3, n + 3] += 0.5 * b.mass * r.radius**2
+                G[n + 2, n + 3] += b.mass * r.radius**2 + b.inertia
+                G[n + 3, n + 2] -= b.mass * r.radius**2 + b.inertia
+    return LinearSystem(M=M, C=s.C, G=G, K=s.K, node_position=s.node_position,
+                        node_label=s.node_label)
+
+
+def structure_critical_speeds(machine, max_speed: float | None = None) -> np.ndarray:
+    """Forward-whirl 1x critical speeds of the structure with the balls locked (rad/s), their
+    inertia about the tilt axes included (:func:`locked_structure` with ``tilt_inertia``)."""
+    from rotorlab.linear import critical_speeds
+
+    cs = critical_speeds(locked_structure(machine, tilt_inertia=True), max_speed=max_speed)
+    return cs.speed[cs.whirl >= 0]

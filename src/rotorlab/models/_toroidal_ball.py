@@ -93,6 +93,8 @@ import numpy as np
 from rotorlab._kernels import toroidal_ball as _k
 from rotorlab.models._base import EventSpec, Kernels
 from rotorlab.models._checks import check_number
+from rotorlab.models._parameters import toroidal_slots
+from rotorlab.models._protocol import ParametrisedMixin
 
 __all__ = ["ToroidalBall", "WorkingPoint", "strautmanis_torus", "EVENT_NAMES"]
 
@@ -158,7 +160,7 @@ class WorkingPoint:
 
 
 @dataclass(frozen=True, slots=True)
-class ToroidalBall:
+class ToroidalBall(ParametrisedMixin):
     """One ball rolling in a spinning torus offset from the rotation axis.
 
     Parameters
@@ -226,6 +228,9 @@ class ToroidalBall:
             raise ValueError(f"ToroidalBall.form must be 'rolling' or 'paper', got {self.form!r}")
 
     # ---- contract -----------------------------------------------------------------------------
+    def _parameter_slots(self):
+        return toroidal_slots(self)
+
     @property
     def kernels(self) -> Kernels:
         """Compiled kernels (shared by all instances)."""

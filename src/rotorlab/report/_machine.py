@@ -152,7 +152,7 @@ def _chart_findings(ds, rows):
                         f"and {param[0]} (exact eigenvalues).", (f"{stable} of {len(rows)} points stable",))
     balanced = all(r["balanced"] for r in rows if r["exists"])
     kind = "balanced" if balanced else "steady (partly balanced)"
-    from rotorlab.analyses._outcome import true_runs
+    from rotorlab.explore._outcome import true_runs
 
     spans = true_runs([r["speed_rpm"] for r in rows], [r["stable"] for r in rows])
     if not spans:

@@ -22,6 +22,9 @@ __all__ = [
     "reference_amplitude",
     "classify",
     "wrap_angle",
+    "NON_SYNCHRONOUS_RATE",
+    "machine_outcome",
+    "wrap_machine_angle",
 ]
 
 #: A rotor counts as balanced when its deflection is below this fraction of the deflection the
@@ -172,3 +175,28 @@ def true_runs(values, mask) -> list[tuple[float, float]]:
             runs.append([v, v])
         prev = bool(m)
     return [(a, b) for a, b in runs]
+
+
+#: Balls moving relative to the rotor faster than this fraction of its speed in the final window
+#: of a simulation have not synchronised ("non-synchronous").
+NON_SYNCHRONOUS_RATE = 1e-2
+
+
+def machine_outcome(status: int, amplitude, reference, max_rate: float, speed: float, n_balls: int) -> str:
+    """Label where one simulation of a machine ended (see :func:`rotorlab.analyses.machine_simulate`)."""
+    if status < 0:
+        return "failed"
+    if n_balls == 0:
+        return "no balancer"
+    if np.max(amplitude) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
+        return "balanced"
+    if not max_rate <= NON_SYNCHRONOUS_RATE * abs(speed):
+        return "non-synchronous"
+    return "not balanced"
+
+
+def wrap_machine_angle(angle):
+    """Wrap angles to [-pi, pi) (``(angle + pi) mod 2 pi - pi``): the convention of the machine's
+    ball angles (:func:`rotorlab.analyses.machine_simulate`); :func:`wrap_angle` is that of
+    ``jeffcott_balls``, (-pi, pi]."""
+    return (np.asarray(angle) + np.pi) % (2 * np.pi) - np.pi

@@ -1,0 +1,248 @@
+"""The named parameters of the machine, ``jeffcott_balls``, the toroidal ball and the impact rotor
+(:mod:`rotorlab.models._protocol`).
+
+Each function lists a model's numbers as :class:`Slot` objects: the name is the key path of the
+model's ``[model]`` table (balls as the case expands ``count``: one index per ball), the bounds
+are the case file's (``tests/unit/test_parameters.py`` compares them with the schema), and the
+setter replaces the part that holds the number.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+from typing import Any
+
+from rotorlab.models._protocol import Parameter, Slot
+from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
+
+__all__ = ["machine_slots", "jeffcott_slots", "toroidal_slots", "impact_slots"]
+
+_GT0 = (0.0, None, None, None)
+_GE0 = (None, 0.0, None, None)
+_FREE = (None, None, None, None)
+
+#: Fields of a prescribed speed profile: (field, unit, bounds), as the case file's ``[model.drive]``
+#: / ``[model.speed]`` tables.
+_PROFILE_FIELDS = {
+    ConstantSpeed: (("speed", "rad/s", _GT0),),
+    LinearRamp: (("start", "rad/s", _GE0), ("stop", "rad/s", _GE0), ("duration", "s", _GT0)),
+    HillRunUp: (("max_speed", "rad/s", _GT0), ("t_half", "s", _GT0), ("exponent", "1", (None, 0.01, None, 1000.0))),
+}
+
+
+def _slot(name: str, unit: str, value: float, bounds, set_, structural: bool = False) -> Slot:
+    return Slot(Parameter(name, unit, float(value), bounds, structural), set_)
+
+
+def _profile_slots(prefix: str, profile: Any, attr: str) -> list[Slot]:
+    """The fields of a prescribed speed profile held in the model's field ``attr``."""
+    out = []
+    for name, unit, bounds in _PROFILE_FIELDS.get(type(profile), ()):
+        def set_(m, v, name=name):
+            return replace(m, **{attr: replace(getattr(m, attr), **{name: v})})
+
+        out.append(_slot(f"{prefix}.{name}", unit, getattr(profile, name), bounds, set_))
+    return out
+
+
+def _set_item(items: tuple, i: int, **kw) -> tuple:
+    return items[:i] + (replace(items[i], **kw),) + items[i + 1:]
+
+
+# ---------------------------------------------------------------------------------------- machine
+def _item_setter(attr: str, i: int, field: str):
+    """A setter of ``field`` of item ``i`` of the model's tuple ``attr`` (a race, an unbalance ...)."""
+    return lambda mm, v: replace(mm, **{attr: _set_item(getattr(mm, attr), i, **{field: v})})
+
+
+def _race_slots(m) -> list[Slot]:
+    out = []
+    for i, race in enumerate(m.races):
+        out.append(_slot(f"races[{i}].radius", "m", race.radius, _GT0, _item_setter("races", i, "radius")))
+        out.append(_slot(f"races[{i}].axial_offset", "m", race.axial_offset, _FREE,
+                         _item_setter("races", i, "axial_offset")))
+        for j, ball in enumerate(race.balls):
+            for key, unit, bounds in (("mass", "kg", _GT0), ("inertia", "kg*m^2", _GE0),
+                                      ("damping", "N*m*s/rad", _GE0), ("coulomb", "1", _GE0),
+                                      ("rolling", "m", _GE0)):
+                def set_ball(mm, v, i=i, j=j, key=key):
+                    r = mm.races[i]
+                    return replace(mm, races=_set_item(mm.races, i, balls=_set_item(r.balls, j, **{key: v})))
+
+                out.append(_slot(f"races[{i}].balls[{j}].{key}", unit, getattr(ball, key), bounds, set_ball))
+    return out
+
+
+def _unbalance_slots(m) -> list[Slot]:
+    out = []
+    for i, u in enumerate(m.unbalances):
+        for key, field, unit, bounds in (("magnitude", "mass_eccentricity", "kg*m", _GE0),
+                                         ("phase", "phase", "rad", _FREE), ("axial_offset", "axial_offset", "m", _FREE)):
+            out.append(_slot(f"unbalances[{i}].{key}", unit, getattr(u, field), bounds,
+                             _item_setter("unbalances", i, field)))
+    return out
+
+
+def _drive_slots(m) -> list[Slot]:
+    d = m.drive
+    if not m.is_motor:
+        return _profile_slots("drive", d, "drive")
+    out = [_slot("drive.polar_inertia", "kg*m^2", d.polar_inertia, _GT0,
+                 lambda mm, v: replace(mm, drive=replace(mm.drive, polar_inertia=v)))]
+    if isinstance(d.torque, tuple):
+        speeds, torques = d.torque
+        for k in range(len(speeds)):
+            def set_row(mm, v, k=k, col=0):
+                table = [list(c) for c in mm.drive.torque]
+                table[col][k] = v
+                return replace(mm, drive=replace(mm.drive, torque=(tuple(table[0]), tuple(table[1]))))
+
+            out.append(_slot(f"drive.speeds[{k}]", "rad/s", speeds[k], _GE0, set_row))
+            out.append(_slot(f"drive.torques[{k}]", "N*m", torques[k], _FREE,
+                             lambda mm, v, k=k: set_row(mm, v, k, 1)))
+    else:
+        out.append(_slot("drive.stall_torque", "N*m", d.torque, _FREE,
+                         lambda mm, v: replace(mm, drive=replace(mm.drive, torque=v))))
+        out.append(_slot("drive.no_load_speed", "rad/s", d.no_load_speed, _GT0,
+                         lambda mm, v: replace(mm, drive=replace(mm.drive, no_load_speed=v))))
+    return out
+
+
+def _clearance_slots(m) -> list[Slot]:
+    out = []
+    for i, c in enumerate(m.clearances):
+        p = f"clearances[{i}]"
+        for key, unit, bounds in (("gap", "m", _GT0), ("restitution", "1", (None, 0.0, None, 1.0)),
+                                  ("friction", "1", _GE0), ("rotor_radius", "m", _GE0),
+                                  ("axial_offset", "m", _FREE), ("rest_speed", "m/s", _GT0)):
+            out.append(_slot(f"{p}.{key}", unit, getattr(c, key), bounds, _item_setter("clearances", i, key)))
+        if not isinstance(c.stator, str):
+            for key, unit, bounds in (("stiffness", "N/m", _GT0), ("damping", "N*s/m", _GE0), ("mass", "kg", _GE0)):
+                def set_stator(mm, v, i=i, key=key):
+                    cl = mm.clearances[i]
+                    return replace(mm, clearances=_set_item(mm.clearances, i, stator=replace(cl.stator, **{key: v})))
+
+                # a housing mass from or to 0 changes the compiled layout (housing states): refused by pack
+                out.append(_slot(f"{p}.stator.{key}", unit, getattr(c.stator, key), bounds, set_stator))
+        if c.conical is not None:
+            for k, (key, unit, bounds) in enumerate((("half_angle", "rad", (0.0, None, None, math.pi / 2)),
+                                                     ("lever", "m", _FREE))):
+                def set_cone(mm, v, i=i, k=k):
+                    cone = list(mm.clearances[i].conical)
+                    cone[k] = v
+                    return replace(mm, clearances=_set_item(mm.clearances, i, conical=tuple(cone)))
+
+                out.append(_slot(f"{p}.conical.{key}", unit, c.conical[k], bounds, set_cone))
+        if not isinstance(c.center, str) and any(c.center):
+            for k in range(2):
+                def set_center(mm, v, i=i, k=k):
+                    ctr = list(mm.clearances[i].center)
+                    ctr[k] = v
+                    return replace(mm, clearances=_set_item(mm.clearances, i, center=tuple(ctr)))
+
+                out.append(_slot(f"{p}.center[{k}]", "m", c.center[k], _FREE, set_center))
+    return out
+
+
+def _gravity_slots(m) -> list[Slot]:
+    if m.gravity is None:
+        return []
+    out = []
+    for k in range(3):
+        def set_g(mm, v, k=k):
+            vec = list(mm.gravity.vector)
+            vec[k] = v
+            return replace(mm, gravity=replace(mm.gravity, vector=tuple(vec)))
+
+        out.append(_slot(f"gravity.vector[{k}]", "m/s^2", m.gravity.vector[k], _FREE, set_g))
+    return out
+
+
+def machine_slots(m) -> list[Slot]:
+    """The named parameters of a :class:`rotorlab.models.Machine` (then those of its structure's
+    source, when it was built from a case: ``structure.<key path>``)."""
+    out = _race_slots(m) + _unbalance_slots(m) + _drive_slots(m) + _clearance_slots(m) + _gravity_slots(m)
+    if m.n_modes is not None:
+        out.append(_slot("n_modes", "1", m.n_modes, (None, 1.0, None, float(m.structure.n_dof)),
+                         lambda mm, v: replace(mm, n_modes=_integer("n_modes", v)), structural=True))
+    source = m.structure_source
+    if source is not None:
+        for p in source.parameters:
+            def set_s(mm, v, name=p.name):
+                src = mm.structure_source.with_value(name, v)
+                return replace(mm, structure=src.system, structure_source=src)
+
+            out.append(Slot(Parameter(f"structure.{p.name}", p.unit, p.value, p.bounds, p.structural), set_s))
+    return out
+
+
+def _integer(name: str, v: float) -> int:
+    if not float(v).is_integer():
+        raise ValueError(f"{name} = {v:g}: must be an integer")
+    return int(v)
+
+
+# ---------------------------------------------------------------------------------- jeffcott_balls
+def jeffcott_slots(m) -> list[Slot]:
+    """The named parameters of a :class:`rotorlab.models.JeffcottBalls` (the ``jeffcott_balls``
+    table's keys: ``disc_mass`` ... ``balls[i].mass`` ... ``speed.speed``)."""
+    out = []
+    for key, unit, bounds in (("disc_mass", "kg", _GT0), ("eccentricity", "m", _GE0),
+                              ("stiffness", "N/m", _GT0), ("damping", "N*s/m", _GE0)):
+        out.append(_slot(key, unit, getattr(m.rotor, key), bounds,
+                         lambda mm, v, key=key: replace(mm, rotor=replace(mm.rotor, **{key: v}))))
+    for i, b in enumerate(m.balls):
+        for key, unit, bounds in (("mass", "kg", _GT0), ("radius", "m", _GT0), ("inertia", "kg*m^2", _GE0),
+                                  ("damping", "N*m*s/rad", _GE0), ("friction", "1", _GE0)):
+            out.append(_slot(f"balls[{i}].{key}", unit, getattr(b, key), bounds, _item_setter("balls", i, key)))
+    return out + _profile_slots("speed", m.speed, "speed")
+
+
+# ----------------------------------------------------------------------------------- toroidal_ball
+def toroidal_slots(m) -> list[Slot]:
+    """The named parameters of a :class:`rotorlab.models.ToroidalBall` (the ``toroidal_ball``
+    table's keys; ``form`` is a choice, not a number)."""
+    return [_slot(key, unit, getattr(m, key), bounds, lambda mm, v, key=key: replace(mm, **{key: v}))
+            for key, unit, bounds in (("ring_radius", "m", _GT0), ("tube_radius", "m", _GT0),
+                                      ("ball_radius", "m", _GT0), ("spin_speed", "rad/s", _GT0),
+                                      ("offset", "m", _GE0), ("rolling_friction", "m", _GE0),
+                                      ("gravity", "m/s^2", _GE0))]
+
+
+# ------------------------------------------------------------------------------------ impact_rotor
+_ANGLE_BELOW_RIGHT = (0.0, None, math.pi / 2, None)
+#: (part, prefix of the key path, field, unit, bounds) of the impact rotor's numbers: the rotor's
+#: keys are at the top of its table, the housing's and the stone feed's in their own tables.
+_IMPACT_FIELDS = (
+    *(("rotor", "", f, u, b) for f, u, b in (
+        ("mass", "kg", _GT0), ("inertia_transverse", "kg*m^2", _GT0), ("inertia_polar", "kg*m^2", _GT0),
+        ("spin_speed", "rad/s", _GT0), ("stiffness_1", "N/m", _GT0), ("stiffness_2", "N/m", _GT0),
+        ("height_1", "m", _FREE), ("height_2", "m", _FREE), ("internal_friction", "1", _GE0))),
+    *(("housing", "housing.", f, u, b) for f, u, b in (
+        ("radius", "m", _GT0), ("height", "m", _FREE), ("gap", "m", _GT0),
+        ("cone_angle", "rad", (0.0, None, None, math.pi / 2)), ("restitution", "1", (None, 0.0, None, 1.0)),
+        ("friction", "1", _GE0), ("rest_speed", "m/s", _GT0), ("count_speed", "m/s", _GE0),
+        ("whirl_limit", "rad/s", _GT0))),
+    *(("stones", "stones.", f, u, b) for f, u, b in (
+        ("mass", "kg", _GT0), ("interval", "s", _GT0), ("radius", "m", _GT0), ("height", "m", _FREE),
+        ("spiral_angle", "rad", _ANGLE_BELOW_RIGHT), ("guide_friction", "1", _GE0), ("start_radius", "m", _GT0),
+        ("start_speed", "m/s", _GE0), ("first_time", "s", _GT0), ("mass_spread", "1", (None, 0.0, 1.0, None)),
+        ("time_jitter", "1", (None, 0.0, 0.5, None)))),
+)
+
+
+def impact_slots(m) -> list[Slot]:
+    """The named parameters of a :class:`rotorlab.models.ImpactRotor` (the ``impact_rotor``
+    table's numbers; a key left at None, e.g. ``housing.whirl_limit``, is not one)."""
+    out = []
+    for part, prefix, key, unit, bounds in _IMPACT_FIELDS:
+        value = getattr(getattr(m, part), key)
+        if value is None:
+            continue
+
+        def set_(mm, v, part=part, key=key):
+            return replace(mm, **{part: replace(getattr(mm, part), **{key: v})})
+
+        out.append(_slot(prefix + key, unit, value, bounds, set_))
+    return out

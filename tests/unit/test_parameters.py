@@ -1,0 +1,178 @@
+"""The model protocol's named parameters (:mod:`rotorlab.models._protocol`) against the case schema.
+
+For every built-in ``machine`` and ``jeffcott_balls`` case: the names are the ``[model]`` key
+paths and give back the values the case converted to SI; their units and bounds are the schema's;
+``pack`` of the current values is the model's own vector; ``with_parameters`` at a key equals the
+model built from the case document edited at that key, bit for bit (or both refuse the value);
+structural names are refused by ``pack``. No kernel is compiled here.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from rotorlab.analyses import build_model
+from rotorlab.io import CaseError, builtin_cases, load_case, validate_case
+from rotorlab.io._coordinates import key_quantity
+from rotorlab.io._fields import plain_data
+from rotorlab.io._schema import MODEL_SPECS
+
+CASES = [name for name in builtin_cases()
+         if load_case(name).model.type in ("machine", "jeffcott_balls", "toroidal_ball", "impact_rotor")]
+
+
+def _edited(case, key, value):
+    doc = {"name": "edited", "model": plain_data(case.model.model_dump(mode="python"))}
+    return build_model(validate_case(doc, overrides={f"model.{key}": value}).model)
+
+
+def _other_values(par):
+    """Values near the current one that its bounds admit."""
+    v = par.value
+    return [c for c in (v * 1.1, v * 0.9, v + 0.01, v - 0.01, 0.5 * v) if c != v and par.admits(c)]
+
+
+def test_the_built_in_cases_cover_both_models():
+    kinds = {load_case(n).model.type for n in CASES}
+    assert kinds == {"machine", "jeffcott_balls", "toroidal_ball", "impact_rotor"} and len(CASES) >= 9
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_names_units_bounds_and_values_are_the_schema_s(name):
+    case = load_case(name)
+    model = build_model(case.model)
+    space = model.parameters
+    spec = MODEL_SPECS[case.model.type]
+    dumped = plain_data(case.model.model_dump(mode="python"))
+    assert len(space) == len(set(space.names)) > 5
+    for n in space.names:
+        par = space[n]
+        if n == "n_modes":  # an integer key, not a quantity: 1 .. the structure's DOFs
+            assert par.structural and par.value == case.model.n_modes
+            continue
+        q = key_quantity(f"model.{n}", spec)
+        assert q is not None, n
+        assert par.unit == (q.dimension.si or "1"), n
+        assert par.bounds == q.bounds, n
+        value = dumped
+        for k in n.replace("]", "").replace("[", ".").split("."):
+            value = value[int(k)] if k.isdigit() else value[k]
+            if value is None:  # a jeffcott_balls case without [model.speed]: the model is at rest
+                assert n == "speed.speed" and par.value == 0.0
+                break
+        else:
+            assert par.value == float(value), n
+    np.testing.assert_array_equal(space.pack(space.values()), model.to_array())
+
+
+@pytest.mark.parametrize("name", CASES)
+def test_with_parameters_is_the_edited_case_bit_for_bit(name):
+    case = load_case(name)
+    model = build_model(case.model)
+    checked = 0
+    for n in model.parameters.names:
+        par = model.parameters[n]
+        if par.structural:
+            continue
+        if n.startswith("speed.") and getattr(case.model, "speed", 0) is None:
+            continue
+        for new in _other_values(par):
+            try:
+                expect = _edited(case, n, new)
+            except (CaseError, ValueError):  # the case refuses it (a cross-check): so does the model
+                with pytest.raises((ValueError, KeyError)):
+                    model.with_parameters(**{n: new})
+                continue
+            got = model.with_parameters(**{n: new})
+            np.testing.assert_array_equal(got.to_array(), expect.to_array(), err_msg=n)
+            assert got.parameters[n].value == new
+            checked += 1
+            break
+    assert checked >= 0.7 * len(model.parameters)
+
+
+def test_pack_refuses_structural_names_and_layout_changes():
+    from rotorlab.io._build import build_machine
+
+    m = build_machine(load_case("pico21-balancer").model)
+    assert m.parameters.structural("n_modes") and not m.parameters.structural("races[0].balls[0].mass")
+    with pytest.raises(ValueError, match=r"n_modes is structural: a new value changes the compiled layout"):
+        m.pack({"n_modes": 6})
+    # a ball's Coulomb friction from 0 compiles the stick-slip events in: a new layout
+    with pytest.raises(ValueError, match=r"races\[0\]\.balls\[0\]\.coulomb = 0.1: changes the compiled layout"):
+        m.pack({"races[0].balls[0].coulomb": 0.1})
+    # ... while the variant itself is a model of its own
+    assert m.with_parameters(**{"races[0].balls[0].coulomb": 0.1}).has_friction
+    p = m.pack({"races[0].balls[0].mass": 0.02})
+    np.testing.assert_array_equal(p, m.with_parameters(**{"races[0].balls[0].mass": 0.02}).to_array())
+
+
+def test_a_value_out_of_range_names_the_key_value_and_range():
+    from rotorlab.io._build import build_machine
+
+    m = build_machine(load_case("pico21-balancer").model)
+    with pytest.raises(ValueError, match=r"^races\[0\]\.balls\[1\]\.mass = -0.01: must be > 0 kg$"):
+        m.with_parameters(**{"races[0].balls[1].mass": -0.01})
+    with pytest.raises(ValueError, match=r"must be >= 0 and <= 1$"):
+        build_machine(load_case("washer-knock").model).with_parameters(**{"clearances[0].restitution": 1.5})
+    with pytest.raises(KeyError, match=r"'races\[7\]\.radius' is not a parameter of this Machine"):
+        m.with_parameters(**{"races[7].radius": 0.1})
+    assert math.isnan(float("nan")) and not m.parameters["races[0].radius"].admits(float("nan"))
+
+
+def test_a_structure_key_rebuilds_the_structure_from_its_table_alone():
+    """``structure.<key path>``: the machine's structure is rebuilt from its own table: the
+    drum's bearing ``kxx = 25 kN/m`` (its ``kyy`` not written, so equal to it) doubled adds 25
+    kN/m to K at the drum's x and y and nowhere else."""
+    from rotorlab.io._build import build_machine
+
+    case = load_case("washer-horizontal")
+    m = build_machine(case.model)
+    kxx = m.parameters["structure.bearings[0].kxx"].value
+    v = m.with_parameters(**{"structure.bearings[0].kxx": 2 * kxx})
+    dK = v.structure.K - m.structure.K
+    assert kxx == 25e3 and np.count_nonzero(dK) == 2 and dK[0, 0] == dK[1, 1] == kxx
+    assert v.parameters["structure.bearings[0].kxx"].value == 2 * kxx
+
+
+def _old_variant(case_model, keys, races, drive):
+    """How a sweep made a ``model.<key path>`` variant before the named parameters: the case
+    document edited at those keys, validated and built (the reference the new path must match)."""
+    from dataclasses import replace
+
+    from rotorlab.io._build import build_machine
+
+    doc = {"name": "sweep-point", "model": plain_data(case_model.model_dump(mode="python"))}
+    m = build_machine(validate_case(doc, overrides={k: float(v) for k, v in keys.items()}).model)
+    if races is not None:
+        m = replace(m, races=tuple(m.races[i] for i in races))
+    return m.with_drive(drive)
+
+
+@pytest.mark.parametrize("name, races, coords", [
+    ("pico21-balancer", (1,), {"model.races[1].balls[0].mass": [0.004, 0.006],
+                               "model.unbalances[0].magnitude": [1e-4, 3e-4]}),
+    ("washer-horizontal", None, {"model.structure.bearings[0].kxx": [2e4, 3e4],
+                                 "model.races[0].radius": [0.2, 0.25]}),
+])
+def test_sweep_points_are_the_edited_case_s_bit_for_bit(name, races, coords):
+    """The starts and packed parameters of a machine sweep over ``model.<key path>`` values
+    (through ``Machine.with_parameters``) equal those of the case document edited at each
+    point, bit for bit: the sweep's results are unchanged."""
+    from rotorlab.analyses._machine import machine_mapper
+    from rotorlab.io import SweepSpec
+
+    case = load_case(name)
+    spec = SweepSpec(name="s", speed="600 rpm", t_end=1.0, **({"races": list(races)} if races else {}))
+    mapper = machine_mapper(case.model, spec, {})
+    grid = {k: np.asarray(v, dtype=float) for k, v in coords.items()}
+    grid["psi_1"] = np.array([0.3, 1.1])
+    _, Y0, P = mapper.starts(grid)
+    for i in range(2):
+        keys = {k: grid[k][i] for k in coords}
+        ref = _old_variant(case.model, keys, races, mapper.model.drive)
+        np.testing.assert_array_equal(P[i], ref.to_array())
+        angles = list(mapper.base_angles)
+        angles[0] = grid["psi_1"][i]
+        np.testing.assert_array_equal(Y0[i], ref.initial_state(angles, ball_rates=np.zeros(len(angles))))
