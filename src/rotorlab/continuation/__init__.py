@@ -17,9 +17,28 @@ from rotorlab.continuation._core import (
     numerical_jacobian,
     switch_branch,
 )
+from rotorlab.continuation._equilibria import continue_equilibria, equilibrium_settings
+from rotorlab.continuation._machine_problem import (
+    NAMED_PARAMETERS,
+    START_KINDS,
+    MachineEquilibria,
+    format_value,
+    parameter_unit,
+    starting_motions,
+    with_value,
+)
 from rotorlab.continuation._result import SPECIAL_POINT_TYPES, Branch, ContinuationResult, SpecialPoint
 
 __all__ = [
+    "NAMED_PARAMETERS",
+    "START_KINDS",
+    "MachineEquilibria",
+    "continue_equilibria",
+    "equilibrium_settings",
+    "format_value",
+    "parameter_unit",
+    "starting_motions",
+    "with_value",
     "SPECIAL_POINT_TYPES",
     "Branch",
     "ContinuationResult",
