@@ -205,9 +205,10 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
     >>> import numpy as np
     >>> from rotorlab.linear import LinearSystem
     >>> from rotorlab.models import Ball, BallRace, ConstantSpeed, Machine, Unbalance
-    >>> s = LinearSystem(M=np.eye(2), C=0.02 * np.eye(2), G=np.zeros((2, 2)), K=np.eye(2))
+    >>> s = LinearSystem(M=np.diag([1.0, 1.0, 0.3, 0.3]), C=np.diag([0.02, 0.02, 0.0, 0.0]),
+    ...                  G=np.zeros((4, 4)), K=np.diag([1.0, 1.0, 5.0, 5.0]))
     >>> m = Machine(s, races=(BallRace(0, 1.0, (Ball(0.02, damping=0.01),) * 2),),
-    ...             unbalances=(Unbalance(0, 0.01),), drive=ConstantSpeed(2.0))
+    ...             unbalances=(Unbalance(0, 0.01),), drive=ConstantSpeed(2.0), n_modes=2)
     >>> r = continue_equilibria(m, "ball_mass", 0.02, 0.003, switch=False)
     >>> [(s.type, round(s.value, 9)) for s in r.branches[0].special_points]
     [('branch', 0.005)]
