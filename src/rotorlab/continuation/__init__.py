@@ -22,18 +22,24 @@ from rotorlab.continuation._machine_problem import (
     NAMED_PARAMETERS,
     START_KINDS,
     MachineEquilibria,
+    current_value,
     format_value,
     parameter_unit,
     starting_motions,
     with_value,
 )
+from rotorlab.continuation._two_parameter import TwoParameterCurve, continue_special_point, two_parameter_curves
 from rotorlab.continuation._result import SPECIAL_POINT_TYPES, Branch, ContinuationResult, SpecialPoint
 
 __all__ = [
     "NAMED_PARAMETERS",
     "START_KINDS",
     "MachineEquilibria",
+    "TwoParameterCurve",
     "continue_equilibria",
+    "continue_special_point",
+    "current_value",
+    "two_parameter_curves",
     "equilibrium_settings",
     "format_value",
     "parameter_unit",

@@ -24,7 +24,7 @@ import numpy as np
 
 from rotorlab._constants import RPM_PER_RAD_S
 
-__all__ = ["NAMED_PARAMETERS", "with_value", "parameter_unit", "format_value", "MachineEquilibria",
+__all__ = ["NAMED_PARAMETERS", "with_value", "current_value", "parameter_unit", "format_value", "MachineEquilibria",
            "starting_motions", "START_KINDS"]
 
 #: Parameters that set every ball at once (the stability chart's names): name -> (Ball field, unit).
@@ -132,6 +132,30 @@ def with_value(model, name: str, value: float):
     return setter(model, float(value))
 
 
+def current_value(model, name: str) -> float:
+    """The value (SI) of parameter ``name`` of ``model``; for ``ball_mass`` / ``ball_damping`` that of
+    the first ball (ValueError if the balls differ: the name sets them all)."""
+    _parse(model, name)  # known name, indices in range
+    if name == "drive.speed":
+        return float(model.drive.speed)
+    if name in NAMED_PARAMETERS:
+        key = NAMED_PARAMETERS[name][0]
+        vals = {float(getattr(b, key)) for r in model.races for b in r.balls}
+        if len(vals) != 1:
+            raise ValueError(f"{name}: the balls differ ({', '.join(f'{v:g}' for v in sorted(vals))}); "
+                             "it sets every ball: name one, races[i].balls[j]." + key)
+        return vals.pop()
+    race = _index(name, "races")
+    if race is not None:
+        i, rest = race
+        ball = _index(rest, "balls")
+        if ball is not None:
+            return float(getattr(model.races[i].balls[ball[0]], ball[1]))
+        return float(getattr(model.races[i], rest))
+    i, key = _index(name, "unbalances")
+    return float(getattr(model.unbalances[i], _UNBALANCE_FIELDS[key][0]))
+
+
 def parameter_unit(model, name: str) -> str:
     """The SI unit of parameter ``name`` (raises ValueError for an unknown name)."""
     return _parse(model, name)[1]
@@ -214,8 +238,13 @@ class MachineEquilibria:
         return np.concatenate([np.full(self.nz, self.z_scale), np.ones(self.nb), p])
 
     def residual(self, u) -> np.ndarray:
+        """The co-rotating accelerations ``(z'', psi'')`` at rest; NaN where a parameter value is
+        refused by the model (a negative mass or damping: the corrector then shortens its step)."""
         u = np.asarray(u, dtype=float)
-        m = self.machine(u[self.n:])
+        try:
+            m = self.machine(u[self.n:])
+        except ValueError:
+            return np.full(self.n, np.nan)
         f = m.rotating_rhs(self.state(u[:self.n]))
         return np.concatenate([f[self.nz:2 * self.nz], f[2 * self.nz + self.nb:]])
 

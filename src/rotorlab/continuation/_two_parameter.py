@@ -1,0 +1,209 @@
+"""Fold and Hopf curves of a machine's steady motions in two named parameters.
+
+A fold or Hopf point located on a branch in the first parameter ``p1`` (speed, say) is continued
+in a second one ``p2`` (ball mass, ball damping, unbalance ...) with ``p1`` free, by the minimally
+augmented systems (Govaerts 2000, ch. 4; Kuznetsov 2004, sec. 10.2):
+
+- fold: ``F(x, p1, p2) = 0`` and ``g = 0``, g from the bordered system
+  ``[[F_x, b], [c^T, 0]] [v; g] = [0; 1]`` (b, c: the left and right null vectors of ``F_x`` at the
+  located fold); g vanishes exactly where ``F_x`` is singular;
+- Hopf: ``F = 0`` and ``Re lambda(x, p1, p2) = 0`` for the eigenvalue of the co-rotating
+  linearization that crossed (followed from point to point: the one nearest the previous point's).
+
+Each is one residual of ``n + 1`` equations in ``u = (x, p1, p2)`` handed to
+:func:`rotorlab.continuation.continue_curve` with ``p2`` as its parameter, both ways from the
+located point, so the stability chart becomes curves: the Hopf curve bounds the speeds where the
+balanced state is stable.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import dataclass
+from typing import Any
+
+import numpy as np
+
+from rotorlab.continuation._core import ContinuationSettings, continue_curve
+from rotorlab.continuation._machine_problem import MachineEquilibria, current_value
+from rotorlab.continuation._result import ContinuationResult, SpecialPoint
+
+__all__ = ["TwoParameterCurve", "continue_special_point", "two_parameter_curves"]
+
+
+@dataclass(frozen=True)
+class TwoParameterCurve:
+    """A fold or Hopf curve in the plane of two parameters.
+
+    Parameters
+    ----------
+    type : {"fold", "hopf"}
+    parameters : (str, str)
+        ``(p1, p2)``: the branch's parameter and the second one.
+    values : ndarray, shape (n, 2)
+        ``(p1, p2)`` along the curve (SI), in order.
+    states : ndarray, shape (n, n_state)
+        The co-rotating steady motion at each point.
+    frequency : ndarray, shape (n,)
+        The crossing pair's imaginary part (rad/s) along a Hopf curve; NaN on a fold curve.
+    label : str
+        The branch it was found on ("main+", "side 00", ...).
+    end : str
+        Why each half ended (``"bound/step"``: the p2-decreasing half, then the increasing one).
+    """
+
+    type: str
+    parameters: tuple[str, str]
+    values: np.ndarray
+    states: np.ndarray
+    frequency: np.ndarray
+    label: str = ""
+    end: str = ""
+
+    def to_dict(self) -> dict[str, Any]:
+        p1, p2 = self.parameters
+        pts = []
+        for k in range(len(self.values)):
+            pt = {p1: _num(self.values[k, 0]), p2: _num(self.values[k, 1])}
+            if self.type == "hopf":
+                pt["frequency_rad_s"] = _num(self.frequency[k])
+            pts.append(pt)
+        return {"type": self.type, "parameters": [p1, p2], "label": self.label, "end": self.end, "points": pts}
+
+
+def _num(x) -> float | None:
+    x = float(x)
+    return x if math.isfinite(x) else None
+
+
+class _Augmented:
+    """The fold or Hopf system in ``u = (x, p1, p2)``."""
+
+    def __init__(self, prob: MachineEquilibria, kind: str, u0: np.ndarray, frequency: float):
+        self.prob, self.kind, self.n = prob, kind, prob.n
+        if kind == "fold":
+            jx = prob.jacobian(u0)[:, :self.n]
+            w, _, vt = np.linalg.svd(jx)
+            self.b, self.c = w[:, -1], vt[-1]
+        else:
+            self.ref = complex(0.0, frequency)
+
+    def crossing(self, u) -> complex:
+        ev = self.prob.eigenvalues(u)
+        return complex(ev[np.argmin(np.abs(ev - self.ref))])
+
+    def condition(self, u) -> float:
+        if self.kind == "hopf":
+            return self.crossing(u).real
+        jx = self.prob.jacobian(u)[:, :self.n]
+        a = np.block([[jx, self.b[:, None]], [self.c[None, :], np.zeros((1, 1))]])
+        rhs = np.zeros(self.n + 1)
+        rhs[-1] = 1.0
+        return float(np.linalg.solve(a, rhs)[-1])
+
+    def jacobian(self, u) -> np.ndarray:
+        """Rows of F from :meth:`MachineEquilibria.jacobian`; the condition's row by central
+        differences (steps 1e-4 of each unknown's scale: the condition holds a difference Jacobian
+        or a difference linearization itself)."""
+        u = np.asarray(u, dtype=float)
+        row = np.empty(u.size)
+        for j in range(u.size):
+            h = 1e-4 * (self.scale[j] if j < self.n else max(abs(u[j]), self.scale[j]))
+            up, um = u.copy(), u.copy()
+            up[j] += h
+            um[j] -= h
+            row[j] = (self.condition(up) - self.condition(um)) / (2.0 * h)
+        return np.vstack([self.prob.jacobian(u), row])
+
+    def residual(self, u) -> np.ndarray:
+        f = self.prob.residual(u)
+        if not np.all(np.isfinite(f)):  # a parameter value the model refuses
+            return np.full(self.n + 1, np.nan)
+        return np.concatenate([f, [self.condition(u)]])
+
+    def follow(self, point) -> float:
+        """Move the Hopf reference to the accepted point's crossing eigenvalue (a 'test' that never
+        changes sign)."""
+        if self.kind == "hopf":
+            self.ref = self.crossing(point.u)
+        return 1.0
+
+
+def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: float, stop2: float, *,
+                           settings: ContinuationSettings | None = None, label: str = "") -> TwoParameterCurve:
+    """Continue a located fold or Hopf point of ``model`` in ``parameter2`` over ``[start2, stop2]``.
+
+    ``model`` holds the value of ``parameter2`` at which the point was located (it must lie in
+    the range); the curve is followed both ways from it.
+
+    Raises
+    ------
+    ValueError
+        Not a fold or Hopf point, the model's value of ``parameter2`` outside the range, or the
+        point does not converge onto the augmented system.
+    """
+    if point.type not in ("fold", "hopf"):
+        raise ValueError(f"only fold and Hopf points are continued in two parameters, got {point.type!r}")
+    prob = MachineEquilibria(model, (point.parameter, parameter2))
+    p2 = current_value(model, parameter2)
+    lo, hi = min(start2, stop2), max(start2, stop2)
+    if not lo <= p2 <= hi:
+        raise ValueError(f"{parameter2}: the point was located at {p2:g}, outside the range {lo:g} to {hi:g}")
+    x0 = prob.unknowns(point.state)
+    u0 = np.concatenate([x0, [point.value, p2]])
+    system = _Augmented(prob, point.type, u0, point.frequency)
+    scale = prob.scale([point.value, 1.0])
+    scale[-1] = hi - lo
+    system.scale = scale
+    halves, ends = [], []
+    for direction in (-1, 1):
+        if (direction < 0 and p2 <= lo) or (direction > 0 and p2 >= hi):
+            continue
+        st = settings if settings is not None else ContinuationSettings(
+            ds=0.02, ds_min=1e-6, ds_max=0.25, max_points=200, newton_tol=1e-8, bounds=(lo, hi))
+        st = ContinuationSettings(**{**st.__dict__, "bounds": (lo, hi), "direction": direction})
+        if point.type == "hopf":
+            system.ref = complex(0.0, point.frequency)
+        curve = continue_curve(system.residual, u0, jacobian=system.jacobian, scale=scale, settings=st,
+                               tests={"follow": system.follow})
+        halves.append(curve.u if direction > 0 else curve.u[::-1])
+        ends.append(curve.end)
+    u = np.concatenate([halves[0], halves[1][1:]]) if len(halves) == 2 else halves[0]
+    freq = np.full(len(u), np.nan)
+    if point.type == "hopf":
+        k0 = int(np.argmin(np.abs(u[:, -1] - p2)))
+        keep = np.ones(len(u), bool)
+        for order in (range(k0, len(u)), range(k0, -1, -1)):  # follow the pair outwards
+            system.ref = complex(0.0, point.frequency)
+            for k in order:
+                lam = system.crossing(u[k])
+                big = max(np.abs(prob.eigenvalues(u[k])).max(), 1.0)
+                if abs(lam.imag) <= 1e-6 * big:  # the pair became real: a Bogdanov-Takens point
+                    keep[k:] = False if order.step > 0 else keep[k:]
+                    keep[:k + 1] = False if order.step < 0 else keep[:k + 1]
+                    ends = [e if (order.step > 0) != (j == 0) else "bogdanov-takens" for j, e in enumerate(ends)]
+                    break
+                freq[k] = abs(lam.imag)
+                system.ref = complex(0.0, freq[k])
+        u, freq = u[keep], freq[keep]
+    return TwoParameterCurve(type=point.type, parameters=(point.parameter, parameter2), values=u[:, -2:],
+                             states=np.array([prob.state(v[:prob.n]) for v in u]), frequency=freq,
+                             label=label, end="/".join(ends))
+
+
+def two_parameter_curves(model, result: ContinuationResult, parameter2: str, start2: float, stop2: float, *,
+                         settings: ContinuationSettings | None = None) -> tuple[TwoParameterCurve, ...]:
+    """The fold and Hopf curves through every fold and Hopf point of ``result`` (mirror images, at
+    the same parameter value and type, once)."""
+    seen: list[tuple[str, float]] = []
+    out = []
+    for b in result.branches:
+        for sp in b.special_points:
+            if sp.type not in ("fold", "hopf"):
+                continue
+            if any(t == sp.type and abs(v - sp.value) <= 1e-7 * max(1.0, abs(v)) for t, v in seen):
+                continue
+            seen.append((sp.type, sp.value))
+            out.append(continue_special_point(model, sp, parameter2, start2, stop2, settings=settings,
+                                              label=b.label))
+    return tuple(out)
