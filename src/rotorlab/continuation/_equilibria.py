@@ -32,7 +32,14 @@ from rotorlab.continuation._core import (
     fold_test,
     switch_branch,
 )
-from rotorlab.continuation._machine_problem import MachineEquilibria, format_value, starting_motions, with_value
+from rotorlab.continuation._machine_problem import (
+    MachineEquilibria,
+    as_machine,
+    format_value,
+    parameter_unit,
+    starting_motions,
+    with_value,
+)
 from rotorlab.continuation._result import Branch, ContinuationResult, SpecialPoint
 
 __all__ = ["continue_equilibria", "equilibrium_settings", "describe_branch"]
@@ -163,7 +170,8 @@ def _near(curve: Curve, other: Curve, scale: np.ndarray, angles: slice) -> bool:
 def continue_equilibria(model, parameter: str, start: float, stop: float, *,
                         start_from: str | Sequence[tuple[str, np.ndarray]] = "balanced",
                         settings: ContinuationSettings | None = None, switch: bool = True,
-                        max_branches: int = 12) -> ContinuationResult:
+                        max_branches: int = 12, parameter2: str | None = None,
+                        range2: tuple[float, float] | None = None) -> ContinuationResult:
     """Continue steady motions of a machine with balls in one named parameter.
 
     Parameters
@@ -184,6 +192,10 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
         Follow the other branch at every branch point (both halves).
     max_branches : int
         Most branches in all.
+    parameter2, range2 : optional
+        A second parameter and its ``(start, stop)``: every fold and Hopf point found is
+        continued in it (:func:`rotorlab.continuation.two_parameter_curves`), into
+        ``ContinuationResult.curves``. The model's value of ``parameter2`` must lie in the range.
 
     Returns
     -------
@@ -213,6 +225,7 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
     >>> [(s.type, round(s.value, 9)) for s in r.branches[0].special_points]
     [('branch', 0.005)]
     """
+    model = as_machine(model)
     start, stop = float(start), float(stop)
     if not (math.isfinite(start) and math.isfinite(stop)) or start == stop:
         raise ValueError(f"{parameter}: start and stop must be finite and differ, got {start:g} and {stop:g}")
@@ -257,4 +270,11 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
                 curves.append((new, f"{_kind(prob, mid)} (from {label} at "
                                     f"{format_value(z.point.lam, unit)})"))
     branches = tuple(build.branch(c, lab) for c, lab in curves)
-    return ContinuationResult(branches, units={parameter: unit})
+    result = ContinuationResult(branches, units={parameter: unit})
+    if parameter2 is None:
+        return result
+    from rotorlab.continuation._two_parameter import two_parameter_curves
+
+    lines = two_parameter_curves(model, result, parameter2, *range2)
+    return ContinuationResult(branches, units={parameter: unit, parameter2: parameter_unit(model, parameter2)},
+                              curves=lines)

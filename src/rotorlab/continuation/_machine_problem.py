@@ -24,7 +24,7 @@ import numpy as np
 
 from rotorlab._constants import RPM_PER_RAD_S
 
-__all__ = ["NAMED_PARAMETERS", "with_value", "current_value", "parameter_unit", "format_value", "MachineEquilibria",
+__all__ = ["NAMED_PARAMETERS", "as_machine", "with_value", "current_value", "parameter_unit", "format_value", "MachineEquilibria",
            "starting_motions", "START_KINDS"]
 
 #: Parameters that set every ball at once (the stability chart's names): name -> (Ball field, unit).
@@ -161,6 +161,41 @@ def parameter_unit(model, name: str) -> str:
     return _parse(model, name)[1]
 
 
+def as_machine(model):
+    """``model`` as a :class:`rotorlab.models.Machine`: a Machine itself, or the planar machine a
+    :class:`rotorlab.models.JeffcottBalls` rotor is (one node, its translation modes only, one race
+    of its balls, the disc's unbalance ``M1 e``; the same right-hand side, tests/unit/test_machine.py).
+
+    Raises
+    ------
+    ValueError
+        Another model, balls of different radii or with friction (no co-rotating equilibria).
+    """
+    from rotorlab.linear import LinearSystem
+    from rotorlab.models import Ball, BallRace, JeffcottBalls, Machine, Unbalance
+
+    if isinstance(model, Machine):
+        return model
+    if not isinstance(model, JeffcottBalls):
+        raise ValueError(f"continuation of steady motions needs a machine with balls or a jeffcott_balls "
+                         f"rotor, got {type(model).__name__}")
+    r = model.rotor
+    radii = {b.radius for b in model.balls}
+    if len(radii) != 1:
+        raise ValueError("the balls run on races of different radii: build the machine with one race per radius")
+    if any(getattr(b, "friction", 0.0) > 0 for b in model.balls):
+        raise ValueError("the balls have friction (stick-slip): steady motions are not equilibria of a smooth "
+                         "system; simulate instead")
+    radius = radii.pop()
+    m1, c, d = r.disc_mass, r.stiffness, r.damping
+    # the tilt of the single node carries nothing (n_modes = 2 keeps the translations: stiffer tilt)
+    s = LinearSystem(M=np.diag([m1, m1, m1, m1]), C=np.diag([d, d, 0.0, 0.0]), G=np.zeros((4, 4)),
+                     K=np.diag([c, c, 4.0 * c, 4.0 * c]))
+    balls = tuple(Ball(b.mass, inertia=b.inertia - b.mass * radius ** 2, damping=b.damping) for b in model.balls)
+    return Machine(s, races=(BallRace(0, radius, balls),), unbalances=(Unbalance(0, m1 * r.eccentricity),),
+                   drive=model.speed, n_modes=2)
+
+
 def format_value(value: float, unit: str) -> str:
     """A parameter value for people: rad/s as rpm, kg below 1 kg as g, else SI with its unit.
 
@@ -189,6 +224,7 @@ class MachineEquilibria:
     """
 
     def __init__(self, machine, names):
+        machine = as_machine(machine)
         why = machine.why_no_rotating_frame()
         if why is not None:
             raise ValueError(f"no co-rotating equilibria to continue: {why}")
@@ -337,6 +373,7 @@ def starting_motions(machine, which: str = "balanced", *, starts: int = 24, seed
     """
     from scipy.optimize import least_squares, root
 
+    machine = as_machine(machine)
     prob = MachineEquilibria(machine, ())
     nz, nb = prob.nz, prob.nb
     out: list[tuple[str, np.ndarray]] = []

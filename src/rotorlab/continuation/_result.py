@@ -147,13 +147,20 @@ class Branch:
 
 @dataclass(frozen=True)
 class ContinuationResult:
-    """Every branch of one continuation run, with the model's units of the parameters."""
+    """Every branch of one continuation run, with the model's units of the parameters, and the
+    fold and Hopf curves in a second parameter (objects with ``type``, ``parameters``, ``values``
+    (n, 2), ``frequency`` (n,), ``label`` and ``to_dict()``, e.g.
+    :class:`rotorlab.continuation.TwoParameterCurve`)."""
 
     branches: tuple[Branch, ...]
     units: dict[str, str] = field(default_factory=dict)
+    curves: tuple[Any, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
-        return {"branches": [b.to_dict() for b in self.branches], "units": dict(self.units)}
+        d = {"branches": [b.to_dict() for b in self.branches], "units": dict(self.units)}
+        if self.curves:
+            d["curves"] = [c.to_dict() for c in self.curves]
+        return d
 
     def to_dataset(self):
         """One Dataset: dims ``branch`` and ``point`` (padded with NaN), coordinates ``kind``,
@@ -198,6 +205,34 @@ class ContinuationResult:
             ds[k].attrs["units"] = u
         params = {b.parameter for b in self.branches}
         ds["value"].attrs["units"] = self.units.get(params.pop(), "") if len(params) == 1 else "per branch"
+        # per-point arrays every branch has (ball angles ...): dims branch, point, then their own
+        common = set.intersection(*(set(b.extra) for b in self.branches)) if self.branches else set()
+        for key in sorted(common):
+            width = np.asarray(self.branches[0].extra[key]).reshape(len(self.branches[0].values), -1).shape[1]
+            arr = np.full((nb, n, width), math.nan)
+            for i, b in enumerate(self.branches):
+                v = np.asarray(b.extra[key], dtype=float).reshape(len(b.values), -1)
+                arr[i, : v.shape[0], : v.shape[1]] = v
+            ds[key] = (("branch", "point", f"{key}_index"), arr)
+            ds[key].attrs["units"] = "rad" if "angle" in key else ""
+        if self.curves:
+            m = max(len(c.values) for c in self.curves)
+            vals = np.full((len(self.curves), m, 2), math.nan)
+            freq = np.full((len(self.curves), m), math.nan)
+            for i, c in enumerate(self.curves):
+                vals[i, : len(c.values)] = c.values
+                freq[i, : len(c.values)] = c.frequency
+            p1, p2 = self.curves[0].parameters
+            ds["curve_value"] = (("curve", "curve_point", "curve_parameter"), vals,
+                                 {"units": f"{self.units.get(p1, '')}, {self.units.get(p2, '')}"})
+            ds["curve_frequency"] = (("curve", "curve_point"), freq, {"units": "rad/s"})
+            ds = ds.assign_coords(curve_type=("curve", [c.type for c in self.curves]),
+                                  curve_label=("curve", [c.label for c in self.curves]),
+                                  curve_parameter=("curve_parameter", [p1, p2]))
+            ds.attrs["parameter2"] = p2
+            ds.attrs["units2"] = self.units.get(p2, "")
+        ds.attrs["units"] = self.units.get(self.branches[0].parameter, "") if self.branches else ""
+        ds.attrs["descriptions"] = json.dumps([s.description for b in self.branches for s in b.special_points])
         return ds
 
 

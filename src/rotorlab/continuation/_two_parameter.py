@@ -25,7 +25,7 @@ from typing import Any
 import numpy as np
 
 from rotorlab.continuation._core import ContinuationSettings, continue_curve
-from rotorlab.continuation._machine_problem import MachineEquilibria, current_value
+from rotorlab.continuation._machine_problem import MachineEquilibria, as_machine, current_value
 from rotorlab.continuation._result import ContinuationResult, SpecialPoint
 
 __all__ = ["TwoParameterCurve", "continue_special_point", "two_parameter_curves"]
@@ -144,6 +144,7 @@ def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: 
     """
     if point.type not in ("fold", "hopf"):
         raise ValueError(f"only fold and Hopf points are continued in two parameters, got {point.type!r}")
+    model = as_machine(model)
     prob = MachineEquilibria(model, (point.parameter, parameter2))
     p2 = current_value(model, parameter2)
     lo, hi = min(start2, stop2), max(start2, stop2)

@@ -14,6 +14,7 @@ Examples
 """
 
 from rotorlab.io._basin_specs import BasinSpec, ToroidalBallSpec, WorkingPointSpec
+from rotorlab.io._continuation_spec import ContinuationSpec
 from rotorlab.io._coordinates import BALANCER_COORDINATES, TORUS_COORDINATES, coordinate_dimensions
 from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, validate_case
 from rotorlab.io._errors import CaseError, Issue
@@ -102,6 +103,7 @@ __all__ = [
     "Ball",
     "BasinSpec",
     "CampbellSpec",
+    "ContinuationSpec",
     "Case",
     "CaseError",
     "ConstantSpeed",

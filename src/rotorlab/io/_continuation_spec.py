@@ -1,0 +1,157 @@
+"""The ``continuation`` analysis: branches of steady motions of a machine with balls (or a
+``jeffcott_balls`` rotor) continued in a named parameter, optionally with fold and Hopf curves in a
+second one (:mod:`rotorlab.continuation`).
+
+Example::
+
+    [[analysis]]
+    type = "continuation"
+    param = "drive.speed"
+    range = ["600 rpm", "3000 rpm"]
+    start_from = "balanced"           # balanced | side | all | a motion's label ("side 01")
+    param2 = "ball_mass"              # optional: fold and Hopf curves in a second parameter
+    range2 = ["10 g", "40 g"]
+"""
+
+from __future__ import annotations
+
+import re
+from typing import Annotated, Any, ClassVar, Literal
+
+from pydantic import Field, PlainValidator, ValidationInfo, WithJsonSchema, field_validator
+
+from rotorlab.io._errors import Issue
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, Unit, _error, _QuantityValidator, flag
+
+__all__ = ["ContinuationSpec", "continuation_dimension", "CONTINUATION_NAMES"]
+
+#: The parameter names a continuation takes, as patterns, and their dimensions (io/_units.py).
+CONTINUATION_NAMES: tuple[tuple[str, str, str], ...] = (
+    (r"drive\.speed", "angular_speed", "drive.speed"),
+    (r"ball_mass", "mass", "ball_mass (every ball)"),
+    (r"ball_damping", "torque_damping", "ball_damping (every ball)"),
+    (r"races\[\d+\]\.balls\[\d+\]\.mass", "mass", "races[i].balls[j].mass"),
+    (r"races\[\d+\]\.balls\[\d+\]\.damping", "torque_damping", "races[i].balls[j].damping"),
+    (r"races\[\d+\]\.balls\[\d+\]\.inertia", "inertia", "races[i].balls[j].inertia"),
+    (r"races\[\d+\]\.(radius|axial_offset)", "length", "races[i].radius"),
+    (r"unbalances\[\d+\]\.magnitude", "unbalance", "unbalances[i].magnitude"),
+    (r"unbalances\[\d+\]\.phase", "angle", "unbalances[i].phase"),
+)
+
+_STARTS = re.compile(r"balanced|side|all|main[+-]|main \d+|side [01]+")
+
+
+def continuation_dimension(name: str) -> str:
+    """The dimension of parameter ``name`` (ValueError listing the names if it is none of them).
+
+    >>> continuation_dimension("drive.speed"), continuation_dimension("races[0].balls[1].mass")
+    ('angular_speed', 'mass')
+    """
+    for pattern, dimension, _ in CONTINUATION_NAMES:
+        if re.fullmatch(pattern, name):
+            return dimension
+    raise ValueError(f"{name!r} is not a continuation parameter; use one of "
+                     + ", ".join(shown for _, _, shown in CONTINUATION_NAMES))
+
+
+class _Name:
+    def __call__(self, value: Any) -> str:
+        if not isinstance(value, str):
+            raise _error("must be a parameter name (a string such as \"drive.speed\")")
+        try:
+            continuation_dimension(value)
+        except ValueError as exc:
+            raise _error(str(exc)) from None
+        return value
+
+
+_ParamName = Annotated[str, PlainValidator(_Name()), WithJsonSchema({"type": "string"})]
+_Range = Annotated[Any, WithJsonSchema({"type": "array", "minItems": 2, "maxItems": 2}), Unit("SI")]
+
+
+def _read_range(value: Any, name: str | None) -> tuple[float, float] | None:
+    if value is None:
+        return None
+    if name is None:
+        raise _error("needs a valid parameter name (param / param2) to know its unit")
+    if not isinstance(value, (list, tuple)) or len(value) != 2:
+        raise _error("must be [start, stop] (numbers in SI or strings with a unit)")
+    read = _QuantityValidator(continuation_dimension(name))
+    ends = []
+    for what, raw in zip(("start", "stop"), value):
+        try:
+            ends.append(read(raw))
+        except Exception as exc:  # the quantity's own message
+            detail = getattr(exc, "context", None) or {}
+            raise _error(f"{what}: {detail.get('detail', str(exc))}") from None
+    if ends[0] == ends[1]:
+        raise _error(f"start and stop must differ, got {ends[0]:g} twice")
+    return ends[0], ends[1]
+
+
+class ContinuationSpec(AbstractAnalysisSpec):
+    """Continue steady motions in a named parameter; fold and Hopf curves in a second one.
+
+    Parameters
+    ----------
+    param : str
+        ``drive.speed``, ``ball_mass``, ``ball_damping`` or a key path of the machine
+        (``races[i].balls[j].mass``, ``unbalances[i].magnitude``, ...); a ``jeffcott_balls``
+        rotor is continued as the machine it equals (one race, the disc's unbalance).
+    range : (float, float)
+        ``[start, stop]`` in the parameter's SI unit or with a unit; the starting motions are
+        those at ``start``.
+    start_from : str
+        ``balanced``, ``side``, ``all`` or a motion's label (``main+``, ``side 01``).
+    param2, range2 : optional
+        A second parameter and its range: the fold and Hopf points found are continued in it
+        (the case's own value of ``param2`` must lie in ``range2``).
+    switch : bool
+        Follow the other branch at every branch point.
+    """
+
+    model_types: ClassVar[tuple[str, ...] | None] = ("machine", "jeffcott_balls")
+
+    type: Literal["continuation"] = "continuation"
+    param: _ParamName = Field(description="the continued parameter (drive.speed, ball_mass, ... )")
+    range: _Range = Field(description="[start, stop] of the parameter (SI or with a unit)")
+    start_from: str = Field("balanced", description="starting motions: balanced, side, all or a motion's label")
+    param2: _ParamName | None = Field(None, description="second parameter of fold and Hopf curves")
+    range2: _Range = Field(None, description="[start, stop] of the second parameter")
+    switch: flag() = Field(True, description="switch branches at branch points")
+
+    @field_validator("range", mode="plain")
+    @classmethod
+    def _read_range1(cls, value: Any, info: ValidationInfo) -> tuple[float, float] | None:
+        return _read_range(value, info.data.get("param"))
+
+    @field_validator("range2", mode="plain")
+    @classmethod
+    def _read_range2(cls, value: Any, info: ValidationInfo) -> tuple[float, float] | None:
+        return _read_range(value, info.data.get("param2"))
+
+    @field_validator("start_from", mode="plain")
+    @classmethod
+    def _read_start(cls, value: Any) -> str:
+        if not isinstance(value, str) or not _STARTS.fullmatch(value):
+            raise _error("must be balanced, side, all or a motion's label (main+, main-, side 01, ...)")
+        return value
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        """Check the model type and that ``param2`` and ``range2`` come together."""
+        issues = super().case_issues(model)
+        if (self.param2 is None) != (self.range2 is None):
+            key = "range2" if self.range2 is None else "param2"
+            issues.append(Issue((key,), "param2 and range2 come together: give both or neither",
+                                self.param2 or self.range2))
+        if self.param2 is not None and self.param2 == self.param:
+            issues.append(Issue(("param2",), "must differ from param", self.param2))
+        return issues
+
+    def describe(self, model: AbstractModelSpec) -> str:
+        """Return a one-line description."""
+        text = f"continuation of the {self.start_from} steady motions in {self.param} from {self.range[0]:.6g} " \
+               f"to {self.range[1]:.6g} (SI)"
+        if self.param2 is not None:
+            text += f"; fold and Hopf curves in {self.param2} ({self.range2[0]:.6g} to {self.range2[1]:.6g})"
+        return text
