@@ -21,6 +21,7 @@ EXIT_TERMINATED = 143
 def _load_app() -> Any:
     """Import every command module (each registers its commands on the app) and return the app."""
     from rotorlab.cli import _basin  # noqa: F401 - registers the basin command
+    from rotorlab.cli import _continuation  # noqa: F401 - registers the continue command
     from rotorlab.cli import _impacts  # noqa: F401 - registers the impacts and impacts-sweep commands
     from rotorlab.cli import _linear  # noqa: F401 - registers the campbell and modes commands
     from rotorlab.cli import _show  # noqa: F401 - registers the show command

@@ -79,7 +79,7 @@ def _sentence(kind: str, who: str, value: str, before: bool, after: bool, up: bo
               other: str = "") -> str:
     if kind == "hopf":
         pair = (f"a pair of eigenvalues crosses the imaginary axis at {value} with frequency "
-                f"{frequency / (2 * math.pi):.4g} Hz ({frequency:.5g} rad/s)")
+                f"{frequency / (2 * math.pi):.4g} Hz ({frequency:.5g} rad/s, co-rotating frame)")
         if before == after:
             return f"{pair}; {who} stays {'stable' if after else 'unstable'} (another pair decides)"
         stable_above = after if up else before
@@ -138,7 +138,8 @@ class _Builder:
         if not z.converged:
             desc += " (location not converged to the tolerance)"
         return SpecialPoint(type=z.name, parameter=self.name, value=z.point.lam, state=prob.state(u[:prob.n]),
-                            description=desc, index=i, frequency=freq)
+                            description=desc, index=i, frequency=freq,
+                            changes_stability=bool(stable[i - 1]) != bool(stable[i]), amplitude=prob.amplitude(u))
 
 
 def _from(z, curve: Curve) -> Curve:

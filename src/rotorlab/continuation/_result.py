@@ -51,6 +51,10 @@ class SpecialPoint:
         The crossing eigenvalue's imaginary part (rad/s) at a Hopf or torus point, else NaN.
     parameter2 : str, optional
         The second parameter of a two-parameter curve, and ``value2`` its value.
+    changes_stability : bool, optional
+        Whether the branch's stability differs on the two sides (a stability boundary).
+    amplitude : float
+        The largest whirl radius there (m), where known.
     """
 
     type: str
@@ -62,6 +66,8 @@ class SpecialPoint:
     frequency: float = math.nan
     parameter2: str | None = None
     value2: float = math.nan
+    changes_stability: bool | None = None
+    amplitude: float = math.nan
 
     def __post_init__(self) -> None:
         if self.type not in SPECIAL_POINT_TYPES:
@@ -197,7 +203,9 @@ class ContinuationResult:
                 "parameter": ("branch", [b.parameter for b in self.branches]),
             },
             attrs={"analysis": "continuation",
-                   "special_points": json.dumps([[s.to_dict() for s in b.special_points] for b in self.branches])},
+                   "special_points": json.dumps([[{**s.to_dict(), "index": s.index, "boundary": s.changes_stability,
+                                                   "amplitude_m": _num(s.amplitude)}
+                                                  for s in b.special_points] for b in self.branches])},
         )
         units = {"amplitude": "m", "period": "s", "stable": "1 (true/false)",
                  "spectral_abscissa": "1/s (equilibria: largest real part) or 1 (orbits: largest |multiplier|)"}
@@ -227,6 +235,7 @@ class ContinuationResult:
                                  {"units": f"{self.units.get(p1, '')}, {self.units.get(p2, '')}"})
             ds["curve_frequency"] = (("curve", "curve_point"), freq, {"units": "rad/s"})
             ds = ds.assign_coords(curve_type=("curve", [c.type for c in self.curves]),
+                                  curve_boundary=("curve", [bool(getattr(c, "boundary", True)) for c in self.curves]),
                                   curve_label=("curve", [c.label for c in self.curves]),
                                   curve_parameter=("curve_parameter", [p1, p2]))
             ds.attrs["parameter2"] = p2

@@ -49,7 +49,11 @@ class TwoParameterCurve:
     label : str
         The branch it was found on ("main+", "side 00", ...).
     end : str
-        Why each half ended (``"bound/step"``: the p2-decreasing half, then the increasing one).
+        Why each half ended (``"bound/step"``: the p2-decreasing half, then the increasing one;
+        ``"bogdanov-takens"`` where the Hopf pair became real).
+    boundary : bool
+        Whether the point it was continued from changes the branch's stability (a stability
+        boundary; a Hopf point of a pair crossing on an already unstable branch is not).
     """
 
     type: str
@@ -59,6 +63,7 @@ class TwoParameterCurve:
     frequency: np.ndarray
     label: str = ""
     end: str = ""
+    boundary: bool = True
 
     def to_dict(self) -> dict[str, Any]:
         p1, p2 = self.parameters
@@ -68,7 +73,8 @@ class TwoParameterCurve:
             if self.type == "hopf":
                 pt["frequency_rad_s"] = _num(self.frequency[k])
             pts.append(pt)
-        return {"type": self.type, "parameters": [p1, p2], "label": self.label, "end": self.end, "points": pts}
+        return {"type": self.type, "parameters": [p1, p2], "label": self.label, "end": self.end,
+                "stability_boundary": self.boundary, "points": pts}
 
 
 def _num(x) -> float | None:
@@ -189,7 +195,7 @@ def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: 
         u, freq = u[keep], freq[keep]
     return TwoParameterCurve(type=point.type, parameters=(point.parameter, parameter2), values=u[:, -2:],
                              states=np.array([prob.state(v[:prob.n]) for v in u]), frequency=freq,
-                             label=label, end="/".join(ends))
+                             label=label, end="/".join(ends), boundary=point.changes_stability is not False)
 
 
 def two_parameter_curves(model, result: ContinuationResult, parameter2: str, start2: float, stop2: float, *,

@@ -21,7 +21,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, ValidationInfo, WithJsonSchema, field_validator
 
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, Unit, _error, _QuantityValidator, flag
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, Unit, _error, _QuantityValidator, flag, quantity
 
 __all__ = ["ContinuationSpec", "continuation_dimension", "CONTINUATION_NAMES"]
 
@@ -108,6 +108,9 @@ class ContinuationSpec(AbstractAnalysisSpec):
         (the case's own value of ``param2`` must lie in ``range2``).
     switch : bool
         Follow the other branch at every branch point.
+    speed : float, optional
+        The constant speed (rad/s) when ``param`` is not ``drive.speed``; default the model's
+        constant speed.
     """
 
     model_types: ClassVar[tuple[str, ...] | None] = ("machine", "jeffcott_balls")
@@ -119,6 +122,8 @@ class ContinuationSpec(AbstractAnalysisSpec):
     param2: _ParamName | None = Field(None, description="second parameter of fold and Hopf curves")
     range2: _Range = Field(None, description="[start, stop] of the second parameter")
     switch: flag() = Field(True, description="switch branches at branch points")
+    speed: quantity("angular_speed", gt=0) | None = Field(
+        None, description="constant speed (rad/s) when the speed is not the continued parameter")
 
     @field_validator("range", mode="plain")
     @classmethod
@@ -144,6 +149,8 @@ class ContinuationSpec(AbstractAnalysisSpec):
             key = "range2" if self.range2 is None else "param2"
             issues.append(Issue((key,), "param2 and range2 come together: give both or neither",
                                 self.param2 or self.range2))
+        if self.speed is not None and self.param == "drive.speed":
+            issues.append(Issue(("speed",), "is the continued parameter: give its range only", self.speed))
         if self.param2 is not None and self.param2 == self.param:
             issues.append(Issue(("param2",), "must differ from param", self.param2))
         return issues

@@ -5,6 +5,7 @@ or using it changes no global matplotlib state.
 """
 
 from rotorlab.plot._basin import basin_figure, basin_figures, fractions_figure, restoring_force_figure, sweep_figures
+from rotorlab.plot._continuation import bifurcation_figure, continuation_figures, two_parameter_figure
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
 from rotorlab.plot._impacts import impact_figures, impact_sweep_figure, p_trajectory_figure
 from rotorlab.plot._linear import linear_figures, mode_shapes_figure, unbalance_response_figure
@@ -25,7 +26,9 @@ __all__ = [
     "ball_angle_figure",
     "basin_figure",
     "basin_figures",
+    "bifurcation_figure",
     "campbell_figure",
+    "continuation_figures",
     "configuration_label",
     "final_positions_figure",
     "fractions_figure",
@@ -41,6 +44,7 @@ __all__ = [
     "speed_label",
     "stability_chart_figure",
     "sweep_figures",
+    "two_parameter_figure",
     "unbalance_response_figure",
     "verify_figure",
 ]

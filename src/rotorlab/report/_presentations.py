@@ -165,6 +165,10 @@ for _entry in (
                  lazy("rotorlab.report._rub:rub_findings"), lazy("rotorlab.cli._rub:rub_tables")),
     Presentation("rub-map", lazy("rotorlab.plot._rub:rub_map_figures"), lazy("rotorlab.report._rub:rub_map_section"),
                  lazy("rotorlab.report._rub:rub_map_findings"), lazy("rotorlab.report._rub:rub_map_tables")),
+    Presentation("continuation", lazy("rotorlab.plot._continuation:continuation_figures"),
+                 lazy("rotorlab.report._continuation:continuation_section"),
+                 lazy("rotorlab.report._continuation:continuation_findings"),
+                 lazy("rotorlab.cli._continuation:continuation_tables")),
     Presentation("knock", lazy("rotorlab.report._knock:knock_figures"), lazy("rotorlab.report._knock:knock_section"),
                  lazy("rotorlab.report._knock:knock_findings"), lazy("rotorlab.report._knock:knock_tables")),
 ):  # fmt: skip

@@ -1,0 +1,64 @@
+"""Report section and findings of the ``continuation`` analysis: the special points in words, the
+branches, and the two-parameter curves (figures from :mod:`rotorlab.plot._continuation`)."""
+
+from __future__ import annotations
+
+import json
+from collections.abc import Mapping, Sequence
+from typing import Any
+
+from rotorlab.report._findings import Findings
+
+__all__ = ["continuation_section", "continuation_findings"]
+
+Rows = Sequence[Mapping[str, Any]]
+
+
+def _points(rows: Rows) -> list[Mapping[str, Any]]:
+    """Special points, a mirror image (same type and value on main+ / main-) once."""
+    out: list[Mapping[str, Any]] = []
+    for r in rows:
+        if r["type"] == "branch-summary":
+            continue
+        if not any(o["type"] == r["type"] and abs(o["value"] - r["value"]) <= 1e-7 * max(1.0, abs(r["value"]))
+                   for o in out):
+            out.append(r)
+    return out
+
+
+def continuation_section(ds: Any, rows: Rows) -> str:
+    """HTML: every special point with its sentence, the branches, and the curves' extent."""
+    from rotorlab.report._table import table
+
+    pts = _points(rows)
+    html = "<p>" + ("<br>".join(f"<b>{r['type']}</b> ({r['branch']}): {r['description']}" for r in pts)
+                    or "No fold, Hopf or branch point in this range.") + "</p>"
+    summary = [r for r in rows if r["type"] == "branch-summary"]
+    html += table(["branch", "from (SI)", "to (SI)", "points", "stable points", "ended"],
+                  [[r["branch"], f"{r['from']:.6g}", f"{r['to']:.6g}", r["points"], r["stable_points"], r["end"]]
+                   for r in summary], numeric={1, 2, 3, 4})
+    doc = json.loads(ds.attrs.get("result", "{}"))
+    curves = doc.get("curves", [])
+    if curves:
+        body = []
+        for c in curves:
+            p1, p2 = c["parameters"]
+            v1 = [p[p1] for p in c["points"]]
+            v2 = [p[p2] for p in c["points"]]
+            body.append([f"{c['type']} ({c['label']})", f"{min(v1):.6g} to {max(v1):.6g}",
+                         f"{min(v2):.6g} to {max(v2):.6g}", "yes" if c.get("stability_boundary", True) else "no",
+                         c["end"]])
+        html += table(["curve", f"{curves[0]['parameters'][0]} (SI)", f"{curves[0]['parameters'][1]} (SI)",
+                       "stability boundary", "ended"], body)
+    return html
+
+
+def continuation_findings(ds: Any, rows: Rows) -> Findings:
+    """The sentences of the special points that change stability first, then the others."""
+    pts = _points(rows)
+    if not pts:
+        return Findings("No fold, Hopf or branch point of the continued steady motions in this range.")
+    first = [r for r in pts if "becomes stable" in r["description"] or "stable only below" in r["description"]]
+    verdict = (first or pts)[0]["description"]
+    verdict = verdict[0].upper() + verdict[1:] + "."
+    return Findings(verdict, tuple(f"{r['type']} ({r['branch']}): {r['description']}" for r in pts[:6]))
