@@ -154,6 +154,14 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
     ("chart-zero-points", ["stability-chart", "zhakash-k2", "--speeds-rpm", "1:2:0"], None, ["--speeds-rpm"]),
     ("chart-unknown-param", ["stability-chart", "zhakash-k2", "--param", "bogus=1:2:3"], None, ["--param", "bogus"]),
     ("chart-mixed-units", ["stability-chart", "zhakash-k2", "--param", "eccentricity=1mm:2kg:3"], None, ["--param"]),
+    # ---- continue -------------------------------------------------------------------------------
+    ("continue-unknown-param", ["continue", "zhakash-k2", "--param", "drive.sped=1:2"], None, ["--param", "drive.sped"]),
+    ("continue-no-range", ["continue", "zhakash-k2", "--param", "drive.speed=100"], None, ["--param", "START:STOP"]),
+    ("continue-wrong-unit", ["continue", "zhakash-k2", "--param", "drive.speed=1kg:2kg"], None,
+     ["--param", "angular speed"]),
+    ("continue-bad-from", ["continue", "zhakash-k2", "--param", "drive.speed=800rpm:2000rpm", "--from", "x"], None,
+     ["--from", "balanced"]),
+    ("continue-no-speed", ["continue", "zhakash-k2", "--param", "ball_mass=40g:5g"], None, ["--speed-rpm"]),
     # ---- basin ------------------------------------------------------------------------------------
     ("basin-absurd-grid", ["basin", "autobalancer", "--x", "psi_1=0:350deg:100000", "--y", "psi_2=0:350deg:100000"],
      None, ["1e+10 points", "memory"]),
@@ -390,7 +398,7 @@ def test_the_corpus_is_large_and_covers_every_command_and_model_type():
     assert len(CORPUS) >= 60
     assert len({entry[0] for entry in CORPUS}) == len(CORPUS)
     commands = {entry[1][0] for entry in CORPUS} | {entry[1][2] for entry in CORPUS if entry[1][0] == "-q"}
-    assert commands >= {"run", "simulate", "campbell", "modes", "steady", "stability-chart", "basin", "sweep",
+    assert commands >= {"run", "simulate", "campbell", "modes", "steady", "stability-chart", "continue", "basin", "sweep",
                         "show", "impacts", "impacts-sweep", "validate", "cases"}  # fmt: skip
     bases = {entry[2][0] for entry in CORPUS if entry[2]}
     assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher", "rub-jeffcott"}

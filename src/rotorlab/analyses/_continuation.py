@@ -73,8 +73,8 @@ def run_continuation_analysis(case_model, analysis, progress=None):
         for k, v in enumerate(values):
             chart = machine_steady(with_value(machine, analysis.param2, float(v)), speeds)
             stable[k], exists[k] = chart.stable.values, chart.exists.values
-        ds["chart_stable"] = (("chart_value", "chart_speed"), stable)
-        ds["chart_exists"] = (("chart_value", "chart_speed"), exists)
+        ds["chart_stable"] = (("chart_value", "chart_speed"), stable, {"units": "1"})
+        ds["chart_exists"] = (("chart_value", "chart_speed"), exists, {"units": "1"})
         ds = ds.assign_coords(chart_value=("chart_value", values, {"units": result.units[analysis.param2]}),
                               chart_speed=("chart_speed", speeds, {"units": "rad/s"}))
     if progress is not None:

@@ -200,12 +200,12 @@ def _register_builtins() -> None:
 
     register_analysis_type(AnalysisType("machine-knock", _knock.run_knock_analysis, _knock.knock_rows, "knock",
                                         _knock.knock_task_size, **trajectories))  # fmt: skip
+    register_analysis_type(AnalysisType("rub-map", _rub.run_rub_map, _rub.rub_map_rows, "rub-map",
+                                        _rub.rub_map_task_size, progress_unit="points"))
     from rotorlab.analyses import _continuation
 
     register_analysis_type(AnalysisType("continuation", _continuation.run_continuation_analysis,
                                         _continuation.continuation_rows, "continuation"))
-    register_analysis_type(AnalysisType("rub-map", _rub.run_rub_map, _rub.rub_map_rows, "rub-map",
-                                        _rub.rub_map_task_size, progress_unit="points"))
 
 
 _register_builtins()

@@ -240,6 +240,8 @@ class ContinuationResult:
                                   curve_parameter=("curve_parameter", [p1, p2]))
             ds.attrs["parameter2"] = p2
             ds.attrs["units2"] = self.units.get(p2, "")
+        for name in ds.variables:  # counts and labels: dimensionless
+            ds[name].attrs.setdefault("units", "1")
         ds.attrs["units"] = self.units.get(self.branches[0].parameter, "") if self.branches else ""
         ds.attrs["descriptions"] = json.dumps([s.description for b in self.branches for s in b.special_points])
         return ds
