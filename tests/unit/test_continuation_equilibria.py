@@ -106,8 +106,10 @@ def test_bad_parameter_and_no_frame_say_why():
     m = machine()
     with pytest.raises(ValueError, match="'drive.sped' is not a continuation parameter"):
         continue_equilibria(m, "drive.sped", 1.0, 2.0)
-    with pytest.raises(ValueError, match=r"races\[3\].balls\[0\].mass: the machine has 1 race"):
+    with pytest.raises(ValueError, match=r"'races\[3\].balls\[0\].mass' is not a continuation parameter"):
         with_value(m, "races[3].balls[0].mass", 0.1)
+    with pytest.raises(ValueError, match=r"races\[0\].balls\[1\].mass = -0.1: must be > 0 kg"):
+        with_value(m, "races[0].balls[1].mass", -0.1)
     with pytest.raises(ValueError, match="start and stop must be finite and differ"):
         continue_equilibria(m, "drive.speed", 1.0, 1.0)
     K = S.K.copy()

@@ -25,10 +25,11 @@ def continuation_machine(case_model, analysis):
     Raises
     ------
     ValueError
-        The speed is not continued and the model's is not constant and > 0.
+        A parameter the machine does not have, or the speed is not continued and neither the
+        analysis nor the model gives a constant speed > 0.
     """
     from rotorlab.analyses._case import build_model
-    from rotorlab.continuation import as_machine, with_value
+    from rotorlab.continuation import as_machine, parameter_unit, with_value
     from rotorlab.models import ConstantSpeed
 
     model = build_model(case_model)
@@ -36,8 +37,12 @@ def continuation_machine(case_model, analysis):
         from dataclasses import replace
 
         model = replace(model, speed=ConstantSpeed(1.0))  # replaced below: a steady motion needs one
+    machine = as_machine(model)
+    for name in (analysis.param, analysis.param2):
+        if name is not None:
+            parameter_unit(machine, name)  # a name the machine does not have: ValueError naming it
     if analysis.param == "drive.speed":
-        return with_value(as_machine(model), "drive.speed", analysis.range[0])
+        return with_value(machine, "drive.speed", analysis.range[0])
     speed = analysis.speed
     if speed is None:
         profile = case_model.speed_profile()
@@ -46,7 +51,7 @@ def continuation_machine(case_model, analysis):
     if speed is None or not speed > 0:
         raise ValueError(f"continuation of {analysis.param}: give the speed (speed = \"1500 rpm\", --speed-rpm); "
                          "the model has no constant speed > 0 of its own")
-    return with_value(as_machine(model), "drive.speed", float(speed))
+    return with_value(machine, "drive.speed", float(speed))
 
 
 def run_continuation_analysis(case_model, analysis, progress=None):

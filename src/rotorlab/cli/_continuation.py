@@ -51,6 +51,8 @@ def parse_named_range(option: str, text: str) -> tuple[str, tuple[float, float]]
         try:
             ends.append(float(part))
         except ValueError:
+            if dimension is None:
+                raise BadInput(f"{option} = {text}: {name.strip()} takes plain numbers in its SI unit") from None
             try:
                 ends.append(to_si(part.strip(), dimension, option))
             except CaseError as exc:
@@ -98,13 +100,8 @@ def continue_command(
         spec = _spec(loaded, first, second, start_from, speed_rpm)
         from rotorlab.analyses import run_analysis, summarize
         from rotorlab.analyses._continuation import continuation_machine
-        from rotorlab.continuation import parameter_unit
-
         try:
-            machine = continuation_machine(loaded.model, spec)
-            for option, name in (("--param", spec.param), ("--param2", spec.param2)):
-                if name is not None:
-                    parameter_unit(machine, name)
+            continuation_machine(loaded.model, spec)
         except ValueError as exc:
             raise BadInput(f"--param = {param or spec.param}: {exc}") from None
         info(settings, f"{loaded.name}: continuation ({spec.describe(loaded.model)}) ...", json_mode=json_out)

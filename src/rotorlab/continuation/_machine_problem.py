@@ -30,26 +30,8 @@ __all__ = ["NAMED_PARAMETERS", "as_machine", "with_value", "current_value", "par
 #: Parameters that set every ball at once (the stability chart's names): name -> (Ball field, unit).
 NAMED_PARAMETERS = {"ball_mass": ("mass", "kg"), "ball_damping": ("damping", "N*m*s/rad")}
 
-#: Key-path fields and their units: races[i].balls[j].<field>, races[i].<field>, unbalances[i].<field>.
-_BALL_FIELDS = {"mass": "kg", "damping": "N*m*s/rad", "inertia": "kg*m^2"}
-_RACE_FIELDS = {"radius": "m", "axial_offset": "m"}
-_UNBALANCE_FIELDS = {"magnitude": ("mass_eccentricity", "kg*m"), "phase": ("phase", "rad"),
-                     "axial_offset": ("axial_offset", "m")}
-
 #: What ``start_from`` may name (besides a motion's label such as ``"side 01"``).
 START_KINDS = ("balanced", "side", "all")
-
-
-def _index(text: str, head: str) -> tuple[int, str] | None:
-    """``head[i].rest`` -> (i, rest), else None."""
-    if not text.startswith(head + "["):
-        return None
-    close = text.find("]")
-    try:
-        i = int(text[len(head) + 1:close])
-    except ValueError:
-        return None
-    return i, text[close + 1:].removeprefix(".")
 
 
 def _parse(model, name: str):
@@ -66,51 +48,30 @@ def _parse(model, name: str):
             return replace(m, races=races)
 
         return every_ball, unit
-    race = _index(name, "races")
-    if race is not None:
-        i, rest = race
-        if not 0 <= i < len(model.races):
-            raise ValueError(f"{name}: the machine has {len(model.races)} race(s)")
-        if rest in _RACE_FIELDS:
-            return (lambda m, v: replace(m, races=_set(m.races, i, **{rest: v}))), _RACE_FIELDS[rest]
-        ball = _index(rest, "balls")
-        if ball is not None and ball[1] in _BALL_FIELDS:
-            j, key = ball
-            if not 0 <= j < len(model.races[i].balls):
-                raise ValueError(f"{name}: race {i} has {len(model.races[i].balls)} ball(s)")
-
-            def one_ball(m, v):
-                r = m.races[i]
-                return replace(m, races=_set(m.races, i, balls=_set(r.balls, j, **{key: v})))
-
-            return one_ball, _BALL_FIELDS[key]
-    unb = _index(name, "unbalances")
-    if unb is not None and unb[1] in _UNBALANCE_FIELDS:
-        i, key = unb
-        if not 0 <= i < len(model.unbalances):
-            raise ValueError(f"{name}: the machine has {len(model.unbalances)} unbalance(s)")
-        field, unit = _UNBALANCE_FIELDS[key]
-        return (lambda m, v: replace(m, unbalances=_set(m.unbalances, i, **{field: v}))), unit
-    raise ValueError(f"{name!r} is not a continuation parameter of a machine; use drive.speed, "
-                     f"{', '.join(NAMED_PARAMETERS)}, races[i].balls[j].<{'|'.join(_BALL_FIELDS)}>, "
-                     f"races[i].<{'|'.join(_RACE_FIELDS)}> or unbalances[i].<{'|'.join(_UNBALANCE_FIELDS)}>")
-
-
-def _set(items: tuple, i: int, **kw) -> tuple:
-    return items[:i] + (replace(items[i], **kw),) + items[i + 1:]
+    space = model.parameters  # the model's named parameters (rotorlab.models._protocol)
+    if name not in space:
+        shown = ", ".join(list(space.names)[:6])
+        raise ValueError(f"{name!r} is not a continuation parameter of this machine; use drive.speed, "
+                         f"{', '.join(NAMED_PARAMETERS)} or one of its named parameters ({shown}, ...)")
+    if space.structural(name):
+        raise ValueError(f"{name} is structural (a new value changes the compiled layout): it takes integer "
+                         "values and cannot be continued")
+    return (lambda m, v: m.with_parameters(**{name: v})), space[name].unit
 
 
 def with_value(model, name: str, value: float):
     """Return ``model`` (a :class:`rotorlab.models.Machine`) with parameter ``name`` = ``value`` (SI).
 
-    Names: ``drive.speed`` (rad/s), ``ball_mass`` / ``ball_damping`` (every ball), and the case
-    file's key paths ``races[i].balls[j].mass`` (``damping``, ``inertia``), ``races[i].radius``,
-    ``unbalances[i].magnitude`` (``phase``, ``axial_offset``).
+    Names: ``drive.speed`` (rad/s; a constant speed replaces any drive), ``ball_mass`` /
+    ``ball_damping`` (every ball, the stability chart's names), and every named parameter of the
+    model (:attr:`Machine.parameters`: the case file's key paths ``races[i].balls[j].mass``,
+    ``unbalances[i].magnitude``, ``structure.bearings[0].kxx`` ...), set with
+    ``model.with_parameters``.
 
     Raises
     ------
     ValueError
-        An unknown name, an index out of range, or a value the part refuses (its message).
+        An unknown or structural name, or a value outside the parameter's range (its message).
 
     Examples
     --------
@@ -142,15 +103,7 @@ def current_value(model, name: str) -> float:
             raise ValueError(f"{name}: the balls differ ({', '.join(f'{v:g}' for v in sorted(vals))}); "
                              "it sets every ball: name one, races[i].balls[j]." + key)
         return vals.pop()
-    race = _index(name, "races")
-    if race is not None:
-        i, rest = race
-        ball = _index(rest, "balls")
-        if ball is not None:
-            return float(getattr(model.races[i].balls[ball[0]], ball[1]))
-        return float(getattr(model.races[i], rest))
-    i, key = _index(name, "unbalances")
-    return float(getattr(model.unbalances[i], _UNBALANCE_FIELDS[key][0]))
+    return float(model.parameters[name].value)
 
 
 def parameter_unit(model, name: str) -> str:

@@ -38,20 +38,30 @@ CONTINUATION_NAMES: tuple[tuple[str, str, str], ...] = (
     (r"unbalances\[\d+\]\.phase", "angle", "unbalances[i].phase"),
 )
 
+#: Any other key path of the model's named parameters (its values then plain SI numbers).
+_KEY_PATH = re.compile(r"[a-z_][a-z0-9_]*(\[\d+\])?(\.[a-z_][a-z0-9_]*(\[\d+\])?)*")
+
 _STARTS = re.compile(r"balanced|side|all|main[+-]|main \d+|side [01]+")
 
 
-def continuation_dimension(name: str) -> str:
-    """The dimension of parameter ``name`` (ValueError listing the names if it is none of them).
+def continuation_dimension(name: str) -> str | None:
+    """The dimension of parameter ``name``; None for another key path of the model's named
+    parameters (checked against the model when it runs; its range then in plain SI numbers).
+    ValueError listing the names if ``name`` is not a key path.
 
     >>> continuation_dimension("drive.speed"), continuation_dimension("races[0].balls[1].mass")
     ('angular_speed', 'mass')
+    >>> continuation_dimension("structure.bearings[0].kxx") is None
+    True
     """
     for pattern, dimension, _ in CONTINUATION_NAMES:
         if re.fullmatch(pattern, name):
             return dimension
+    if _KEY_PATH.fullmatch(name) and "." in name or name in ("disc_mass", "stiffness", "damping", "eccentricity"):
+        return None
     raise ValueError(f"{name!r} is not a continuation parameter; use one of "
-                     + ", ".join(shown for _, _, shown in CONTINUATION_NAMES))
+                     + ", ".join(shown for _, _, shown in CONTINUATION_NAMES) + " or another named parameter of "
+                     "the model (its key path)")
 
 
 class _Name:
@@ -76,9 +86,12 @@ def _read_range(value: Any, name: str | None) -> tuple[float, float] | None:
         raise _error("needs a valid parameter name (param / param2) to know its unit")
     if not isinstance(value, (list, tuple)) or len(value) != 2:
         raise _error("must be [start, stop] (numbers in SI or strings with a unit)")
-    read = _QuantityValidator(continuation_dimension(name))
+    dimension = continuation_dimension(name)
+    read = _QuantityValidator(dimension or "dimensionless")
     ends = []
     for what, raw in zip(("start", "stop"), value):
+        if dimension is None and not isinstance(raw, (int, float)):
+            raise _error(f"{what}: {name} takes plain numbers in its SI unit (no unit known here)")
         try:
             ends.append(read(raw))
         except Exception as exc:  # the quantity's own message
