@@ -86,6 +86,7 @@ def bifurcation_figure(ds: xarray.Dataset) -> Figure:
                     label=label if k == 0 else None)
             if "ball_angle" in ds:
                 ang = np.degrees(ds.ball_angle.values[b][keep][seg])
+                ang[1:][np.abs(np.diff(ang, axis=0)) > 180.0] = np.nan  # no line across the +-180 deg wrap
                 for j in range(ang.shape[1]):
                     ax2.plot(v[seg], ang[:, j], color=color, lw=1.4 if st else 0.8, ls="-" if st else "--")
     for n, (s, b) in enumerate(notes, start=1):
