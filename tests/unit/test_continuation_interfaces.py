@@ -89,3 +89,17 @@ range2 = ["0.02 N*m*s/rad", "0.08 N*m*s/rad"]
     assert sorted(figs) == ["cont-bifurcation", "cont-curves"]
     pres = PRESENTATIONS["continuation"]
     assert "becomes stable above" in pres.section(ds, rows) and pres.findings(ds, rows).verdict.startswith("Balancing")
+
+
+def test_two_plane_balancer_hopf_is_the_chart_crossing():
+    """rcfw-two-plane (Rodrigues et al. 2008's rigid rotor with two races, tilting): four balanced
+    layouts; where balancing becomes stable equals today's chart (machine_steady) crossing."""
+    from rotorlab.analyses._machine_steady import machine_steady
+
+    m = build_model(load_case("rcfw-two-plane").model)
+    r = continue_equilibria(m, "drive.speed", 2.5, 3.5, start_from="main 0")
+    (edge,) = [s for s in r.branches[0].special_points if s.changes_stability]
+    lo, hi = 0.999 * edge.value, 1.001 * edge.value  # brentq refuses a bracket without a sign change
+    w0 = brentq(lambda w: float(machine_steady(m, [w]).max_real_eigenvalue[0]), lo, hi, xtol=1e-13, rtol=1e-14)
+    assert edge.type == "hopf" and abs(edge.value - w0) < 1e-6 * w0
+    assert edge.description.startswith("balancing becomes stable above")

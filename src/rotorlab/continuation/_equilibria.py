@@ -48,7 +48,7 @@ __all__ = ["continue_equilibria", "equilibrium_settings", "describe_branch"]
 def equilibrium_settings(start: float, stop: float, **kw) -> ContinuationSettings:
     """Stepping for a branch from ``start`` to ``stop`` (the arclength's parameter unit is the range)."""
     lo, hi = min(start, stop), max(start, stop)
-    base = dict(ds=0.01, ds_min=1e-7, ds_max=0.2, max_points=500, newton_tol=1e-11, locate_tol=1e-10,
+    base = dict(ds=0.01, ds_min=1e-7, ds_max=0.05, max_points=1000, newton_tol=1e-11, locate_tol=1e-10,
                 bounds=(lo, hi), direction=1 if stop > start else -1)
     base.update(kw)
     return ContinuationSettings(**base)
