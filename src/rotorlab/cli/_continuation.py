@@ -183,23 +183,25 @@ def continuation_tables(results: Mapping[str, Any], rows: Mapping[str, Sequence[
     """One rich table per continuation result: its special points in words, then its branches."""
     from rich.table import Table
 
+    from rotorlab._constants import shown_unit
     from rotorlab.report._continuation import _points
 
     out = []
     for name, ds in results.items():
         t = Table(title=f"{name}: special points of the steady motions in {ds.attrs.get('parameter', '')}",
                   title_justify="left")
-        for col in ("type", "branch", "value (SI)", "what happens"):
+        f, unit = shown_unit(ds.attrs.get("units", ""))
+        for col in ("type", "branch", f"value ({unit})", "what happens"):
             t.add_column(col, justify="right" if col.startswith("value") else "left")
         for r in _points(rows[name]):
-            t.add_row(r["type"], r["branch"], f"{r['value']:.8g}", r["description"])
+            t.add_row(r["type"], r["branch"], f"{f * r['value']:.6g}", r["description"])
         out.append(t)
         b = Table(title=f"{name}: branches", title_justify="left")
-        for col in ("branch", "from (SI)", "to (SI)", "points", "stable points", "ended"):
+        for col in ("branch", f"from ({unit})", f"to ({unit})", "points", "stable points", "ended"):
             b.add_column(col)
         for r in rows[name]:
             if r["type"] == "branch-summary":
-                b.add_row(r["branch"], f"{r['from']:.6g}", f"{r['to']:.6g}", str(r["points"]), str(r["stable_points"]),
-                          r["end"])
+                b.add_row(r["branch"], f"{f * r['from']:.4g}", f"{f * r['to']:.4g}", str(r["points"]),
+                          str(r["stable_points"]), r["end"])
         out.append(b)
     return out

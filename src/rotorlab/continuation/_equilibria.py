@@ -183,7 +183,8 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
         ``drive.speed``, ``ball_mass``, ``ball_damping`` or a key path
         (:func:`rotorlab.continuation.with_value`), SI.
     start, stop : float
-        The range; the starting motions are those at ``start``.
+        The range; the starting motions are those at ``start`` or, where it has none of the
+        kind asked for (``start_from`` a string), those at ``stop``, continued back.
     start_from : str or sequence of (label, state)
         ``"balanced"``, ``"side"``, ``"all"`` or a motion's label (``"side 01"``,
         :func:`rotorlab.continuation.starting_motions`), or given co-rotating states.
@@ -234,8 +235,14 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
     unit = prob.units[parameter]
     first = with_value(model, parameter, start)
     starts = starting_motions(first, start_from) if isinstance(start_from, str) else list(start_from)
+    if not starts and isinstance(start_from, str):
+        # none of that kind at the start of the range (e.g. balls too light to balance): start
+        # from the other end and continue back, as a user asking for the range expects
+        starts = starting_motions(with_value(model, parameter, stop), start_from)
+        if starts:
+            start, stop = stop, start
     if not starts:
-        raise ValueError(f"no {start_from} steady motion at {parameter} = {start:g} {unit}"
+        raise ValueError(f"no {start_from} steady motion at {parameter} = {start:g} {unit} nor at {stop:g} {unit}"
                          if isinstance(start_from, str) else "start_from: no starting states given")
     st = settings if settings is not None else equilibrium_settings(start, stop)
     scale = _scale(prob, start, stop)

@@ -12,7 +12,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rotorlab._constants import RPM_PER_RAD_S
+from rotorlab._constants import shown_unit as _shown
 
 if TYPE_CHECKING:
     import xarray
@@ -24,15 +24,6 @@ _MARKS = {"fold": ("s", "F"), "hopf": ("o", "H"), "branch": ("D", "BP"), "fold-o
           "period-doubling": ("v", "PD"), "torus": ("^", "NS")}
 
 
-def _shown(unit: str) -> tuple[float, str]:
-    """Factor and unit a value is shown in."""
-    if unit == "rad/s":
-        return RPM_PER_RAD_S, "rpm"
-    if unit == "kg":
-        return 1e3, "g"
-    return 1.0, unit
-
-
 def _runs(mask: np.ndarray) -> list[slice]:
     """Slices of consecutive equal values of ``mask`` (each run shares its end point with the next)."""
     out, start = [], 0
@@ -41,6 +32,35 @@ def _runs(mask: np.ndarray) -> list[slice]:
             out.append(slice(start, min(k + 1, mask.size)))
             start = k
     return out
+
+
+#: Whirl radii below this (m) are round-off of a balanced state and drawn as zero.
+_ZERO_WHIRL = 1e-9
+
+
+def _with_special_points(ds, b: int, specials: list, param: str):
+    """Branch ``b``'s parameter values, amplitudes (m), stability and ball angles (rad; None if
+    absent) with each located special point inserted where it lies (its stability that of the
+    point after it), so that a stable and an unstable stretch meet at the located point, not at
+    the next computed one."""
+    v = ds.value.values[b]
+    keep = np.isfinite(v)
+    v = v[keep]
+    amp = ds.amplitude.values[b][keep]
+    stable = ds.stable.values[b][keep] > 0.5
+    ang = ds.ball_angle.values[b][keep] if "ball_angle" in ds else None
+    for s in sorted(specials, key=lambda s: -int(s.get("index", 0))):
+        k = int(s.get("index", 0))
+        x = s.get(param)
+        if x is None or not 0 < k < v.size:
+            continue
+        w = (x - v[k - 1]) / (v[k] - v[k - 1]) if v[k] != v[k - 1] else 0.0
+        a = s.get("amplitude_m")
+        a = amp[k - 1] + w * (amp[k] - amp[k - 1]) if a is None else a
+        v, amp, stable = np.insert(v, k, x), np.insert(amp, k, a), np.insert(stable, k, stable[k])
+        if ang is not None:
+            ang = np.insert(ang, k, ang[k - 1] + w * (ang[k] - ang[k - 1]), axis=0)
+    return v, amp, stable, ang
 
 
 def bifurcation_figure(ds: xarray.Dataset) -> Figure:
@@ -72,32 +92,37 @@ def bifurcation_figure(ds: xarray.Dataset) -> Figure:
                 notes.append((s, b))
     fig = Figure(figsize=(8.5, 6.2 + 0.28 * len(notes)), layout="constrained")
     ax, ax2, text = fig.subplots(3, 1, height_ratios=[3.0, 2.2, 0.35 + 0.3 * len(notes)])
+    top = 0.0
     for b in range(ds.sizes.get("branch", 0)):
-        v = ds.value.values[b]
-        keep = np.isfinite(v)
-        v = v[keep] * factor
-        amp = ds.amplitude.values[b][keep] * 1e3
-        stable = ds.stable.values[b][keep] > 0.5
+        v, amp, stable, ang = _with_special_points(ds, b, specials[b] if b < len(specials) else [], param)
+        v = v * factor
+        amp = np.where(amp < _ZERO_WHIRL, 0.0, amp) * 1e3
+        top = max(top, float(np.max(amp, initial=0.0)))
         color = f"C{b % 10}"
         label = str(ds.label.values[b])
         for k, seg in enumerate(_runs(stable)):
             st = bool(stable[seg.start])
             ax.plot(v[seg], amp[seg], color=color, lw=1.8 if st else 1.0, ls="-" if st else "--",
                     label=label if k == 0 else None)
-            if "ball_angle" in ds:
-                ang = np.degrees(ds.ball_angle.values[b][keep][seg])
-                ang[1:][np.abs(np.diff(ang, axis=0)) > 180.0] = np.nan  # no line across the +-180 deg wrap
-                for j in range(ang.shape[1]):
-                    ax2.plot(v[seg], ang[:, j], color=color, lw=1.4 if st else 0.8, ls="-" if st else "--")
+            if ang is not None:
+                a = np.degrees(ang[seg])
+                a[1:][np.abs(np.diff(a, axis=0)) > 180.0] = np.nan  # no line across the +-180 deg wrap
+                for j in range(a.shape[1]):
+                    ax2.plot(v[seg], a[:, j], color=color, lw=1.4 if st else 0.8, ls="-" if st else "--")
     for n, (s, b) in enumerate(notes, start=1):
         marker, short = _MARKS.get(s["type"], ("*", s["type"]))
         x = s[param] * factor
         amp = s.get("amplitude_m")
-        y = 1e3 * (amp if amp is not None else float(ds.amplitude.values[b][int(s.get("index", 0))]))
+        y = amp if amp is not None else float(ds.amplitude.values[b][int(s.get("index", 0))])
+        y = 0.0 if not y > _ZERO_WHIRL else 1e3 * y
         ax.plot([x], [y], marker, color="k", ms=7, mfc="none")
         ax.annotate(f"{short}{n}", (x, y), textcoords="offset points", xytext=(4, 6), fontsize=8)
         ax2.axvline(x, color="0.6", lw=0.6, ls=":")
     ax.set_ylabel("largest whirl radius (mm)")
+    if top == 0.0:  # every branch balanced: a zero line, not round-off drawn at 1e-22 mm
+        ax.set_ylim(-0.05, 1.0)
+        ax.text(0.5, 0.5, "no whirl on these branches (below 1 nm): the balls balance the rotor",
+                transform=ax.transAxes, ha="center", va="center", fontsize=8, color="0.35")
     ax.set_title(f"steady motions against {param}: solid stable, dashed unstable", fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))

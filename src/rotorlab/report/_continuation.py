@@ -7,6 +7,7 @@ import json
 from collections.abc import Mapping, Sequence
 from typing import Any
 
+from rotorlab._constants import shown_unit
 from rotorlab.report._findings import Findings
 
 __all__ = ["continuation_section", "continuation_findings"]
@@ -34,9 +35,10 @@ def continuation_section(ds: Any, rows: Rows) -> str:
     html = "<p>" + ("<br>".join(f"<b>{r['type']}</b> ({r['branch']}): {r['description']}" for r in pts)
                     or "No fold, Hopf or branch point in this range.") + "</p>"
     summary = [r for r in rows if r["type"] == "branch-summary"]
-    html += table(["branch", "from (SI)", "to (SI)", "points", "stable points", "ended"],
-                  [[r["branch"], f"{r['from']:.6g}", f"{r['to']:.6g}", r["points"], r["stable_points"], r["end"]]
-                   for r in summary], numeric={1, 2, 3, 4})
+    f, unit = shown_unit(ds.attrs.get("units", ""))
+    html += table(["branch", f"from ({unit})", f"to ({unit})", "points", "stable points", "ended"],
+                  [[r["branch"], f"{f * r['from']:.4g}", f"{f * r['to']:.4g}", r["points"], r["stable_points"],
+                    r["end"]] for r in summary], numeric={1, 2, 3, 4})
     doc = json.loads(ds.attrs.get("result", "{}"))
     curves = doc.get("curves", [])
     if curves:
