@@ -8,6 +8,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rotorlab.linear._elements import _num
+
 __all__ = ["Unbalance", "COUPLE_LEVER"]
 
 #: Lever d (m) of the two opposite point unbalances ``couple / d`` at ``axial_offset +- d / 2``
@@ -15,17 +17,6 @@ __all__ = ["Unbalance", "COUPLE_LEVER"]
 #: generalised forces, kinetic-energy couplings and (cancelling) weights are those of the couple
 #: for any d, the equations being linear in ``U B``.
 COUPLE_LEVER = 1.0
-
-
-def _finite(name: str, value, unit: str, low: float | None) -> float:
-    try:
-        v = float(value)
-    except (TypeError, ValueError):
-        v = math.nan
-    if not math.isfinite(v) or (low is not None and v < low):
-        rule = "a finite number" + ("" if low is None else " >= 0")
-        raise ValueError(f"Unbalance.{name} must be {rule} ({unit}), got {value!r}")
-    return v
 
 
 @dataclass(frozen=True, slots=True)
@@ -87,7 +78,7 @@ class Unbalance:
         for name, unit, low in (("magnitude", "kg m", 0.0), ("phase", "rad", None),
                                 ("axial_offset", "m", None), ("couple", "kg m^2", 0.0),
                                 ("couple_phase", "rad", None)):
-            object.__setattr__(self, name, _finite(name, getattr(self, name), unit, low))
+            object.__setattr__(self, name, _num("Unbalance", name, getattr(self, name), unit, low=low))
 
     @classmethod
     def of_tilted_body(cls, body, tilt: float, tilt_phase: float = 0.0, *,
@@ -130,9 +121,9 @@ class Unbalance:
         >>> round(u.couple, 12), u.couple_phase
         (0.0003, 0.5)
         """
-        tau = _finite("tilt", tilt, "rad", None)
+        tau = _num("Unbalance", "tilt", tilt, "rad", low=None)
         lever = (body.diametral_inertia - body.polar_inertia) * tau
-        return cls(body.node, body.mass * _finite("eccentricity", eccentricity, "m", 0.0), phase,
+        return cls(body.node, body.mass * _num("Unbalance", "eccentricity", eccentricity, "m"), phase,
                    couple=abs(lever), couple_phase=float(tilt_phase) + (math.pi if lever < 0 else 0.0))
 
     def node_force(self) -> np.ndarray:
