@@ -28,7 +28,6 @@ balanced, the diagonal not). Compilation is excluded by a warm-up.
 from __future__ import annotations
 
 import argparse
-import json
 import os
 import shutil
 import sys
@@ -58,6 +57,7 @@ def main(argv: list[str] | None = None) -> int:
     from rotorlab.models import BENCHMARK
 
     import ensemble as ens  # the C references' build and run (bench/ensemble.py)
+    from sweep import print_figures
 
     if args.c_dir is not None:
         ens.SHARED = args.c_dir.resolve()
@@ -123,11 +123,7 @@ def main(argv: list[str] | None = None) -> int:
         out["simulate_over_dp5_simd"] = round(tp["simulate"] / tp["dp5_simd"], 4)
         out["simulate_rotating_over_dp5_simd"] = round(tp["simulate_rotating"] / tp["dp5_simd"], 4)
         out["dp5_simd_physics"] = bool(np.all(amp_c[~diag] < 1e-3) and not np.any(amp_c[diag] < 1e-3))
-    if args.json:
-        print(json.dumps(out, indent=2))
-    else:
-        for k, v in out.items():
-            print(f"{k:40s} {v}")
+    print_figures(out, args.json)
     return 0
 
 
