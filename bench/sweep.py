@@ -275,12 +275,17 @@ def main(argv: list[str] | None = None) -> int:
                 out[f"{k}_per_point_cpu_ms"] = round(1e3 * per, 4)
             out["workers_per_point_overhead"] = round(out["cli_workers_per_point_cpu_ms"]
                                                       / out["cli_inprocess_per_point_cpu_ms"] - 1.0, 4)  # fmt: skip
-    if args.json:
+    print_figures(out, args.json)
+    return 0
+
+
+def print_figures(out: dict, as_json: bool) -> None:
+    """Print a benchmark's figures as JSON or as one ``key value`` line each."""
+    if as_json:
         print(json.dumps(out, indent=2))
     else:
         for k, v in out.items():
             print(f"{k:40s} {v}")
-    return 0
 
 
 if __name__ == "__main__":

@@ -84,6 +84,46 @@ def test_outcomes_on_both_sides_of_the_critical_speed(two_speeds):
     assert np.all(ds.max_final_rate.values < 1e-4)
 
 
+def test_integrates_where_cheapest_and_agrees_with_the_co_rotating_frame(two_speeds):
+    """Issue 28 item 7: above 1.8 p (balls able to balance) the start-ups are integrated in the
+    fixed frame, below in the co-rotating one; the co-rotating integration of every start (the
+    previous path) gives the same motion to the integrator tolerance, in far more steps."""
+    ds = two_speeds
+    assert ds.attrs["integration_frame"] == "rotating, fixed"
+    old = simulate(MODEL, speeds=[0.6 * P, 2.0 * P], initial_ball_angles=ds.initial_ball_angle.values,
+                   t_end=6.0, n_save=301, frame="rotating")  # fmt: skip
+    assert old.attrs["integration_frame"] == "rotating, rotating"
+    np.testing.assert_array_equal(ds.outcome.values, old.outcome.values)
+    np.testing.assert_allclose(ds.final_ball_angle.values, old.final_ball_angle.values, rtol=0, atol=1e-7)
+    ref = ds.reference_amplitude.values[:, None]
+    assert np.all(np.abs(ds.final_amplitude.values - old.final_amplitude.values) <= 1e-6 * ref)
+    for name in ("x", "y", "amplitude"):  # whole histories, m (the disc moves up to 9 mm)
+        np.testing.assert_allclose(ds[name].values, old[name].values, rtol=0, atol=1e-8)
+    np.testing.assert_array_equal(ds.n_steps.values[0], old.n_steps.values[0])  # same frame below p
+    assert np.all(2 * ds.n_steps.values[1] < old.n_steps.values[1])  # fewer than half the steps
+
+
+def test_saved_fixed_frame_states_are_converted_exactly():
+    """The fixed-frame states the integrator saves are the Dataset's x, y; the ball angles and rates
+    are phi_i - Omega t and w_i - Omega at the same times, bit for bit."""
+    from rotorlab.integrate import SaveAt, StepControl, solve_ensemble
+
+    om, angles = 2.0 * P, np.array([[0.1, 2.0], [1.0, 3.0]])
+    ds = simulate(MODEL, speeds=[om], initial_ball_angles=angles, t_end=0.5, n_save=11)
+    fixed = MODEL.with_speed(ConstantSpeed(om)).with_frame("fixed")
+    y0 = np.array([fixed.initial_state(a) for a in angles])
+    ts = ds.time.values
+    sol = solve_ensemble(fixed, y0, (0.0, 0.5), save_at=SaveAt(ts=ts), control=StepControl(rtol=1e-8, atol=1e-10))
+    ys = sol.ys
+    np.testing.assert_array_equal(ds.x.values[0], ys[:, :, 0])
+    np.testing.assert_array_equal(ds.y.values[0], ys[:, :, 1])
+    np.testing.assert_array_equal(ds.amplitude.values[0], np.hypot(ys[:, :, 0], ys[:, :, 1]))
+    np.testing.assert_array_equal(ds.ball_angle.values[0], wrap_angle(ys[:, :, 4:6] - (om * ts)[:, None]))
+    np.testing.assert_array_equal(ds.ball_rate.values[0], ys[:, :, 6:8] - om)
+    np.testing.assert_array_equal(ds.final_ball_angle.values[0], wrap_angle(sol.y_final[:, 4:6] - om * 0.5))
+    np.testing.assert_array_equal(ds.n_steps.values[0], sol.stats[:, 1] + sol.stats[:, 2])
+
+
 def test_progress_reports_every_trajectory():
     calls = []
     simulate(MODEL, speeds=[2.0 * P, 3.0 * P], initial_ball_angles=[[0.0, 2.0]] * 5, t_end=0.05,
@@ -116,6 +156,7 @@ def test_follow_the_model_speed_profile():
         ({"n_save": 1}, "n_save must be an integer >= 2"),
         ({"initial_ball_angles": [[0.0, 1.0, 2.0]]}, r"shape \(n_configurations, 2\)"),
         ({"initial_ball_angles": [[0.0, float("inf")]]}, "must be finite"),
+        ({"frame": "inertial"}, "frame must be 'auto', 'fixed' or 'rotating', got 'inertial'"),
     ],
 )
 def test_bad_arguments(kwargs, message):

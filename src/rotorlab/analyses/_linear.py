@@ -93,10 +93,9 @@ def _output_nodes(spec: Any, analysis: Any) -> list[int]:
 
 
 def _unbalance_response(spec: Any, analysis: Any) -> xarray.Dataset:
-    from rotorlab.linear import Unbalance, unbalance_response
+    from rotorlab.linear import unbalance_response
 
-    unbalances = [Unbalance(spec.locate(u.node, u.at, u.position)[0], u.magnitude, u.phase)
-                  for u in analysis.unbalances]
+    unbalances = [u.unbalance(spec.locate(u.node, u.at, u.position)[0]) for u in analysis.unbalances]
     ds = unbalance_response(build_linear_system(spec), list(analysis.speeds()), unbalances)
     ds = _labels(ds, spec, "node_index", ds.node_index.values)
     ds.attrs["output_nodes"] = _output_nodes(spec, analysis)

@@ -66,11 +66,7 @@ def unbalance_amplitudes(machine, spin_speed: float) -> np.ndarray:
     D = s.K + 1j * om * (s.C + om * s.G) - om * om * s.M
     f = np.zeros(s.n_dof, dtype=complex)
     for u in machine.unbalances:
-        ph = u.mass_eccentricity * om * om * np.exp(1j * u.phase)
-        f[4 * u.node] += ph
-        f[4 * u.node + 1] += -1j * ph
-        f[4 * u.node + 2] += u.axial_offset * ph
-        f[4 * u.node + 3] += -1j * u.axial_offset * ph
+        f[4 * u.node:4 * u.node + 4] += om * om * u.node_force()
     q = np.linalg.solve(D, f)
     X, Y = q[0::4], q[1::4]
     return np.sqrt(0.5 * (np.abs(X) ** 2 + np.abs(Y) ** 2) + 0.5 * np.abs(X * X + Y * Y))
@@ -147,7 +143,7 @@ def machine_quantities(case_model) -> list[dict[str, Any]]:
 
     m = machine_model(case_model)
     crit = structure_critical_speeds(m)
-    static = abs(sum(u.mass_eccentricity * np.exp(1j * u.phase) for u in m.unbalances))
+    static = abs(sum(u.magnitude * np.exp(1j * u.phase) for u in m.unbalances))
     rows = [{"quantity": "critical speeds (forward 1x, balls locked)",
              "value": ", ".join(f"{w:.4g}" for w in crit[:6]),
              "unit": "rad/s", "sign": ""},

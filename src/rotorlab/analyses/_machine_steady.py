@@ -133,7 +133,7 @@ def jeffcott_limit(machine):
     derived for a planar disc on an isotropic shaft with one race of balls in the disc's plane.
     A machine is that model when its structure is one node whose translation does not couple to
     its tilt (no cross terms in M, C, G, K), isotropic, with one race and every unbalance at that
-    node's plane, no gravity across the axis and a constant speed. Then M1 = M_xx, c = K_xx,
+    node's plane (no couple), no gravity across the axis and a constant speed. Then M1 = M_xx, c = K_xx,
     d = C_xx, e = (sum of the unbalances) / M1 (their resultant), and the ball angles of that
     model are measured from the unbalance (shifted by its phase).
     """
@@ -141,14 +141,14 @@ def jeffcott_limit(machine):
 
     s = machine.structure
     if (machine.why_no_rotating_frame() is not None or s.n_dof != 4 or len(machine.races) != 1
-            or machine.races[0].axial_offset != 0.0 or any(u.axial_offset != 0.0 for u in machine.unbalances)):
+            or machine.races[0].axial_offset != 0.0 or any(u.axial_offset != 0.0 or u.couple != 0.0 for u in machine.unbalances)):
         return None
     for name in ("M", "C", "K", "G"):
         a = getattr(s, name)
         if np.any(a[:2, 2:] != 0.0) or np.any(a[2:, :2] != 0.0) or (name == "G" and np.any(a[:2, :2] != 0.0)):
             return None
     race = machine.races[0]
-    u = sum(x.mass_eccentricity * np.exp(1j * x.phase) for x in machine.unbalances)
+    u = sum(x.magnitude * np.exp(1j * x.phase) for x in machine.unbalances)
     m1 = float(s.M[0, 0])
     rotor = RotorParams(disc_mass=m1, eccentricity=abs(u) / m1, stiffness=float(s.K[0, 0]),
                         damping=float(s.C[0, 0]))
@@ -195,7 +195,7 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
     found: list[np.ndarray] = []
     kinds: list[str] = []
     if message is None and nb:
-        scale = max(sum(u.mass_eccentricity for u in machine.unbalances), 1e-300)
+        scale = max(machine._unbalance_scale, 1e-300)
         rng = np.random.default_rng(seed)
         for _ in range(starts):
             res = least_squares(lambda a: machine.balance_residual(a) / scale, rng.uniform(0, 2 * np.pi, nb),
@@ -325,7 +325,7 @@ def _equilibrium_near(machine, q, psi):
     z0 = np.linalg.lstsq(machine.basis, np.asarray(q, float), rcond=None)[0]
     sol = root(residual, np.concatenate([z0, psi]), method="hybr", options={"xtol": 1e-13})
     om = float(machine.drive.speed)
-    scale = max(sum(u.mass_eccentricity for u in machine.unbalances) / max(machine.structure.total_mass, 1e-300),
+    scale = max(machine._unbalance_scale / max(machine.structure.total_mass, 1e-300),
                 1e-300)
     return state(sol.x) if np.max(np.abs(residual(sol.x))) <= 1e-9 * scale * max(1.0, om * om) else None
 

@@ -27,12 +27,6 @@ from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, Parameter,
 
 __all__ = ["BalancerRegimes", "balancer_labels"]
 
-#: Speed ratio Omega / p from which :class:`BalancerRegimes` integrates in the fixed frame by
-#: default (where the balls can balance the rotor). Between 1.5 p and 2 p the co-rotating frame
-#: stops being the cheaper one on the benchmark problem and the ``autobalancer`` case
-#: (``bench/README.md``, issue 11).
-FIXED_FRAME_ABOVE = 1.8
-
 _ROTOR_UNITS = {"disc_mass": "kg", "eccentricity": "m", "stiffness": "N/m", "damping": "N s/m"}
 _BALL_UNITS = {"ball_mass": "kg", "ball_radius": "m", "ball_damping": "N m s/rad", "ball_friction": "1"}
 
@@ -88,14 +82,10 @@ class BalancerRegimes:
     control : StepControl
         Integrator tolerances.
     frame : {"fixed", "rotating"} or None
-        Frame the trajectories are integrated in; None (default) chooses from the base model:
-        ``"fixed"`` where it spins at >= ``FIXED_FRAME_ABOVE`` (1.8) times its critical speed with
-        the capacity to balance it (sum m_i l_i >= M1 e), else ``"rotating"``. Results agree to
-        the tolerance; the work differs. A start that ends balanced takes about a third of the
-        right-hand-side evaluations in the fixed frame (in the co-rotating one the decaying
-        relative motion oscillates at p +- Omega instead of p), one that ends in a steady whirl
-        (side motions, below or near p, non-synchronous) 1.4-5x more (its whirl is constant in
-        the co-rotating frame). Measured in ``bench/README.md`` (issue 11).
+        Frame the trajectories are integrated in; None (default) chooses from the base model
+        (:meth:`JeffcottBalls.cheapest_frame`: ``"fixed"`` where it spins at >=
+        ``FIXED_FRAME_ABOVE`` (1.8) times its critical speed with the capacity to balance it,
+        else ``"rotating"``). Results agree to the tolerance; the work differs.
 
     Examples
     --------
@@ -140,9 +130,7 @@ class BalancerRegimes:
         if not isinstance(self.control, StepControl):
             raise ValueError(f"BalancerRegimes.control must be a StepControl, got {type(self.control).__name__}")
         if self.frame is None:
-            m = self.model
-            balances = abs(m.speed.speed) >= FIXED_FRAME_ABOVE * m.critical_speed and m.capacity >= m.imbalance
-            object.__setattr__(self, "frame", "fixed" if balances else "rotating")
+            object.__setattr__(self, "frame", self.model.cheapest_frame(self.model.speed.speed))
         elif self.frame not in ("fixed", "rotating"):
             raise ValueError(f"BalancerRegimes.frame must be 'fixed', 'rotating' or None, got {self.frame!r}")
 

@@ -107,14 +107,13 @@ class StructureSource:
 def build_machine(spec: Any) -> Any:
     """Build the :class:`rotorlab.models.Machine` of a validated ``machine`` spec."""
     from rotorlab.models import (Ball, BallRace, ConstantSpeed, Gravity, HillRunUp, LinearRamp,
-                                 Machine, Motor, Unbalance)
+                                 Machine, Motor)
 
     source = StructureSource(spec.structure)
     races = tuple(BallRace(spec.node_of(r), r.radius,
                            tuple(Ball(b.mass, b.inertia, b.damping, b.coulomb, b.rolling) for b in r.balls),
                            r.axial_offset) for r in spec.races)
-    unb = tuple(Unbalance(spec.node_of(u), u.magnitude, u.phase, u.axial_offset)
-                for u in spec.unbalances)
+    unb = tuple(u.unbalance(spec.node_of(u)) for u in spec.unbalances)
     d = spec.drive
     drives = {
         "constant": lambda: ConstantSpeed(d.speed),

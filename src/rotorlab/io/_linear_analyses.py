@@ -193,7 +193,9 @@ class CriticalSpeedsSpec(AbstractAnalysisSpec):
 
 
 class UnbalanceSpec(_Spec):
-    """A static unbalance m e at a node, turning with the rotor.
+    """An unbalance at a node, turning with the rotor: static, couple or both (the case-file form
+    of :class:`rotorlab.linear.Unbalance`, in ``[[analysis.unbalances]]`` of an
+    ``unbalance_response`` and in ``[[model.unbalances]]`` of a ``machine``).
 
     Parameters
     ----------
@@ -203,17 +205,29 @@ class UnbalanceSpec(_Spec):
         Node index.
     position : float, optional
         Axial position of a node (m).
+    axial_offset : float
+        Plane of the static unbalance from the node along +z (m).
     magnitude : float
-        m e (kg*m), >= 0.
+        Static unbalance m e (kg*m), >= 0.
     phase : float
-        Angle of the heavy spot from +x at t = 0, in the sense of rotation (rad).
+        Angle of its heavy spot from +x at t = 0, in the sense of rotation (rad).
+    couple : float
+        Couple unbalance U_c (kg*m^2), >= 0 (two opposite unbalances U at axial distance d, U d
+        = U_c).
+    couple_phase : float
+        Angle of the couple's heavy spot on the +z side (rad).
+
+    At least one of ``magnitude`` and ``couple`` is given.
     """
 
     at: label() | None = Field(None, description="name of the node")
     node: integer(ge=0) | None = Field(None, description="node index")
     position: quantity("length") | None = Field(None, description="axial position (m)")
-    magnitude: quantity("unbalance", ge=0) = Field(description="unbalance m e (kg*m)")
+    axial_offset: quantity("length") = Field(0.0, description="offset of the static unbalance along +z (m)")
+    magnitude: quantity("unbalance", ge=0) = Field(0.0, description="static unbalance m e (kg*m)")
     phase: quantity("angle") = Field(0.0, description="angle of the heavy spot (rad)")
+    couple: quantity("couple_unbalance", ge=0) = Field(0.0, description="couple unbalance (kg*m^2)")
+    couple_phase: quantity("angle") = Field(0.0, description="angle of the couple's +z heavy spot (rad)")
 
     @model_validator(mode="after")
     def _check_place(self) -> UnbalanceSpec:
@@ -222,7 +236,16 @@ class UnbalanceSpec(_Spec):
             what = "give one of at, node or position" if not given else (
                 f"{' and '.join(given)} exclude each other: give only one")
             raise IssueGroup([Issue((), what, show_value=False)])
+        if not {"magnitude", "couple"} & self.model_fields_set:
+            raise IssueGroup([Issue((), "give magnitude (static unbalance, kg*m) or couple (couple "
+                                        "unbalance, kg*m^2), or both", show_value=False)])
         return self
+
+    def unbalance(self, node: int) -> Any:
+        """The :class:`rotorlab.linear.Unbalance` (SI) at ``node`` (the located place)."""
+        from rotorlab.linear._unbalance import Unbalance
+
+        return Unbalance(node, self.magnitude, self.phase, self.axial_offset, self.couple, self.couple_phase)
 
 
 class UnbalanceResponseSpec(_SpeedRange):
@@ -267,8 +290,10 @@ class UnbalanceResponseSpec(_SpeedRange):
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""
         total = sum(u.magnitude for u in self.unbalances)
+        couples = sum(u.couple for u in self.unbalances)
         return (f"unbalance response to {len(self.unbalances)} unbalance(s) "
-                f"(total {total:.6g} kg*m), {self._range_text()}")
+                f"(total {total:.6g} kg*m" + (f", couples {couples:.6g} kg*m^2" if couples else "")
+                + f"), {self._range_text()}")
 
 
 class MeasurementSpec(_Spec):

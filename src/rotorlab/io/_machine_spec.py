@@ -18,10 +18,12 @@ Layout::
                                      # optional per ball: coulomb = 0.01 (friction coefficient)
                                      # and rolling = "0.1 mm" (arm): stick-slip, torque bound
                                      # (coulomb radius + rolling) N
-    [[model.unbalances]]
+    [[model.unbalances]]             # static (magnitude, phase, axial_offset) and/or couple
     at = "rotor"
     magnitude = "50 g*mm"
     phase = "0 deg"
+    couple = "2 g*mm^2"              # optional: couple unbalance, heavy spot on the +z side at
+    couple_phase = "90 deg"          # couple_phase
     [model.gravity]
     vector = ["0 m/s^2", "-9.81 m/s^2", "0 m/s^2"]   # z is the shaft axis
     [[model.clearances]]             # at most one: rotor-stator contact at a station
@@ -56,6 +58,7 @@ from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
 from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _Spec, integer, quantity
 from rotorlab.io._jeffcott_specs import MAX_BALLS, SPEED_PROFILES, AbstractSpeedProfile, _too_many_balls
+from rotorlab.io._linear_analyses import UnbalanceSpec
 from rotorlab.io._linear_common import label
 from rotorlab.io._multibody_spec import MultibodySpec
 
@@ -163,11 +166,8 @@ class RaceSpec(_Station):
         return out
 
 
-class MachineUnbalanceSpec(_Station):
-    """An unbalance ``m e`` at a station, at ``phase`` from the rotor's reference direction."""
-
-    magnitude: quantity("unbalance", ge=0) = Field(description="unbalance m e (kg*m)")
-    phase: quantity("angle") = Field(0.0, description="angle from the reference (rad)")
+#: The machine's unbalances are the one unbalance spec of the case files (static and couple).
+MachineUnbalanceSpec = UnbalanceSpec
 
 
 class StatorSpec(_Spec):

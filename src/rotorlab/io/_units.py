@@ -96,6 +96,7 @@ _DIMENSION_LIST = (
     Dimension("flexural_rigidity", "flexural rigidity", "N*m^2", "N*m^2"),
     Dimension("density", "density", "kg/m^3", "kg/m^3"),
     Dimension("unbalance", "unbalance", "kg*m", "kg*m"),
+    Dimension("couple_unbalance", "couple unbalance", "kg*m^2", "kg*m^2"),
     Dimension("stiffness_coupling", "translation-tilt stiffness", "N/rad", "N", (0, -1)),
     Dimension("damping_coupling", "translation-tilt damping", "N*s/rad", "N*s", (0, -1)),
     Dimension("compliance_coupling", "translation-tilt compliance", "1/N", "1/N", (0, 1)),

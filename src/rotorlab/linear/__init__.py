@@ -34,7 +34,8 @@ from rotorlab.linear._influence import (
     stiffness_to_compliance,
 )
 from rotorlab.linear._modal import WHIRL_LABELS, Modes, log_decrement, modal, whirl_labels
-from rotorlab.linear._response import Unbalance, unbalance_response
+from rotorlab.linear._response import unbalance_response
+from rotorlab.linear._unbalance import Unbalance
 from rotorlab.linear._shaft import STEEL, Material, ShaftElement, shear_coefficient
 from rotorlab.linear._system import DIRECTIONS, LinearSystem, dof_index
 

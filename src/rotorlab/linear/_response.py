@@ -2,9 +2,7 @@
 
 from __future__ import annotations
 
-import math
 from collections.abc import Sequence
-from dataclasses import dataclass
 
 import numpy as np
 import xarray as xr
@@ -12,48 +10,9 @@ import xarray as xr
 from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.linear._blas import single_threaded_blas
 from rotorlab.linear._system import LinearSystem
+from rotorlab.linear._unbalance import Unbalance
 
 __all__ = ["Unbalance", "unbalance_response"]
-
-
-@dataclass(frozen=True, slots=True)
-class Unbalance:
-    """A static unbalance m e turning with the rotor.
-
-    Parameters
-    ----------
-    node : int
-        Node where it acts (>= 0).
-    magnitude : float
-        m e (kg m), >= 0.
-    phase : float
-        Angle of the heavy spot from +x at t = 0, in the sense of rotation (rad).
-
-    Examples
-    --------
-    >>> Unbalance(node=2, magnitude=1e-4).phase
-    0.0
-    """
-
-    node: int
-    magnitude: float
-    phase: float = 0.0
-
-    def __post_init__(self) -> None:
-        if isinstance(self.node, bool) or not isinstance(self.node, (int, np.integer)) \
-                or self.node < 0:
-            raise ValueError(f"Unbalance.node must be an integer >= 0, got {self.node!r}")
-        object.__setattr__(self, "node", int(self.node))
-        for name, unit, low in (("magnitude", "kg m", 0.0), ("phase", "rad", None)):
-            try:
-                v = float(getattr(self, name))
-            except (TypeError, ValueError):
-                v = math.nan
-            if not math.isfinite(v) or (low is not None and v < low):
-                rule = "a finite number" + ("" if low is None else " >= 0")
-                raise ValueError(f"Unbalance.{name} must be {rule} ({unit}), "
-                                 f"got {getattr(self, name)!r}")
-            object.__setattr__(self, name, v)
 
 
 def unbalance_response(system: LinearSystem, speeds: Sequence[float],
@@ -87,7 +46,8 @@ def unbalance_response(system: LinearSystem, speeds: Sequence[float],
     Notes
     -----
     The unbalance force at its node is ``m e Omega^2 (cos(Omega t + beta), sin(Omega t +
-    beta))``, i.e. complex amplitudes ``F_x = m e Omega^2 exp(i beta)``, ``F_y = -i F_x``; the
+    beta))``, i.e. complex amplitudes ``F_x = m e Omega^2 exp(i beta)``, ``F_y = -i F_x``, and the
+    moment on the tilts that of the axial offset and of the couple (:class:`Unbalance`); the
     response solves ``(K - Omega^2 M + i Omega (C + Omega G)) Q = F`` at every speed (one
     batched LAPACK solve). The orbit ``x + i y = a_f exp(i Omega t) + a_b exp(-i Omega t)`` has
     semi-axes ``|a_f| + |a_b|`` and ``||a_f| - |a_b||``.
@@ -143,6 +103,9 @@ def unbalance_response(system: LinearSystem, speeds: Sequence[float],
                "unbalance_nodes": [u.node for u in unbalances],
                "unbalance_magnitudes": [u.magnitude for u in unbalances],
                "unbalance_phases": [u.phase for u in unbalances],
+               "unbalance_axial_offsets": [u.axial_offset for u in unbalances],
+               "unbalance_couples": [u.couple for u in unbalances],
+               "unbalance_couple_phases": [u.couple_phase for u in unbalances],
                **({"note": note} if note else {})},
     )
 
@@ -153,9 +116,7 @@ def _force(system: LinearSystem, unbalances: Sequence[Unbalance]) -> np.ndarray:
         if u.node >= system.n_nodes:
             raise ValueError(f"Unbalance.node = {u.node} but the system has "
                              f"{system.n_nodes} nodes")
-        f = u.magnitude * np.exp(1j * u.phase)
-        F[4 * u.node] += f
-        F[4 * u.node + 1] += -1j * f
+        F[4 * u.node:4 * u.node + 4] += u.node_force()
     return F
 
 

@@ -133,9 +133,14 @@ from rotorlab.models._parameters import jeffcott_slots
 from rotorlab.models._protocol import ParametrisedMixin
 from rotorlab.models._speed import ConstantSpeed, SpeedProfile, speed_from_array  # noqa: F401
 
-__all__ = ["JeffcottBalls", "fixed_to_rotating", "rotating_to_fixed"]
+__all__ = ["JeffcottBalls", "fixed_to_rotating", "rotating_to_fixed", "FIXED_FRAME_ABOVE"]
 
 Frame = Literal["fixed", "rotating"]
+#: Speed ratio Omega / p from which :meth:`JeffcottBalls.cheapest_frame` chooses the fixed frame
+#: (where the balls can balance the rotor). Between 1.5 p and 2 p the co-rotating frame stops
+#: being the cheaper one on the benchmark problem and the ``autobalancer`` case
+#: (``bench/README.md``, issue 11).
+FIXED_FRAME_ABOVE = 1.8
 _KERNELS: dict[tuple[str, int, bool, int], Kernels] = {}
 # the lane-friendly kernel of each frame and speed class, and the class of each profile kind
 _LANE_RHS = {("fixed", _k.SPEED_CONSTANT): _k.rhs_fixed_constant, ("rotating", _k.SPEED_CONSTANT): _k.rhs_rotating_constant,
@@ -280,6 +285,20 @@ class JeffcottBalls(ParametrisedMixin):
     def capacity(self) -> float:
         """Balancing capacity sum m_i l_i (kg m)."""
         return sum(b.static_moment for b in self.balls)
+
+    def cheapest_frame(self, spin_speed: float) -> Frame:
+        """Return the frame in which start-ups at ``spin_speed`` (rad/s) integrate cheapest.
+
+        ``"fixed"`` at >= :data:`FIXED_FRAME_ABOVE` (1.8) times the critical speed with the
+        capacity to balance (sum m_i l_i >= M1 e), else ``"rotating"``. A start that ends balanced
+        takes about a third of the right-hand-side evaluations in the fixed frame (in the
+        co-rotating one the decaying relative motion oscillates at p +- Omega instead of p); one
+        that ends in a steady whirl (side motions, below or near p) 1.4-5x more (its whirl is
+        constant in the co-rotating frame). Measured in ``bench/README.md`` (issue 11).
+        """
+        balances = abs(float(spin_speed)) >= FIXED_FRAME_ABOVE * self.critical_speed \
+            and self.capacity >= self.imbalance
+        return "fixed" if balances else "rotating"
 
     # ---- packing --------------------------------------------------------------------------------
     def to_array(self) -> np.ndarray:

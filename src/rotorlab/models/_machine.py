@@ -9,7 +9,8 @@ f`` over the DOFs ``x, y, phi_x, phi_y`` of every node, optionally reduced to it
   moves with the node as ``r_c = B z = (x + a phi_x, y + a phi_y)`` (a: axial offset of the race);
   the race plane tilts with its node (``phi = T z``) and a ball follows it, axially too (rigid
   ball kinematics, as Rodrigues, Champneys, Friswell & Wilson 2008);
-- **unbalances** (:class:`Unbalance`): ``U = m e`` at ``theta + beta`` at a station;
+- **unbalances** (:class:`Unbalance`): ``U = m e`` at ``theta + beta`` at a station, and couples
+  (in the kernel two opposite point unbalances, whose forces and couplings are the couple's);
 - **gravity** (:class:`Gravity`): its lateral part loads the structure, the balls and, through
   the unbalances, the drive;
 - **a drive**: a prescribed spin (:class:`ConstantSpeed`, :class:`LinearRamp`,
@@ -245,13 +246,19 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, ParametrisedMixin):
         return any(b.coulomb > 0 or b.rolling > 0 for r in self.races for b in r.balls)
 
     @property
+    def _point_unbalances(self) -> tuple[tuple[int, float, float, float], ...]:
+        """The unbalances as the kernel's point unbalances ``(node, axial_offset, m e, phase)``
+        (a couple is two opposite ones, :meth:`Unbalance.point_unbalances`)."""
+        return tuple((u.node, a, me, beta) for u in self.unbalances for a, me, beta in u.point_unbalances())
+
+    @property
     def layout(self) -> _cg.Layout:
         """Sizes and offsets of the states and parameters (a machine_codegen Layout)."""
         if "layout" not in self._cache:
             d = self.drive
             self._cache["layout"] = _cg.Layout(
                 n_z=self.n_coordinates, races=tuple(len(r.balls) for r in self.races),
-                n_unbalance=len(self.unbalances),
+                n_unbalance=len(self._point_unbalances),
                 drive=d.kind if self.is_motor else "profile",
                 speed_kind="constant" if self.is_motor else _SPEED_KIND[type(d)],
                 n_table=d.n_table if self.is_motor else 0,
@@ -409,7 +416,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, ParametrisedMixin):
     @property
     def _stations(self) -> list[np.ndarray]:
         return [self.station_matrix(r.node, r.axial_offset) for r in self.races] + \
-               [self.station_matrix(u.node, u.axial_offset) for u in self.unbalances] + \
+               [self.station_matrix(node, a) for node, a, _, _ in self._point_unbalances] + \
                [self.gap_matrix(c) for c in self.clearances]
 
     def gap_matrix(self, clearance: Clearance) -> np.ndarray:
@@ -477,9 +484,8 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, ParametrisedMixin):
         m, l, J, c, _ = self._ball_arrays
         for b in range(lay.n_balls):
             p[o["balls"] + 4 * b: o["balls"] + 4 * b + 4] = (m[b], m[b] * l[b], J[b], c[b])
-        for u, un in enumerate(self.unbalances):
-            p[o["unbalances"] + 3 * u: o["unbalances"] + 3 * u + 3] = (
-                un.mass_eccentricity, math.cos(un.phase), math.sin(un.phase))
+        for u, (_, _, me, beta) in enumerate(self._point_unbalances):
+            p[o["unbalances"] + 3 * u: o["unbalances"] + 3 * u + 3] = (me, math.cos(beta), math.sin(beta))
         red = self.reduced
         H = np.linalg.inv(self._m0())
         H = 0.5 * (H + H.T)

@@ -132,7 +132,7 @@ class _ClearanceParts:
         """Parameters a rub map may vary: name -> (index in :meth:`to_array`, unit).
 
         ``clearance`` (m), ``restitution``, ``friction``, ``spin_speed`` (rad/s, constant
-        prescribed speed), ``unbalance`` (kg m, the first unbalance) and ``stator_stiffness``
+        prescribed speed), ``unbalance`` (kg m, the first unbalance, without a couple) and ``stator_stiffness``
         (N/m, an elastic stator or housing); empty without a clearance.
         """
         if not self.clearances:
@@ -142,7 +142,7 @@ class _ClearanceParts:
         out = {"clearance": (kc, "m"), "restitution": (kc + 1, "1"), "friction": (kc + 2, "1")}
         if isinstance(self.drive, ConstantSpeed):
             out["spin_speed"] = (o["speed"] + 1, "rad/s")
-        if self.unbalances:
+        if self.unbalances and self.unbalances[0].couple == 0.0:  # a couple is two kernel entries
             out["unbalance"] = (o["unbalances"], "kg m")
         if self.clearances[0].kind != "rigid":
             out["stator_stiffness"] = (kc + 5, "N/m")
@@ -215,7 +215,7 @@ class _ClearanceParts:
         m = 1.0 / Lc[0, 0]
         k = float((S.T @ red["K"] @ S)[0, 0])
         damp = float((S.T @ red["C"] @ S)[0, 0])
-        ecc = sum(u.mass_eccentricity for u in self.unbalances) / m
+        ecc = sum(u.magnitude for u in self.unbalances) / m
         st = c.stator
         kw = {} if st == "rigid" else {"stator_stiffness": st.stiffness, "stator_damping": st.damping,
                                         "stator_mass": st.mass}

@@ -11,6 +11,8 @@ from dataclasses import dataclass
 
 import numpy as np
 
+from rotorlab.linear._unbalance import Unbalance  # the one unbalance type, static and couple
+
 __all__ = ["Ball", "BallRace", "Unbalance", "Gravity", "Motor", "Clearance", "ElasticStator"]
 
 
@@ -112,39 +114,6 @@ class BallRace:
     def capacity(self) -> float:
         """Balancing capacity ``sum m l`` (kg m)."""
         return sum(b.mass for b in self.balls) * self.radius
-
-
-@dataclass(frozen=True, slots=True)
-class Unbalance:
-    """A mass unbalance at a station: ``m e`` at the phase ``beta`` from the rotor's +x at theta=0.
-
-    Several unbalances at different stations make static and couple unbalance.
-
-    Parameters
-    ----------
-    node : int
-        Node of the structure (it must spin with the rotor).
-    mass_eccentricity : float
-        U = m e (kg m), >= 0.
-    phase : float
-        beta (rad): the unbalance points along ``theta + beta``.
-    axial_offset : float
-        Axial distance from the node (m), as for :class:`BallRace`.
-    """
-
-    node: int
-    mass_eccentricity: float
-    phase: float = 0.0
-    axial_offset: float = 0.0
-
-    def __post_init__(self) -> None:
-        o = "Unbalance"
-        object.__setattr__(self, "node", _node(o, self.node))
-        object.__setattr__(self, "mass_eccentricity",
-                           _num(o, "mass_eccentricity", self.mass_eccentricity, "kg m"))
-        object.__setattr__(self, "phase", _num(o, "phase", self.phase, "rad", low=None))
-        object.__setattr__(self, "axial_offset",
-                           _num(o, "axial_offset", self.axial_offset, "m", low=None))
 
 
 @dataclass(frozen=True, slots=True)

@@ -140,9 +140,9 @@ class _Physics:
         if self.is_motor:
             th = y[lay.i_theta]
             w = np.zeros(nz)
-            for u, un in enumerate(self.unbalances):
-                a = th + un.phase
-                w += un.mass_eccentricity * (st[len(self.races) + u].T @ np.array([-math.sin(a), math.cos(a)]))
+            for u, (_, _, me, beta) in enumerate(self._point_unbalances):
+                a = th + beta
+                w += me * (st[len(self.races) + u].T @ np.array([-math.sin(a), math.cos(a)]))
             Mf[:nz, -1] = w
             Mf[-1, :nz] = w
             Mf[-1, -1] = self.drive.polar_inertia
@@ -161,17 +161,17 @@ class _Physics:
         kin = 0.5 * qd @ Mf @ qd
         st = self._stations
         if not self.is_motor:  # the unbalance-structure coupling with the prescribed spin
-            for u, un in enumerate(self.unbalances):
-                a = th + un.phase
-                kin += un.mass_eccentricity * om * (np.array([-math.sin(a), math.cos(a)]) @ (st[len(self.races) + u] @ v))
+            for u, (_, _, me, beta) in enumerate(self._point_unbalances):
+                a = th + beta
+                kin += me * om * (np.array([-math.sin(a), math.cos(a)]) @ (st[len(self.races) + u] @ v))
         K = self.reduced["K"]
         gx, gy = self.lateral_gravity
         pot = 0.5 * z @ (0.5 * (K + K.T)) @ z - self._weights() @ z
         m, l, J, c, race = self._ball_arrays
         pot -= float(np.sum(m * l * (gx * np.cos(phi) + gy * np.sin(phi))))
-        for un in self.unbalances:
-            a = th + un.phase
-            pot -= un.mass_eccentricity * (gx * math.cos(a) + gy * math.sin(a))
+        for _, _, me, beta in self._point_unbalances:
+            a = th + beta
+            pot -= me * (gx * math.cos(a) + gy * math.sin(a))
         return float(kin + pot + self._clearance_energy(y))
 
     def energy_balance(self, ts, ys) -> np.ndarray:

@@ -133,12 +133,17 @@ class _RotatingFrame:
         return MachineLinearization(A=A, M=Mf, C=0.5 * (D + D.T), G=0.5 * (D - D.T), K=K,
                                     spin_speed=om, residual=self.rotating_rhs(yr))
 
+    @property
+    def _unbalance_scale(self) -> float:
+        """Size of the unbalances (kg m): the sum of the kernel's point unbalances ``m e``."""
+        return sum(me for _, _, me, _ in self._point_unbalances)
+
     def _fd_step(self, j: int, om: float) -> float:
         """Finite-difference step of co-rotating state entry j (m, m/s, rad or rad/s)."""
         nz = self.n_coordinates
         if j >= 2 * nz:
             return 1e-3  # ball angles (rad) and rates (rad/s)
-        u = sum(x.mass_eccentricity for x in self.unbalances) + sum(r.capacity for r in self.races)
+        u = self._unbalance_scale + sum(r.capacity for r in self.races)
         zs = max(u / max(self.structure.total_mass, 1e-300), 1e-12)
         return 1e-3 * zs * (1.0 if j < nz else max(abs(om), 1.0))
 
@@ -153,8 +158,8 @@ class _RotatingFrame:
         f = np.zeros(self.n_coordinates)
         for b in range(psi.size):
             f += m[b] * l[b] * (st[race[b]].T @ np.array([math.cos(psi[b]), math.sin(psi[b])]))
-        for u, un in enumerate(self.unbalances):
-            f += un.mass_eccentricity * (st[len(self.races) + u].T @ np.array([math.cos(un.phase), math.sin(un.phase)]))
+        for u, (_, _, me, beta) in enumerate(self._point_unbalances):
+            f += me * (st[len(self.races) + u].T @ np.array([math.cos(beta), math.sin(beta)]))
         return f
 
     def balanced_angles(self, guess=None, *, starts: int = 16, seed: int = 0) -> np.ndarray | None:
@@ -168,7 +173,7 @@ class _RotatingFrame:
         nb = self.n_balls
         if nb == 0:
             return None
-        scale = max(sum(u.mass_eccentricity for u in self.unbalances), 1e-300)
+        scale = max(self._unbalance_scale, 1e-300)
         rng = np.random.default_rng(seed)
         tries = ([np.asarray(guess, float)] if guess is not None else []) + \
             [rng.uniform(0, 2 * np.pi, nb) for _ in range(starts)]
@@ -215,7 +220,7 @@ class _RotatingFrame:
         psi = self.balanced_angles(ball_angles, starts=starts, seed=seed)
         if psi is not None:
             return self.balanced_state(psi)
-        scale = max(sum(u.mass_eccentricity for u in self.unbalances), 1e-300)
+        scale = max(self._unbalance_scale, 1e-300)
         rng = np.random.default_rng(seed)
         guesses = ([np.asarray(ball_angles, float)] if ball_angles is not None else []) + \
             [rng.uniform(0, 2 * np.pi, nb) for _ in range(starts)]
@@ -272,7 +277,7 @@ class _RotatingFrame:
         D = red["K"] + 1j * om * (red["C"] + om * red["G"]) - om * om * self._m0()
         f = np.zeros(self.n_coordinates, dtype=complex)
         st = self._stations
-        for u, un in enumerate(self.unbalances):
-            f += un.mass_eccentricity * om * om * np.exp(1j * un.phase) * (st[len(self.races) + u].T @ np.array([1.0, -1j]))
+        for u, (_, _, me, beta) in enumerate(self._point_unbalances):
+            f += me * om * om * np.exp(1j * beta) * (st[len(self.races) + u].T @ np.array([1.0, -1j]))
         q = self.basis @ np.linalg.solve(D, f)
         return np.concatenate([q[0::4], q[1::4]])

@@ -77,10 +77,11 @@ def _race_slots(m) -> list[Slot]:
 def _unbalance_slots(m) -> list[Slot]:
     out = []
     for i, u in enumerate(m.unbalances):
-        for key, field, unit, bounds in (("magnitude", "mass_eccentricity", "kg*m", _GE0),
-                                         ("phase", "phase", "rad", _FREE), ("axial_offset", "axial_offset", "m", _FREE)):
-            out.append(_slot(f"unbalances[{i}].{key}", unit, getattr(u, field), bounds,
-                             _item_setter("unbalances", i, field)))
+        for key, unit, bounds in (("magnitude", "kg*m", _GE0), ("phase", "rad", _FREE), ("axial_offset", "m", _FREE),
+                                  ("couple", "kg*m^2", _GE0), ("couple_phase", "rad", _FREE)):
+            # a couple from or to 0 changes the compiled layout (two more point unbalances): refused by pack
+            out.append(_slot(f"unbalances[{i}].{key}", unit, getattr(u, key), bounds,
+                             _item_setter("unbalances", i, key)))
     return out
 
 

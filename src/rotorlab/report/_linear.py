@@ -65,9 +65,14 @@ def _modes(rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
 
 
 def _unbalance(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
-    parts = ", ".join(f"{m:.6g} kg*m at node {n} ({ph:.4g} rad)" for n, m, ph in zip(
-        ds.attrs.get("unbalance_nodes", []), ds.attrs.get("unbalance_magnitudes", []),
-        ds.attrs.get("unbalance_phases", [])))
+    a = ds.attrs
+    n_unb = len(a.get("unbalance_nodes", []))
+    couples = a.get("unbalance_couples", [0.0] * n_unb)
+    couple_phases = a.get("unbalance_couple_phases", [0.0] * n_unb)
+    parts = ", ".join(f"{m:.6g} kg*m at node {n} ({ph:.4g} rad)"
+                      + (f" and a couple {c:.6g} kg*m^2 ({cph:.4g} rad)" if c else "")
+                      for n, m, ph, c, cph in zip(a.get("unbalance_nodes", []), a.get("unbalance_magnitudes", []),
+                                                  a.get("unbalance_phases", []), couples, couple_phases))
     body = [(r["label"], str(r["node"]),
              "–" if r["peak_amplitude"] is None else f"{r['peak_amplitude'] * 1e3:.4g}",
              _g(r["peak_speed_rpm"])) for r in rows]
