@@ -97,6 +97,8 @@ def is_stable(mu: np.ndarray, trivial: int) -> bool:
 def _root(values: np.ndarray) -> float:
     if values.size == 0:
         return 1.0
+    if np.any(values == 0):
+        return 0.0
     prod = complex(np.prod(values / np.maximum(np.abs(values), 1e-300)))
     sign = 1.0 if prod.real >= 0 else -1.0
     logs = np.log(np.maximum(np.abs(values), 1e-300))
