@@ -10,6 +10,10 @@ orbit is stable when every other multiplier lies inside the unit circle.
 
 Test functions along a branch (zeros located by :func:`rotorlab.continuation.continue_curve`):
 
+- fold or branch point of cycles: ``prod_i (mu_i - 1)`` over the non-trivial multipliers (zero
+  when a second multiplier reaches +1: at a fold of the branch, which the branch's own tangent
+  tells apart, or at a branch point where another family of orbits crosses, e.g. one that breaks
+  a symmetry of the orbit);
 - period doubling: ``prod_i (mu_i + 1)`` over the non-trivial multipliers (real for a real
   matrix; zero when a multiplier crosses -1);
 - torus (Neimark–Sacker): ``prod_{i<j} (mu_i mu_j - 1)`` over the non-trivial multipliers (zero
@@ -33,7 +37,7 @@ import math
 import numpy as np
 
 __all__ = ["monodromy", "floquet_multipliers", "is_stable", "period_doubling_value", "torus_value",
-           "is_torus", "is_period_doubling"]
+           "is_torus", "is_period_doubling", "plus_one_value", "is_plus_one"]
 
 
 def monodromy(segment_jacobians: np.ndarray) -> np.ndarray:
@@ -103,6 +107,16 @@ def _root(values: np.ndarray) -> float:
     sign = 1.0 if prod.real >= 0 else -1.0
     logs = np.log(np.maximum(np.abs(values), 1e-300))
     return sign * math.exp(float(np.mean(logs)))
+
+
+def plus_one_value(mu: np.ndarray, trivial: int) -> float:
+    """``prod (mu_i - 1)`` over the non-trivial multipliers (zero when one reaches +1)."""
+    return _root(_others(mu, trivial) - 1.0)
+
+
+def is_plus_one(mu: np.ndarray, trivial: int, tol: float = 1e-3) -> bool:
+    """True if a non-trivial multiplier lies at +1 (within ``tol``)."""
+    return bool((np.abs(_others(mu, trivial) - 1.0) < tol).any())
 
 
 def period_doubling_value(mu: np.ndarray, trivial: int) -> float:

@@ -27,6 +27,10 @@ from rotorlab.integrate import SaveAt, StepControl, solve_ensemble
 
 __all__ = ["PeriodicOrbit", "find_periodic_orbit", "continue_periodic"]
 
+#: What a special point of an orbit branch means, where the equilibria's words do not fit.
+_WORDS = {"branch": "branch point of periodic orbits: a second Floquet multiplier reaches +1 and another "
+                    "family of orbits crosses this one (e.g. one that breaks the orbit's symmetry)"}
+
 SAMPLES = 2048  # points per period for the amplitude (refined by a parabola through the peak: error ~ dt^3)
 
 
@@ -285,7 +289,8 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
     -------
     Branch
         Kind ``"periodic"``: values, phase-0 states, stability, amplitude, Floquet multipliers
-        (``spectrum``), period; special points ``fold-of-cycles``, ``period-doubling``, ``torus``.
+        (``spectrum``), period; special points ``fold-of-cycles``, ``branch`` (a multiplier +1
+        away from a fold), ``period-doubling``, ``torus``.
     """
     refuse_events(model)
     lam_scale = float(parameter_scale) if parameter_scale is not None else max(abs(orbit.value), 1.0)
@@ -308,6 +313,7 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
         return floq[key]
 
     tests = {"fold-of-cycles": fold_test,
+             "branch": lambda pt: fq.plus_one_value(*mult(pt)),
              "period-doubling": lambda pt: fq.period_doubling_value(*mult(pt)),
              "torus": lambda pt: fq.torus_value(*mult(pt))}
     infos: list[dict[str, Any]] = []
@@ -322,11 +328,14 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
     errs = np.array([0.0 if i["trivial"] < 0 else abs(i["multipliers"][i["trivial"]] - 1.0) for i in infos])
     stable = np.array([i["stable"] for i in infos]) & (errs <= trivial_tol)
     specials = []
+    folds = {c.index for c in curve.crossings if c.name == "fold-of-cycles"}
+    confirm = {"torus": fq.is_torus, "period-doubling": fq.is_period_doubling, "branch": fq.is_plus_one}
     for c in curve.crossings:
         mu, triv = mult(c.point)
-        if (c.name == "torus" and not fq.is_torus(mu, triv)) or (
-                c.name == "period-doubling" and not fq.is_period_doubling(mu, triv)):
+        if c.name in confirm and not confirm[c.name](mu, triv):
             continue  # a neutral saddle, or an unresolved zero: not a bifurcation
+        if c.name == "branch" and c.index in folds:
+            continue  # the multiplier +1 of a fold, reported as the fold
         x, period, lam = shoot.unpack(c.point.u)
         freq = math.nan
         if c.name == "torus":
@@ -336,7 +345,7 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
         change = _stability_change(stable, c.index)
         specials.append(SpecialPoint(
             type=c.name, parameter=parameter, value=lam, state=x[0].copy(), index=c.index, frequency=freq,
-            description=f"{label}: {SPECIAL_POINT_TYPES[c.name]}, at {parameter} = {lam:.10g} "
+            description=f"{label}: {_WORDS.get(c.name, SPECIAL_POINT_TYPES[c.name])}, at {parameter} = {lam:.10g} "
                         f"(period {period:.6g} s){change}" + ("" if c.converged else " (location not converged)")))
     return Branch(
         kind="periodic", parameter=parameter, values=np.array([i["value"] for i in infos]),
