@@ -183,3 +183,9 @@ def test_models_with_events_are_refused(model, events):
         find_periodic_orbit(model, [1.0, 0.0, 0.0], 1.0)
     with pytest.raises(ValueError, match="equilibria of the smooth part"):
         orbit_from_hopf(model, [1.0, 0.0, 0.0], 0.0, lambda v: model.to_array())
+
+
+def test_a_parameter_name_the_model_does_not_have_is_refused():
+    model = PlanarOscillator.van_der_pol(1.0)
+    with pytest.raises(ValueError, match="unknown parameter 'mu' of PlanarOscillator; its parameters: none"):
+        orbit_from_hopf(model, [0.0, 0.0], 0.0, "mu")

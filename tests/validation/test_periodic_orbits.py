@@ -120,10 +120,10 @@ def test_whirl_down_in_speed_ends_at_the_saddle_node_of_the_side_motions(whirl):
     for _ in range(40):
         mid = 0.5 * (lo + hi)
         lo, hi = (mid, hi) if analyze_steady(MODEL, mid * P).motion("side 00").exists else (lo, mid)
-    branch = continue_periodic(_rot(1.6 * P), whirl, _at, parameter="speed", label="whirl",
+    branch = continue_periodic(_rot(1.6 * P), whirl, "speed.speed", label="whirl",  # the model's named parameter
                                settings=ContinuationSettings(ds=0.05, ds_max=0.5, max_points=70, direction=-1,
                                                              bounds=(0.3 * P, 4.7 * P)))
-    assert branch.stable.all() and branch.special_points == ()
+    assert branch.parameter == "speed.speed" and branch.stable.all() and branch.special_points == ()
     assert np.all(np.diff(branch.values) < 0) and np.all(branch.values > hi * P)
     tail = branch.period[-10:]
     assert np.all(np.diff(tail) > 0) and tail[-1] > 2.0  # from 0.1 s at 1.6 p, without bound

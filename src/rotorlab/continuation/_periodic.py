@@ -25,7 +25,7 @@ from rotorlab.continuation._result import SPECIAL_POINT_TYPES, Branch, SpecialPo
 from rotorlab.continuation._shooting import BACKEND, Shooting, refuse_events, steps_per_period
 from rotorlab.integrate import SaveAt, StepControl, solve_ensemble
 
-__all__ = ["PeriodicOrbit", "find_periodic_orbit", "continue_periodic"]
+__all__ = ["PeriodicOrbit", "find_periodic_orbit", "continue_periodic", "params_function"]
 
 #: What a special point of an orbit branch means, where the equilibria's words do not fit.
 _WORDS = {"branch": "branch point of periodic orbits: a second Floquet multiplier reaches +1 and another "
@@ -211,6 +211,16 @@ def find_periodic_orbit(model: Any, start: Any, period: float, *, params: Any = 
     ------
     ValueError
         A model with events, a start that does not converge, or an unresolved monodromy matrix.
+
+    Examples
+    --------
+    The Van der Pol limit cycle at mu = 1 (period 6.66328685932313):
+
+    >>> from rotorlab.continuation import find_periodic_orbit
+    >>> from rotorlab.models.examples import PlanarOscillator
+    >>> orbit = find_periodic_orbit(PlanarOscillator.van_der_pol(1.0), [2.0, 0.0], 6.6)
+    >>> round(orbit.period, 7), orbit.stable
+    (6.6632869, True)
     """
     refuse_events(model)
     n = model.kernels.n_state
@@ -254,8 +264,20 @@ def _newton(shoot: Shooting, u0: np.ndarray, tol: float, max_newton: int, row: n
     return u
 
 
-def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[float], Any], *,
-                      parameter: str = "lam", settings: ContinuationSettings = ContinuationSettings(),
+def params_function(model: Any, params_at: Callable[[float], Any] | str) -> Callable[[float], np.ndarray]:
+    """``value -> packed parameters``: ``params_at`` itself, or for a name of the model's named
+    parameters (``model.parameters``, e.g. ``"speed.speed"``) ``model.pack({name: value})``."""
+    if isinstance(params_at, str):
+        name = params_at
+        if not hasattr(model, "pack") or name not in getattr(model.parameters, "names", ()):
+            known = ", ".join(getattr(getattr(model, "parameters", None), "names", ())) or "none"
+            raise ValueError(f"unknown parameter {name!r} of {type(model).__name__}; its parameters: {known}")
+        return lambda value: np.asarray(model.pack({name: float(value)}), dtype=float)
+    return lambda value: np.asarray(params_at(value), dtype=float)
+
+
+def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[float], Any] | str, *,
+                      parameter: str | None = None, settings: ContinuationSettings = ContinuationSettings(),
                       parameter_scale: float | None = None, state_scale: Any = None,
                       amplitude: Sequence[int] = (0, 1), trivial_tol: float = 1e-4,
                       label: str = "periodic orbit") -> Branch:
@@ -267,10 +289,12 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
         The model the orbit belongs to (no events).
     orbit : PeriodicOrbit
         The first orbit (its ``value`` is the parameter's; it is corrected at that value).
-    params_at : callable
-        ``value -> packed parameters`` of the model at that parameter value.
-    parameter : str
-        The parameter's name (the branch's and the JSON's key).
+    params_at : callable or str
+        ``value -> packed parameters`` of the model at that parameter value, or the name of one
+        of the model's named parameters (``model.parameters``; then ``model.pack``).
+    parameter : str, optional
+        The parameter's name (the branch's and the JSON's key); default ``params_at`` when it is
+        a name, else ``orbit.parameter``.
     settings : ContinuationSettings
         Steps, bounds and number of orbits (``max_points``).
     parameter_scale : float, optional
@@ -293,9 +317,11 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
         away from a fold), ``period-doubling``, ``torus``.
     """
     refuse_events(model)
+    parameter = parameter or (params_at if isinstance(params_at, str) else orbit.parameter)
+    at = params_function(model, params_at)
     lam_scale = float(parameter_scale) if parameter_scale is not None else max(abs(orbit.value), 1.0)
     typ = _typical(orbit.states, state_scale)
-    shoot = Shooting(model, lambda lam: np.asarray(params_at(lam), dtype=float), segments=orbit.segments,
+    shoot = Shooting(model, at, segments=orbit.segments,
                      steps=orbit.steps, typ=typ, winding=orbit.winding, forcing_period=orbit.forcing_period,
                      lam_scale=lam_scale)
     u0 = shoot.pack(orbit.states, orbit.period, orbit.value)

@@ -21,7 +21,7 @@ from typing import Any
 import numpy as np
 
 from rotorlab.continuation._periodic import (
-    PeriodicOrbit, _check_trivial, _make_orbit, _newton, find_periodic_orbit,
+    PeriodicOrbit, _check_trivial, _make_orbit, _newton, find_periodic_orbit, params_function,
 )
 from rotorlab.continuation._shooting import BACKEND, Shooting, refuse_events, steps_per_period
 from rotorlab.integrate import SaveAt, StepControl, solve_ensemble
@@ -47,10 +47,10 @@ def _hopf_pair(shoot_flow: Callable[[np.ndarray], np.ndarray], x0: np.ndarray, t
     return float(lam[k].imag), vec[:, k]
 
 
-def orbit_from_hopf(model: Any, state: Any, value: float, params_at: Callable[[float], Any], *,
+def orbit_from_hopf(model: Any, state: Any, value: float, params_at: Callable[[float], Any] | str, *,
                     frequency: float | None = None, eigenvector: Any = None, amplitude: float = 1e-3,
                     segments: int = 5, steps: int | None = None, rtol: float = 1e-9,
-                    state_scale: Any = None, parameter: str = "lam", parameter_scale: float | None = None,
+                    state_scale: Any = None, parameter: str | None = None, parameter_scale: float | None = None,
                     amplitude_states: Sequence[int] = (0, 1), trivial_tol: float = 1e-4) -> PeriodicOrbit:
     """A small periodic orbit near a Hopf point, with the direction of growing amplitude.
 
@@ -62,8 +62,8 @@ def orbit_from_hopf(model: Any, state: Any, value: float, params_at: Callable[[f
         The equilibrium at the Hopf point.
     value : float
         The parameter's value there.
-    params_at : callable
-        ``value -> packed parameters``.
+    params_at : callable or str
+        ``value -> packed parameters``, or the name of one of the model's named parameters.
     frequency : float, optional
         The crossing eigenvalue's imaginary part ``w`` (rad/s); default from a numerical
         Jacobian of the model's right-hand side at ``state``.
@@ -75,8 +75,8 @@ def orbit_from_hopf(model: Any, state: Any, value: float, params_at: Callable[[f
         As :func:`rotorlab.continuation.find_periodic_orbit` (``amplitude_states`` is its
         ``amplitude``). ``state_scale`` (default ``max(|state|, 1)``) is also the scale of the
         eigenvector: the guess deviates by ``amplitude * state_scale`` in its largest component.
-    parameter : str
-        The parameter's name.
+    parameter : str, optional
+        The parameter's name (default ``params_at`` when it is a name, else ``"lam"``).
     parameter_scale : float, optional
         Typical size of the parameter (default ``max(|value|, 1)``).
 
@@ -91,7 +91,9 @@ def orbit_from_hopf(model: Any, state: Any, value: float, params_at: Callable[[f
     n = model.kernels.n_state
     if x0.shape != (n,):
         raise ValueError(f"state must have shape ({n},), got {x0.shape}")
-    p = np.asarray(params_at(value), dtype=float)
+    parameter = parameter or (params_at if isinstance(params_at, str) else "lam")
+    params_at = params_function(model, params_at)
+    p = params_at(value)
     typ = (np.maximum(np.abs(x0), 1.0) if state_scale is None
            else np.broadcast_to(np.asarray(state_scale, dtype=float), (n,)).copy())
 
@@ -117,7 +119,7 @@ def orbit_from_hopf(model: Any, state: Any, value: float, params_at: Callable[[f
 
     if steps is None:
         steps = steps_per_period(model, guess(amplitude)[0], period, p, rtol, typ)
-    shoot = Shooting(model, lambda lam: np.asarray(params_at(lam), dtype=float), segments=segments, steps=steps,
+    shoot = Shooting(model, params_at, segments=segments, steps=steps,
                      typ=typ, winding=np.zeros(n), lam_scale=lam_scale)
     scale_row = np.zeros(shoot.size)
     scale_row[:n] = np.real(v) / shoot.typ
