@@ -189,3 +189,8 @@ def test_a_parameter_name_the_model_does_not_have_is_refused():
     model = PlanarOscillator.van_der_pol(1.0)
     with pytest.raises(ValueError, match="unknown parameter 'mu' of PlanarOscillator; its parameters: none"):
         orbit_from_hopf(model, [0.0, 0.0], 0.0, "mu")
+
+
+def test_a_time_dependent_model_needs_forced():
+    with pytest.raises(ValueError, match="depends on time .* give forced=True"):
+        find_periodic_orbit(PlanarOscillator.mathieu(0.5, 0.2, 0.02), [0.1, 0.0], 2 * math.pi)

@@ -154,9 +154,20 @@ class Shooting:
             self.k = max(4, int(math.ceil(self.density * period / self.m)))
         p = np.asarray(self.params_at(lam), dtype=float)
         self._cache.clear()  # the phase row changes
+        if self._ref is None:
+            self._check_autonomous(x[0], period, p)
         self._ref = x.copy()
         self._ref_flow = np.array([self.flow(0.0, xi, p) for xi in x]) / self.typ**2
         self._ref_flow /= max(np.linalg.norm(self._ref_flow * self.typ), 1e-300)
+
+    def _check_autonomous(self, x: np.ndarray, period: float, p: np.ndarray) -> None:
+        """Raise ValueError if the vector field depends on time (a forced system, a speed ramp)."""
+        f0, f1 = self.flow(0.0, x, p), self.flow(0.377 * period, x, p)
+        if not np.allclose(f0, f1, rtol=1e-12, atol=1e-12 * float(np.max(np.abs(f0), initial=1e-300))):
+            raise ValueError(
+                "the model's right-hand side depends on time (a forcing or a varying speed): an autonomous "
+                "periodic orbit has no fixed period; give forced=True and the forcing's period"
+            )
 
     # ---- integration ------------------------------------------------------------------------
     def segment_times(self, period: float) -> np.ndarray:
