@@ -33,10 +33,10 @@ from rotorlab.continuation._machine_problem import (
     starting_motions,
     with_value,
 )
-from rotorlab.continuation._two_parameter import TwoParameterCurve, continue_special_point, two_parameter_curves
 from rotorlab.continuation._periodic import PeriodicOrbit, continue_periodic, find_periodic_orbit
 from rotorlab.continuation._result import SPECIAL_POINT_TYPES, Branch, ContinuationResult, SpecialPoint
 from rotorlab.continuation._starts import orbit_from_hopf, orbit_from_simulation
+from rotorlab.continuation._two_parameter import TwoParameterCurve, continue_special_point, two_parameter_curves
 
 __all__ = [
     "NAMED_PARAMETERS",
