@@ -107,3 +107,18 @@ def block_reset(k, t, y, p, y_new):
         # slip whatever round-off says about |drive| <= mu g at the located zero
         y_new[2] = 1.0 if drive > 0.0 else -1.0
     return 0
+
+
+# ---- planar polynomial oscillator: y = [x, y], p = [a11, a12, a21, a22, c1, c2, c3, c4,
+#      q1, q2, q3, q4, d, e, w] (see rotorlab.models.examples.PlanarOscillator) ------------------
+
+
+@njit(cache=True, nogil=True)
+def planar_rhs(t, y, p, out):
+    x = y[0]
+    v = y[1]
+    r2 = x * x + v * v
+    r4 = r2 * r2
+    out[0] = p[0] * x + p[1] * v + (p[4] * x + p[5] * v) * r2 + (p[8] * x + p[9] * v) * r4
+    out[1] = ((p[2] + p[13] * math.cos(p[14] * t)) * x + p[3] * v + (p[6] * x + p[7] * v) * r2
+              + (p[10] * x + p[11] * v) * r4 + p[12] * x * x * v)

@@ -3,7 +3,11 @@
 The numerical core (:mod:`rotorlab.continuation._core`) follows solution curves of
 ``F(x, lam) = 0`` by pseudo-arclength continuation and locates the zeros of test functions along
 them (folds, branch points, Hopf points); the model-specific residuals (equilibria of a machine in
-its co-rotating frame, periodic orbits by shooting) are built on it.
+its co-rotating frame, periodic orbits by shooting) are built on it. Periodic orbits:
+:func:`find_periodic_orbit` (one orbit by multiple shooting on the compiled integrator, Floquet
+multipliers with the trivial one checked), :func:`continue_periodic` (a branch, with folds of
+cycles, period doublings and torus points), starts :func:`orbit_from_hopf` and
+:func:`orbit_from_simulation`; models with events are refused with a message saying why.
 """
 
 from rotorlab.continuation._core import (
@@ -29,8 +33,10 @@ from rotorlab.continuation._machine_problem import (
     starting_motions,
     with_value,
 )
-from rotorlab.continuation._two_parameter import TwoParameterCurve, continue_special_point, two_parameter_curves
+from rotorlab.continuation._periodic import PeriodicOrbit, continue_periodic, find_periodic_orbit
 from rotorlab.continuation._result import SPECIAL_POINT_TYPES, Branch, ContinuationResult, SpecialPoint
+from rotorlab.continuation._starts import orbit_from_hopf, orbit_from_simulation
+from rotorlab.continuation._two_parameter import TwoParameterCurve, continue_special_point, two_parameter_curves
 
 __all__ = [
     "NAMED_PARAMETERS",
@@ -60,4 +66,9 @@ __all__ = [
     "fold_test",
     "numerical_jacobian",
     "switch_branch",
+    "PeriodicOrbit",
+    "continue_periodic",
+    "find_periodic_orbit",
+    "orbit_from_hopf",
+    "orbit_from_simulation",
 ]

@@ -264,6 +264,7 @@ def continue_curve(
     settings: ContinuationSettings = ContinuationSettings(),
     tests: Mapping[str, TestFunction] | None = None,
     tangent0: np.ndarray | None = None,
+    on_point: Callable[[CurvePoint], None] | None = None,
 ) -> Curve:
     """Follow the solution curve of ``residual(u) = 0`` through ``u0``.
 
@@ -284,6 +285,10 @@ def continue_curve(
         branch_point_test}``.
     tangent0 : array_like, optional
         Initial direction (unscaled); default along ``lam`` in ``settings.direction``.
+    on_point : callable, optional
+        Called with each accepted point (the first one included), after the test functions were
+        evaluated there: a residual whose condition follows the curve (the phase condition of a
+        periodic orbit against the previous orbit) updates itself here.
 
     Returns
     -------
@@ -315,6 +320,8 @@ def continue_curve(
     p = _first_point(stepper, u0, tangent0, st.direction)
     points = [p]
     values = {k: [fn(p)] for k, fn in tests.items()}
+    if on_point is not None:
+        on_point(p)
     crossings: list[Crossing] = []
     ds, end = st.ds, "max_points"
     lo, hi = st.bounds
@@ -353,6 +360,8 @@ def continue_curve(
                 crossings.append(Crossing(name=k, index=len(points), point=z[0], converged=z[1]))
             values[k].append(v)
         points.append(q)
+        if on_point is not None:
+            on_point(q)
         if end == "bound":
             break
         if len(points) > 3 and _passes(points[0].u, p.u, q.u, scale):

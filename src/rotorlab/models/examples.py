@@ -4,6 +4,9 @@
 - :class:`BouncingBall`: impacts with restitution whose accumulation (chatter) turns into
   sustained contact, and lift-off when the contact force would pull.
 - :class:`FrictionBlock`: Coulomb (dry) friction as stick–slip, not as a smoothed sign.
+- :class:`PlanarOscillator`: one smooth planar polynomial field (one compiled kernel) that is the
+  Van der Pol oscillator, the Hopf (Stuart–Landau) and Bautin normal forms or the damped Mathieu
+  equation, for the periodic-orbit checks of :mod:`rotorlab.continuation`.
 """
 
 from __future__ import annotations
@@ -16,9 +19,10 @@ import numpy as np
 from rotorlab._kernels import examples as _k
 from rotorlab.models._base import EventSpec, Kernels
 
-__all__ = ["HarmonicOscillator", "BouncingBall", "FrictionBlock"]
+__all__ = ["HarmonicOscillator", "BouncingBall", "FrictionBlock", "PlanarOscillator"]
 
 _OSC_KERNELS = Kernels(rhs=_k.oscillator_rhs, n_state=2)
+_PLANAR_KERNELS = Kernels(rhs=_k.planar_rhs, n_state=2)
 _BALL_KERNELS = Kernels(
     rhs=_k.ball_rhs,
     n_state=3,
@@ -215,3 +219,85 @@ class FrictionBlock:
             drive = -self.spring_rate * x0
             mode = 0.0 if abs(drive) <= self.friction_accel else math.copysign(1.0, drive)
         return np.array([x0, v0, mode])
+
+
+_PLANAR_FIELDS = ("a11", "a12", "a21", "a22", "c1", "c2", "c3", "c4", "q1", "q2", "q3", "q4", "d", "e", "w")
+
+
+@dataclass(frozen=True, slots=True)
+class PlanarOscillator:
+    """A smooth planar field with linear, cubic, quintic, Van der Pol and parametric terms.
+
+    With ``r2 = x^2 + y^2``::
+
+        x' = a11 x + a12 y + (c1 x + c2 y) r2 + (q1 x + q2 y) r2^2
+        y' = (a21 + e cos(w t)) x + a22 y + (c3 x + c4 y) r2 + (q3 x + q4 y) r2^2 + d x^2 y
+
+    The constructors give the textbook cases: :meth:`van_der_pol`, :meth:`stuart_landau` (the
+    Hopf normal form, and with a quintic term the Bautin normal form, whose orbits fold) and
+    :meth:`mathieu` (a linear time-periodic system). All share one compiled kernel.
+
+    Parameters
+    ----------
+    a11, a12, a21, a22, c1, c2, c3, c4, q1, q2, q3, q4, d, e, w : float
+        The coefficients above (units of the state per second; ``w`` in rad/s).
+
+    Notes
+    -----
+    State ``[x, y]``; packed parameters in the order of the fields.
+    """
+
+    a11: float = 0.0
+    a12: float = 1.0
+    a21: float = -1.0
+    a22: float = 0.0
+    c1: float = 0.0
+    c2: float = 0.0
+    c3: float = 0.0
+    c4: float = 0.0
+    q1: float = 0.0
+    q2: float = 0.0
+    q3: float = 0.0
+    q4: float = 0.0
+    d: float = 0.0
+    e: float = 0.0
+    w: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name in _PLANAR_FIELDS:
+            if not math.isfinite(getattr(self, name)):
+                raise ValueError(f"PlanarOscillator.{name} must be finite, got {getattr(self, name)!r}")
+
+    @classmethod
+    def van_der_pol(cls, mu: float) -> PlanarOscillator:
+        """``x'' - mu (1 - x^2) x' + x = 0`` as ``x' = y``, ``y' = -x + mu (1 - x^2) y``."""
+        return cls(a22=mu, d=-mu)
+
+    @classmethod
+    def stuart_landau(cls, mu: float, omega: float = 1.0, cubic: float = -1.0, twist: float = 0.0,
+                      quintic: float = 0.0) -> PlanarOscillator:
+        """``z' = (mu + i omega) z + (cubic + i twist) |z|^2 z + quintic |z|^4 z``, ``z = x + i y``.
+
+        With ``cubic < 0`` (supercritical Hopf at ``mu = 0``) the orbit has radius
+        ``sqrt(-mu / cubic)``; with ``cubic > 0`` and ``quintic < 0`` (Bautin) the orbits of radius
+        ``r^2 = (cubic + sqrt(cubic^2 + 4 mu |quintic|)) / (2 |quintic|)`` fold at
+        ``mu = -cubic^2 / (4 |quintic|)``.
+        """
+        return cls(a11=mu, a12=-omega, a21=omega, a22=mu, c1=cubic, c2=-twist, c3=twist, c4=cubic,
+                   q1=quintic, q4=quintic)
+
+    @classmethod
+    def mathieu(cls, delta: float, eps: float, damping: float = 0.0, frequency: float = 1.0) -> PlanarOscillator:
+        """The damped Mathieu equation ``x'' + damping x' + (delta + eps cos(frequency t)) x = 0``."""
+        return cls(a12=1.0, a21=-delta, a22=-damping, e=-eps, w=frequency)
+
+    @property
+    def kernels(self) -> Kernels:
+        return _PLANAR_KERNELS
+
+    @property
+    def state_names(self) -> tuple[str, ...]:
+        return ("x", "y")
+
+    def to_array(self) -> np.ndarray:
+        return np.array([getattr(self, name) for name in _PLANAR_FIELDS], dtype=float)
