@@ -32,6 +32,7 @@ ON_STATOR = ["--set", 'model.clearances=[{at = "drum", gap = "10 mm"}]']
 #: washer-horizontal's suspension with cross-coupled stiffness q = 15 kN/m: self-excited above
 #: q = c sqrt(k / m) = 400 * 25 = 10 kN/m (the eigenvalues of m s^2 + c s + k -+ i q).
 SELF_EXCITED = ["--set", "model.structure.bearings[0].kxy=15 kN/m", "--set", "model.structure.bearings[0].kyx=-15 kN/m"]
+NO_PASSING = ["--set", "analysis[1].passing_torque=false"]
 FILE = "{d}/case.toml"
 
 # (id, argv with {d} for the working folder, (base case, old text, new text) or None, words of the message)
@@ -47,9 +48,10 @@ REFUSED: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
                                           'model.clearances=[{at = "drum", gap = "10 mm", center = ["0 mm", "-30 mm"]}]'],
      None, ["model.clearances[0].gap = 10 mm", "14.3 mm", "center_at_rest = true"]),  # 30 - 15.70 mm (no balls)
     # ---- item 9: a motor that cannot spin the machine up -------------------------------------
-    ("motor-zero-stall-torque", ["run-up", "washer-horizontal", "--set", "model.drive.stall_torque=0 N*m"], None,
-     ["model.drive.stall_torque", '"0 N*m"', "must be > 0 N*m", "never spins"]),
-    ("motor-negative-stall-torque", ["run", "washer-horizontal", "--out", "{d}/o", "--set",
+    # (passing_torque off: it refused a torque <= 0 for its own reason, the run-ups did not)
+    ("motor-zero-stall-torque", ["run-up", "washer-horizontal", *NO_PASSING, "--set", "model.drive.stall_torque=0 N*m"],
+     None, ["model.drive.stall_torque", '"0 N*m"', "must be > 0 N*m", "never spins"]),
+    ("motor-negative-stall-torque", ["run", "washer-horizontal", "--out", "{d}/o", *NO_PASSING, "--set",
                                      "model.drive.stall_torque=-10 N*m"], None,
      ["model.drive.stall_torque", '"-10 N*m"', "must be > 0 N*m", "backwards"]),
     ("motor-table-without-torque-at-rest", ["validate", "washer-horizontal", "--set",
