@@ -105,11 +105,16 @@ def test_the_built_in_machines_are_stable_where_they_run():
 
 def test_the_sanity_monitor_fails_deflections_beyond_the_machine_size():
     """The washer's size is its race radius 0.27 m (without the races, the drum's radius of
-    gyration sqrt(1.5 / 40) = 0.194 m): a state beyond it, or tilted more than 0.5 rad, fails."""
+    gyration sqrt(1.5 / 40) = 0.194 m; with a clearance at least ten times its reach): a state
+    beyond it, or tilted more than 0.5 rad, fails."""
     m = washer()
     bare = replace(m, races=())
     assert m.size_scale()[0] == pytest.approx(0.27, rel=1e-15)
     assert bare.size_scale()[0] == pytest.approx(np.sqrt(1.5 / 40.0), rel=1e-15)
+    # a clearance reaches 10 (gap + |centre|): 10 * (30 + 5) mm = 0.35 m; a 10 mm gap adds nothing
+    assert replace(bare, clearances=(Clearance(0, 0.03, center=(0.0, -0.005)),)).size_scale()[0] == pytest.approx(
+        0.35, rel=1e-12)
+    assert replace(bare, clearances=(Clearance(0, 0.01),)).size_scale()[0] == pytest.approx(0.1936, rel=1e-3)
     p = bare.to_array()
     ys = np.zeros((3, 4, bare.n_state))
     ys[:, 1:] = np.nan  # trajectories that ended: ignored

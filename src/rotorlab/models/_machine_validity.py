@@ -18,11 +18,15 @@ import math
 
 import numpy as np
 
-__all__ = ["DEFLECTION_FRACTION", "TILT_LIMIT"]
+__all__ = ["DEFLECTION_FRACTION", "CLEARANCE_REACH", "TILT_LIMIT"]
 
 #: A station whose lateral displacement exceeds this fraction of the machine's size
 #: (:meth:`_Validity.size_scale`) is beyond the linear structure's validity.
 DEFLECTION_FRACTION = 1.0
+#: With a clearance, the machine's size is at least this many times the gap plus the stator
+#: centre's distance from the axis: a station that far out has crushed its stator many times over
+#: (a yielding stator lets the rotor beyond the gap; the contact law is linear in the penetration).
+CLEARANCE_REACH = 10.0
 #: A node tilted by more than this (rad, about 29 degrees; ``sin`` is then 4 % below the angle)
 #: is beyond the small-angle kinematics of the races and the structure.
 TILT_LIMIT = 0.5
@@ -34,7 +38,8 @@ class _Validity:
     def size_scale(self, params=None) -> np.ndarray:
         """The machine's own size (m), per parameter row: the largest of its structure's axial
         span, the radii of gyration of its nodes (``sqrt(I / m)``, diametral and polar, from the
-        diagonal of M and G), its race radii and the rotor's radius at a clearance.
+        diagonal of M and G), its race radii and, with a clearance, the rotor's radius there and
+        :data:`CLEARANCE_REACH` times the gap plus the stator centre's distance from the axis.
 
         Parameters
         ----------
@@ -56,10 +61,12 @@ class _Validity:
         size = np.full(p.shape[0], max(float(np.ptp(pos)) if pos.size > 1 else 0.0, float(gyration.max())))
         o = self.layout.offsets
         for b in range(self.layout.n_balls):
-            m, ml = p[:, o["balls"] + 4 * b], p[:, o["balls"] + 4 * b + 1]
-            size = np.maximum(size, np.where(m > 0, ml / np.where(m > 0, m, 1.0), 0.0))
-        if self.clearances:
-            size = np.maximum(size, p[:, o["clearance"] + 3])  # rotor radius R_r
+            mb, ml = p[:, o["balls"] + 4 * b], p[:, o["balls"] + 4 * b + 1]  # m_b, m_b l_b
+            size = np.maximum(size, np.where(mb > 0, ml / np.where(mb > 0, mb, 1.0), 0.0))
+        if self.clearances:  # rotor radius R_r; CLEARANCE_REACH times the gap's reach from the axis
+            k = o["clearance"]  # [delta, e, mu, R_r, ..., centre x, centre y, ...]
+            reach = p[:, k] + np.hypot(p[:, k + 8], p[:, k + 9])
+            size = np.maximum(size, np.maximum(p[:, k + 3], CLEARANCE_REACH * reach))
         return size
 
     def impossible_states(self, ys, y_final, t_final, params) -> list[str]:
@@ -94,8 +101,8 @@ class _Validity:
                 out[i] = (f"station {labels[node]!r} moved {r[i, node]:.3g} m from the axis (by t = "
                           f"{t_final[i]:.6g} s), more than {DEFLECTION_FRACTION:g} times the machine's size "
                           f"{limit[i]:.3g} m (the largest of its axial span, radii of gyration, race and rotor "
-                          "radii): far beyond the small deflections its linear structure describes (a "
-                          "self-excited, unstable structure grows without bound)")
+                          "radii, reach of the clearance): far beyond the small deflections its linear "
+                          "structure describes (a self-excited, unstable structure grows without bound)")
             else:
                 node = int(np.argmax(tilt[i]))
                 out[i] = (f"node {labels[node]!r} tilted by {tilt[i, node]:.3g} rad (by t = {t_final[i]:.6g} s), "
