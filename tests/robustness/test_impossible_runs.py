@@ -44,9 +44,9 @@ REFUSED: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
      ["model.clearances[0].gap = 10 mm", "15.7 mm", "center_at_rest = true"]),
     ("rest-on-stator-knock", ["run", FILE, "--out", "{d}/o"], ("washer-knock", "center_at_rest = true", ""),
      ["model.clearances[0].gap = 10 mm", "16.09 mm", "center_at_rest = true"]),
-    ("rest-on-stator-centred-small-gap", ["run", "washer-horizontal", "--out", "{d}/o", "--set",
-                                          'model.clearances=[{at = "drum", gap = "10 mm", center = ["0 mm", "-30 mm"]}]'],
-     None, ["model.clearances[0].gap = 10 mm", "14.3 mm", "center_at_rest = true"]),  # 30 - 15.70 mm (no balls)
+    ("rest-on-stator-centre-above-the-axis", ["run", "washer-horizontal", "--out", "{d}/o", "--set",
+                                              'model.clearances=[{at = "drum", gap = "10 mm", center = ["0 mm", "5 mm"]}]'],
+     None, ["model.clearances[0].gap = 10 mm", "20.7 mm", "center_at_rest = true"]),  # 5 + 15.70 mm (no balls)
     # ---- item 9: a motor that cannot spin the machine up -------------------------------------
     # (passing_torque off: it refused a torque <= 0 for its own reason, the run-ups did not)
     ("motor-zero-stall-torque", ["run-up", "washer-horizontal", *NO_PASSING, "--set", "model.drive.stall_torque=0 N*m"],
