@@ -175,7 +175,7 @@ def _races():
 @pytest.mark.parametrize("edit, where, words", [
     (('profile = "motor"\nstall_torque = "0.012 N*m"\nno_load_speed = "3 rad/s"\npolar_inertia = "0.05 kg*m^2"',
       'profile = "constant"\nspeed = "2 rad/s"'), "analysis[0].passing_torque", "profile = \"motor\""),
-    (('stall_torque = "0.012 N*m"', 'stall_torque = "-0.012 N*m"'), "analysis[0].passing_torque", "must then be > 0"),
+    (('stall_torque = "0.012 N*m"', 'stall_torque = "-0.012 N*m"'), "model.drive.stall_torque", "must be > 0"),
     (("passing_torque = true", "passing_torque = true\nspeed = { profile = \"ramp\", start = \"0 rad/s\", "
                                "stop = \"2 rad/s\", duration = \"10 s\" }"), "analysis[0].speed", "leave it out"),
     (("passing_torque = true", "passing_torque = true\npassing_torque_rtol = 2"), "analysis[0].passing_torque_rtol",

@@ -37,7 +37,10 @@ from rotorlab.analyses._machine_common import (  # noqa: F401  (re-exported: the
     _per_station,
     _variant,
     _wrap,
+    check_saved_states,
     clearance_violation,
+    flag_unstable,
+    status_detail,
     locked_structure,
     machine_model,
     machine_quantities,
@@ -54,9 +57,6 @@ __all__ = ["machine_simulate", "machine_steady", "machine_motions", "locked_stru
 
 #: Samples per revolution in the final window of a simulation.
 _SAMPLES_PER_REV = 32
-
-
-_HISTORY_BYTES = 256e6  # largest saved time history of machine_simulate (n_save)
 
 
 def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float = 1e-8,
@@ -82,8 +82,8 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     n_save : int, optional
         Also keep ``n_save`` equally spaced states over [0, t_end] as the time history
         ``displacement`` (ic, time, station): each node's distance from the axis (m), what the
-        report plots; kept while the saved states take at most 256 MB (else, as with None, only
-        the final window is kept).
+        report plots. A history that would not fit in this machine's memory is refused up
+        front (:func:`check_saved_states`, :class:`rotorlab._memory.TooLarge`).
 
     Returns
     -------
@@ -95,9 +95,14 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
         ``final_speed`` (ic) (rad/s); ``max_final_rate`` (ic): largest ball rate relative to
         the rotor in the final window (rad/s); ``outcome`` (ic): "balanced" (every station's
         vibration at most :data:`~rotorlab.analyses.BALANCED_FRACTION` of the largest vibration
-        without balancing), "non-synchronous" (balls still moving relative to the rotor faster
+        without balancing, above the first critical speed), "below critical speed" (the same at or
+        below it, :data:`BELOW_CRITICAL`), "non-synchronous" (balls still moving relative to the rotor faster
         than :data:`NON_SYNCHRONOUS_RATE` times its speed), "not balanced", "no balancer" or
-        "failed"; ``status`` (ic).
+        "failed"; ``status`` (ic): the integrator's (:class:`rotorlab.integrate.Status`; its
+        sanity monitor fails a run beyond the structure's validity,
+        :meth:`~rotorlab.models.Machine.impossible_states`), or ``UNSTABLE`` where the structure is
+        unstable at the final speed (:func:`flag_unstable`); ``attrs["status_detail"]``: why the
+        first failed run failed.
     """
     import xarray as xr
 
@@ -125,10 +130,9 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     if n_save is not None:
         if isinstance(n_save, bool) or int(n_save) != n_save or n_save < 2:
             raise ValueError(f"n_save must be an integer >= 2, got {n_save!r}")
-        # the history is for the report's figure: kept while its states fit in _HISTORY_BYTES
-        if 8.0 * len(ang) * int(n_save) * machine.n_state <= _HISTORY_BYTES:
-            hist = np.linspace(0.0, t_end, int(n_save))
-            ts_all = np.union1d(hist, ts)
+        check_saved_states(machine, n_save, len(ang))  # refused up front, as a run-up's
+        hist = np.linspace(0.0, t_end, int(n_save))
+        ts_all = np.union1d(hist, ts)
     sol = solve_ensemble(machine, y0, (0.0, t_end), save_at=SaveAt(ts=ts_all),
                          control=StepControl(rtol=rtol, atol=atol), threads=threads,
                          progress=progress)
@@ -143,8 +147,11 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     om_t = np.array([[machine.spin(t, y)[1] for t, y in zip(ts, traj)] for traj in ys])
     rates = ys[:, :, lay.i_w:lay.i_w + lay.n_balls] - om_t[:, :, None]
     max_rate = np.abs(rates).reshape(len(ang), -1).max(axis=1, initial=0.0)
-    outcome = [_outcome(int(st), a, ref, r, w, lay.n_balls)
-               for st, a, r, w in zip(sol.status, amp, max_rate, om)]
+    crit = structure_critical_speeds(machine)
+    first = float(crit[0]) if crit.size else 0.0
+    status, notes = flag_unstable(machine, sol.status, om, sol.notes)
+    outcome = [_outcome(int(st), a, ref, r, w, lay.n_balls, first)
+               for st, a, r, w in zip(status, amp, max_rate, om)]
     labels = list(machine.structure.node_label)
     ds = xr.Dataset(
         {
@@ -155,11 +162,11 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
             "initial_ball_angle": (("ic", "ball"), ang, {"units": "rad"}),
             "max_final_rate": (("ic",), max_rate, {"units": "rad/s"}),
             "outcome": (("ic",), np.asarray(outcome, dtype=str)),
-            "status": (("ic",), np.asarray(sol.status, dtype=np.int64)),
+            "status": (("ic",), status),
         },
         coords={"ic": np.arange(ang.shape[0]), "station": labels, **_ball_coords(machine)},
         attrs={"analysis": "simulate", "model": "machine", "t_end": float(t_end),
-               "window": float(window)},
+               "window": float(window), "status_detail": status_detail(notes)},
     )
     if hist is not None:
         ds = ds.assign_coords(time=("time", hist, {"units": "s"}))

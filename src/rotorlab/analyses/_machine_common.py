@@ -11,19 +11,34 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab.explore._outcome import NON_SYNCHRONOUS_RATE, wrap_machine_angle as _wrap  # noqa: F401
+from rotorlab.explore._outcome import BELOW_CRITICAL, NON_SYNCHRONOUS_RATE, wrap_machine_angle as _wrap  # noqa: F401
 from rotorlab.explore._outcome import machine_outcome as _outcome  # noqa: F401
 from rotorlab.models._machine_physics import locked_structure, structure_critical_speeds
 
-__all__ = ["NO_STEADY_STATUS", "CLEARANCE_STATUS", "NON_SYNCHRONOUS_RATE", "clearance_violation",
-           "locked_structure", "structure_critical_speeds", "unbalance_amplitudes", "orbit_amplitude",
-           "machine_model", "machine_quantities"]
+__all__ = ["BELOW_CRITICAL", "NO_STEADY_STATUS", "CLEARANCE_STATUS", "NON_SYNCHRONOUS_RATE",
+           "UNSTABLE_GROWTH", "clearance_violation", "check_saved_states", "structure_instability",
+           "flag_unstable", "status_detail", "locked_structure", "structure_critical_speeds",
+           "unbalance_amplitudes", "orbit_amplitude", "machine_model", "machine_quantities"]
 
 #: Status of a steady analysis on a machine without co-rotating equilibria.
 NO_STEADY_STATUS = 3
 #: Status of a steady motion whose orbit at a clearance exceeds the gap (it cannot exist without
 #: contact; simulate the rub instead).
 CLEARANCE_STATUS = 4
+
+
+def check_saved_states(machine, n_save: int, n_runs: int = 1) -> None:
+    """Refuse (:class:`rotorlab._memory.TooLarge`, exit code 2 on the command line) a time history
+    of ``n_save`` saved states of ``n_runs`` trajectories that would not fit in this machine's
+    memory, stating what it needs: the saved states, their displacements and the integrator's
+    copies, ``8 n_runs n_save (2 n_state + 8)`` bytes. The one check of every machine analysis
+    that keeps a time history (``simulate``, ``run-up``)."""
+    from rotorlab._memory import check_memory
+
+    n = machine.n_state
+    check_memory(8.0 * n_runs * int(n_save) * (2 * n + 8),
+                 f"n_save = {int(n_save)} saved states of {n_runs} trajector{'y' if n_runs == 1 else 'ies'} "
+                 f"x {n} entries", "save fewer states (n_save)")  # fmt: skip
 
 
 def clearance_violation(machine, y_rotating) -> tuple[float, str | None]:
@@ -70,6 +85,77 @@ def unbalance_amplitudes(machine, spin_speed: float) -> np.ndarray:
     q = np.linalg.solve(D, f)
     X, Y = q[0::4], q[1::4]
     return np.sqrt(0.5 * (np.abs(X) ** 2 + np.abs(Y) ** 2) + 0.5 * np.abs(X * X + Y * Y))
+
+
+#: An eigenvalue of the balls-locked structure whose real part exceeds this fraction of the
+#: largest eigenvalue's modulus makes it unstable (round-off leaves an undamped structure's real
+#: parts near 1e-15 of it).
+UNSTABLE_GROWTH = 1e-8
+
+
+def structure_instability(machine, spin_speed: float) -> tuple[float, str | None]:
+    """Whether the machine's linear structure is self-excited at a spin speed.
+
+    The eigenvalues of the structure with the balls locked (:func:`locked_structure`, their
+    inertia about the tilt axes included), ``(lambda^2 M + lambda (C + Omega G) + K) q = 0``
+    (:func:`rotorlab.linear.modal`): one with a positive real part (beyond
+    :data:`UNSTABLE_GROWTH` times the largest modulus) grows without bound (cross-coupled
+    bearing stiffness, rotating damping above its threshold speed), so a run at that speed ends
+    in no steady motion.
+
+    Returns
+    -------
+    growth : float
+        The largest real part of the eigenvalues (1/s).
+    message : str or None
+        The speed, the growth rate and its frequency when unstable.
+    """
+    from rotorlab.linear import modal
+
+    lam = np.asarray(modal(locked_structure(machine, tilt_inertia=True), float(spin_speed)).eigenvalues)
+    if not lam.size:
+        return -math.inf, None
+    k = int(np.argmax(lam.real))
+    growth = float(lam.real[k])
+    if not growth > UNSTABLE_GROWTH * float(np.abs(lam).max()):
+        return growth, None
+    return growth, (f"the structure (balls locked) is unstable at {spin_speed * 30 / math.pi:.5g} rpm: an "
+                    f"eigenvalue grows at {growth:.4g} 1/s ({abs(lam.imag[k]) / (2 * math.pi):.4g} Hz), "
+                    "self-excited (cross-coupled stiffness or rotating damping), so its response grows "
+                    "without bound and the run ends in no steady motion")
+
+
+def flag_unstable(machine, status, final_speeds, notes=()) -> tuple[np.ndarray, list[str]]:
+    """Mark the usable runs (``status >= 0``) that end at a speed where the structure is unstable
+    (:func:`structure_instability`) :attr:`rotorlab.integrate.Status.UNSTABLE`, a failure.
+
+    Returns
+    -------
+    status : ndarray of int64
+        A copy of ``status`` with those runs marked.
+    notes : list of str
+        Per run, why it failed: ``notes`` (the integrator's sanity notes) with the instability's
+        message added where it marked one.
+    """
+    from rotorlab.integrate import Status
+
+    status = np.array(status, dtype=np.int64).reshape(-1)
+    notes = list(notes) if len(notes) else [""] * status.size
+    seen: dict[float, str | None] = {}
+    for i, w in enumerate(np.asarray(final_speeds, dtype=float).reshape(-1)):
+        if status[i] < 0 or not math.isfinite(w):
+            continue
+        if w not in seen:
+            seen[w] = structure_instability(machine, w)[1]
+        if seen[w]:
+            status[i], notes[i] = int(Status.UNSTABLE), seen[w]
+    return status, notes
+
+
+def status_detail(notes) -> str:
+    """The first non-empty note of the failed runs (``attrs["status_detail"]``, printed by the
+    command line with the failure), or ""."""
+    return next((str(n) for n in notes if n), "")
 
 
 def orbit_amplitude(machine, ys) -> np.ndarray:
@@ -179,7 +265,32 @@ def _variant(case_model, analysis, speed: float | None = None, *, source=None):
         m = replace(m, races=tuple(m.races[i] for i in races))
     if speed is not None:
         m = m.with_drive(ConstantSpeed(float(speed)))
+    _check_rest(m, case_model)
     return m
+
+
+def _check_rest(machine, case_model) -> None:
+    """Refuse (:class:`rotorlab.io.CaseError`, exit code 2) a machine whose rotor rests on its
+    stator under gravity (:meth:`~rotorlab.models.Machine.rest_clearance`).
+
+    The balancer's analyses (simulate, run-up, basins, sweeps, knock) judge a rotor that runs
+    free of its stator: resting on it, the stator carries the rotor for the whole run and the
+    small vibration about that position reads as "balanced". Refused rather than reported: the
+    usual cause is a stator built around the axis of a rotor that sags (``center_at_rest``
+    forgotten), and a rotor meant to rest on its stator (a rotor dropped onto its catcher
+    bearing) is the question of the ``rub`` and ``rub-map`` analyses, which do not check this.
+    """
+    radius, why = machine.rest_clearance()
+    if why is None:
+        return
+    from rotorlab.io import CaseError
+
+    c = case_model.clearances[0]
+    key = "model.clearances[0]"
+    fix = (f"give {key}.gap > {radius * 1e3:.4g} mm" + ("" if c.center_at_rest else
+           f", or centre the stator where the station rests ({key}.center_at_rest = true)"))
+    raise CaseError(f"{key}.gap = {c.gap * 1e3:.4g} mm: {why}; a balancer analysis needs a rotor free of its "
+                    f"stator: {fix} (a rotor resting on its stator is the question of the rub analyses)")
 
 
 def _annotate(ds, case_model, analysis):

@@ -19,13 +19,17 @@ from typing import Any
 import numpy as np
 
 from rotorlab.analyses._machine_common import (
+    BELOW_CRITICAL,
     _annotate,
     _ball_coords,
     _num,
     _per_station,
     _variant,
     _wrap,
+    check_saved_states,
+    flag_unstable,
     orbit_amplitude,
+    status_detail,
     structure_critical_speeds,
     unbalance_amplitudes,
 )
@@ -113,7 +117,11 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
         each node (m), ``ball_angle`` (time, ball) relative to the rotor (rad). Attributes:
         ``critical_speeds`` (rad/s, forward 1x, balls locked), ``final_speed``,
         ``passed`` and ``captured_at`` (:func:`run_up_verdict`), ``residual_amplitude`` per
-        station (vibration amplitude about the mean position over the last 10 % of the run, m).
+        station (vibration amplitude about the mean position over the last 10 % of the run, m);
+        ``status``: the integrator's (its sanity monitor fails a run beyond the structure's
+        validity, :meth:`~rotorlab.models.Machine.impossible_states`), or ``UNSTABLE`` where the
+        structure is unstable at the final speed (:func:`~rotorlab.analyses._machine_common.flag_unstable`),
+        and ``status_detail``, why it failed.
     """
     import xarray as xr
 
@@ -121,11 +129,7 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
 
     if isinstance(n_save, bool) or int(n_save) != n_save or n_save < 10:
         raise ValueError(f"n_save must be an integer >= 10, got {n_save!r}")
-    from rotorlab._memory import check_memory
-
-    check_memory(8.0 * int(n_save) * (2 * machine.kernels.n_state + 8),
-                 f"n_save = {int(n_save)} saved states of {machine.kernels.n_state} entries",
-                 "save fewer states (n_save)")  # fmt: skip
+    check_saved_states(machine, n_save)
     y0 = machine.initial_state(ball_angles, spin_speed=initial_speed)
     ts = np.linspace(0.0, float(t_end), int(n_save))
     sol = solve(machine, y0, (0.0, float(t_end)), save_at=SaveAt(ts=ts),
@@ -137,6 +141,7 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
     final = float(spin[-1, 1])
     crit = _critical_speeds(machine)
     passed, captured = run_up_verdict(machine, ts, spin[:, 1], crit)
+    status, notes = flag_unstable(machine, [int(sol.status)], [final], [sol.note])
     tail = ts >= 0.9 * ts[-1]
     ds = xr.Dataset(
         {
@@ -150,7 +155,7 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
                 **_ball_coords(machine)},
         attrs={"analysis": "run-up", "model": "machine", "critical_speeds": crit,
                "final_speed": final, "passed": passed, "captured_at": captured,
-               "status": int(sol.status)},
+               "status": int(status[0]), "status_detail": notes[0]},
     )
     return ds
 
@@ -426,13 +431,14 @@ def _run_run_up(case_model, analysis, progress=None):
     starts = analysis.initial_ball_angles or (None,)
     start_speed = getattr(case_model.drive, "initial_speed", 0.0) if analysis.speed is None else 0.0
     total = _run_up_task_size(case_model, analysis)
-    parts = []
+    parts, details = [], []
     for k, angles in enumerate(starts):
         one = machine_run_up(m, t_end=analysis.t_end, n_save=analysis.n_save,
                              ball_angles=None if angles is None or m.n_balls == 0 else list(angles),
                              rtol=analysis.rtol, atol=analysis.atol, initial_speed=start_speed)
         for key in ("final_speed", "passed", "captured_at", "status"):
             one[key] = ((), one.attrs.pop(key))
+        details.append(one.attrs.pop("status_detail"))
         ref = unbalance_amplitudes(m, float(one["final_speed"]))
         one["reference_amplitude"] = (("station",), ref, {"units": "m"})
         one["outcome"] = ((), _run_up_outcome(m, one, ref))
@@ -441,6 +447,7 @@ def _run_run_up(case_model, analysis, progress=None):
             progress(k + 1, total)
     ds = xr.concat(parts, dim="ic", combine_attrs="override")
     ds = ds.assign_coords(ic=np.arange(len(starts)))
+    ds.attrs["status_detail"] = status_detail(details)
     ds["final_speed"].attrs["units"] = "rad/s"
     ds["captured_at"].attrs["units"] = "rad/s"
     if getattr(analysis, "passing_torque", False):
@@ -486,8 +493,9 @@ def _add_passing_torque(ds, machine, starts, analysis, start_speed) -> None:
 def _run_up_outcome(machine, ds, reference) -> str:
     """Where a run-up ended: "failed", "no balancer", "captured" (below a critical speed),
     "balanced" (residual vibration at most BALANCED_FRACTION of the locked unbalance response at
-    the final speed), "non-synchronous" (balls still circling the rotor over the last 10 %) or
-    "not balanced"."""
+    the final speed, above the first critical speed; at or below it "below critical speed": a
+    machine that did not spin up is never balanced), "non-synchronous" (balls still circling the
+    rotor over the last 10 %) or "not balanced"."""
     from rotorlab.explore._outcome import BALANCED_FRACTION
 
     if int(ds["status"]) < 0:
@@ -497,7 +505,8 @@ def _run_up_outcome(machine, ds, reference) -> str:
     if np.isfinite(float(ds["captured_at"])):
         return "captured"
     if np.max(ds.residual_amplitude.values) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
-        return "balanced"
+        crit = np.ravel(ds.attrs["critical_speeds"])
+        return "balanced" if not crit.size or abs(float(ds["final_speed"])) > crit[0] else BELOW_CRITICAL
     tail = ds.time.values >= 0.9 * ds.time.values[-1]
     turn = np.ptp(np.unwrap(ds.ball_angle.values[tail], axis=0), axis=0)
     return "non-synchronous" if np.any(turn > np.pi) else "not balanced"

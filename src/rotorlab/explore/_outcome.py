@@ -24,6 +24,7 @@ __all__ = [
     "wrap_angle",
     "NON_SYNCHRONOUS_RATE",
     "machine_outcome",
+    "BELOW_CRITICAL",
     "wrap_machine_angle",
 ]
 
@@ -182,14 +183,23 @@ def true_runs(values, mask) -> list[tuple[float, float]]:
 NON_SYNCHRONOUS_RATE = 1e-2
 
 
-def machine_outcome(status: int, amplitude, reference, max_rate: float, speed: float, n_balls: int) -> str:
-    """Label where one simulation of a machine ended (see :func:`rotorlab.analyses.machine_simulate`)."""
+#: Outcome of a machine run that would count as balanced but ended at or below its first critical
+#: speed (a machine that did not spin up, or a run below the critical speed): a ball balancer
+#: balances only above it (below it the balls move to the heavy side; Thearle 1950), and at rest
+#: the unbalance has no response to balance.
+BELOW_CRITICAL = "below critical speed"
+
+
+def machine_outcome(status: int, amplitude, reference, max_rate: float, speed: float, n_balls: int,
+                    first_critical: float = 0.0) -> str:
+    """Label where one simulation of a machine ended (see :func:`rotorlab.analyses.machine_simulate`);
+    never "balanced" at or below ``first_critical`` (rad/s), see :data:`BELOW_CRITICAL`."""
     if status < 0:
         return "failed"
     if n_balls == 0:
         return "no balancer"
     if np.max(amplitude) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
-        return "balanced"
+        return "balanced" if abs(speed) > first_critical else BELOW_CRITICAL
     if not max_rate <= NON_SYNCHRONOUS_RATE * abs(speed):
         return "non-synchronous"
     return "not balanced"

@@ -21,6 +21,7 @@ class Status(enum.IntEnum):
     NONFINITE = -3
     EVENT_LOOP = -4
     IMPOSSIBLE = -5
+    UNSTABLE = -6
 
     @property
     def message(self) -> str:
@@ -36,6 +37,8 @@ _STATUS_MESSAGES = {
     Status.NONFINITE: "state or derivative became non-finite (NaN or inf)",
     Status.EVENT_LOOP: "events kept firing without time advancing (unresolved accumulation)",
     Status.IMPOSSIBLE: "the trajectory reached a physically impossible state (sanity check; see the note)",
+    Status.UNSTABLE: "the linear structure is unstable (self-excited) at the trajectory's final speed: its "
+                     "response grows without bound, the end is no steady motion (see the note)",
 }
 
 _STAT_NAMES = ("nfev", "naccept", "nreject", "nevents")

@@ -253,9 +253,10 @@ class MotorSpec(AbstractSpeedProfile):
     Parameters
     ----------
     stall_torque, no_load_speed : float, optional
-        ``T = stall_torque (1 - Omega / no_load_speed)`` (N*m, rad/s).
+        ``T = stall_torque (1 - Omega / no_load_speed)`` (N*m, rad/s), both > 0.
     speeds, torques : tuple of float, optional
-        A table instead (rad/s increasing, N*m), interpolated linearly.
+        A table instead (rad/s increasing, N*m), interpolated linearly; its torque at the initial
+        speed > 0.
     polar_inertia : float
         Of everything that spins with the rotor (kg*m^2), > 0.
     initial_speed : float
@@ -291,9 +292,26 @@ class MotorSpec(AbstractSpeedProfile):
                                                   "equal length >= 2", show_value=False))
             elif any(b <= a for a, b in zip(self.speeds[:-1], self.speeds[1:])):
                 issues.append(Issue(("speeds",), "must increase strictly", list(self.speeds)))
+            elif not self._table_torque(self.initial_speed) > 0:
+                issues.append(Issue(("torques",), f"the torque at the initial speed "
+                                                  f"({self.initial_speed:g} rad/s), "
+                                                  f"{self._table_torque(self.initial_speed):g} N*m, must be > 0 "
+                                                  "N*m: else the motor never spins the machine up",
+                                    list(self.torques)))
+        if lin and self.stall_torque is not None and not self.stall_torque > 0:
+            issues.append(Issue(("stall_torque",), "must be > 0 N*m (the torque at rest): with 0 the motor never "
+                                                   "spins the machine up, with less it drives it backwards",
+                                self.stall_torque))
         if issues:
             raise IssueGroup(issues)
         return self
+
+    def _table_torque(self, speed: float) -> float:
+        """The table's torque at ``speed`` (N*m): interpolated linearly, held constant outside
+        (as :class:`rotorlab.models.Motor`)."""
+        import numpy as np
+
+        return float(np.interp(speed, self.speeds, self.torques))
 
     def speed_at(self, t: float) -> float:
         """The initial speed (the motor's speed is a state, not a profile)."""

@@ -86,8 +86,9 @@ no lateral gravity and the spin is constant, ``u = R(-theta) x`` per coordinate 
 
 Where the code lives: this module holds the machine's sizes, structure reduction, packing and
 kernels; its initial states, mass matrix and energy are in ``_machine_physics``, its clearance
-helpers in ``_machine_clearance`` and its co-rotating frame (linearization, steady states) in
-``_machine_rotating`` (mixed into :class:`Machine`); the attachments in ``_machine_parts``.
+helpers in ``_machine_clearance``, its co-rotating frame (linearization, steady states) in
+``_machine_rotating`` and its validity limits and sanity monitor in ``_machine_validity`` (mixed
+into :class:`Machine`); the attachments in ``_machine_parts``.
 """
 
 from __future__ import annotations
@@ -107,6 +108,7 @@ from rotorlab.models._machine_physics import _Physics
 from rotorlab.models._machine_rotating import MachineLinearization, _RotatingFrame
 from rotorlab.models._parameters import machine_slots
 from rotorlab.models._protocol import ParametrisedMixin
+from rotorlab.models._machine_validity import _Validity
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
 
 __all__ = ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor",
@@ -131,7 +133,7 @@ def _tuple_of(owner: str, items, cls) -> tuple:
 
 
 @dataclass(frozen=True)
-class Machine(_Physics, _ClearanceParts, _RotatingFrame, ParametrisedMixin):
+class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, ParametrisedMixin):
     """A linear structure with ball races, unbalances, gravity and a drive (model ``machine``).
 
     Parameters

@@ -127,6 +127,40 @@ class _ClearanceParts:
             hs = c.stator.mass * np.array([gx, gy]) / c.stator.stiffness
         return zs, hs
 
+    def rest_clearance(self) -> tuple[float, str | None]:
+        """Where the clearance station rests under gravity, against the gap.
+
+        At rest (no spin, balls lumped on their races) the structure sits at ``K^-1 f_g``; its gap
+        vector from the stator's centre is ``w_s = B K^-1 f_g - c`` (minus a moving housing's own
+        sag). The mean of any free motion is this static deflection (gravity is a constant load
+        on a linear structure), and the mean of a closed orbit lies inside the orbit's convex
+        hull: where ``|w_s|`` exceeds the gap, no motion at any speed stays clear of the stator,
+        and from rest the rotor lies on it.
+
+        Returns
+        -------
+        radius : float
+            ``|w_s|`` (m); NaN without a clearance or where the supports do not hold the
+            structure (singular stiffness).
+        message : str or None
+            Names the station, ``|w_s|`` and the gap when ``|w_s|`` exceeds the gap.
+        """
+        if not self.clearances:
+            return math.nan, None
+        c = self.clearances[0]
+        try:
+            zs, hs = self._rest_position()
+        except ValueError:
+            return math.nan, None
+        w = self.gap_matrix(c) @ zs - hs - np.asarray(self.clearance_center)
+        radius = float(math.hypot(w[0], w[1]))
+        if radius <= c.gap:
+            return radius, None
+        label = self.structure.node_label[c.node]
+        return radius, (f"at rest under gravity the clearance station {label!r} lies {radius * 1e3:.4g} mm from "
+                        f"the stator's centre, beyond the gap {c.gap * 1e3:.4g} mm: the rotor rests on the "
+                        "stator from the start")
+
     @property
     def rub_parameters(self) -> dict[str, tuple[int, str]]:
         """Parameters a rub map may vary: name -> (index in :meth:`to_array`, unit).
@@ -222,9 +256,9 @@ class _ClearanceParts:
         return RubRotor(mass=m, stiffness=k, clearance=c.gap, damping=max(damp, 0.0), eccentricity=ecc,
                         friction=c.friction, rotor_radius=c.rotor_radius, **kw)
 
-    def impossible_states(self, ys, y_final, t_final, params) -> list[str]:
-        """Sanity monitor (kernel contract item 6): runs where the rotor went through a rigid
-        stator (or a moving housing, which it strikes rigidly).
+    def _clearance_impossible(self, ys, y_final, t_final, params) -> list[str]:
+        """The clearance's part of the sanity monitor (:meth:`Machine.impossible_states`): runs
+        where the rotor went through a rigid stator (or a moving housing, which it strikes rigidly).
 
         Beyond ``delta (1 + 1e-6)`` a rebound lower than the integrator resolves was missed
         (raise the clearance's ``rest_speed``): a failed run. The clearance ``delta`` is read from

@@ -204,7 +204,8 @@ def _run_up_findings(ds, rows):
     parts, numbers = [], []
     verdicts = {"balanced": "the balancer balances", "not balanced": "the balancer does not balance",
                 "non-synchronous": "the balls keep circling (non-synchronous), not balanced",
-                "no balancer": "no balancer", "captured": "not balanced", "failed": "failed"}
+                "no balancer": "no balancer", "captured": "not balanced", "failed": "failed",
+                "below critical speed": "not above its first critical speed, where a balancer cannot balance"}
     for r in rows:
         if r["captured_at"] is not None:
             parts.append(f"start {r['ic']}: captured at the critical speed {r['captured_at'] * _RPM:.4g} rpm "
