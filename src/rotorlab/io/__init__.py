@@ -20,6 +20,8 @@ from rotorlab.io._case import builtin_cases, dump_case, load_case, parse_case, v
 from rotorlab.io._errors import CaseError, Issue
 from rotorlab.io._overrides import apply_overrides, parse_key_path, parse_override
 from rotorlab.io._results import load_netcdf, missing_units, save_netcdf
+from rotorlab.io._ross import ROSS_ELEMENTS, import_ross
+from rotorlab.io._templates import TEMPLATES, ross_case_text, template_text, write_case_text
 from rotorlab.io._linear_common import AbstractLinearModelSpec
 from rotorlab.io._fields import Unit, field_unit
 from rotorlab.io._schema import (
@@ -129,6 +131,12 @@ __all__ = [
     "VerifySpec",
     "WorkingPointSpec",
     "builtin_cases",
+    "import_ross",
+    "ROSS_ELEMENTS",
+    "TEMPLATES",
+    "template_text",
+    "write_case_text",
+    "ross_case_text",
     "coordinate_dimensions",
     "dump_case",
     "integer",
