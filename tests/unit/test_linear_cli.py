@@ -34,7 +34,8 @@ def _json(result) -> dict:
 def test_campbell_json_friswell_matches_rotorlab_linear():
     doc = _json(invoke("campbell", "friswell-rotor", "--speeds-rpm", "0:4000:41", "--modes", "6",
                        "--json"))
-    assert list(doc) == ["speed_rpm", "frequency_hz", "whirl", "critical_speeds_rpm"]
+    assert list(doc) == ["speed_rpm", "frequency_hz", "whirl", "critical_speeds_rpm",
+                         "critical_speed_definition", "critical_speeds"]
     assert doc["speed_rpm"] == pytest.approx(np.linspace(0, 4000, 41).tolist())
     freq = np.array(doc["frequency_hz"])
     assert freq.shape == (41, 6)
@@ -229,7 +230,11 @@ def test_run_pico21_writes_report_netcdf_and_figures(pico21_run):
                             *pngs])
     assert doc["files"] == sorted(["report.html", *(f"{a}.nc" for a in analyses), *pngs])
     assert doc["analyses"]["campbell"]["type"] == "campbell"
-    assert [r["whirl"] for r in doc["analyses"]["campbell"]["rows"]] == ["B", "F", "B", "F"]
+    # the forward crossings (excited by unbalance on these isotropic supports) first, then the
+    # backward ones, each group by speed (issue 29 item 3)
+    rows = doc["analyses"]["campbell"]["rows"]
+    assert [r["whirl"] for r in rows] == ["F", "F", "B", "B"]
+    assert [r["excited_by_unbalance"] for r in rows] == [True, True, False, False]
     assert load_netcdf(out / "campbell.nc").frequency.shape == (151, 6)
 
 
@@ -237,7 +242,8 @@ def test_run_pico21_report_content(pico21_run):
     out, _ = pico21_run
     text = (out / "report.html").read_text(encoding="utf-8")
     assert '<img alt="campbell_campbell" src="data:image/png;base64,' in text
-    assert "<h3>Critical speeds (crossings with the excitation lines)</h3>" in text
+    assert "<h3>Critical speeds (damped crossings of the excitation lines)</h3>" in text
+    assert "no: not excited by unbalance on isotropic supports" in text
     assert "<td class=\"num\">588.066</td>" in text
     assert "<h3>Data-audit findings</h3>" in text
     for finding in audit_pico21():

@@ -27,6 +27,8 @@ __all__ = [
     "run_linear_analysis",
     "run_linear_case_analysis",
     "summarize_linear",
+    "critical_entry",
+    "critical_summary",
     "campbell_summary",
     "modes_summary",
 ]
@@ -231,18 +233,47 @@ def _grid(value: Any) -> float | None:
     return None if v is None else float(f"{v:.12g}")
 
 
+#: Damped and undamped critical speeds differing by more than this share are both shown.
+DIFFERENCE_SHOWN = 0.03
+
+
 def _crossing_rows(ds: xarray.Dataset, mode: bool) -> list[dict[str, Any]]:
+    """One row per critical speed: those unbalance excites first, then the others, each by speed.
+
+    A Campbell diagram's crossings are damped crossings (the undamped speed of the same mode
+    beside them); a ``critical_speeds`` result's are undamped (the damped crossing beside them).
+    """
+    from rotorlab.linear import DEFINITIONS, NOT_EXCITED_NOTE
+
     rows = []
     harmonic = ds["critical_harmonic" if mode else "harmonic"].values
+    isotropic = bool(ds.attrs.get("isotropic", 0))
+    definition = "damped crossing" if mode else "undamped"
+    if mode:
+        damped, undamped = ds.critical_speed_rpm.values, ds.critical_undamped_rpm.values
+        zeta, excited = ds.critical_damping_ratio.values, ds.critical_excited_by_unbalance.values
+    else:
+        damped, undamped = ds.damped_crossing_rpm.values, ds.critical_speed_rpm.values
+        zeta, excited = ds.damping_ratio.values, ds.excited_by_unbalance.values
     for k in range(ds.sizes.get("critical", 0)):
         w = float(ds.critical_speed.values[k])
         h = int(harmonic[k])
-        whirl = ds["critical_whirl" if mode else "whirl"].values[k]
-        row = {"speed": w, "speed_rpm": w * _RPM, "frequency_hz": h * w / (2.0 * math.pi),
-               "harmonic": h, "whirl": _WHIRL[int(whirl)]}
+        whirl = _WHIRL[int(ds["critical_whirl" if mode else "whirl"].values[k])]
+        d, u = _num(damped[k]), _num(undamped[k])
+        note = ""
+        if not excited[k]:
+            note = NOT_EXCITED_NOTE if h == 1 and isotropic else f"a {h}x line: not excited by unbalance"
+        row = {"speed": w, "speed_rpm": w * _RPM, "definition": definition,
+               "definition_text": DEFINITIONS[definition],
+               "damped_crossing_rpm": d, "undamped_rpm": u, "damping_ratio": _num(zeta[k]),
+               "both_shown": bool(d is not None and u is not None
+                                  and abs(d - u) > DIFFERENCE_SHOWN * u),
+               "frequency_hz": h * w / (2.0 * math.pi), "harmonic": h, "whirl": whirl,
+               "excited_by_unbalance": bool(excited[k]), "note": note}
         if mode:
             row["mode"] = int(ds.critical_mode.values[k])
         rows.append(row)
+    rows.sort(key=lambda r: (not r["excited_by_unbalance"], r["speed"]))
     return rows
 
 
@@ -257,9 +288,14 @@ def summarize_linear(ds: xarray.Dataset) -> list[dict[str, Any]]:
     Returns
     -------
     list of dict
-        ``campbell``, ``critical_speeds``: one row per critical speed (``speed`` in rad/s,
-        ``speed_rpm``, ``frequency_hz``, ``harmonic``, ``whirl`` "F"/"B"/"M", and for a
-        Campbell diagram the branch ``mode``). ``modes``: one row per mode (``mode``,
+        ``campbell``, ``critical_speeds``: one row per critical speed, those unbalance excites
+        first (``speed`` in rad/s and ``speed_rpm``: the damped crossing for a Campbell diagram,
+        the undamped critical speed for ``critical_speeds``, as ``definition`` says;
+        ``damped_crossing_rpm``, ``undamped_rpm``, ``damping_ratio`` of the mode at the
+        crossing, ``both_shown`` when they differ by more than 3 %, ``frequency_hz``,
+        ``harmonic``, ``whirl`` "F"/"B"/"M", ``excited_by_unbalance``, ``note`` (e.g. "not
+        excited by unbalance on isotropic supports"), and for a Campbell diagram the branch
+        ``mode``). ``modes``: one row per mode (``mode``,
         ``frequency_hz``, ``whirl``, ``damping_ratio``, ``log_decrement``). ``unbalance_response``:
         one row per shown node (``node``, ``label``, ``peak_amplitude`` (m, largest semi-axis of
         the orbit, refined between grid speeds; None when undamped: unbounded),
@@ -326,7 +362,10 @@ def campbell_summary(ds: xarray.Dataset) -> dict[str, Any]:
     dict
         Exactly ``speed_rpm`` (list, 12 significant digits), ``frequency_hz`` (per speed, a list per mode),
         ``whirl`` (per speed, ``"F"``, ``"B"`` or ``"M"`` per mode) and
-        ``critical_speeds_rpm`` (list); non-finite numbers are None.
+        ``critical_speeds_rpm`` (list, ascending: the damped crossings), then
+        ``critical_speed_definition`` ("damped crossing") and ``critical_speeds``: one entry per
+        crossing, those unbalance excites first (:func:`critical_entry`); non-finite numbers
+        are None.
 
     Examples
     --------
@@ -334,7 +373,7 @@ def campbell_summary(ds: xarray.Dataset) -> dict[str, Any]:
     >>> case = load_case("friswell-rotor")
     >>> doc = campbell_summary(run_linear_analysis(case.model, case.analysis("campbell")))
     >>> sorted(doc), sorted(doc["whirl"][-1][:2])
-    (['critical_speeds_rpm', 'frequency_hz', 'speed_rpm', 'whirl'], ['B', 'F'])
+    (['critical_speed_definition', 'critical_speeds', 'critical_speeds_rpm', 'frequency_hz', 'speed_rpm', 'whirl'], ['B', 'F'])
     >>> [round(f, 2) for f in doc["frequency_hz"][0]], len(doc["speed_rpm"])
     ([13.79, 13.79, 43.66, 43.66, 114.08, 114.08], 81)
     """
@@ -344,7 +383,25 @@ def campbell_summary(ds: xarray.Dataset) -> dict[str, Any]:
         "frequency_hz": [[_num(v) for v in row] for row in freq],
         "whirl": [[_WHIRL[int(c)] for c in row] for row in ds.whirl.values],
         "critical_speeds_rpm": [_num(v) for v in ds.critical_speed_rpm.values],
+        "critical_speed_definition": "damped crossing",
+        "critical_speeds": [critical_entry(r) for r in _crossing_rows(ds, mode=True)],
     }
+
+
+def critical_entry(row: Mapping[str, Any]) -> dict[str, Any]:
+    """The JSON entry of one critical speed (keys with units) from a row of :func:`summarize_linear`.
+
+    Examples
+    --------
+    >>> critical_entry({"definition": "undamped", "damped_crossing_rpm": 1030.0,
+    ...                 "undamped_rpm": 1000.0, "damping_ratio": 0.1, "whirl": "B", "harmonic": 1,
+    ...                 "excited_by_unbalance": False, "note": "n", "speed_rpm": 1000.0})["speed_rpm"]
+    1000.0
+    """
+    return {"speed_rpm": row["speed_rpm"], "definition": row["definition"],
+            "damped_crossing_rpm": row["damped_crossing_rpm"], "undamped_rpm": row["undamped_rpm"],
+            "damping_ratio": row["damping_ratio"], "whirl": row["whirl"], "harmonic": row["harmonic"],
+            "excited_by_unbalance": row["excited_by_unbalance"], "note": row["note"]}
 
 
 def modes_summary(ds: xarray.Dataset) -> dict[str, Any]:
@@ -369,3 +426,39 @@ def modes_summary(ds: xarray.Dataset) -> dict[str, Any]:
         "damping_ratio": [r["damping_ratio"] for r in rows],
         "log_decrement": [r["log_decrement"] for r in rows],
     }
+
+
+def critical_summary(spec: Any, n: int = 6) -> dict[str, Any]:
+    """The lowest ``n`` 1x critical speeds of a model's linear structure, for ``validate --json``.
+
+    Parameters
+    ----------
+    spec : AbstractModelSpec
+        A model whose ``linear_structure()`` is not None (else the result is empty).
+    n : int
+        How many, the lowest undamped ones.
+
+    Returns
+    -------
+    dict
+        ``{"critical_speeds": [...]}`` (entries of :func:`critical_entry`, undamped with their
+        damped crossings, those unbalance excites first), or ``{}``.
+
+    Examples
+    --------
+    >>> from rotorlab.io import load_case
+    >>> doc = critical_summary(load_case("friswell-rotor").model)
+    >>> [(round(e["speed_rpm"]), e["whirl"], e["excited_by_unbalance"]) for e in doc["critical_speeds"][:4]]
+    [(830, 'F', True), (2756, 'F', True), (8841, 'F', True), (825, 'B', False)]
+    """
+    structure = spec.linear_structure()
+    if structure is None:
+        return {}
+    from rotorlab.linear import critical_speeds
+
+    cs = critical_speeds(build_linear_system(structure))
+    ds = cs.to_dataset().isel(critical=slice(0, n))
+    ds["critical_frequency"] = ("critical", ds.harmonic.values * ds.critical_speed.values / (2.0 * math.pi))
+    ds.attrs["analysis"] = "critical_speeds"
+    return {"critical_speeds": [critical_entry(r) for r in _crossing_rows(ds, mode=False)]}
+

@@ -163,8 +163,13 @@ def validate_command(ctx: typer.Context, case: CaseArg, sets: SetOpt = None, jso
         analyses = _analysis_summary(loaded)
         if json_out:
             extra = {"n_dof": loaded.model.n_dof} if hasattr(loaded.model, "n_dof") else {}
+            from rotorlab.analyses import critical_summary
+
+            crit = {"critical_speed_rpm": None if p is None else p * _RPM,
+                    "critical_speed_definition": None if p is None else "undamped",
+                    **critical_summary(loaded.model)}
             emit_json({"ok": True, **_json_case(loaded), "description": loaded.description,
-                       "critical_speed": p, "n_balls": loaded.model.n_balls, **extra,
+                       "critical_speed": p, **crit, "n_balls": loaded.model.n_balls, **extra,
                        "model": loaded.model_dump_si()["model"], "analyses": analyses})  # fmt: skip
             return
         con = stdout()

@@ -80,11 +80,35 @@ def _g(value: float | None, digits: int = 6) -> str:
     return "-" if value is None else f"{value:.{digits}g}"
 
 
+def _other_definition(r: Mapping[str, Any]) -> str:
+    """The critical speed by the other definition, where it differs by more than 3 %."""
+    damped = r["definition"] == "damped crossing"
+    other = r["undamped_rpm"] if damped else r["damped_crossing_rpm"]
+    if other is None:
+        return "none (overdamped)" if not damped else "-"
+    if not r["both_shown"]:
+        return "within 3 %"
+    return f"{other:.4g} ({'undamped' if damped else 'damped crossing'})"
+
+
 def _crossing_table(title: str, rows: Sequence[Mapping[str, Any]]) -> Any:
-    body = [(_g(r["speed_rpm"]), _g(r["frequency_hz"]), f"{r['harmonic']}x",
-             str(r.get("mode", "-")), _WHIRL[r["whirl"]]) for r in rows]
-    return _table(title, ("speed (rpm)", "frequency (Hz)", "line", "branch", "whirl"), body,
-                  {0, 1})
+    """Critical speeds: those unbalance excites first; the definition of each, the other
+    definition's value where they differ, the mode's damping ratio and whirl; why a mode is not
+    excited by unbalance in the caption."""
+    notes = list(dict.fromkeys(r["note"] for r in rows if r["note"]))
+    body = [(_g(r["speed_rpm"]), r["definition"], _other_definition(r), _g(r["damping_ratio"], 3),
+             f"{r['harmonic']}x", str(r.get("mode", "-")), _WHIRL[r["whirl"]],
+             "yes" if r["excited_by_unbalance"] else f"no {_MARKS[notes.index(r['note'])]}")
+            for r in rows]
+    table = _table(title, ("speed (rpm)", "definition", "other definition (rpm)", "damping ratio",
+                           "line", "branch", "whirl", "excited by unbalance"), body, {0, 3})
+    if notes:
+        table.caption = "; ".join(f"{_MARKS[i]} {n}" for i, n in enumerate(notes))
+        table.caption_justify = "left"
+    return table
+
+
+_MARKS = ("*", "**", "***", "+", "++", "#", "##", "###")
 
 
 def _modes_table(title: str, rows: Sequence[Mapping[str, Any]]) -> Any:

@@ -20,7 +20,13 @@ Examples
 
 from rotorlab.linear._assembly import assemble, uniform_shaft
 from rotorlab.linear._campbell import RPM, campbell, track_modes
-from rotorlab.linear._critical import CriticalSpeeds, critical_speeds
+from rotorlab.linear._critical import (
+    DEFINITIONS,
+    NOT_EXCITED_NOTE,
+    CriticalSpeeds,
+    critical_speeds,
+    excited_by_unbalance,
+)
 from rotorlab.linear._eigen import METHODS, whirl_of_shapes
 from rotorlab.linear._elements import AbstractElement, Bearing, ElasticConnection, RigidBody
 from rotorlab.linear._identify import FrequencyMeasurement, Identification, identify_parameters
@@ -50,6 +56,7 @@ __all__ = [
     "HousingSupport", "InfluenceModel", "influence_compliance",
     # analyses
     "modal", "Modes", "campbell", "track_modes", "RPM", "critical_speeds", "CriticalSpeeds",
+    "excited_by_unbalance", "DEFINITIONS", "NOT_EXCITED_NOTE",
     "unbalance_response", "Unbalance", "identify_parameters", "FrequencyMeasurement",
     "Identification", "log_decrement", "whirl_of_shapes", "whirl_labels", "WHIRL_LABELS",
     "METHODS",

@@ -9,6 +9,7 @@ import scipy.optimize
 import xarray as xr
 
 from rotorlab._constants import RAD_S_PER_RPM
+from rotorlab.linear._critical import DEFINITIONS, critical_speeds, excited_by_unbalance
 from rotorlab.linear._eigen import Solver, Spectrum, whirl_of_shapes
 from rotorlab.linear._modal import log_decrement, normalize_shapes
 from rotorlab.linear._system import LinearSystem
@@ -109,6 +110,31 @@ def _refine(solver: Solver, lo: float, hi: float, guess: float, ref: np.ndarray,
     return float(scipy.optimize.brentq(g, lo, hi, xtol=1e-12 * max(hi, 1.0), rtol=1e-13))
 
 
+def _zeta_at(solver: Solver, speed: float, ref: np.ndarray) -> float:
+    """Damping ratio -Re lambda / |lambda| of the mode of track vector ``ref`` at ``speed``."""
+    sp = solver.solve([speed])
+    lam = sp.eigenvalues[0, int(np.argmax(np.abs(sp.track[0].conj() @ ref) ** 2))]
+    return float(-lam.real / abs(lam)) + 0.0 if lam != 0 else float("nan")
+
+
+def _undamped_partners(system: LinearSystem, cross, harmonics) -> tuple[np.ndarray, np.ndarray]:
+    """The undamped critical speed of each damped crossing's mode (NaN if none matches) and
+    whether unbalance excites it, from :func:`critical_speeds` (the crossing matched to the damped
+    crossing it computes from the undamped mode, to 1e-6 relative)."""
+    und = np.full(len(cross), np.nan)
+    if not cross:
+        return und, np.zeros(0, bool)
+    cs = critical_speeds(system, harmonics=harmonics)
+    for i, (root, h, _, w, _) in enumerate(cross):
+        ok = (cs.harmonic == h) & np.isfinite(cs.damped_speed)
+        if ok.any():
+            j = np.flatnonzero(ok)[np.argmin(np.abs(cs.damped_speed[ok] - root))]
+            if abs(cs.damped_speed[j] - root) <= 1e-6 * root:
+                und[i] = cs.speed[j]
+    exc = excited_by_unbalance([c[3] for c in cross], [c[1] for c in cross], cs.isotropic)
+    return und, exc
+
+
 def _crossings(speeds, lam, whirl, track, harmonics, solver, refine):
     out = []
     omega = np.abs(lam.imag)
@@ -124,7 +150,7 @@ def _crossings(speeds, lam, whirl, track, harmonics, solver, refine):
                     r = _refine(solver, lo, hi, root, track[s, k], h)
                     root = r if np.isfinite(r) else root
                 w = whirl[s, k] if whirl[s, k] == whirl[s + 1, k] else whirl[s + 1, k]
-                out.append((root, h, k, w))
+                out.append((root, h, k, w, _zeta_at(solver, root, track[s, k])))
     out.sort(key=lambda t: (t[0], t[1], t[2]))
     return out
 
@@ -159,7 +185,11 @@ def campbell(system: LinearSystem, speeds: Sequence[float], *, n_modes: int = 6,
         Variables: ``frequency`` (Hz, damped natural frequency), ``growth_rate`` (1/s, Re
         lambda), ``log_decrement``, ``damping_ratio``, ``whirl`` (+1 F, -1 B, 0 mixed),
         ``whirl_index``, ``stable`` (every mode of the system, tracked or not, decays or is
-        neutral), and per crossing ``critical_speed`` (rad/s), ``critical_speed_rpm``,
+        neutral), and per crossing ``critical_speed`` (rad/s), ``critical_speed_rpm`` (the
+        damped crossing: where the damped natural frequency meets the line),
+        ``critical_undamped_rpm`` (the undamped critical speed of the same mode),
+        ``critical_damping_ratio`` (of the mode at the crossing),
+        ``critical_excited_by_unbalance``,
         ``critical_frequency`` (Hz), ``critical_harmonic``, ``critical_mode``,
         ``critical_whirl``.
 
@@ -210,6 +240,8 @@ def campbell(system: LinearSystem, speeds: Sequence[float], *, n_modes: int = 6,
     stable = max_growth <= 1e-9 * scale
     cross = _crossings(w, lam, code, trk, hs, solver, refine)
     crit = np.array([c[0] for c in cross], dtype=float)
+    undamped, excited = _undamped_partners(system, cross, hs)
+    damped_def = {"definition": DEFINITIONS["damped crossing"]}
     freq = np.abs(lam.imag) / (2.0 * np.pi)
     mag = np.abs(lam)
     data = {
@@ -226,8 +258,14 @@ def campbell(system: LinearSystem, speeds: Sequence[float], *, n_modes: int = 6,
         "whirl_index": (("speed", "mode"), index, {"units": "1"}),
         "stable": ("speed", stable, {"units": "1", "long_name": "no mode grows"}),
         "max_growth_rate": ("speed", max_growth, {"units": "1/s"}),
-        "critical_speed": ("critical", crit, {"units": "rad/s"}),
-        "critical_speed_rpm": ("critical", crit / RPM, {"units": "rev/min"}),
+        "critical_speed": ("critical", crit, {"units": "rad/s", **damped_def}),
+        "critical_speed_rpm": ("critical", crit / RPM, {"units": "rev/min", **damped_def}),
+        "critical_undamped_rpm": ("critical", undamped / RPM, {
+            "units": "rev/min", "definition": DEFINITIONS["undamped"]}),
+        "critical_damping_ratio": ("critical", np.array([c[4] for c in cross], dtype=float), {
+            "units": "1", "long_name": "damping ratio of the mode at the crossing"}),
+        "critical_excited_by_unbalance": ("critical", excited, {
+            "units": "1", "long_name": "unbalance excites the mode"}),
         "critical_frequency": ("critical", np.array([c[1] for c in cross], dtype=float) * crit
                                / (2.0 * np.pi), {"units": "Hz"}),
         "critical_harmonic": ("critical", np.array([c[1] for c in cross], dtype=np.int64),
@@ -252,4 +290,5 @@ def campbell(system: LinearSystem, speeds: Sequence[float], *, n_modes: int = 6,
         coords["direction"] = ("dof", np.array(system.dof_direction), {"units": "1"})
     return xr.Dataset(data, coords=coords, attrs={
         "title": "Campbell diagram", "method": solver.method, "tracking": "MAC",
+        "critical_definition": "damped crossing", "isotropic": int(system.is_isotropic),
         "harmonics": list(hs)})

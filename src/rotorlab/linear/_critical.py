@@ -1,4 +1,14 @@
-"""Critical speeds of the undamped rotor, exactly, from one eigenproblem per harmonic."""
+"""Critical speeds: undamped (exactly, one eigenproblem per harmonic) and damped crossings.
+
+Two definitions are in use and they differ with damping: the *undamped* critical speed, where a
+natural frequency of the rotor without its damping equals h times the spin speed, and the
+*damped crossing*, where a damped natural frequency ``Im lambda`` of the rotor as it is meets the
+h x line of the Campbell diagram. Every result here says which it gives, gives both where they
+differ, with the mode's damping ratio at the crossing, and whether unbalance excites the mode:
+unbalance is a forward 1x force, so on isotropic supports it excites forward whirl only
+(Friswell et al. 2010, Sections 3.5 and 5.9); on anisotropic supports the whirl is elliptical
+and a backward mode responds too.
+"""
 
 from __future__ import annotations
 
@@ -11,11 +21,39 @@ import xarray as xr
 
 from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.linear._blas import single_threaded_blas
-from rotorlab.linear._eigen import whirl_of_shapes
+from rotorlab.linear._eigen import Solver, whirl_of_shapes
 from rotorlab.linear._modal import normalize_shapes
 from rotorlab.linear._system import LinearSystem
 
-__all__ = ["CriticalSpeeds", "critical_speeds"]
+__all__ = ["CriticalSpeeds", "critical_speeds", "excited_by_unbalance", "NOT_EXCITED_NOTE",
+           "DEFINITIONS"]
+
+#: How each kind of critical speed is defined (the text every output carries).
+DEFINITIONS = {
+    "undamped": "undamped: a natural frequency of the rotor without damping equals h x speed",
+    "damped crossing": "damped crossing: a damped natural frequency (Im lambda) meets the h x line "
+                       "of the Campbell diagram",
+}
+#: The note on a critical speed that unbalance cannot excite.
+NOT_EXCITED_NOTE = "not excited by unbalance on isotropic supports"
+
+
+def excited_by_unbalance(whirl, harmonic, isotropic: bool) -> np.ndarray:
+    """Return whether unbalance excites each critical speed.
+
+    Unbalance is a synchronous force turning with the rotor: it drives the 1x line only, and on
+    isotropic supports (``x + i y`` decouples) only forward whirl. On anisotropic supports the
+    modes whirl elliptically and backward modes respond too.
+
+    Examples
+    --------
+    >>> excited_by_unbalance([1, -1, 1], [1, 1, 2], isotropic=True).tolist()
+    [True, False, False]
+    >>> excited_by_unbalance([1, -1], [1, 1], isotropic=False).tolist()
+    [True, True]
+    """
+    w, h = np.asarray(whirl), np.asarray(harmonic)
+    return (h == 1) & ((w != -1) | (not isotropic))
 
 
 @dataclass(frozen=True)
@@ -32,29 +70,61 @@ class CriticalSpeeds:
         +1 forward, -1 backward, 0 mixed.
     shapes : ndarray, shape (k, n), complex
         The mode shapes at the critical speeds.
+    damped_speed : ndarray, shape (k,)
+        The damped crossing of the same mode (rad/s): where its damped natural frequency
+        ``Im lambda`` of the rotor with its damping meets the line; NaN where the mode does not
+        reach the line (overdamped). Equal to ``speed`` without damping.
+    damping_ratio : ndarray, shape (k,)
+        The mode's damping ratio ``-Re lambda / |lambda|`` at the damped crossing.
+    excited : ndarray of bool, shape (k,)
+        Whether unbalance excites it (:func:`excited_by_unbalance`).
+    isotropic : bool
+        Whether the rotor is isotropic (then backward whirl is not excited by unbalance).
     """
 
     speed: np.ndarray
     harmonic: np.ndarray
     whirl: np.ndarray
     shapes: np.ndarray
+    damped_speed: np.ndarray
+    damping_ratio: np.ndarray
+    excited: np.ndarray
+    isotropic: bool
 
     @property
     def speed_rpm(self) -> np.ndarray:
         """Critical speeds in rev/min."""
         return self.speed * RPM_PER_RAD_S
 
+    @property
+    def damped_speed_rpm(self) -> np.ndarray:
+        """Damped crossings in rev/min."""
+        return self.damped_speed * RPM_PER_RAD_S
+
     def to_dataset(self) -> xr.Dataset:
-        """Return an :class:`xarray.Dataset` with dim ``critical``."""
+        """Return an :class:`xarray.Dataset` with dim ``critical``.
+
+        ``critical_speed`` (rad/s) and ``critical_speed_rpm`` are the undamped critical speeds
+        (attribute ``definition``); ``damped_crossing_rpm`` and ``damping_ratio`` the damped
+        crossing of the same mode; ``excited_by_unbalance`` a flag.
+        """
+        und = {"definition": DEFINITIONS["undamped"]}
         return xr.Dataset(
             {
-                "critical_speed": ("critical", self.speed, {"units": "rad/s"}),
-                "critical_speed_rpm": ("critical", self.speed_rpm, {"units": "rev/min"}),
+                "critical_speed": ("critical", self.speed, {"units": "rad/s", **und}),
+                "critical_speed_rpm": ("critical", self.speed_rpm, {"units": "rev/min", **und}),
+                "damped_crossing_rpm": ("critical", self.damped_speed_rpm, {
+                    "units": "rev/min", "definition": DEFINITIONS["damped crossing"]}),
+                "damping_ratio": ("critical", self.damping_ratio, {
+                    "units": "1", "long_name": "damping ratio of the mode at the damped crossing"}),
+                "excited_by_unbalance": ("critical", self.excited, {
+                    "units": "1", "long_name": "unbalance excites the mode"}),
                 "harmonic": ("critical", self.harmonic, {"units": "1"}),
                 "whirl": ("critical", self.whirl, {"units": "1", "flag_values": [1, -1, 0],
                                                    "flag_meanings": "forward backward mixed"}),
             },
-            attrs={"title": "critical speeds of the undamped rotor"},
+            attrs={"title": "critical speeds (undamped, with the damped crossings)",
+                   "definition": "undamped", "isotropic": int(self.isotropic)},
         )
 
 
@@ -74,6 +144,8 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
     Returns
     -------
     CriticalSpeeds
+        The undamped critical speeds, ascending, each with the damped crossing of its mode,
+        the mode's damping ratio there and whether unbalance excites it.
 
     Notes
     -----
@@ -83,7 +155,9 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
     u`` with real ``mu = 1 / Omega^2``: every positive ``mu`` is a critical speed, and a mode
     whose ``mu <= 0`` (e.g. the forward tilting mode of a disc with ``I_p > I_d``) never meets
     the line. No speed grid, no interpolation. A non-symmetric or singular K falls back to the
-    general pencil.
+    general pencil. The damped crossing of each mode is then found from there by the secant
+    method on ``|Im lambda(Omega)| - h Omega`` of the damped rotor, the mode followed by its shape
+    (MAC), to 1e-10 relative.
 
     References
     ----------
@@ -107,12 +181,60 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
     keep = np.ones(speed.size, bool) if max_speed is None else speed <= float(max_speed)
     order = np.argsort(speed[keep], kind="stable")
     speed, harmonic, shp = speed[keep][order], harmonic[keep][order], shp[keep][order]
+    iso = bool(system.is_isotropic)
     if not speed.size:  # none (up to max_speed)
-        return CriticalSpeeds(speed=speed, harmonic=harmonic, whirl=np.zeros(0, np.int8), shapes=shp)
+        empty = np.zeros(0)
+        return CriticalSpeeds(speed=speed, harmonic=harmonic, whirl=np.zeros(0, np.int8), shapes=shp,
+                              damped_speed=empty, damping_ratio=empty, excited=np.zeros(0, bool),
+                              isotropic=iso)
     L = system.length_scale
     shp = normalize_shapes(shp, L)
     _, code = whirl_of_shapes(shp, L)
-    return CriticalSpeeds(speed=speed, harmonic=harmonic, whirl=code, shapes=shp)
+    solver = Solver(system)
+    with single_threaded_blas():
+        damped = np.array([_damped_crossing(solver, w, u, h) for w, u, h in zip(speed, shp, harmonic)])
+    return CriticalSpeeds(speed=speed, harmonic=harmonic, whirl=code, shapes=shp,
+                          damped_speed=damped[:, 0], damping_ratio=damped[:, 1],
+                          excited=excited_by_unbalance(code, harmonic, iso), isotropic=iso)
+
+
+def _damped_crossing(solver: Solver, speed0: float, shape0: np.ndarray, h: int) -> tuple[float, float]:
+    """The damped crossing of the mode of shape ``shape0`` at undamped critical speed ``speed0``.
+
+    Secant iterations on ``g(Omega) = |Im lambda(Omega)| - h Omega`` from ``speed0``, the mode
+    picked by MAC against ``shape0`` first and against its own previous track vector after.
+    Returns (NaN, NaN) if it does not converge in 40 steps or the mode stops oscillating.
+    """
+    u = shape0 / max(np.linalg.norm(shape0), 1e-300)
+
+    def branch(x: float, ref: np.ndarray | None):
+        sp = solver.solve([x])
+        if ref is None:
+            v = sp.shapes[0]
+            mac = np.abs(v.conj() @ u) ** 2 / np.maximum(np.einsum("ij,ij->i", v.conj(), v).real, 1e-300)
+        else:
+            mac = np.abs(sp.track[0].conj() @ ref) ** 2
+        k = int(np.argmax(mac))
+        lam = sp.eigenvalues[0, k]
+        return abs(lam.imag) - h * x, sp.track[0, k], lam
+
+    g0, ref, lam = branch(speed0, None)
+    x0, x1 = speed0, speed0 * (1.0 + 1e-4)
+    g1, ref, lam = branch(x1, ref)
+    for _ in range(40):
+        if g1 == g0:
+            break
+        x2 = x1 - g1 * (x1 - x0) / (g1 - g0)
+        if not np.isfinite(x2) or x2 <= 0:
+            break
+        x0, g0 = x1, g1
+        x1 = x2
+        g1, ref, lam = branch(x1, ref)
+        if abs(x1 - x0) <= 1e-10 * x1:
+            if lam.imag == 0:
+                break
+            return float(x1), float(-lam.real / abs(lam)) + 0.0
+    return float("nan"), float("nan")
 
 
 def _pencils(K, M, G, hs, sym):

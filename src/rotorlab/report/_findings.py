@@ -260,9 +260,15 @@ def impact_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
 def _crossings(ds: xarray.Dataset, rows: Rows) -> Findings:
     if not rows:
         return Findings("no critical speed in the range")
-    speeds = ", ".join(f"{r['speed_rpm']:.0f} ({_WHIRL[r['whirl']]})" for r in rows)
+    def one(r) -> str:
+        other = r["undamped_rpm"] if r["definition"] == "damped crossing" else r["damped_crossing_rpm"]
+        both = (f"; {'undamped' if r['definition'] == 'damped crossing' else 'damped crossing'} "
+                f"{other:.0f}, damping ratio {r['damping_ratio']:.2g}") if r["both_shown"] else ""
+        return f"{r['speed_rpm']:.0f} ({_WHIRL[r['whirl']]}{both}" + (f"; {r['note']})" if r["note"] else ")")
+
+    speeds = ", ".join(one(r) for r in rows)
     lines = sorted({r["harmonic"] for r in rows})
-    return Findings(f"critical speeds {speeds} rpm",
+    return Findings(f"critical speeds ({rows[0]['definition']}) {speeds} rpm",
                     (f"natural frequencies there {_list([r['frequency_hz'] for r in rows], '.4g')} Hz",
                      "excitation line" + ("s " if len(lines) > 1 else " ") + ", ".join(f"{h}x" for h in lines)))
 

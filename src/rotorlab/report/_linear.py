@@ -23,19 +23,29 @@ def _g(value: float | None, digits: int = 6) -> str:
 
 
 def _crossings(rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
+    """Critical speeds, those unbalance excites first, each with its definition, the other
+    definition's value where they differ by more than 3 %, the mode's damping ratio and whirl."""
     if not rows:
         return '<p class="muted">No branch crosses an excitation line in this range.</p>'
-    header = ["speed (rpm)", "speed (rad/s)", "frequency (Hz)", "line", "whirl"]
+    header = ["speed (rpm)", "definition", "other definition (rpm)", "damping ratio",
+              "frequency (Hz)", "line", "whirl", "excited by unbalance"]
     has_mode = "mode" in rows[0]
     if has_mode:
-        header.insert(4, "branch")
+        header.insert(6, "branch")
     body = []
     for r in rows:
-        row = [_g(r["speed_rpm"]), _g(r["speed"]), _g(r["frequency_hz"]), f"{r['harmonic']}x"]
+        damped = r["definition"] == "damped crossing"
+        other = r["undamped_rpm"] if damped else r["damped_crossing_rpm"]
+        other_text = ("-" if other is None else f"{other:.4g} ({'undamped' if damped else 'damped crossing'})"
+                      if r["both_shown"] else "within 3 %")
+        row = [_g(r["speed_rpm"]), r["definition"], other_text, _g(r["damping_ratio"], 3),
+               _g(r["frequency_hz"]), f"{r['harmonic']}x"]
         if has_mode:
             row.append(str(r["mode"]))
-        body.append(row + [_WHIRL[r["whirl"]]])
-    return table(header, body, numeric={0, 1, 2})
+        body.append(row + [_WHIRL[r["whirl"]], "yes" if r["excited_by_unbalance"] else f"no: {r['note']}"])
+    definition = rows[0]["definition_text"]
+    return (table(header, body, numeric={0, 3, 4})
+            + f'\n<p class="muted">{_e(definition[0].upper() + definition[1:])}.</p>')
 
 
 def _campbell(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
@@ -48,7 +58,7 @@ def _campbell(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]
                  if unstable.size == 0 else
                  f"Unstable at {unstable.size} of {rpm.size} speeds, from {unstable[0]:.6g} rpm.")
     return "\n".join([
-        "<h3>Critical speeds (crossings with the excitation lines)</h3>",
+        "<h3>Critical speeds (damped crossings of the excitation lines)</h3>",
         _crossings(rows, table),
         "<h3>Natural frequencies at the ends of the range</h3>",
         table(("branch", f"whirl at {rpm[0]:.6g} rpm", "frequency (Hz)",
@@ -136,7 +146,7 @@ def linear_section(kind: str, ds: Any, rows: Sequence[dict[str, Any]],
 
 
 def _critical(ds: Any, rows: Sequence[dict[str, Any]], table: Callable[..., str]) -> str:
-    return "<h3>Critical speeds of the undamped rotor</h3>\n" + _crossings(rows, table)
+    return "<h3>Critical speeds (undamped, with the damped crossings)</h3>\n" + _crossings(rows, table)
 
 
 _SECTIONS: dict[str, Callable[[Any, Sequence[dict[str, Any]], Callable[..., str]], str]] = {
