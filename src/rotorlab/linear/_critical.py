@@ -129,7 +129,7 @@ class CriticalSpeeds:
 
 
 def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
-                    max_speed: float | None = None) -> CriticalSpeeds:
+                    max_speed: float | None = None, damped: bool = True) -> CriticalSpeeds:
     """Compute the critical speeds of the undamped rotor exactly.
 
     Parameters
@@ -140,6 +140,9 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
         Excitation orders h >= 1 (1: synchronous unbalance).
     max_speed : float, optional
         Drop critical speeds above this (rad/s).
+    damped : bool
+        Also find each mode's damped crossing (a few eigen-solves per critical speed); false:
+        ``damped_speed`` and ``damping_ratio`` are NaN.
 
     Returns
     -------
@@ -190,9 +193,12 @@ def critical_speeds(system: LinearSystem, *, harmonics: Sequence[int] = (1,),
     L = system.length_scale
     shp = normalize_shapes(shp, L)
     _, code = whirl_of_shapes(shp, L)
-    solver = Solver(system)
-    with single_threaded_blas():
-        damped = np.array([_damped_crossing(solver, w, u, h) for w, u, h in zip(speed, shp, harmonic)])
+    if damped:
+        solver = Solver(system)
+        with single_threaded_blas():
+            damped = np.array([_damped_crossing(solver, w, u, h) for w, u, h in zip(speed, shp, harmonic)])
+    else:
+        damped = np.full((speed.size, 2), np.nan)
     return CriticalSpeeds(speed=speed, harmonic=harmonic, whirl=code, shapes=shp,
                           damped_speed=damped[:, 0], damping_ratio=damped[:, 1],
                           excited=excited_by_unbalance(code, harmonic, iso), isotropic=iso)

@@ -148,7 +148,7 @@ def _peaks(system: LinearSystem, F: np.ndarray, w: np.ndarray,
     if not np.any(system.C) and F.any():
         from rotorlab.linear._critical import critical_speeds
 
-        crit = critical_speeds(system, harmonics=(1,), max_speed=float(w.max())).speed
+        crit = critical_speeds(system, harmonics=(1,), max_speed=float(w.max()), damped=False).speed
         inside = np.unique(np.round(crit[(crit >= w.min()) & (crit <= w.max())], 9))
         where = (", ".join(f"{c * RPM_PER_RAD_S:.6g}" for c in inside) + " rpm") if inside.size \
             else "none in this speed range"

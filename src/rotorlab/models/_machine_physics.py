@@ -229,5 +229,6 @@ def structure_critical_speeds(machine, max_speed: float | None = None) -> np.nda
     inertia about the tilt axes included (:func:`locked_structure` with ``tilt_inertia``)."""
     from rotorlab.linear import critical_speeds
 
-    cs = critical_speeds(locked_structure(machine, tilt_inertia=True), max_speed=max_speed)
+    cs = critical_speeds(locked_structure(machine, tilt_inertia=True), max_speed=max_speed,
+                         damped=False)
     return cs.speed[cs.whirl >= 0]

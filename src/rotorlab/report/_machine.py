@@ -76,7 +76,8 @@ def _simulate(rows: Rows):
 
 def _run_up(rows: Rows):
     stations = _stations(rows, "residual_amplitude")
-    header = ("start", "final speed (rpm)", "critical speeds (rpm)", "passed", "captured at (rpm)",
+    header = ("start", "final speed (rpm)", "undamped forward critical speeds (rpm)", "passed",
+              "captured at (rpm)",
               *(f"residual vibration at {s} (mm)" for s in stations),
               *(f"without balancing at {s} (mm)" for s in stations), "outcome")
     body = [(str(r["ic"]), _g(r["final_speed_rpm"], 6), ", ".join(_g(w * _RPM, 5) for w in r["critical_speeds"]),
