@@ -32,7 +32,7 @@ REFERENCE = json.loads((DATA / "rotor_example.json").read_text())
 
 
 def _system():
-    from rotorlab.analyses._linear_build import build_linear_system
+    from rotorlab.analyses import build_linear_system
 
     return build_linear_system(validate_case(import_ross(DATA / "rotor_example.toml")).model)
 

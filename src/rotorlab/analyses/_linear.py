@@ -456,7 +456,9 @@ def critical_summary(spec: Any, n: int = 6) -> dict[str, Any]:
         return {}
     from rotorlab.linear import critical_speeds
 
-    cs = critical_speeds(build_linear_system(structure))
+    system = build_linear_system(structure)
+    lowest = critical_speeds(system, damped=False).speed[:n]  # damped crossings of these only
+    cs = critical_speeds(system, max_speed=float(lowest[-1]) if lowest.size else None)
     ds = cs.to_dataset().isel(critical=slice(0, n))
     ds["critical_frequency"] = ("critical", ds.harmonic.values * ds.critical_speed.values / (2.0 * math.pi))
     ds.attrs["analysis"] = "critical_speeds"

@@ -124,7 +124,8 @@ def _undamped_partners(system: LinearSystem, cross, harmonics) -> tuple[np.ndarr
     und = np.full(len(cross), np.nan)
     if not cross:
         return und, np.zeros(0, bool)
-    cs = critical_speeds(system, harmonics=harmonics)
+    # the undamped partner of a crossing lies near it: modes up to twice the highest crossing
+    cs = critical_speeds(system, harmonics=harmonics, max_speed=2.0 * max(c[0] for c in cross))
     for i, (root, h, _, w, _) in enumerate(cross):
         ok = (cs.harmonic == h) & np.isfinite(cs.damped_speed)
         if ok.any():
