@@ -249,13 +249,18 @@ def _crossing_rows(ds: xarray.Dataset, mode: bool) -> list[dict[str, Any]]:
     harmonic = ds["critical_harmonic" if mode else "harmonic"].values
     isotropic = bool(ds.attrs.get("isotropic", 0))
     definition = "damped crossing" if mode else "undamped"
+    n = ds.sizes.get("critical", 0)
+
+    def var(name: str, default: float | bool) -> np.ndarray:  # results saved before issue 29
+        return ds[name].values if name in ds else np.full(n, default)
+
     if mode:
-        damped, undamped = ds.critical_speed_rpm.values, ds.critical_undamped_rpm.values
-        zeta, excited = ds.critical_damping_ratio.values, ds.critical_excited_by_unbalance.values
+        damped, undamped = ds.critical_speed_rpm.values, var("critical_undamped_rpm", np.nan)
+        zeta, excited = var("critical_damping_ratio", np.nan), var("critical_excited_by_unbalance", True)
     else:
-        damped, undamped = ds.damped_crossing_rpm.values, ds.critical_speed_rpm.values
-        zeta, excited = ds.damping_ratio.values, ds.excited_by_unbalance.values
-    for k in range(ds.sizes.get("critical", 0)):
+        damped, undamped = var("damped_crossing_rpm", np.nan), ds.critical_speed_rpm.values
+        zeta, excited = var("damping_ratio", np.nan), var("excited_by_unbalance", True)
+    for k in range(n):
         w = float(ds.critical_speed.values[k])
         h = int(harmonic[k])
         whirl = _WHIRL[int(ds["critical_whirl" if mode else "whirl"].values[k])]
