@@ -96,6 +96,9 @@ class CriticalSpeeds:
         """Critical speeds in rev/min."""
         return self.speed * RPM_PER_RAD_S
 
+    #: What ``speed`` is (see :data:`DEFINITIONS`); ``damped_speed`` is the "damped crossing".
+    definition = "undamped"
+
     @property
     def damped_speed_rpm(self) -> np.ndarray:
         """Damped crossings in rev/min."""
