@@ -82,7 +82,10 @@ def _refine(solver: Solver, lo: float, hi: float, guess: float, ref: np.ndarray,
     def branch(speed: float):
         sp = solver.solve([speed])
         mac = np.abs(sp.track[0].conj() @ ref) ** 2
-        k = int(np.argmax(mac))
+        # a forward and a backward mode can share a tracking vector (a rigid body's tilt in the
+        # isotropic solver): among equally similar ones, the nearest to the line
+        near = np.abs(np.abs(sp.eigenvalues[0].imag) - harmonic * speed)
+        k = int(np.argmin(np.where(mac >= mac.max() * (1.0 - 1e-6), near, np.inf)))
         return float(abs(sp.eigenvalues[0, k].imag)) - harmonic * speed, sp.track[0, k]
 
     x = guess

@@ -211,25 +211,25 @@ def _damped_crossing(solver: Solver, speed0: float, shape0: np.ndarray, h: int) 
     """The damped crossing of the mode of shape ``shape0`` at undamped critical speed ``speed0``.
 
     Secant iterations on ``g(Omega) = |Im lambda(Omega)| - h Omega`` from ``speed0``, the mode
-    picked by MAC against ``shape0`` first and against its own previous track vector after.
+    picked by MAC of the full shapes against ``shape0`` first and its own previous shape after.
     Returns (NaN, NaN) if it does not converge in 40 steps or the mode stops oscillating.
     """
-    u = shape0 / max(np.linalg.norm(shape0), 1e-300)
-
-    def branch(x: float, ref: np.ndarray | None):
+    def branch(x: float, ref: np.ndarray, freq: float):
+        # the mode by MAC of the full shapes (a forward and a backward mode can share the
+        # solver's tracking vector); among equally similar shapes the nearest in frequency
         sp = solver.solve([x])
-        if ref is None:
-            v = sp.shapes[0]
-            mac = np.abs(v.conj() @ u) ** 2 / np.maximum(np.einsum("ij,ij->i", v.conj(), v).real, 1e-300)
-        else:
-            mac = np.abs(sp.track[0].conj() @ ref) ** 2
-        k = int(np.argmax(mac))
+        v = sp.shapes[0]
+        mac = np.abs(v.conj() @ ref) ** 2 / np.maximum(np.einsum("ij,ij->i", v.conj(), v).real, 1e-300)
+        mac = mac / max(mac.max(), 1e-300)
+        near = np.abs(np.abs(sp.eigenvalues[0].imag) - freq)
+        k = int(np.argmin(np.where(mac >= 1.0 - 1e-6, near, np.inf)))
         lam = sp.eigenvalues[0, k]
-        return abs(lam.imag) - h * x, sp.track[0, k], lam
+        shape = v[k] / max(np.linalg.norm(v[k]), 1e-300)
+        return abs(lam.imag) - h * x, shape, lam
 
-    g0, ref, lam = branch(speed0, None)
+    g0, ref, lam = branch(speed0, shape0 / max(np.linalg.norm(shape0), 1e-300), h * speed0)
     x0, x1 = speed0, speed0 * (1.0 + 1e-4)
-    g1, ref, lam = branch(x1, ref)
+    g1, ref, lam = branch(x1, ref, abs(lam.imag))
     for _ in range(40):
         if g1 == g0:
             break
@@ -238,11 +238,12 @@ def _damped_crossing(solver: Solver, speed0: float, shape0: np.ndarray, h: int) 
             break
         x0, g0 = x1, g1
         x1 = x2
-        g1, ref, lam = branch(x1, ref)
+        g1, ref, lam = branch(x1, ref, abs(lam.imag))
         if abs(x1 - x0) <= 1e-10 * x1:
             if lam.imag == 0:
                 break
-            return float(x1), float(-lam.real / abs(lam)) + 0.0
+            zeta = float(-lam.real / abs(lam))
+            return float(x1), (0.0 if abs(zeta) < 1e-12 else zeta)
     return float("nan"), float("nan")
 
 
