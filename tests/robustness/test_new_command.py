@@ -37,8 +37,8 @@ def test_template_validates_and_loads(tmp_path: Path, template: str) -> None:
 
 
 def test_washer_template_explains_center_at_rest_and_drive_inertia(tmp_path: Path) -> None:
-    """The comment's static sag m g / k matches the file's numbers, exceeds the gap (hence
-    center_at_rest), and the motor's polar inertia is explained."""
+    """The comment's static sag m g / k matches the file's numbers and is more than half the
+    gap (hence center_at_rest), and the motor's polar inertia is explained."""
     out = tmp_path / "w.toml"
     assert runner.invoke(app, ["new", "washer", str(out)]).exit_code == 0
     text = out.read_text()
@@ -49,7 +49,8 @@ def test_washer_template_explains_center_at_rest_and_drive_inertia(tmp_path: Pat
     assert sag == pytest.approx(0.0157, abs=5e-5)          # 40 kg * 9.81 / 25 kN/m
     assert "15.7 mm" in text
     clearance = model.clearances[0]
-    assert sag > clearance.gap and clearance.center_at_rest
+    assert sag > 0.5 * clearance.gap and clearance.center_at_rest
+    assert f"{1e3 * clearance.gap:.0f} - {1e3 * sag:.1f} = {1e3 * (clearance.gap - sag):.1f} mm" in text
     assert model.drive.polar_inertia == pytest.approx(0.8)
     assert "polar_inertia is the inertia of everything the motor turns" in text
 
