@@ -22,6 +22,9 @@ if TYPE_CHECKING:
 __all__ = ["rub_model", "rub_quantities", "run_rub_analysis", "rub_rows", "rub_prediction", "run_rub_map",
            "rub_map_rows", "rub_map_task_size"]
 
+#: The ``mode`` of a saved sample after a failed run's end (its state is NaN).
+NO_STATE = -128
+
 
 def _rotor(case_model: Any) -> RubRotor:
     from rotorlab.contact import RubRotor
@@ -140,12 +143,14 @@ def run_rub_analysis(case_model: Any, analysis: Any,
             "x": (("time",), wx, {"units": "m"}),
             "y": (("time",), wy, {"units": "m"}),
             "radius": (("time",), radius, {"units": "m"}),
-            "mode": (("time",), cs.mode.astype(np.int8), {"units": "1"}),
+            # samples after a failed run's end hold no state (NaN): marked NO_STATE, not a mode
+            "mode": (("time",), np.where(np.isfinite(cs.mode), cs.mode, NO_STATE).astype(np.int8),
+                     {"units": "1", "no_state": NO_STATE}),
         },
         coords={"time": ("time", ts, {"units": "s"})},
     )
     ds.attrs.update({
-        "name": analysis.name, "status": status, "status_message": message,
+        "name": analysis.name, "status": status, "status_message": message, "t_final": float(sol.t_final),
         "regime": int(regime), "regime_label": regime.label, "spin_speed": spin_speed,
         "clearance": rotor.clearance, "rigid_stator": int(rotor.rigid_stator), "friction": rotor.friction,
         "predicted_regimes": "; ".join(pred["regimes"]) or "none of the closed forms",

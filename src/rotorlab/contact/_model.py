@@ -202,12 +202,12 @@ class JeffcottRub:
         """The contact at saved samples (:class:`rotorlab.contact.ContactSamples`); the normal
         force from the compiled contact law."""
         from rotorlab.contact._regimes import ContactSamples
+        from rotorlab.models._rub_rotor import sampled_normal_force
 
         ys = np.atleast_2d(np.asarray(ys, dtype=float))
         p = self.to_array() if params is None else np.asarray(params, dtype=float)
         mode = ys[:, _k.MODE]
-        force = np.array([_k.contact_forces(float(t), row, p)[0] if row[_k.MODE] != 0.0 else 0.0
-                          for t, row in zip(np.broadcast_to(ts, mode.shape), ys)])
+        force = sampled_normal_force(ts, ys, mode, lambda t, row: _k.contact_forces(t, row, p)[0])
         return ContactSamples(ys[:, [_k.X, _k.Y]], ys[:, [_k.VX, _k.VY]], mode, ys[:, _k.N_IMP],
                               ys[:, _k.P_MAX], force, np.full(mode.shape, p[_k.P_W]))
 

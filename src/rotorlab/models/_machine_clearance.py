@@ -186,7 +186,7 @@ class _ClearanceParts:
         """The clearance's contact at saved samples (:class:`rotorlab.contact.ContactSamples`);
         the normal force from the compiled contact law (the generated ``contact_terms``)."""
         from rotorlab._kernels.speed import profile
-        from rotorlab.models._rub_rotor import ContactSamples
+        from rotorlab.models._rub_rotor import ContactSamples, sampled_normal_force
 
         if not self.clearances:
             raise ValueError("contact_samples needs a Machine with a clearance")
@@ -199,8 +199,7 @@ class _ClearanceParts:
         if self.clearances[0].kind == "housing":
             dw = dw - ys[:, lay.i_clearance + 2:lay.i_clearance + 4]
         mode = ys[:, -1]
-        force = np.array([mod.contact_terms(float(t), np.ascontiguousarray(row), p, float(row[-1]))[0]
-                          if row[-1] != 0.0 else 0.0 for t, row in zip(ts, ys)])
+        force = sampled_normal_force(ts, ys, mode, lambda t, row: mod.contact_terms(t, row, p, float(row[-1]))[0])
         if self.is_motor:
             spin = ys[:, lay.i_theta + 1]
         else:

@@ -18,7 +18,7 @@ import numpy as np
 
 from rotorlab.models._checks import check_number as _num
 
-__all__ = ["RubRotor", "ContactSamples"]
+__all__ = ["RubRotor", "ContactSamples", "sampled_normal_force"]
 
 
 @dataclass(frozen=True, slots=True)
@@ -107,3 +107,21 @@ class ContactSamples(NamedTuple):
     peak_impulse: np.ndarray
     normal_force: np.ndarray
     spin_speed: np.ndarray
+
+
+def sampled_normal_force(ts, ys, mode, law) -> np.ndarray:
+    """The contact normal force (N) at saved samples: ``law(t, row)`` where in contact, 0 where
+    free and NaN where the sample is not a state (a run that failed fills the samples after its
+    end with NaN; the compiled contact law must not see them: at a NaN position it finds the
+    centre, and divides by the zero radius there).
+
+    ``ts`` shape (n,), ``ys`` shape (n, n_state), ``mode`` shape (n,) (the contact mode of
+    each sample); ``law`` returns the normal force of one state.
+    """
+    ys = np.asarray(ys, dtype=float)
+    valid = np.all(np.isfinite(ys), axis=1)
+    ts = np.broadcast_to(np.asarray(ts, dtype=float), valid.shape)
+    force = np.where(valid, 0.0, np.nan)
+    for i in np.flatnonzero(valid & (mode != 0.0)):
+        force[i] = law(float(ts[i]), np.ascontiguousarray(ys[i]))
+    return force
