@@ -186,7 +186,7 @@ class MachineEquilibria:
         self.base = machine
         self.nz, self.nb = machine.n_coordinates, machine.n_balls
         self.n = self.nz + self.nb
-        u = sum(x.mass_eccentricity for x in machine.unbalances) + sum(r.capacity for r in machine.races)
+        u = sum(x.magnitude for x in machine.unbalances) + sum(r.capacity for r in machine.races)
         self.z_scale = max(u / max(machine.structure.total_mass, 1e-300), 1e-12)
         self._machines: dict[tuple[float, ...], object] = {}
         self._spectra: dict[bytes, np.ndarray] = {}
@@ -328,7 +328,7 @@ def starting_motions(machine, which: str = "balanced", *, starts: int = 24, seed
     nz, nb = prob.nz, prob.nb
     out: list[tuple[str, np.ndarray]] = []
     if which in ("balanced", "all") or which.startswith("main"):
-        scale = max(sum(u.mass_eccentricity for u in machine.unbalances), 1e-300)
+        scale = max(sum(u.magnitude for u in machine.unbalances), 1e-300)
         rng = np.random.default_rng(seed)
         found: list[np.ndarray] = []
         for _ in range(starts):
@@ -348,7 +348,7 @@ def starting_motions(machine, which: str = "balanced", *, starts: int = 24, seed
         st = machine._stations
         f = np.zeros(nz)
         for u, un in enumerate(machine.unbalances):
-            f += un.mass_eccentricity * (st[len(machine.races) + u].T @ np.array([math.cos(un.phase), math.sin(un.phase)]))
+            f += un.magnitude * (st[len(machine.races) + u].T @ np.array([math.cos(un.phase), math.sin(un.phase)]))
         zr = np.linalg.lstsq(K0, om * om * f, rcond=None)[0]
         heavy = np.linalg.lstsq(machine.reduced["K"], f, rcond=None)[0]  # the heavy side (quasi-static)
         race_of = machine._ball_arrays[4]
