@@ -61,10 +61,24 @@ def run_continuation_analysis(case_model, analysis, progress=None):
     the result in ``attrs["result"]``."""
     from rotorlab.continuation import continue_equilibria, with_value
 
+    from rotorlab.analyses._continuation_periodic import PERIODIC_STARTS, periodic_branches
+
     machine = continuation_machine(case_model, analysis)
     total = 2 if analysis.param2 is not None else 1
-    result = continue_equilibria(machine, analysis.param, *analysis.range, start_from=analysis.start_from,
-                                 switch=analysis.switch, parameter2=analysis.param2, range2=analysis.range2)
+    periodic = analysis.start_from in PERIODIC_STARTS
+    result = started = None
+    if analysis.start_from != "simulation":
+        result = continue_equilibria(machine, analysis.param, *analysis.range,
+                                     start_from="all" if periodic else analysis.start_from, switch=analysis.switch,
+                                     parameter2=analysis.param2, range2=analysis.range2)
+    if periodic:
+        from dataclasses import replace
+
+        from rotorlab.continuation import ContinuationResult
+
+        orbits, started = periodic_branches(case_model, analysis, result)
+        result = replace(result, branches=result.branches + tuple(orbits)) if result is not None else \
+            ContinuationResult(tuple(orbits), units={analysis.param: "rad/s"})
     if progress is not None:
         progress(1, total)
     ds = result.to_dataset()
@@ -85,7 +99,7 @@ def run_continuation_analysis(case_model, analysis, progress=None):
     if progress is not None:
         progress(total, total)
     ds.attrs.update(name=analysis.name, parameter=analysis.param, start_from=analysis.start_from,
-                    result=json.dumps(result.to_dict()))
+                    result=json.dumps({**result.to_dict(), **({"periodic_start": started} if started else {})}))
     return ds
 
 
@@ -103,7 +117,14 @@ def continuation_rows(ds) -> list[dict[str, Any]]:
     for b in doc["branches"]:
         v = [p[param] for p in b["points"] if p[param] is not None]
         stable = [p["stable"] for p in b["points"]]
-        rows.append({"branch": b["label"], "type": "branch-summary", "parameter": param,
-                     "from": min(v) if v else math.nan, "to": max(v) if v else math.nan, "points": len(v),
-                     "stable_points": int(sum(stable)), "end": b["end"]})
+        row = {"branch": b["label"], "type": "branch-summary", "parameter": param, "kind": b["kind"],
+               "from": min(v) if v else math.nan, "to": max(v) if v else math.nan, "points": len(v),
+               "stable_points": int(sum(stable)), "end": b["end"]}
+        if b["kind"] == "periodic":
+            from rotorlab.analyses._continuation_periodic import orbit_sentence
+
+            per = [p["period_s"] for p in b["points"] if p["period_s"] is not None]
+            row.update(period_from_s=min(per, default=math.nan), period_to_s=max(per, default=math.nan),
+                       sentence=orbit_sentence(b, doc["units"].get(param, "")), started=doc.get("periodic_start", ""))
+        rows.append(row)
     return rows

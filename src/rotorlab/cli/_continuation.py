@@ -74,7 +74,7 @@ def continue_command(
     param2: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--param2", metavar="NAME=A:B", help="Continue the fold and Hopf points found in a second parameter.")] = None,
     start_from: Annotated[Optional[str], typer.Option(  # noqa: UP007
-        "--from", metavar="K", help="Starting motions: balanced, side, all or a motion's label (side 01).")] = None,
+        "--from", metavar="K", help="Starting motions: balanced, side, all or a motion's label (side 01); hopf or simulation: whirl orbits (periodic branches) from the Hopf points or from a simulation at the range's start.")] = None,
     speed_rpm: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Constant speed when the speed is not the continued parameter.")] = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
@@ -121,7 +121,7 @@ def continue_command(
             return
         con = stdout()
         for table in continuation_tables({spec.name: ds}, {spec.name: rows}):
-            con.print(table)
+            con.print(table, markup=False)
         for path in written:
             con.print(f"Wrote {path}", markup=False)
 
@@ -184,7 +184,7 @@ def continuation_tables(results: Mapping[str, Any], rows: Mapping[str, Sequence[
     from rich.table import Table
 
     from rotorlab._constants import shown_unit
-    from rotorlab.report._continuation import _points
+    from rotorlab.report._continuation import _orbit_sentences, _period, _points
 
     out = []
     for name, ds in results.items():
@@ -197,11 +197,12 @@ def continuation_tables(results: Mapping[str, Any], rows: Mapping[str, Sequence[
             t.add_row(r["type"], r["branch"], f"{f * r['value']:.6g}", r["description"])
         out.append(t)
         b = Table(title=f"{name}: branches", title_justify="left")
-        for col in ("branch", f"from ({unit})", f"to ({unit})", "points", "stable points", "ended"):
+        for col in ("branch", f"from ({unit})", f"to ({unit})", "points", "stable points", "period (s)", "ended"):
             b.add_column(col)
         for r in rows[name]:
             if r["type"] == "branch-summary":
                 b.add_row(r["branch"], f"{f * r['from']:.4g}", f"{f * r['to']:.4g}", str(r["points"]),
-                          str(r["stable_points"]), r["end"])
+                          str(r["stable_points"]), _period(r), r["end"])
         out.append(b)
+        out.extend(_orbit_sentences(rows[name]))
     return out

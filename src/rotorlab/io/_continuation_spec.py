@@ -8,7 +8,7 @@ Example::
     type = "continuation"
     param = "drive.speed"
     range = ["600 rpm", "3000 rpm"]
-    start_from = "balanced"           # balanced | side | all | a motion's label ("side 01")
+    start_from = "balanced"           # balanced | side | all | a motion's label ("side 01") | hopf | simulation
     param2 = "ball_mass"              # optional: fold and Hopf curves in a second parameter
     range2 = ["10 g", "40 g"]
 """
@@ -41,7 +41,7 @@ CONTINUATION_NAMES: tuple[tuple[str, str, str], ...] = (
 #: Any other key path of the model's named parameters (its values then plain SI numbers).
 _KEY_PATH = re.compile(r"[a-z_][a-z0-9_]*(\[\d+\])?(\.[a-z_][a-z0-9_]*(\[\d+\])?)*")
 
-_STARTS = re.compile(r"balanced|side|all|main[+-]|main \d+|side [01]+")
+_STARTS = re.compile(r"balanced|side|all|hopf|simulation|main[+-]|main \d+|side [01]+")
 
 
 def continuation_dimension(name: str) -> str | None:
@@ -115,7 +115,10 @@ class ContinuationSpec(AbstractAnalysisSpec):
         ``[start, stop]`` in the parameter's SI unit or with a unit; the starting motions are
         those at ``start``.
     start_from : str
-        ``balanced``, ``side``, ``all`` or a motion's label (``main+``, ``side 01``).
+        ``balanced``, ``side``, ``all`` or a motion's label (``main+``, ``side 01``): steady
+        motions; ``hopf`` (the orbits born at the Hopf points of all steady motions) or
+        ``simulation`` (the whirl a simulation at ``range[0]`` ends in): periodic orbits of a
+        ``jeffcott_balls`` rotor in its co-rotating frame, continued in ``drive.speed``.
     param2, range2 : optional
         A second parameter and its range: the fold and Hopf points found are continued in it
         (the case's own value of ``param2`` must lie in ``range2``).
@@ -152,7 +155,8 @@ class ContinuationSpec(AbstractAnalysisSpec):
     @classmethod
     def _read_start(cls, value: Any) -> str:
         if not isinstance(value, str) or not _STARTS.fullmatch(value):
-            raise _error("must be balanced, side, all or a motion's label (main+, main-, side 01, ...)")
+            raise _error("must be balanced, side, all, hopf, simulation or a motion's label (main+, main-, side 01, "
+                         "...)")
         return value
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
@@ -170,7 +174,9 @@ class ContinuationSpec(AbstractAnalysisSpec):
 
     def describe(self, model: AbstractModelSpec) -> str:
         """Return a one-line description."""
-        text = f"continuation of the {self.start_from} steady motions in {self.param} from {self.range[0]:.6g} " \
+        what = f"the whirl orbits from {self.start_from}" if self.start_from in ("hopf", "simulation") else \
+            f"the {self.start_from} steady motions"
+        text = f"continuation of {what} in {self.param} from {self.range[0]:.6g} " \
                f"to {self.range[1]:.6g} (SI)"
         if self.param2 is not None:
             text += f"; fold and Hopf curves in {self.param2} ({self.range2[0]:.6g} to {self.range2[1]:.6g})"

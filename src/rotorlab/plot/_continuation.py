@@ -39,8 +39,8 @@ _ZERO_WHIRL = 1e-9
 
 
 def _with_special_points(ds, b: int, specials: list, param: str):
-    """Branch ``b``'s parameter values, amplitudes (m), stability and ball angles (rad; None if
-    absent) with each located special point inserted where it lies (its stability that of the
+    """Branch ``b``'s parameter values, amplitudes (m), stability, ball angles (rad; None if
+    absent) and periods (s; NaN for equilibria) with each located special point inserted where it lies (its stability that of the
     point after it), so that a stable and an unstable stretch meet at the located point, not at
     the next computed one."""
     v = ds.value.values[b]
@@ -49,6 +49,7 @@ def _with_special_points(ds, b: int, specials: list, param: str):
     amp = ds.amplitude.values[b][keep]
     stable = ds.stable.values[b][keep] > 0.5
     ang = ds.ball_angle.values[b][keep] if "ball_angle" in ds else None
+    per = ds.period.values[b][keep]
     for s in sorted(specials, key=lambda s: -int(s.get("index", 0))):
         k = int(s.get("index", 0))
         x = s.get(param)
@@ -58,9 +59,10 @@ def _with_special_points(ds, b: int, specials: list, param: str):
         a = s.get("amplitude_m")
         a = amp[k - 1] + w * (amp[k] - amp[k - 1]) if a is None else a
         v, amp, stable = np.insert(v, k, x), np.insert(amp, k, a), np.insert(stable, k, stable[k])
+        per = np.insert(per, k, per[k - 1] + w * (per[k] - per[k - 1]))
         if ang is not None:
             ang = np.insert(ang, k, ang[k - 1] + w * (ang[k] - ang[k - 1]), axis=0)
-    return v, amp, stable, ang
+    return v, amp, stable, ang, per
 
 
 def bifurcation_figure(ds: xarray.Dataset) -> Figure:
@@ -76,7 +78,8 @@ def bifurcation_figure(ds: xarray.Dataset) -> Figure:
     -------
     matplotlib.figure.Figure
         Top: the largest whirl radius (mm) of each branch, stable solid, unstable dashed;
-        bottom: its ball angles (deg). Special points are marked (F fold, H Hopf, BP branch
+        then the ball angles (deg) of the steady motions and the period (s) of the whirl
+        orbits (periodic branches). Special points are marked (F fold, H Hopf, BP branch
         point), numbered, and explained in words below the axes.
     """
     from matplotlib.figure import Figure
@@ -90,11 +93,18 @@ def bifurcation_figure(ds: xarray.Dataset) -> Figure:
             if not any(abs(s[param] - t[param]) <= 1e-7 * max(1.0, abs(t[param])) and s["type"] == t["type"]
                        for t, _ in notes):
                 notes.append((s, b))
-    fig = Figure(figsize=(8.5, 6.2 + 0.28 * len(notes)), layout="constrained")
-    ax, ax2, text = fig.subplots(3, 1, height_ratios=[3.0, 2.2, 0.35 + 0.3 * len(notes)])
+    kinds = [str(k) for k in ds.kind.values] if "kind" in ds.coords else []
+    orbits = "periodic" in kinds
+    steady = not orbits or "equilibrium" in kinds
+    panels = [3.0] + [2.2] * steady + [2.0] * orbits + [0.35 + 0.3 * len(notes)]
+    fig = Figure(figsize=(8.5, 4.0 + 2.2 * (len(panels) - 2) + 0.28 * len(notes)), layout="constrained")
+    axes = list(fig.subplots(len(panels), 1, height_ratios=panels))
+    ax, text = axes[0], axes[-1]
+    ax2 = axes[1] if steady else None
+    axp = axes[-2] if orbits else None
     top = 0.0
     for b in range(ds.sizes.get("branch", 0)):
-        v, amp, stable, ang = _with_special_points(ds, b, specials[b] if b < len(specials) else [], param)
+        v, amp, stable, ang, per = _with_special_points(ds, b, specials[b] if b < len(specials) else [], param)
         v = v * factor
         amp = np.where(amp < _ZERO_WHIRL, 0.0, amp) * 1e3
         top = max(top, float(np.max(amp, initial=0.0)))
@@ -104,7 +114,9 @@ def bifurcation_figure(ds: xarray.Dataset) -> Figure:
             st = bool(stable[seg.start])
             ax.plot(v[seg], amp[seg], color=color, lw=1.8 if st else 1.0, ls="-" if st else "--",
                     label=label if k == 0 else None)
-            if ang is not None:
+            if kinds and kinds[b] == "periodic":
+                axp.plot(v[seg], per[seg], color=color, lw=1.8 if st else 1.0, ls="-" if st else "--")
+            elif ang is not None:
                 a = np.degrees(ang[seg])
                 a[1:][np.abs(np.diff(a, axis=0)) > 180.0] = np.nan  # no line across the +-180 deg wrap
                 for j in range(a.shape[1]):
@@ -117,21 +129,27 @@ def bifurcation_figure(ds: xarray.Dataset) -> Figure:
         y = 0.0 if not y > _ZERO_WHIRL else 1e3 * y
         ax.plot([x], [y], marker, color="k", ms=7, mfc="none")
         ax.annotate(f"{short}{n}", (x, y), textcoords="offset points", xytext=(4, 6), fontsize=8)
-        ax2.axvline(x, color="0.6", lw=0.6, ls=":")
+        for a in axes[1:-1]:
+            a.axvline(x, color="0.6", lw=0.6, ls=":")
     ax.set_ylabel("largest whirl radius (mm)")
     if top == 0.0:  # every branch balanced: a zero line, not round-off drawn at 1e-22 mm
         ax.set_ylim(-0.05, 1.0)
         ax.text(0.5, 0.5, "no whirl on these branches (below 1 nm): the balls balance the rotor",
                 transform=ax.transAxes, ha="center", va="center", fontsize=8, color="0.35")
-    ax.set_title(f"steady motions against {param}: solid stable, dashed unstable", fontsize=10)
+    what = " and ".join(w for w, on in (("steady motions", steady), ("whirl orbits", orbits)) if on)
+    ax.set_title(f"{what} against {param}: solid stable, dashed unstable", fontsize=10)
     ax.grid(alpha=0.3)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    ax2.set_ylabel("ball angles (deg)")
-    ax2.set_xlabel(f"{param} ({unit})")
-    ax2.set_ylim(-185, 185)
-    ax2.set_yticks([-180, -90, 0, 90, 180])
-    ax2.grid(alpha=0.3)
-    ax2.sharex(ax)
+    if ax2 is not None:
+        ax2.set_ylabel("ball angles (deg)")
+        ax2.set_ylim(-185, 185)
+        ax2.set_yticks([-180, -90, 0, 90, 180])
+    if axp is not None:
+        axp.set_ylabel("orbit period (s)\n(co-rotating frame)")
+    for a in axes[1:-1]:
+        a.grid(alpha=0.3)
+        a.sharex(ax)
+    axes[-2].set_xlabel(f"{param} ({unit})")
     text.axis("off")
     lines = [f"{_MARKS.get(s['type'], ('', s['type']))[1]}{n}: {s['description']}" for n, (s, _) in
              enumerate(notes, start=1)] or ["no fold, Hopf or branch point in this range"]

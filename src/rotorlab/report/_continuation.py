@@ -27,6 +27,23 @@ def _points(rows: Rows) -> list[Mapping[str, Any]]:
     return out
 
 
+def _period(row: Mapping[str, Any]) -> str:
+    """A periodic branch's period range (s); a dash for equilibria."""
+    if "period_from_s" not in row:
+        return "-"
+    return f"{row['period_from_s']:.5g} to {row['period_to_s']:.5g}"
+
+
+def _orbit_sentences(rows: Rows) -> list[str]:
+    """Per periodic branch: where its orbit exists and is stable, and how it was started."""
+    out = []
+    for r in rows:
+        if r.get("sentence"):
+            text = r["sentence"][0].upper() + r["sentence"][1:]
+            out.append(text + (f" (started by {r['started']})" if r.get("started") else "") + ".")
+    return out
+
+
 def continuation_section(ds: Any, rows: Rows) -> str:
     """HTML: every special point with its sentence, the branches, and the curves' extent."""
     from rotorlab.report._table import table
@@ -35,10 +52,13 @@ def continuation_section(ds: Any, rows: Rows) -> str:
     html = "<p>" + ("<br>".join(f"<b>{r['type']}</b> ({r['branch']}): {r['description']}" for r in pts)
                     or "No fold, Hopf or branch point in this range.") + "</p>"
     summary = [r for r in rows if r["type"] == "branch-summary"]
+    orbits = _orbit_sentences(rows)
+    if orbits:
+        html += "<p>" + "<br>".join(orbits) + "</p>"
     f, unit = shown_unit(ds.attrs.get("units", ""))
-    html += table(["branch", f"from ({unit})", f"to ({unit})", "points", "stable points", "ended"],
+    html += table(["branch", f"from ({unit})", f"to ({unit})", "points", "stable points", "period (s)", "ended"],
                   [[r["branch"], f"{f * r['from']:.4g}", f"{f * r['to']:.4g}", r["points"], r["stable_points"],
-                    r["end"]] for r in summary], numeric={1, 2, 3, 4})
+                    _period(r), r["end"]] for r in summary], numeric={1, 2, 3, 4})
     doc = json.loads(ds.attrs.get("result", "{}"))
     curves = doc.get("curves", [])
     if curves:
@@ -58,6 +78,10 @@ def continuation_section(ds: Any, rows: Rows) -> str:
 def continuation_findings(ds: Any, rows: Rows) -> Findings:
     """The sentences of the special points that change stability first, then the others."""
     pts = _points(rows)
+    orbits = _orbit_sentences(rows)
+    if orbits:
+        return Findings(orbits[0], tuple(orbits[1:]) + tuple(f"{r['type']} ({r['branch']}): {r['description']}"
+                                                             for r in pts[:6]))
     if not pts:
         return Findings("No fold, Hopf or branch point of the continued steady motions in this range.")
     first = [r for r in pts if "becomes stable" in r["description"] or "stable only below" in r["description"]]

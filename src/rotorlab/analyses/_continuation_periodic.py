@@ -1,0 +1,179 @@
+"""Periodic branches of a ``continuation`` analysis (``start_from = "hopf" | "simulation"``): whirl
+orbits of a ``jeffcott_balls`` rotor in its co-rotating frame, continued in the speed by multiple
+shooting (:func:`rotorlab.continuation.continue_periodic`).
+
+- ``simulation``: ball starts on an offset grid (``GRID`` x ``GRID``, as the ``verify`` analysis)
+  are simulated at the range's start; the first whose balls still turn against the rotor after
+  ``T_SETTLE`` s is the whirl's start (said in ``start`` of the result), its orbit is found by
+  :func:`rotorlab.continuation.orbit_from_simulation` and continued towards the range's stop.
+- ``hopf``: the equilibria are continued first; from each Hopf point (mirror images once) the
+  orbit born there (:func:`rotorlab.continuation.orbit_from_hopf`) is continued.
+"""
+
+from __future__ import annotations
+
+import math
+from typing import Any
+
+import numpy as np
+
+__all__ = ["PERIODIC_STARTS", "periodic_branches"]
+
+#: The ``start_from`` values that continue periodic orbits.
+PERIODIC_STARTS = ("hopf", "simulation")
+GRID, T_SETTLE, T_WINDOW = 8, 40.0, 3.0
+
+
+def _rotating(case_model, analysis):
+    from rotorlab.analyses._case import build_model
+    from rotorlab.models import ConstantSpeed, JeffcottBalls
+
+    model = build_model(case_model)
+    if not isinstance(model, JeffcottBalls):
+        raise ValueError(f"periodic orbits (start_from = {analysis.start_from}) need a jeffcott_balls rotor, whose "
+                         f"co-rotating frame makes a whirl periodic; this model is {case_model.type}")
+    if analysis.param != "drive.speed":
+        raise ValueError(f"periodic orbits are continued in drive.speed only, not {analysis.param}")
+    from rotorlab.continuation._shooting import refuse_events
+
+    model = model.with_speed(ConstantSpeed(analysis.range[0]))
+    refuse_events(model.with_frame("rotating"))
+    return model
+
+
+def _settings(analysis, start: float):
+    from rotorlab.continuation import ContinuationSettings
+
+    lo, hi = sorted(analysis.range)
+    stop = analysis.range[1] if start == analysis.range[0] else (hi if start < hi else lo)
+    return ContinuationSettings(ds=0.02, ds_max=0.2, max_points=300, bounds=(lo, hi),
+                                direction=1 if stop > start else -1)
+
+
+def _whirl_start(model, om: float) -> tuple[np.ndarray, str]:
+    """The first ball start of the offset grid whose balls still turn after T_SETTLE s at ``om``."""
+    from rotorlab.continuation._shooting import BACKEND
+    from rotorlab.integrate import StepControl, solve_ensemble
+    from rotorlab.models import ConstantSpeed
+
+    rot = model.with_speed(ConstantSpeed(om)).with_frame("rotating")
+    nb = model.n_balls
+    a = (np.arange(GRID) + 0.5) * 2 * math.pi / GRID - math.pi
+    angles = np.array(np.meshgrid(*([a] * nb), indexing="ij")).reshape(nb, -1).T
+    y0 = np.array([rot.initial_state(g) for g in angles])
+    sol = solve_ensemble(rot, y0, (0.0, T_SETTLE), control=StepControl(rtol=1e-8, atol=1e-10), backend=BACKEND)
+    rates = np.abs(np.asarray(sol.y_final)[:, 4 + nb: 4 + 2 * nb]).max(axis=1)
+    ok = np.asarray(sol.status) == 0
+    hits = np.flatnonzero(ok & (rates > 1e-2 * om))
+    if hits.size == 0:
+        raise ValueError(f"none of the {len(angles)} ball starts ({GRID} x {GRID} offset grid) ends in a whirl at "
+                         f"{om * 30 / math.pi:.6g} rpm (every one settles): start the range where a whirl exists")
+    k = int(hits[0])
+    used = ", ".join(f"{math.degrees(x):.1f}" for x in angles[k])
+    return y0[k], (f"simulation at {om * 30 / math.pi:.6g} rpm from ball angles ({used}) deg, start {k + 1} of "
+                   f"{len(angles)} of a {GRID} x {GRID} offset grid ({hits.size} end in a whirl)")
+
+
+def _jeffcott_state(rot, at, value: float, machine_state: np.ndarray, nb: int) -> np.ndarray:
+    """The co-rotating Jeffcott state of a machine's equilibrium (x = Phi z, 1/sqrt(2) ... from the
+    machine's basis; ball angles as they are), corrected by Newton's method on the model."""
+    p = at(value)
+    n = rot.kernels.n_state
+    y = np.zeros(n)
+    y[:2] = machine_state[:2] * math.sqrt(0.5)  # Phi of as_machine's one node: 1/sqrt(2) (unit mass 2 m1 ...)
+    y[4:4 + nb] = machine_state[4:4 + nb]
+    out = np.empty(n)
+    free = [0, 1] + list(range(4, 4 + nb))  # velocities stay zero at an equilibrium
+    for _ in range(30):
+        rot.kernels.rhs(0.0, y, p, out)
+        if np.max(np.abs(out)) < 1e-12 * max(1.0, value ** 2):
+            return y
+        jac = np.empty((n, len(free)))
+        for j, i in enumerate(free):
+            h = 1e-7 * max(1e-4, abs(y[i]))
+            yp = y.copy()
+            yp[i] += h
+            o2 = np.empty(n)
+            rot.kernels.rhs(0.0, yp, p, o2)
+            jac[:, j] = (o2 - out) / h
+        y[free] -= np.linalg.lstsq(jac, out, rcond=None)[0]
+    raise ValueError(f"the Hopf point's equilibrium at {value * 30 / math.pi:.6g} rpm was not found in the rotor's "
+                     "co-rotating frame")
+
+
+def periodic_branches(case_model, analysis, equilibria=None) -> tuple[list[Any], str]:
+    """The periodic branches of ``analysis`` and a sentence saying where they started.
+
+    Raises
+    ------
+    ValueError
+        Not a jeffcott_balls rotor, not the speed, a model with events, no whirl among the
+        starts (simulation), or no Hopf point in the range (hopf).
+    """
+    from rotorlab.continuation import continue_periodic, orbit_from_hopf, orbit_from_simulation
+    from rotorlab.models import ConstantSpeed
+
+    model = _rotating(case_model, analysis)
+    nb = model.n_balls
+    angles = tuple(range(4, 4 + nb))
+
+    def at(om):
+        return model.with_speed(ConstantSpeed(float(om))).to_array()
+
+    rot = model.with_frame("rotating")
+    if analysis.start_from == "simulation":
+        om = analysis.range[0]
+        y0, said = _whirl_start(model, om)
+        orbit = orbit_from_simulation(rot, y0, t_settle=T_SETTLE, t_window=T_WINDOW, params=at(om), angles=angles,
+                                      segments=5, parameter=analysis.param, value=om)
+        return [continue_periodic(rot, orbit, at, parameter=analysis.param, label="whirl",
+                                  settings=_settings(analysis, om))], said
+    hopfs: list[Any] = []
+    for b in equilibria.branches:
+        for s in b.special_points:
+            if s.type == "hopf" and not any(abs(s.value - h.value) <= 1e-7 * abs(s.value) for h in hopfs):
+                hopfs.append(s)
+    if not hopfs:
+        raise ValueError("no Hopf point on the continued steady motions in this range: no orbit is born there "
+                         "(use simulation)")
+    out = []
+    for s in hopfs:
+        x0 = _jeffcott_state(rot, at, s.value, np.asarray(s.state), nb)
+        scale = np.r_[[1e-3] * 4, [1.0] * (2 * nb)]
+        orbit = orbit_from_hopf(rot, x0, s.value, at, parameter=analysis.param, amplitude=1e-3, segments=5,
+                                state_scale=scale)
+        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label="orbit from Hopf",
+                                     settings=_settings(analysis, s.value)))
+    return out, "Hopf " + ", ".join(f"{h.value * 30 / math.pi:.6g} rpm" for h in hopfs)
+
+
+_ENDS = {"bound": "the range ends there", "max_points": "the continuation stopped after its number of orbits",
+         "step": "the step size fell below its minimum (the branch could not be followed further)",
+         "closed": "the branch closed on itself"}
+
+
+def orbit_sentence(branch: dict, units: str) -> str:
+    """For people: over which values a periodic branch (its JSON, SI) exists and is stable, and why
+    the stable stretch ends (a special point that changes stability, or the branch's end)."""
+    from rotorlab._constants import shown_unit
+
+    f, unit = shown_unit(units)
+    param = branch["parameter"]
+    pts = [p for p in branch["points"] if p[param] is not None]
+    if not pts:
+        return f"no {branch['label']} orbit was continued"
+    vals = np.array([p[param] for p in pts]) * f
+    stable = np.array([p["stable"] for p in pts])
+    ended = f"the branch ended at {vals[-1]:.5g} {unit}: {_ENDS.get(branch['end'], branch['end'])}"
+    changes = [f"{s['type']} at {f * s[param]:.5g} {unit}" for s in branch["special_points"]
+               if "stable before it and" in s["description"] or "unstable before it and" in s["description"]]
+    said = ("; stability changes at the " + ", ".join(changes)) if changes else ""
+    if stable.all():
+        return f"a {branch['label']} orbit exists and is stable from {vals.min():.5g} to {vals.max():.5g} {unit} " \
+               f"(all of the continued stretch; {ended})"
+    if not stable.any():
+        return f"a {branch['label']} orbit exists from {vals.min():.5g} to {vals.max():.5g} {unit} and is unstable " \
+               f"all along it ({ended})"
+    return f"a {branch['label']} orbit exists and is stable from {vals[stable].min():.5g} to " \
+           f"{vals[stable].max():.5g} {unit}{said}; the branch's unstable orbits lie between {vals[~stable].min():.5g} " \
+           f"and {vals[~stable].max():.5g} {unit} ({ended})"
