@@ -76,7 +76,7 @@ def run_continuation_analysis(case_model, analysis, progress=None):
 
         from rotorlab.continuation import ContinuationResult
 
-        orbits, started = periodic_branches(case_model, analysis, result)
+        orbits, started = periodic_branches(case_model, analysis, result, machine.basis)
         result = replace(result, branches=result.branches + tuple(orbits)) if result is not None else \
             ContinuationResult(tuple(orbits), units={analysis.param: "rad/s"})
     if progress is not None:

@@ -22,6 +22,8 @@ __all__ = ["PERIODIC_STARTS", "periodic_branches"]
 #: The ``start_from`` values that continue periodic orbits.
 PERIODIC_STARTS = ("hopf", "simulation")
 GRID, T_SETTLE, T_WINDOW = 8, 40.0, 3.0
+#: Orbits per branch born at a Hopf point (each Hopf point of every steady motion has one).
+HOPF_ORBITS = 100
 
 
 def _rotating(case_model, analysis):
@@ -41,12 +43,12 @@ def _rotating(case_model, analysis):
     return model
 
 
-def _settings(analysis, start: float):
+def _settings(analysis, start: float, max_points: int = 300):
     from rotorlab.continuation import ContinuationSettings
 
     lo, hi = sorted(analysis.range)
     stop = analysis.range[1] if start == analysis.range[0] else (hi if start < hi else lo)
-    return ContinuationSettings(ds=0.02, ds_max=0.2, max_points=300, bounds=(lo, hi),
+    return ContinuationSettings(ds=0.02, ds_max=0.2, max_points=max_points, bounds=(lo, hi),
                                 direction=1 if stop > start else -1)
 
 
@@ -74,14 +76,16 @@ def _whirl_start(model, om: float) -> tuple[np.ndarray, str]:
                    f"{len(angles)} of a {GRID} x {GRID} offset grid ({hits.size} end in a whirl)")
 
 
-def _jeffcott_state(rot, at, value: float, machine_state: np.ndarray, nb: int) -> np.ndarray:
-    """The co-rotating Jeffcott state of a machine's equilibrium (x = Phi z, 1/sqrt(2) ... from the
-    machine's basis; ball angles as they are), corrected by Newton's method on the model."""
+def _jeffcott_state(rot, at, value: float, machine_state: np.ndarray, basis: np.ndarray, nb: int) -> np.ndarray:
+    """The co-rotating Jeffcott state of an equilibrium of the machine it equals (the disc's x, y =
+    Phi z by the machine's basis, ball angles as they are), corrected by Newton's method on the
+    rotor's own right-hand side."""
     p = at(value)
     n = rot.kernels.n_state
     y = np.zeros(n)
-    y[:2] = machine_state[:2] * math.sqrt(0.5)  # Phi of as_machine's one node: 1/sqrt(2) (unit mass 2 m1 ...)
-    y[4:4 + nb] = machine_state[4:4 + nb]
+    nz = basis.shape[1]
+    y[:2] = basis[:2] @ machine_state[:nz]
+    y[4:4 + nb] = machine_state[2 * nz:2 * nz + nb]
     out = np.empty(n)
     free = [0, 1] + list(range(4, 4 + nb))  # velocities stay zero at an equilibrium
     for _ in range(30):
@@ -101,7 +105,7 @@ def _jeffcott_state(rot, at, value: float, machine_state: np.ndarray, nb: int) -
                      "co-rotating frame")
 
 
-def periodic_branches(case_model, analysis, equilibria=None) -> tuple[list[Any], str]:
+def periodic_branches(case_model, analysis, equilibria=None, equilibria_basis=None) -> tuple[list[Any], str]:
     """The periodic branches of ``analysis`` and a sentence saying where they started.
 
     Raises
@@ -131,20 +135,21 @@ def periodic_branches(case_model, analysis, equilibria=None) -> tuple[list[Any],
     hopfs: list[Any] = []
     for b in equilibria.branches:
         for s in b.special_points:
-            if s.type == "hopf" and not any(abs(s.value - h.value) <= 1e-7 * abs(s.value) for h in hopfs):
-                hopfs.append(s)
+            if s.type == "hopf" and not any(abs(s.value - h.value) <= 1e-7 * abs(s.value) for h, _ in hopfs):
+                hopfs.append((s, b.label))
     if not hopfs:
         raise ValueError("no Hopf point on the continued steady motions in this range: no orbit is born there "
                          "(use simulation)")
     out = []
-    for s in hopfs:
-        x0 = _jeffcott_state(rot, at, s.value, np.asarray(s.state), nb)
+    for s, born in hopfs:
+        x0 = _jeffcott_state(rot, at, s.value, np.asarray(s.state), np.asarray(equilibria_basis), nb)
         scale = np.r_[[1e-3] * 4, [1.0] * (2 * nb)]
         orbit = orbit_from_hopf(rot, x0, s.value, at, parameter=analysis.param, amplitude=1e-3, segments=5,
                                 state_scale=scale)
-        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label="orbit from Hopf",
-                                     settings=_settings(analysis, s.value)))
-    return out, "Hopf " + ", ".join(f"{h.value * 30 / math.pi:.6g} rpm" for h in hopfs)
+        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label=f"from Hopf of {born}",
+                                     settings=_settings(analysis, s.value, HOPF_ORBITS),
+                                     state_scale=np.r_[[1e-3] * 2, [0.1] * 2, [1.0] * (2 * nb)]))
+    return out, "the Hopf points at " + ", ".join(f"{h.value * 30 / math.pi:.6g} rpm ({born})" for h, born in hopfs)
 
 
 _ENDS = {"bound": "the range ends there", "max_points": "the continuation stopped after its number of orbits",
@@ -162,6 +167,7 @@ def orbit_sentence(branch: dict, units: str) -> str:
     pts = [p for p in branch["points"] if p[param] is not None]
     if not pts:
         return f"no {branch['label']} orbit was continued"
+    who = "a whirl orbit" + ("" if branch["label"] == "whirl" else f" ({branch['label']})")
     vals = np.array([p[param] for p in pts]) * f
     stable = np.array([p["stable"] for p in pts])
     ended = f"the branch ended at {vals[-1]:.5g} {unit}: {_ENDS.get(branch['end'], branch['end'])}"
@@ -169,11 +175,11 @@ def orbit_sentence(branch: dict, units: str) -> str:
                if "stable before it and" in s["description"] or "unstable before it and" in s["description"]]
     said = ("; stability changes at the " + ", ".join(changes)) if changes else ""
     if stable.all():
-        return f"a {branch['label']} orbit exists and is stable from {vals.min():.5g} to {vals.max():.5g} {unit} " \
+        return f"{who} exists and is stable from {vals.min():.5g} to {vals.max():.5g} {unit} " \
                f"(all of the continued stretch; {ended})"
     if not stable.any():
-        return f"a {branch['label']} orbit exists from {vals.min():.5g} to {vals.max():.5g} {unit} and is unstable " \
+        return f"{who} exists from {vals.min():.5g} to {vals.max():.5g} {unit} and is unstable " \
                f"all along it ({ended})"
-    return f"a {branch['label']} orbit exists and is stable from {vals[stable].min():.5g} to " \
+    return f"{who} exists and is stable from {vals[stable].min():.5g} to " \
            f"{vals[stable].max():.5g} {unit}{said}; the branch's unstable orbits lie between {vals[~stable].min():.5g} " \
            f"and {vals[~stable].max():.5g} {unit} ({ended})"

@@ -246,9 +246,12 @@ def _first_point(stepper: _Stepper, u0: np.ndarray, tangent0: np.ndarray | None,
     else:
         guess = np.asarray(tangent0, dtype=float) / stepper.scale
         guess /= np.linalg.norm(guess)
-    # put u0 on the curve: Newton at fixed lam (the bordering row fixes the parameter)
+    # put u0 on the curve: Newton at fixed lam (the bordering row fixes the parameter), or across
+    # a given tangent (near a Hopf point the orbits at a fixed lam are nearly a fold: singular)
     fix = np.zeros(n1)
     fix[-1] = 1.0
+    if tangent0 is not None:
+        fix = guess.copy()
     u, _ = stepper.correct(u0, fix)
     if u is None:
         raise ValueError("the starting point does not converge onto a solution (Newton failed at fixed parameter)")
