@@ -90,3 +90,23 @@ def test_the_case_file_takes_the_same_from_values():
         assert spec.start_from == value and "whirl orbits" in spec.describe(None)
     with pytest.raises(ValueError, match="hopf, simulation"):
         ContinuationSpec(name="c", param="drive.speed", range=["1000 rpm", "1600 rpm"], start_from="orbits")
+
+
+def test_a_model_with_events_is_refused_with_exit_2(tmp_path):
+    text = (tmp_path / "zk.toml")
+    from importlib import resources
+
+    case = resources.files("rotorlab.cases").joinpath("zhakash-k2.toml").read_text()
+    text.write_text(case[: case.index("[[analysis]]")].replace('count = 2', 'count = 2\nfriction = 0.01'))
+    out = tmp_path / "o.nc"
+    res = runner.invoke(app, ["continue", str(text), "--param", "drive.speed=1500rpm:1600rpm", "--from", "simulation",
+                              "--out", str(out)])
+    assert res.exit_code == 2 and "Traceback" not in res.output and not out.exists()
+    assert "periodic orbits of a model with events (stick_1, slip_1, stick_2, slip_2) are not supported" in \
+        " ".join(res.output.split())
+
+
+def test_periodic_orbits_in_another_parameter_are_refused_with_exit_2():
+    res = runner.invoke(app, ["continue", "zhakash-k2", "--param", "ball_mass=30g:20g", "--speed-rpm", "1500", "--from",
+                              "simulation"])
+    assert res.exit_code == 2 and "drive.speed only" in res.output

@@ -32,6 +32,10 @@ def continuation_machine(case_model, analysis):
     from rotorlab.continuation import as_machine, parameter_unit, with_value
     from rotorlab.models import ConstantSpeed
 
+    from rotorlab.analyses._continuation_periodic import PERIODIC_STARTS, orbit_model
+
+    if analysis.start_from in PERIODIC_STARTS:
+        orbit_model(case_model, analysis)  # periodic orbits: a smooth jeffcott_balls rotor in drive.speed
     model = build_model(case_model)
     if case_model.type == "jeffcott_balls" and not isinstance(model.speed, ConstantSpeed):
         from dataclasses import replace

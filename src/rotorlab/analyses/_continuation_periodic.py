@@ -17,7 +17,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["PERIODIC_STARTS", "periodic_branches"]
+__all__ = ["PERIODIC_STARTS", "orbit_model", "orbit_sentence", "periodic_branches"]
 
 #: The ``start_from`` values that continue periodic orbits.
 PERIODIC_STARTS = ("hopf", "simulation")
@@ -26,7 +26,10 @@ GRID, T_SETTLE, T_WINDOW = 8, 40.0, 3.0
 HOPF_ORBITS = 100
 
 
-def _rotating(case_model, analysis):
+def orbit_model(case_model, analysis):
+    """The case's ``jeffcott_balls`` rotor (fixed frame, constant speed ``range[0]``) whose
+    co-rotating frame carries the orbits; ValueError for another model, another parameter than
+    ``drive.speed`` or a model with events (the message of the shooting code)."""
     from rotorlab.analyses._case import build_model
     from rotorlab.models import ConstantSpeed, JeffcottBalls
 
@@ -117,7 +120,7 @@ def periodic_branches(case_model, analysis, equilibria=None, equilibria_basis=No
     from rotorlab.continuation import continue_periodic, orbit_from_hopf, orbit_from_simulation
     from rotorlab.models import ConstantSpeed
 
-    model = _rotating(case_model, analysis)
+    model = orbit_model(case_model, analysis)
     nb = model.n_balls
     angles = tuple(range(4, 4 + nb))
 
