@@ -109,7 +109,8 @@ def _jeffcott_state(rot, at, value: float, machine_state: np.ndarray, basis: np.
 
 
 def periodic_branches(case_model, analysis, equilibria=None, equilibria_basis=None) -> tuple[list[Any], str]:
-    """The periodic branches of ``analysis`` and a sentence saying where they started.
+    """The periodic branches of ``analysis`` and, from a simulation, a sentence saying which start
+    was used (empty from Hopf points: each branch's label names its Hopf point).
 
     Raises
     ------
@@ -149,10 +150,10 @@ def periodic_branches(case_model, analysis, equilibria=None, equilibria_basis=No
         scale = np.r_[[1e-3] * 4, [1.0] * (2 * nb)]
         orbit = orbit_from_hopf(rot, x0, s.value, at, parameter=analysis.param, amplitude=1e-3, segments=5,
                                 state_scale=scale)
-        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label=f"from Hopf of {born}",
+        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label=f"born at the Hopf point of {born}, {s.value * 30 / math.pi:.6g} rpm",
                                      settings=_settings(analysis, s.value, HOPF_ORBITS),
                                      state_scale=np.r_[[1e-3] * 2, [0.1] * 2, [1.0] * (2 * nb)]))
-    return out, "the Hopf points at " + ", ".join(f"{h.value * 30 / math.pi:.6g} rpm ({born})" for h, born in hopfs)
+    return out, ""  # each branch's label says where it was born
 
 
 _ENDS = {"bound": "the range ends there", "max_points": "the continuation stopped after its number of orbits",

@@ -213,12 +213,15 @@ class ContinuationResult:
             ds[k].attrs["units"] = u
         params = {b.parameter for b in self.branches}
         ds["value"].attrs["units"] = self.units.get(params.pop(), "") if len(params) == 1 else "per branch"
-        # per-point arrays every branch has (ball angles ...): dims branch, point, then their own
-        common = set.intersection(*(set(b.extra) for b in self.branches)) if self.branches else set()
-        for key in sorted(common):
-            width = np.asarray(self.branches[0].extra[key]).reshape(len(self.branches[0].values), -1).shape[1]
+        # per-point arrays of the branches (ball angles ...): dims branch, point, then their own;
+        # NaN on a branch without it (a periodic branch has no ball angles of a steady motion)
+        for key in sorted(set().union(*(set(b.extra) for b in self.branches))):
+            have = [b for b in self.branches if key in b.extra]
+            width = max(np.asarray(b.extra[key]).reshape(len(b.values), -1).shape[1] for b in have)
             arr = np.full((nb, n, width), math.nan)
             for i, b in enumerate(self.branches):
+                if key not in b.extra:
+                    continue
                 v = np.asarray(b.extra[key], dtype=float).reshape(len(b.values), -1)
                 arr[i, : v.shape[0], : v.shape[1]] = v
             ds[key] = (("branch", "point", f"{key}_index"), arr)
