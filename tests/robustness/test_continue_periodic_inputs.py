@@ -110,3 +110,20 @@ def test_periodic_orbits_in_another_parameter_are_refused_with_exit_2():
     res = runner.invoke(app, ["continue", "zhakash-k2", "--param", "ball_mass=30g:20g", "--speed-rpm", "1500", "--from",
                               "simulation"])
     assert res.exit_code == 2 and "drive.speed only" in res.output
+
+
+def test_from_hopf_starts_an_orbit_at_the_hopf_point_with_its_period():
+    """Near a Hopf point the orbit's period is 2 pi / w of the crossing pair (Kuznetsov 2004, 3.5)."""
+    res = runner.invoke(app, ["continue", "zhakash-k2", "--param", "drive.speed=1300rpm:1380rpm", "--from", "hopf",
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout[res.stdout.index("{"):])
+    hopf = {round(s["drive.speed"], 6): s for b in doc["branches"] if b["kind"] == "equilibrium"
+            for s in b["special_points"] if s["type"] == "hopf"}
+    (h,) = hopf.values()  # main+ and main- share it: 1371 rpm
+    (orbit,) = [b for b in doc["branches"] if b["kind"] == "periodic"]
+    first = orbit["points"][0]
+    assert first["drive.speed"] == pytest.approx(h["drive.speed"], rel=1e-6)
+    assert first["period_s"] == pytest.approx(2 * math.pi / h["frequency_rad_s"], rel=1e-5)
+    assert first["amplitude_m"] < 1e-5 < max(p["amplitude_m"] for p in orbit["points"])
+    assert orbit["label"].startswith("born at the Hopf point of main")
