@@ -150,7 +150,8 @@ def periodic_branches(case_model, analysis, equilibria=None, equilibria_basis=No
         scale = np.r_[[1e-3] * 4, [1.0] * (2 * nb)]
         orbit = orbit_from_hopf(rot, x0, s.value, at, parameter=analysis.param, amplitude=1e-3, segments=5,
                                 state_scale=scale)
-        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label=f"born at the Hopf point of {born}, {s.value * 30 / math.pi:.6g} rpm",
+        label = f"born at the Hopf point of {born}, {s.value * 30 / math.pi:.6g} rpm"
+        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label=label,
                                      settings=_settings(analysis, s.value, HOPF_ORBITS),
                                      state_scale=np.r_[[1e-3] * 2, [0.1] * 2, [1.0] * (2 * nb)]))
     return out, ""  # each branch's label says where it was born
@@ -185,5 +186,5 @@ def orbit_sentence(branch: dict, units: str) -> str:
         return f"{who} exists from {vals.min():.5g} to {vals.max():.5g} {unit} and is unstable " \
                f"all along it ({ended})"
     return f"{who} exists and is stable from {vals[stable].min():.5g} to " \
-           f"{vals[stable].max():.5g} {unit}{said}; the branch's unstable orbits lie between {vals[~stable].min():.5g} " \
-           f"and {vals[~stable].max():.5g} {unit} ({ended})"
+           f"{vals[stable].max():.5g} {unit}{said}; the branch's unstable orbits lie between " \
+           f"{vals[~stable].min():.5g} and {vals[~stable].max():.5g} {unit} ({ended})"

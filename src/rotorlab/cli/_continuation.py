@@ -74,7 +74,9 @@ def continue_command(
     param2: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--param2", metavar="NAME=A:B", help="Continue the fold and Hopf points found in a second parameter.")] = None,
     start_from: Annotated[Optional[str], typer.Option(  # noqa: UP007
-        "--from", metavar="K", help="Starting motions: balanced, side, all or a motion's label (side 01); hopf or simulation: whirl orbits (periodic branches) from the Hopf points or from a simulation at the range's start.")] = None,
+        "--from", metavar="K", help="Starting motions: balanced, side, all or a motion's label (side 01); hopf or "
+        "simulation: whirl orbits (periodic branches) from the Hopf points or from a simulation at the range's "
+        "start.")] = None,
     speed_rpm: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--speed-rpm", metavar="RPM", help="Constant speed when the speed is not the continued parameter.")] = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007

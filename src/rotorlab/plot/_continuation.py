@@ -40,9 +40,9 @@ _ZERO_WHIRL = 1e-9
 
 def _with_special_points(ds, b: int, specials: list, param: str):
     """Branch ``b``'s parameter values, amplitudes (m), stability, ball angles (rad; None if
-    absent) and periods (s; NaN for equilibria) with each located special point inserted where it lies (its stability that of the
-    point after it), so that a stable and an unstable stretch meet at the located point, not at
-    the next computed one."""
+    absent) and periods (s; NaN for equilibria) with each located special point inserted where it
+    lies (its stability that of the point after it), so that a stable and an unstable stretch
+    meet at the located point, not at the next computed one."""
     v = ds.value.values[b]
     keep = np.isfinite(v)
     v = v[keep]
