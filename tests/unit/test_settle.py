@@ -85,7 +85,8 @@ def test_long_horizon_every_start_off_the_diagonal_balances(case):
     verdict = basin_verdict(ds)
     assert verdict["settled"] and verdict["not_settled"] == 0 and verdict["horizon_needed_s"] is None
     assert verdict["sentence"].startswith("The fractions no longer change: at 18 s and 20 s")
-    assert ds.attrs["horizon_rule"] == "horizon 20 s, from the t_end given"
+    assert ds.attrs["horizon_rule"] == ("horizon 20 s, from the t_end given (127 time constants of the balanced "
+                                        "state's slowest mode, 0.158 s)")
     assert "no longer change" in " ".join(basin_findings(ds, _rows(ds)).numbers)
 
 

@@ -99,6 +99,8 @@ def _with_horizon(mapper: Any, given: bool, source: str, explain: dict[str, Any]
     if given or rate_of is None:
         t = float(mapper.horizons()[-1])
         info["horizon_rule"] = f"horizon {t:.3g} s, from {source}" if given else f"horizon {t:.3g} s, the mapper's default"
+        if rate is not None:
+            info["horizon_rule"] += f" ({t * rate:.3g} time constants of the balanced state's slowest mode, {1 / rate:.3g} s)"
     else:
         speed = mapper.start_value("spin_speed")
         t, info["horizon_rule"] = default_horizon(rate, speed, float(mapper.t_end))
