@@ -18,8 +18,8 @@ P = MODEL.critical_speed
 
 
 def test_labels():
-    assert balancer_labels(1) == ("balanced", "side (0°)", "side (180°)", "non-synchronous", "other")
-    assert len(balancer_labels(3)) == 4 + 3
+    assert balancer_labels(1) == ("balanced", "side (0°)", "side (180°)", "non-synchronous", "not settled", "other")
+    assert len(balancer_labels(3)) == 4 + 4
 
 
 def test_supercritical_starts_balance_and_subcritical_go_to_the_unbalance():

@@ -40,8 +40,13 @@ def _num(value: Any) -> float | None:
     return value if math.isfinite(value) else None
 
 
-def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None) -> Any:
+def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None,
+                 explain: dict[str, Any] | None = None) -> Any:
     """Build the mapper of a ``basin`` (or ``sweep``) analysis.
+
+    Without a ``t_end`` (here or in the analysis) a mapper of a balancer (one with
+    ``balanced_decay_rate()``) runs :func:`rotorlab.explore._settle.default_horizon`: several time
+    constants of its balanced state's slowest decaying mode, within stated revolution bounds.
 
     Parameters
     ----------
@@ -51,11 +56,14 @@ def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None) 
         Gives ``n_horizons``, ``t_end``, ``window_revolutions``, ``spare_turns``, ``rtol``,
         ``atol`` (None: the mapper's default) and ``spin_speed(case_model)``.
     t_end : float, optional
-        Simulated time (s) instead of the analysis' (or the mapper's default).
+        Simulated time (s) instead of the analysis' (or the default).
+    explain : dict, optional
+        Filled with ``horizon_rule`` (how the horizon was chosen, a sentence) and, for a
+        balancer, ``slowest_decay_rate`` (1/s; NaN without a stable balanced state).
 
     Returns
     -------
-    rotorlab.explore.TorusRegimes or rotorlab.explore.BalancerRegimes
+    rotorlab.explore.TorusRegimes, rotorlab.explore.BalancerRegimes or rotorlab.explore.MachineRegimes
 
     Raises
     ------
@@ -75,6 +83,30 @@ def basin_mapper(case_model: Any, analysis: Any, *, t_end: float | None = None) 
     if mapper is None:
         raise ValueError(f"analysis {analysis.name}: basins need a toroidal_ball model or a jeffcott_balls or machine "
                          f"model with balls, not {kind!r}")  # fmt: skip
+    return _with_horizon(mapper, "t_end" in kw, "the t_end given", explain)
+
+
+def _with_horizon(mapper: Any, given: bool, source: str, explain: dict[str, Any] | None) -> Any:
+    """The mapper with its default horizon from its balanced state's eigenvalues (when it has
+    ``balanced_decay_rate`` and no t_end was given); ``explain`` gets how it was chosen."""
+    from dataclasses import replace
+
+    from rotorlab.explore._settle import default_horizon
+
+    rate_of = getattr(mapper, "balanced_decay_rate", None)
+    rate = rate_of() if rate_of is not None else None
+    info: dict[str, Any] = {"slowest_decay_rate": math.nan if rate is None else float(rate)}
+    if given or rate_of is None:
+        t = float(mapper.horizons()[-1])
+        info["horizon_rule"] = f"horizon {t:.3g} s, from {source}" if given else f"horizon {t:.3g} s, the mapper's default"
+        if rate is not None:
+            info["horizon_rule"] += f" ({t * rate:.3g} time constants of the balanced state's slowest mode, {1 / rate:.3g} s)"
+    else:
+        speed = mapper.start_value("spin_speed")
+        t, info["horizon_rule"] = default_horizon(rate, speed, float(mapper.t_end))
+        mapper = replace(mapper, t_end=t)
+    if explain is not None:
+        explain.update(info)
     return mapper
 
 
@@ -231,7 +263,8 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
             raise ValueError(f"analysis {analysis.name}: a working-point analysis runs no sweep (no store or executor)")
         ds = _working_point(case_model, analysis, progress)
     else:
-        mapper = basin_mapper(case_model, analysis, t_end=t_end)
+        explain: dict[str, Any] = {}
+        mapper = basin_mapper(case_model, analysis, t_end=t_end, explain=explain)
         ds = run_basin(mapper, analysis.x, analysis.y, fixed=analysis.fixed, samples=analysis.samples,
                        seed=analysis.seed, confidence=analysis.confidence, threads=threads,
                        chunk_size=chunk_size, progress=progress, store=store, resume=resume,
@@ -239,6 +272,7 @@ def run_basin_analysis(case_model: Any, analysis: Any, *, t_end: float | None = 
     ds.attrs["name"] = analysis.name
     ds.attrs["model"] = str(case_model.type)
     if analysis.type == "basin":
+        ds.attrs.update(explain)
         from rotorlab.io import DIMENSIONS, coordinate_dimensions
 
         dims = coordinate_dimensions(case_model)
@@ -385,7 +419,8 @@ def basin_document(ds: xarray.Dataset) -> dict[str, Any]:
         (names), ``mode``, ``fixed`` (SI), ``horizons_s`` and ``fractions_by_horizon`` (label ->
         list), ``label_since_s`` (label -> median and max time from which the starts ending with
         that label kept it), and for random starts ``seed``, ``confidence`` and ``ci`` (label ->
-        [low, high]).
+        [low, high]); ``verdict`` (:func:`rotorlab.analyses._verdict.basin_verdict`), and where
+        the horizon rule is known ``horizon_rule`` and ``slowest_decay_rate_per_s``.
     """
     names, frac = _fractions(ds)
     rows = basin_rows(ds)
@@ -402,6 +437,13 @@ def basin_document(ds: xarray.Dataset) -> dict[str, Any]:
         "label_since_s": {r["regime"]: {"median": r["label_since_median_s"], "max": r["label_since_max_s"]}
                           for r in rows},
     }  # fmt: skip
+    if "outcome" in ds:
+        from rotorlab.analyses._verdict import basin_verdict
+
+        doc["verdict"] = basin_verdict(ds)
+    if ds.attrs.get("horizon_rule"):
+        doc["horizon_rule"] = str(ds.attrs["horizon_rule"])
+        doc["slowest_decay_rate_per_s"] = _num(ds.attrs.get("slowest_decay_rate", math.nan))
     if ds.attrs.get("mode") == "random":
         doc["seed"] = int(ds.attrs["seed"])
         doc["confidence"] = float(ds.attrs["confidence"])

@@ -16,6 +16,7 @@ from rotorlab.explore._outcome import (
     reference_amplitude,
     wrap_angle,
 )
+from rotorlab.explore._settle import NOT_SETTLED, settle_estimate
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
 if TYPE_CHECKING:
@@ -186,6 +187,7 @@ def simulate(
         "final_ball_angle": np.empty((*shape, n)),
         "max_final_rate": np.empty(shape),
         "outcome": np.empty(shape, dtype=object),
+        "settle_estimate": np.empty(shape),
     }
     speed_end = np.empty(len(models))
     reference = np.empty(len(models))
@@ -220,6 +222,9 @@ def simulate(
         out["max_final_rate"][k] = np.where(ok, rate_win.max(axis=1, initial=0.0), np.nan)
         psi_end = sol.y_final[:, 4 : 4 + n] - (float(rot.speed.spin_angle(t_end)) if rot.frame == "fixed" else 0.0)
         out["final_ball_angle"][k] = np.where(ok[:, None], wrap_angle(psi_end), np.nan)
+        distance = np.maximum(out["amplitude"][k] / (BALANCED_FRACTION * reference[k]),
+                              np.abs(out["ball_rate"][k]).max(axis=2, initial=0.0) / (SETTLE_RATE * abs(om_end)))
+        out["settle_estimate"][k] = _settle_estimate(ts, distance, window)
         for i in range(n_ic):
             code = int(sol.status[i])
             note = sol.notes[i] if sol.notes else ""
@@ -228,6 +233,8 @@ def simulate(
                 float(reference[k]), out["final_ball_angle"][k, i],
                 float(out["max_final_rate"][k, i]), om_end,
             )  # fmt: skip
+            if out["outcome"][k, i] != "balanced" and code >= 0 and np.isfinite(out["settle_estimate"][k, i]):
+                out["outcome"][k, i] = NOT_SETTLED
 
     p = model.critical_speed
     dims2 = ("speed", "ic")
@@ -255,6 +262,8 @@ def simulate(
             "max_final_rate": (dims2, out["max_final_rate"],
                                {"units": "rad/s", "long_name": "largest |ball rate|, final window"}),
             "outcome": (dims2, out["outcome"].astype(str), {"long_name": "outcome"}),
+            "settle_estimate": (dims2, out["settle_estimate"],
+                                {"units": "s", "long_name": "estimated time to balance of a start not settled"}),
             "reference_amplitude": (("speed",), reference,
                                     {"units": "m", "long_name": "deflection, unbalance alone"}),
             "critical_speed": ((), p, {"units": "rad/s", "long_name": "critical speed p"}),
@@ -305,6 +314,20 @@ def _saved_states(rot: Any, ts: np.ndarray, ys: np.ndarray, out: dict, k: int) -
     out["amplitude"][k] = np.hypot(a, b)
 
 
+def _settle_estimate(ts: np.ndarray, distance: np.ndarray, window: np.ndarray) -> np.ndarray:
+    """Estimated time to balance (s) of every start whose distance to the balanced state (in units
+    of its thresholds, balanced below 1) still falls towards it at the end, NaN for the others:
+    :func:`rotorlab.explore._settle.settle_estimate` on the largest distance over the final
+    window and the windows ending 10 % and 20 % of the run earlier."""
+    width = int(window.sum())
+    step = max(ts.size // 10, 1)
+    ends = [ts.size - 1 - 2 * step, ts.size - 1 - step, ts.size - 1]
+    if ends[0] - width + 1 < 0:
+        return np.full(distance.shape[0], np.nan)
+    worst = np.stack([distance[:, e - width + 1:e + 1].max(axis=1) for e in ends], axis=1)
+    return settle_estimate(worst, np.ones(distance.shape[0]), ts[ends])[:, -1]
+
+
 def run_simulate_analysis(case_model: Any, analysis: Any,
                           progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
     """Run a case's ``simulate`` analysis (see :func:`simulate`); ``attrs["name"]`` is its name."""
@@ -343,6 +366,7 @@ def simulation_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
         Keys ``speed`` (rad/s), ``speed_rpm``, ``speed_hz``, ``speed_ratio`` (omega / p), ``ic``,
         ``initial_ball_angles_deg``, ``final_amplitude`` (m), ``reference_amplitude`` (m),
         ``amplitude_ratio`` (final / reference), ``final_ball_angles_deg``, ``outcome``,
+        ``settle_estimate_s`` (estimated time to balance of a start ``not settled``, else None),
         ``status``. Plain Python values (JSON-ready; NaN becomes None).
     """
     rows = []
@@ -363,6 +387,8 @@ def simulation_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
                 "amplitude_ratio": _number(amp / ref) if ref > 0 else None,
                 "final_ball_angles_deg": _degrees(ds.final_ball_angle.values[k, i]),
                 "outcome": str(ds.outcome.values[k, i]),
+                "settle_estimate_s": _number(float(ds.settle_estimate.values[k, i])) if "settle_estimate" in ds
+                else None,
                 "status": int(ds.status.values[k, i]),
             })  # fmt: skip
     return rows

@@ -224,6 +224,16 @@ def basin_command(
         exit_if_failed({spec.name: ds})
 
 
+def _verdict_caption(ds: Any) -> str | None:
+    """How the horizon was chosen and whether the fractions stopped changing (its stated test)."""
+    from rotorlab.analyses._verdict import basin_verdict
+
+    if "count" not in ds or "outcome" not in ds:
+        return None
+    rule = ds.attrs.get("horizon_rule")
+    return ((f"{str(rule)[0].upper()}{str(rule)[1:]}. " if rule else "") + basin_verdict(ds)["sentence"])
+
+
 def basin_tables(results: dict[str, Any], tables: dict[str, list[dict[str, Any]]]) -> list[Any]:
     """Return rich tables of basin and working-point results (one per analysis, empty if none).
 
@@ -258,7 +268,7 @@ def basin_tables(results: dict[str, Any], tables: dict[str, list[dict[str, Any]]
                 " x ".join(d for d in ds["label"].dims if d != "horizon"))  # fmt: skip
         table = Table(title=f"{name}: {n} starts, {over}"
                             + (f" ({fixed})" if fixed else "") + f", after {float(horizons[-1]):g} s",
-                      title_justify="left")  # fmt: skip
+                      title_justify="left", caption=_verdict_caption(ds), caption_justify="left")  # fmt: skip
         half = rows[0]["horizon_half_s"] if rows else float(horizons[-1])
         for col in ("regime", "%", "starts", "CI (%)", f"% at {half:g} s",
                     "label kept since, median / max (s)"):  # fmt: skip

@@ -6,7 +6,9 @@ Features at each horizon T, over a window of ``window_revolutions`` turns before
 of any ball, and the ball angles at T. The labels are those of
 :func:`rotorlab.analyses.classify` (seed 002 eqs. (15)-(16)): *balanced*; each *side* motion
 (balls on the line through the unbalance, e.g. ``side (0°, 180°)``); *non-synchronous* (balls
-still moving relative to the rotor); *other* (held elsewhere by
+still moving relative to the rotor); *not settled* (not balanced yet, but its deflection is
+still falling towards the balanced state: :func:`~rotorlab.explore._settle.settle_estimate`, whose
+estimated time to settle is the feature ``settle_estimate``); *other* (held elsewhere by
 friction, or a failed integration).
 """
 
@@ -20,7 +22,8 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rotorlab._kernels import jeffcott_balls as _jk
-from rotorlab.explore._outcome import classify, reference_amplitude, wrap_angle
+from rotorlab.explore._outcome import BALANCED_FRACTION, SETTLE_RATE, classify, reference_amplitude, wrap_angle
+from rotorlab.explore._settle import NOT_SETTLED, settle_estimate, slowest_decay_rate
 from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import Status, StepControl
 from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, Parameter, fixed_to_rotating
@@ -39,18 +42,27 @@ def _vary_ball(ball: BallParams, kw: Mapping[str, float]) -> BallParams:
                       damping=kw.get("damping", ball.damping), friction=kw.get("friction", ball.friction))
 
 
+def _distance(amplitude, reference, max_rate, omega) -> np.ndarray:
+    """Distance to the balanced state in units of its thresholds (balanced below 1): the larger of
+    the deflection over :data:`BALANCED_FRACTION` of the unbalance response and the ball rate over
+    :data:`SETTLE_RATE` of the spin speed (both decay at the balanced state's slowest mode)."""
+    ref = np.asarray(reference, dtype=float).reshape(-1, 1)
+    om = np.abs(np.asarray(omega, dtype=float)).reshape(-1, 1)
+    return np.maximum(amplitude / (BALANCED_FRACTION * ref), max_rate / (SETTLE_RATE * om))
+
+
 def balancer_labels(n_balls: int) -> tuple[str, ...]:
     """Labels of :class:`BalancerRegimes` for ``n_balls`` balls, in code order.
 
     Examples
     --------
     >>> balancer_labels(2)
-    ('balanced', 'side (0°, 0°)', 'side (0°, 180°)', 'side (180°, 180°)', 'non-synchronous', 'other')
+    ('balanced', 'side (0°, 0°)', 'side (0°, 180°)', 'side (180°, 180°)', 'non-synchronous', 'not settled', 'other')
     """
     sides = []
     for combo in itertools.combinations_with_replacement((0, 180), n_balls):
         sides.append("side (" + ", ".join(f"{d}°" for d in combo) + ")")
-    return ("balanced", *sides, "non-synchronous", "other")
+    return ("balanced", *sides, "non-synchronous", NOT_SETTLED, "other")
 
 
 @dataclass(frozen=True, slots=True)
@@ -174,6 +186,23 @@ class BalancerRegimes:
         speed = ConstantSpeed(values["spin_speed"]) if "spin_speed" in values else self.model.speed
         return JeffcottBalls(rotor, balls, speed=speed, frame=self.frame)
 
+    def balanced_decay_rate(self) -> float | None:
+        """``-max Re(lambda)`` (1/s) of the base model's balanced state (the main motion, seed 003
+        eq. (12), free balls at their base angles) from the co-rotating linearisation; None if the
+        balls cannot balance or the state is not asymptotically stable."""
+        from rotorlab.steady._motions import main_family_angles, main_motions_exist
+
+        m = self.model
+        moments = [b.mass * b.radius for b in m.balls]
+        if m.has_friction or not main_motions_exist(m.imbalance, moments):
+            return None
+        angles = main_family_angles(m.imbalance, moments, self.base_angles[2:], +1)
+        if angles is None:
+            return None
+        y = np.zeros(m.n_state)
+        y[4 : 4 + m.n_balls] = angles
+        return slowest_decay_rate(m.linearize(y).eigenvalues)
+
     def start_value(self, name: str) -> float | None:
         """The value a start takes for coordinate ``name`` when not given (SI): the base ball
         angle, rest, the base model's speed or rotor field, the field shared by all balls (None
@@ -252,6 +281,8 @@ class BalancerRegimes:
             "reference_amplitude": Feature(ref, "m", "deflection the unbalance alone causes"),
             "rotor_speed": Feature(omega, "rad/s", "constant spin speed of the trajectory"),
             "status_code": Feature(sol.status.astype(np.int32), "1", "integrator status"),
+            "settle_estimate": Feature(settle_estimate(_distance(amplitude, ref, max_rate, omega), np.ones(n), h), "s",
+                                       "estimated time to balance of a start still converging (NaN: not converging)"),
         }  # fmt: skip
         for i in range(nb):
             out[f"ball_angle_{i + 1}"] = Feature(wrap_angle(ys[:, i_end, 4 + i]), "rad",
@@ -270,5 +301,7 @@ class BalancerRegimes:
                             float(features["reference_amplitude"][i]),
                             [features[f"ball_angle_{b + 1}"][i, j] for b in range(nb)],
                             float(features["max_rate"][i, j]), float(features["rotor_speed"][i]))  # fmt: skip
+            if text != "balanced" and code >= 0 and np.isfinite(features["settle_estimate"][i, j]):
+                text = NOT_SETTLED
             out[i, j] = index.get(text, index["other"])
         return out

@@ -20,7 +20,8 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from rotorlab.explore._outcome import machine_outcome, wrap_machine_angle
+from rotorlab.explore._outcome import BALANCED_FRACTION, machine_outcome, wrap_machine_angle
+from rotorlab.explore._settle import NOT_SETTLED, settle_estimate, slowest_decay_rate
 from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import StepControl
 from rotorlab.models import ConstantSpeed, Machine, Parameter
@@ -28,7 +29,7 @@ from rotorlab.models import ConstantSpeed, Machine, Parameter
 __all__ = ["MachineRegimes", "MACHINE_LABELS"]
 
 #: Labels of :class:`MachineRegimes`, in code order.
-MACHINE_LABELS = ("balanced", "not balanced", "non-synchronous", "other")
+MACHINE_LABELS = ("balanced", "not balanced", "non-synchronous", NOT_SETTLED, "other")
 _PARAMS = {"spin_speed": "rad/s", "ball_mass": "kg", "ball_damping": "N m s/rad"}
 #: Ranges of the coordinates of :data:`_PARAMS` (gt, ge, lt, le), those of a ball's keys.
 _PARAM_BOUNDS = {"spin_speed": (0.0, None, None, None), "ball_mass": (0.0, None, None, None),
@@ -172,6 +173,20 @@ class MachineRegimes:
             m = replace(m, races=races)
         return m
 
+    def balanced_decay_rate(self) -> float | None:
+        """``-max Re(lambda)`` (1/s) of the base machine's balanced state
+        (:meth:`~rotorlab.models.Machine.balanced_state`, its co-rotating linearisation); None
+        without a co-rotating frame, if the balls cannot balance or the state is not
+        asymptotically stable."""
+        m = self.model
+        if m.why_no_rotating_frame() is not None:
+            return None
+        try:
+            y = m.balanced_state()
+        except ValueError:
+            return None
+        return slowest_decay_rate(m.linearize(y).eigenvalues)
+
     def start_value(self, name: str) -> float | None:
         """The value a start takes for coordinate ``name`` when not given (SI): the base ball
         angle, rest, the base machine's speed, the mass or damping shared by all its balls (None
@@ -274,6 +289,8 @@ class MachineRegimes:
             "reference_amplitude": Feature(ref, "m", "largest unbalance response with the balls locked"),
             "rotor_speed": Feature(omega, "rad/s", "constant spin speed of the trajectory"),
             "status_code": Feature(sol.status.astype(np.int32), "1", "integrator status"),
+            "settle_estimate": Feature(settle_estimate(amplitude, BALANCED_FRACTION * ref, h), "s",
+                                       "estimated time to balance of a start still converging (NaN: not converging)"),
         }
         for i in range(nb):
             out[f"ball_angle_{i + 1}"] = Feature(wrap_machine_angle(ys[:, i_end, lay.i_phi + i] - omega[:, None] * ts[i_end]),
@@ -288,5 +305,7 @@ class MachineRegimes:
         for i, j in np.ndindex(*amp.shape):
             text = machine_outcome(int(features["status_code"][i]), amp[i, j], features["reference_amplitude"][i],
                             float(features["max_rate"][i, j]), float(features["rotor_speed"][i]), nb)
+            if text not in ("balanced", "failed") and np.isfinite(features["settle_estimate"][i, j]):
+                text = NOT_SETTLED
             out[i, j] = index.get(text, index["other"])
         return out

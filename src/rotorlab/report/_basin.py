@@ -56,6 +56,7 @@ def basin_section(ds: xarray.Dataset, rows: Sequence[Mapping[str, Any]] | None, 
         ``table(header, rows, numeric=...)`` of the report.
     """
     from rotorlab.analyses._basin import basin_rows
+    from rotorlab.analyses._verdict import basin_verdict
 
     if ds.attrs.get("analysis") == "working-point":
         return _working_point_html(ds, table)
@@ -74,20 +75,15 @@ def basin_section(ds: xarray.Dataset, rows: Sequence[Mapping[str, Any]] | None, 
     else:  # a sweep's grid: one dim per swept quantity
         over = " × ".join(d for d in ds["label"].dims if d != "horizon")
     fixed = ", ".join(f"{k[6:]} = {float(v):g}" for k, v in ds.attrs.items() if k.startswith("fixed_"))
-    frac = ds["fraction"].values
     half = rows[0]["horizon_half_s"] if rows else t_end
-    later = horizons >= half
-    last_change = float(abs(frac[later] - frac[-1]).max())
-    settled = (f"The fractions no longer change after {half:g} s of simulated time."
-               if last_change == 0.0 else
-               f"The fractions still change by up to {last_change:.1%} after {half:g} s of simulated "
-               "time: a regime there is a long transient, and longer runs may change the fractions.")  # fmt: skip
+    settled = basin_verdict(ds)["sentence"]
+    how = f" ({ds.attrs['horizon_rule']})" if ds.attrs.get("horizon_rule") else ""
     header = ("regime", f"% at {t_end:g} s", "starts", "CI (%)", f"% at {half:g} s",
               "label kept since, median / max (s)")  # fmt: skip
     return "".join([
         f"<p>Regimes of {where} over {_e(over)}"
         + (f" ({_e(fixed)})" if fixed else "") + f", classified every {float(horizons[0]):g} s up to "
-        f"{t_end:g} s.</p>",
+        f"{t_end:g} s{_e(how)}.</p>",
         table(header, basin_table_rows(rows), numeric={1, 2, 4}),
         f"<p>{_e(settled)}</p>",
     ])  # fmt: skip

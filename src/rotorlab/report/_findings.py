@@ -63,12 +63,24 @@ def simulation_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
     >>> f.verdict
     'at 2400 rpm (omega/p = 2): balanced from 2 of 2 starts (100.0 %)'
     """
+    from rotorlab.analyses._verdict import round_up_horizon
+    from rotorlab.explore._settle import NOT_SETTLED
+
     verdicts, numbers = [], []
     for rpm in dict.fromkeys(r["speed_rpm"] for r in rows):
         here = [r for r in rows if r["speed_rpm"] == rpm]
         counts = Counter(r["outcome"] for r in here)
         parts = [f"{o} from {c} of {len(here)} starts ({_pct(c, len(here))})" for o, c in counts.most_common()]
         verdicts.append(f"at {rpm:.0f} rpm (omega/p = {here[0]['speed_ratio']:.3g}): " + "; ".join(parts))
+        waiting = [r.get("settle_estimate_s") for r in here if r["outcome"] == NOT_SETTLED]
+        if waiting:
+            t_end = ds.attrs.get("t_end") if ds is not None else None
+            by = max((t for t in waiting if t is not None), default=None)
+            numbers.append(f"at {rpm:.0f} rpm {len(waiting)} of {len(here)} starts are not settled (still converging "
+                           "towards balance" + (f", estimated to settle by {by:.3g} s" if by is not None else "")
+                           + ")" + (f": the simulated time, {float(t_end):g} s, is too short for a verdict"
+                                    if t_end is not None else "")
+                           + (f"; a t_end of {round_up_horizon(1.25 * by):g} s would do" if by is not None else ""))
         amps = [r["final_amplitude"] for r in here if r["final_amplitude"] is not None]
         ratios = [r["amplitude_ratio"] for r in here if r["amplitude_ratio"] is not None]
         if amps:
@@ -108,8 +120,16 @@ def _fractions(ds: xarray.Dataset, rows: Rows) -> Findings:
         numbers.append(f"{first['regime']} confidence interval {100.0 * first['ci_low']:.1f} to "
                        f"{100.0 * first['ci_high']:.1f} %")  # fmt: skip
     if first.get("fraction_half") is not None and first["fraction_half"] != first["fraction"]:
-        numbers.append(f"{first['regime']} after {first['horizon_half_s']:g} s: {100.0 * first['fraction_half']:.1f} % "
-                       "(the fractions still change with the simulated time)")  # fmt: skip
+        numbers.append(f"{first['regime']} after {first['horizon_half_s']:g} s: {100.0 * first['fraction_half']:.1f} %")
+    if "count" in ds and "outcome" in ds:
+        from rotorlab.analyses._verdict import basin_verdict
+
+        test = basin_verdict(ds)
+        if not test["settled"]:
+            verdict = f"no verdict yet (horizon too short): {verdict}, so far"
+        numbers.append(test["sentence"])
+    if ds.attrs.get("horizon_rule"):
+        numbers.append(str(ds.attrs["horizon_rule"]))
     return Findings(verdict, tuple(numbers))
 
 
