@@ -37,7 +37,8 @@ def continuation_machine(case_model, analysis):
     if analysis.start_from in PERIODIC_STARTS:
         orbit_model(case_model, analysis)  # periodic orbits: a smooth jeffcott_balls rotor in drive.speed
     model = build_model(case_model)
-    if case_model.type == "jeffcott_balls" and not isinstance(model.speed, ConstantSpeed):
+    profile = getattr(model, "speed", None)  # a rotor with its own speed profile (jeffcott_balls)
+    if profile is not None and not isinstance(profile, ConstantSpeed):
         from dataclasses import replace
 
         model = replace(model, speed=ConstantSpeed(1.0))  # replaced below: a steady motion needs one
