@@ -259,7 +259,7 @@ def test_run_analysis_and_summarize():
     assert set(rows[0]) == {
         "speed", "speed_rpm", "speed_hz", "speed_ratio", "ic", "initial_ball_angles_deg",
         "final_amplitude", "reference_amplitude", "amplitude_ratio", "final_ball_angles_deg",
-        "outcome", "status",
+        "outcome", "status", "settle_estimate_s",
     }  # fmt: skip
     assert rows[0]["speed_rpm"] == pytest.approx(2400.0)
     assert rows[0]["speed_hz"] == pytest.approx(40.0)
