@@ -14,7 +14,9 @@ README = (ROOT / "README.md").read_text(encoding="utf-8")
 CI = ROOT / ".ci" / "run"
 
 INSTALL_AND_RUN = "pip install . && rotorlab run"
-INSTALL_AND_TEST = "pip install '.[test]' && pytest"
+INSTALL_AND_TEST = "bash .ci/run"
+# what .ci/run ends with: the test dependencies, then the suite
+CI_TEST_LINE = "pip install '.[test]' && pytest"
 
 
 def _section(title: str) -> str:
@@ -45,10 +47,13 @@ def test_ci_script_runs_the_readme_test_line():
     assert text.startswith("#!/usr/bin/env bash\n")
     commands = _command_lines(text)
     assert commands[0] == "set -euo pipefail"
-    # the only other commands: change to the repository root, then the README's test line
-    assert commands[1:] == ['cd "$(dirname "$0")/.."', INSTALL_AND_TEST]
+    # from the repository root; Chromium for the browser tests when it is missing (never a
+    # browser download); then the test dependencies and the whole suite
+    assert commands[1] == 'cd "$(dirname "$0")/.."'
+    assert commands[-1] == CI_TEST_LINE
+    assert "apt-get install -y --no-install-recommends chromium" in text
     quickstart_test_line = _command_lines(_blocks(_section("Quickstart"), "bash")[0])[1]
-    assert commands[-1] == quickstart_test_line
+    assert quickstart_test_line == "bash .ci/run"
 
 
 def test_python_example_prints_what_the_readme_says():
