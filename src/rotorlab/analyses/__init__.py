@@ -38,6 +38,7 @@ from rotorlab.analyses._impacts import (
     IMPACT_ANALYSES,
     REGIMES,
     SEED001_TABLE,
+    SLIDING_CONVENTIONS,
     SLIDING_FRACTION,
     SWEEP_PARAMS,
     classify_impacts,

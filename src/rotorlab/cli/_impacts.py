@@ -112,9 +112,9 @@ def impacts_command(
 ) -> None:
     """Simulate one run from rest: regime, impacts, sliding time, energy ratio eta.
 
-    Regimes: none, rebounds, sliding (sliding contact for >= 2 % of the run), backward_whirl
-    (the run was stopped: a self-feeding dry-friction backward whirl). --plot draws the
-    trajectory of the gap point P in the rotating frame (seed 001, Figs. 3, 4).
+    Regimes: none, rebounds, sliding (sustained sliding contact for >= 0.1 % of the run; the
+    analysis key sliding_fraction, 0 for the paper's any sliding episode), backward_whirl (the
+    run was stopped: a self-feeding dry-friction backward whirl). --plot draws the trajectory of the gap point P in the rotating frame (seed 001, Figs. 3, 4).
     """
     settings = _settings(ctx)
     with handled(settings):

@@ -142,7 +142,8 @@ def regime_codes(onsets, contact_fraction, whirl_ratio, rolling_fraction, status
     code = np.full(onsets.shape, int(RubRegime.NO_CONTACT), dtype=np.int64)
     intermittent = (onsets > 0) | ((cf > 0) & rule.uncounted_contact_is_impact)
     code[intermittent] = int(RubRegime.IMPACTS)
-    sustained = ((cf > 0) | (onsets > 0)) & (cf >= rule.sustained_fraction) & ((onsets == 0) | rule.impacts_in_sustained)
+    # sustained needs contact (cf > 0) even where sustained_fraction is 0 (seed 001's paper convention)
+    sustained = (cf > 0) & (cf >= rule.sustained_fraction) & ((onsets == 0) | rule.impacts_in_sustained)
     code[sustained] = int(RubRegime.FULL_RUB)
     with np.errstate(invalid="ignore"):
         backward = (wr <= 0) & (sustained | rule.backward_at_stop)

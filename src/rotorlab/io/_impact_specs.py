@@ -173,8 +173,9 @@ class _ImpactAnalysis(AbstractAnalysisSpec):
     internal_friction: quantity("dimensionless", ge=0) | None = Field(None, description="gamma of this analysis (-)")
     restitution: quantity("dimensionless", ge=0, le=1) | None = Field(None, description="k of this analysis (-)")
     friction: quantity("dimensionless", ge=0) | None = Field(None, description="f of this analysis (-)")
-    sliding_fraction: quantity("dimensionless", gt=0, le=1) = Field(
-        0.02, description="fraction of a run in sliding contact from which it is 'sliding' (-)"
+    sliding_fraction: quantity("dimensionless", ge=0, le=1) = Field(
+        0.001, description="share of a run in sustained sliding contact from which it is 'sliding' "
+        "(-); 0: the paper's convention, any sustained sliding episode"
     )
     rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-8, description="relative tolerance (-)")
     atol: quantity("dimensionless", gt=0) = Field(1e-11, description="absolute tolerance (SI)")
