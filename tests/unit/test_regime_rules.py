@@ -3,14 +3,16 @@ rules, and each rule reproduces the decision its analysis made before they were 
 
 import numpy as np
 
-from rotorlab.analyses._impacts import REGIMES, SEED001_RULE, classify_impacts, impact_features
+from rotorlab.analyses._impacts import (REGIMES, SEED001_RULE, SLIDING_CONVENTIONS, SLIDING_FRACTION, classify_impacts,
+                                        impact_features)
 from rotorlab.contact import WINDOW_RULE, RubRegime, regime_codes
 
 
 def _seed_rule_before(impacts, sliding_time, duration, whirl, status, fraction):
-    """Seed 001's rule as its analysis stated it (rotorlab.analyses._impacts, issue 14)."""
+    """Seed 001's rule as its analysis stated it (rotorlab.analyses._impacts, issue 14); sliding
+    needs sliding contact also at fraction 0 (the paper's convention, issue 30)."""
     code = np.where(impacts > 0, 1, 0)
-    code = np.where(sliding_time >= fraction * duration, 2, code)
+    code = np.where((sliding_time > 0) & (sliding_time >= fraction * duration), 2, code)
     code = np.where((impacts == 0) & (sliding_time == 0), 0, code)
     code = np.where(whirl > 0, 3, code)
     return np.where(status < 0, -1, code)
@@ -58,3 +60,12 @@ def test_window_rule_is_the_rub_map_rule():
         rf = float(rng.choice([0.0, 0.5, 0.9]))
         assert int(regime_codes(onsets, cf, wr, rf, 0, WINDOW_RULE)) == _window_rule_before(onsets, cf, wr, rf)
     assert int(regime_codes(0, 1.0, 0.3, 0.0, -1)) == RubRegime.FAILED
+
+
+def test_the_papers_sliding_convention_labels_any_sliding_episode_and_only_those():
+    # issue 30: sliding_fraction 0 (SLIDING_CONVENTIONS["paper"]) is "slides on the housing for
+    # some interval of time"; before, a fraction of 0 made every run with an impact "sliding"
+    impacts, sliding = [7, 7, 0], [0.0, 1e-4, 0.0]
+    assert classify_impacts(impacts, sliding, 2.0, 0, 0, SLIDING_CONVENTIONS["paper"]).tolist() == [1, 2, 0]
+    assert classify_impacts(impacts, sliding, 2.0, 0, 0).tolist() == [1, 1, 0]  # 0.005 % < 0.1 %
+    assert SLIDING_FRACTION == SLIDING_CONVENTIONS["default"] == 0.001

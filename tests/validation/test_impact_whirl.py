@@ -97,3 +97,40 @@ def test_the_stop_is_where_the_slip_of_p_vanishes_which_with_tilt_is_not_the_rol
             assert k.whirl_speed(y, p) == pytest.approx(roll, rel=1e-12)
             assert k.whirl_stop(y, p_lim, *e) == pytest.approx(0.0, abs=1e-9 * -roll)
             assert k.whirl_stop(y, p, *e) == pytest.approx((hp - lp / sb) * a, rel=1e-9)
+
+
+def test_a_forward_sliding_contact_without_a_stone_lifts_off_at_the_closed_form_time():
+    """Issue 30: why sliding contact in Fig. 4 lasts only while a stone pushes. Without tilt
+    (the case ``krasnov-crusher-translational``, gamma = 0.5, f = 0.3) and without stones, P
+    sliding forwards on the housing at radius Delta obeys m Delta Omega' = -f N - (c gamma /
+    omega0) Delta Omega (friction and the non-rotating membranes' damping), with
+    N = (m Omega^2 - c) Delta: the whirl Omega slows from omega0 (whirling with a stone's push)
+    and the rotor lifts off where N = 0, Omega = sqrt(c / m) = 100.65 rad/s, after
+    T = int dOmega / (f (Omega^2 - c/m) + c gamma Omega / (m omega0)) = 10.45 ms."""
+    from scipy.integrate import quad
+
+    from rotorlab._kernels import impact_rotor as k
+    from rotorlab.analyses import impact_model
+    from rotorlab.analyses._impacts import _control
+    from rotorlab.integrate import SaveAt, solve_ensemble
+    from rotorlab.io import load_case
+
+    model = impact_model(load_case("krasnov-crusher-translational").model)
+    h, r = model.housing, model.rotor
+    w0, m, c, f = r.spin_speed, r.mass, r.stiffness_1 + r.stiffness_2, h.friction
+    d = c * r.internal_friction / w0
+    wc = math.sqrt(c / m)
+    t_lift = quad(lambda om: 1.0 / (f * (om * om - wc * wc) + d * om / m), wc, w0, epsabs=0, epsrel=1e-12)[0]
+    assert wc == pytest.approx(100.65, abs=0.01) and t_lift == pytest.approx(10.45e-3, abs=0.01e-3)
+    y = model.initial_state()
+    y[k.U1] = h.gap  # on the housing at angle 0, whirling forwards at omega0 in the fixed frame:
+    y[k.DU1], y[k.DU2] = 0.0, 0.0  # at rest in the rotating frame
+    y[k.MODE] = 1.0
+    ts = np.linspace(0.0, 2 * t_lift, 4001)
+    sol = solve_ensemble(model, y, (0.0, 2 * t_lift), save_at=SaveAt(ts=ts),
+                         control=_control(1e-10, 1e-13), threads=1)  # fmt: skip
+    mode = sol.ys[0][:, k.MODE]
+    assert mode[0] == 1.0 and mode[-1] == 0.0
+    t_off = ts[np.argmax(mode == 0.0)]
+    assert t_off == pytest.approx(t_lift, abs=ts[1] + 1e-3 * t_lift)
+    assert sol.y_final[0][k.N_IMP] == 0  # lifted off, not bounced

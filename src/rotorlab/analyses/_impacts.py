@@ -8,14 +8,14 @@ Regimes (per run)
 ``none``: no impact with an approach speed >= ``Housing.count_speed``; ``rebounds``: impacts,
 sliding contact for less than ``sliding_fraction`` of the run; ``sliding``: the rotor in
 sustained contact with the housing, slipping, for at least that share of the run (default
-:data:`SLIDING_FRACTION`, 0.1 %; the conventions are :data:`SLIDING_CONVENTIONS`, see below); ``backward_whirl``: a sliding contact whirled backwards until the
-slip of P vanished (the theory's criterion; without tilt the rolling speed
+:data:`SLIDING_FRACTION`, 0.1 %; the conventions are :data:`SLIDING_CONVENTIONS`, see below);
+``backward_whirl``: a sliding contact whirled backwards until the slip of P vanished (the
+theory's criterion; without tilt the rolling speed
 :meth:`rotorlab.models.Housing.rolling_whirl_speed`), where the sliding law ends in the
-dry-friction backward whirl, or an impact's friction impulse stuck (the
-slip of P stopped: P rolls on the housing, reached through impacts, e.g. with restitution 1), and
-the run was stopped there (its impact
-counts are those of the whole run: a sliding contact makes no impacts, so they do not depend on
-the speed at which the stop is detected);
+dry-friction backward whirl, or an impact's friction impulse stuck (the slip of P stopped: P
+rolls on the housing, reached through impacts, e.g. with restitution 1), and the run was
+stopped there (its impact counts are those of the whole run: a sliding contact makes no
+impacts, so they do not depend on the speed at which the stop is detected);
 ``failed``: the integrator gave up (status < 0).
 
 These are the general rub regimes of :mod:`rotorlab.contact` (:class:`~rotorlab.contact.RubRegime`,
