@@ -15,6 +15,7 @@ from rotorlab.explore._balancer import BalancerRegimes, balancer_labels
 from rotorlab.explore._basin import GridAxis, basin_fractions, basin_map, basin_stability, wilson_interval
 from rotorlab.explore._machine import MACHINE_LABELS, MachineRegimes
 from rotorlab.explore._mapper import DEFAULT_CHUNK, AbstractMapper, Feature, MapperAnalysis, label_since, map_starts
+from rotorlab.explore._stability import RandomStarts, basin_stability_over, starts_for_half_width
 from rotorlab.explore._torus import TORUS_LABELS, TorusRegimes
 
 __all__ = [
@@ -28,11 +29,14 @@ __all__ = [
     "MapperAnalysis",
     "TORUS_LABELS",
     "TorusRegimes",
+    "RandomStarts",
     "balancer_labels",
     "basin_fractions",
     "basin_map",
     "basin_stability",
+    "basin_stability_over",
     "label_since",
     "map_starts",
+    "starts_for_half_width",
     "wilson_interval",
 ]

@@ -46,6 +46,7 @@ def run_sweep(
     chunk_size: int | None = None,
     executor: Any = None,
     progress: Callable[[SweepProgress], None] | None = None,
+    only: Any = None,
 ):
     """Run a sweep chunk by chunk and return its results as a Dataset.
 
@@ -67,6 +68,11 @@ def run_sweep(
         Where chunks run (default :class:`InProcess`). Results do not depend on it.
     progress : callable, optional
         ``progress(SweepProgress)`` once at the start and after each finished chunk.
+    only : iterable of int, optional
+        Compute only these chunks (those not yet done); the others stay missing and the Dataset
+        holds fill values there (NaN / 0 / False, as :func:`~rotorlab.sweep.open_sweep` with
+        ``partial=True``). For sweeps that choose their next points from the results so far
+        (adaptive basin stability, :func:`rotorlab.explore.basin_stability_over`).
 
     Returns
     -------
@@ -105,10 +111,15 @@ def run_sweep(
         sink = ZarrSink(store, sweep, chunk_size, resume=resume)
         size = sink.chunk_size
     ranges = sweep.chunks(size)
-    todo = sink.missing(len(ranges))
-    total = sweep.n_points
+    considered = range(len(ranges)) if only is None else sorted({int(k) for k in only})
+    if considered and not 0 <= considered[0] <= considered[-1] < len(ranges):
+        sink.close()
+        raise ValueError(f"only: chunk numbers must be in [0, {len(ranges) - 1}], got {considered[0]}..{considered[-1]}")
+    missing = set(sink.missing(len(ranges)))
+    todo = [k for k in considered if k in missing]
+    total = sum(ranges[k][1] - ranges[k][0] for k in considered)
     done = total - sum(ranges[k][1] - ranges[k][0] for k in todo)
-    skipped = len(ranges) - len(todo)
+    skipped = len(considered) - len(todo)
     coords = sweep.coordinates()
 
     def tasks():
@@ -118,7 +129,7 @@ def run_sweep(
 
     def report(computed: int) -> None:
         if progress is not None:
-            progress(SweepProgress(done, total, skipped + computed, len(ranges), computed, skipped))
+            progress(SweepProgress(done, total, skipped + computed, len(considered), computed, skipped))
 
     report(0)
     results = (executor or InProcess()).imap(compute_chunk, sweep.analysis, tasks())
@@ -133,4 +144,4 @@ def run_sweep(
     finally:
         results.close()
         sink.close()
-    return sink.dataset()
+    return sink.dataset(partial=only is not None)

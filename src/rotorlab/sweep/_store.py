@@ -159,13 +159,14 @@ class MemorySink:
     def write(self, k: int, lo: int, hi: int, result: dict[str, tuple]) -> None:
         for name, (dims, values, attrs) in result.items():
             if name not in self.vars:
-                self.vars[name] = (dims, np.empty((self.n, *values.shape[1:]), dtype=values.dtype), attrs)
+                self.vars[name] = (dims, np.full((self.n, *values.shape[1:]), _fill(values.dtype), dtype=values.dtype),
+                                   attrs)  # fmt: skip
             self.vars[name][1][lo:hi] = values
 
     def close(self) -> None:
         pass
 
-    def dataset(self) -> Any:
+    def dataset(self, partial: bool = False) -> Any:
         flat = {name: (dims, arr, attrs) for name, (dims, arr, attrs) in self.vars.items()}
         sw = self.sweep
         ds = assemble(sw.dims, sw.shape, bool(sw.axes), sw.coordinates(), sw.fixed, sw.analysis.trailing_coords(),
@@ -354,8 +355,8 @@ class ZarrSink:
     def close(self) -> None:
         self._lock.release()
 
-    def dataset(self) -> Any:
-        return open_sweep(self.path)
+    def dataset(self, partial: bool = False) -> Any:
+        return open_sweep(self.path, partial=partial)
 
 
 class _named_write_errors:
