@@ -192,6 +192,10 @@ def _register_builtins() -> None:
     register_analysis_type(AnalysisType("working-point", _basin.run_basin_analysis, _basin.basin_rows, "basin"))
     register_analysis_type(AnalysisType("sweep", _sweep.run_sweep_analysis, _basin.basin_rows, "basin",
                                         _sweep.sweep_task_size, **trajectories))  # fmt: skip
+    from rotorlab.analyses import _basin_stability as _bs
+
+    register_analysis_type(AnalysisType("basin-stability", _bs.run_basin_stability_analysis, _bs.basin_stability_rows,
+                                        "basin-stability", _bs.basin_stability_task_size, **trajectories))  # fmt: skip
     register_analysis_type(AnalysisType("impacts", _impacts.run_impact_analysis, _impacts.impact_rows, "impacts"))
     register_analysis_type(AnalysisType("impacts-sweep", _impacts.run_impact_analysis, _impacts.sweep_rows,
                                         "impacts"))  # fmt: skip

@@ -71,6 +71,7 @@ from rotorlab.io._steady_specs import (
     VerifySpec,
 )
 from rotorlab.io._sweep_specs import SweepSpec
+from rotorlab.io._basin_stability_spec import BasinStabilitySpec
 from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
 
 __all__ = [
@@ -127,6 +128,7 @@ __all__ = [
     "SteadySpec",
     "ToroidalBallSpec",
     "SweepSpec",
+    "BasinStabilitySpec",
     "UnbalanceResponseSpec",
     "VerifySpec",
     "WorkingPointSpec",

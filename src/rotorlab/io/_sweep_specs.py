@@ -23,10 +23,10 @@ from rotorlab._limits import MAX_CHUNK
 from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, RecordsInputUnits, _any_dimension,
                                      coordinate_dimensions, coordinates_text, key_quantity, mappable_text)
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import (AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
+from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
                                  chosen_race_issues, integer, quantity)  # fmt: skip
 
-__all__ = ["SWEEP_PARAMETERS", "TORUS_STATES", "SweepSpec", "coordinate_dimension", "sweep_coordinates"]
+__all__ = ["BaseSpeedSpec", "SWEEP_PARAMETERS", "TORUS_STATES", "SweepSpec", "coordinate_dimension", "sweep_coordinates"]
 
 #: Model parameters a sweep of a rotor with balls can vary: name -> (dimension, SI unit).
 SWEEP_PARAMETERS: dict[str, tuple[str, str]] = {
@@ -142,7 +142,46 @@ def _axes(kind: str) -> Any:
     return Annotated[dict[str, tuple], PlainValidator(_AxesValidator(kind)), WithJsonSchema(schema), Unit(unit)]
 
 
-class SweepSpec(RecordsInputUnits):
+class BaseSpeedSpec(AbstractAnalysisSpec):
+    """The base spin speed of an analysis whose starts are integrated at a constant speed
+    (``sweep``, ``basin-stability``): ``speed_ratio`` or ``speed``, else the model's own."""
+
+    speed_ratio: quantity("dimensionless", gt=0) | None = Field(None, description="base speed / critical speed (-)")
+    speed: quantity("angular_speed", gt=0) | None = Field(None, description="base spin speed (rad/s)")
+
+    def speed_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        """Check the base speed (and ``spare_turns``, a toroidal ball's) against the model."""
+        issues = []
+        kind = getattr(model, "type", None)
+        if model.spins_at_own_speed:
+            for key in ("speed_ratio", "speed"):
+                if getattr(self, key) is not None:
+                    issues.append(Issue((key,), f"applies to a rotor with balls only; a {kind} spins at its "
+                                                "model's spin_speed (vary it with param)", getattr(self, key)))
+            return issues
+        if getattr(self, "spare_turns", None) is not None:
+            issues.append(Issue(("spare_turns",), "applies to a toroidal_ball model only", self.spare_turns))
+        if self.speed is None and self.speed_ratio is None:
+            profile = model.speed_profile()
+            if profile is None or not profile.is_constant or profile.final_speed == 0:
+                issues.append(Issue(("speed",), "give speed or speed_ratio (the model has no constant speed)",
+                                    None, show_value=False))  # fmt: skip
+        if self.speed_ratio is not None and model.critical_speed() is None:
+            issues.append(Issue(("speed_ratio",), "the model has no critical speed: give speed", self.speed_ratio))
+        return issues
+
+    def spin_speed(self, model: AbstractModelSpec) -> float:
+        """Return the base spin speed (rad/s)."""
+        if model.spins_at_own_speed:
+            return model.spin_speed
+        if self.speed is not None:
+            return self.speed
+        if self.speed_ratio is not None:
+            return self.speed_ratio * model.critical_speed()
+        return model.speed_profile().final_speed
+
+
+class SweepSpec(BaseSpeedSpec, RecordsInputUnits):
     """Regimes of a rotor with balls or of a toroidal ball at every point of a grid or a sample.
 
     Every point is a start-up at a constant speed, classified by the model's mapper (built like
@@ -196,8 +235,6 @@ class SweepSpec(RecordsInputUnits):
     )
 
     type: Literal["sweep"] = "sweep"
-    speed_ratio: quantity("dimensionless", gt=0) | None = Field(None, description="base speed / critical speed (-)")
-    speed: quantity("angular_speed", gt=0) | None = Field(None, description="base spin speed (rad/s)")
     param: _axes("param") = Field(default_factory=dict, description="model parameters to vary (SI)")
     ic: _axes("ic") = Field(default_factory=dict, description="initial conditions to vary (rad, rad/s)")
     sample: integer(ge=1) | None = Field(None, description="number of random points instead of a grid")
@@ -251,32 +288,7 @@ class SweepSpec(RecordsInputUnits):
         issues += chosen_race_issues(model, self.races, [(("ic", k), k) for k in self.ic])
         if not self.param and not self.ic:
             issues.append(Issue(("param",), "give at least one param or ic to vary", None, show_value=False))
-        if model.spins_at_own_speed:
-            for key in ("speed_ratio", "speed"):
-                if getattr(self, key) is not None:
-                    issues.append(Issue((key,), f"applies to a rotor with balls only; a {kind} spins at its "
-                                                "model's spin_speed (vary it with param)", getattr(self, key)))
-            return issues
-        if self.spare_turns is not None:
-            issues.append(Issue(("spare_turns",), "applies to a toroidal_ball model only", self.spare_turns))
-        if self.speed is None and self.speed_ratio is None:
-            profile = model.speed_profile()
-            if profile is None or not profile.is_constant or profile.final_speed == 0:
-                issues.append(Issue(("speed",), "give speed or speed_ratio (the model has no constant speed)",
-                                    None, show_value=False))  # fmt: skip
-        if self.speed_ratio is not None and model.critical_speed() is None:
-            issues.append(Issue(("speed_ratio",), "the model has no critical speed: give speed", self.speed_ratio))
-        return issues
-
-    def spin_speed(self, model: AbstractModelSpec) -> float:
-        """Return the base spin speed (rad/s)."""
-        if model.spins_at_own_speed:
-            return model.spin_speed
-        if self.speed is not None:
-            return self.speed
-        if self.speed_ratio is not None:
-            return self.speed_ratio * model.critical_speed()
-        return model.speed_profile().final_speed
+        return issues + self.speed_issues(model)
 
     def describe(self, model: AbstractModelSpec) -> str:
         names = [*self.param, *self.ic]
