@@ -9,6 +9,7 @@ from __future__ import annotations
 
 import math
 import os
+import re
 from pathlib import Path
 from typing import Any
 
@@ -93,7 +94,8 @@ def parse_range(option: str, text: str, dimension: str | None = None, *, sample:
         Option name for messages.
     text : str
         The value; START and STOP are plain numbers, or with ``dimension`` numbers in SI or
-        with a unit (``0.05mm``).
+        with a unit (``0.05mm``); a unit written on one end only is that of both
+        (``10:170deg`` is 10 deg to 170 deg).
     dimension : str, optional
         A key of :data:`rotorlab.io.DIMENSIONS` to convert START and STOP to SI.
     sample : bool
@@ -124,6 +126,8 @@ def parse_range(option: str, text: str, dimension: str | None = None, *, sample:
     (300.0, 3000.0, 10)
     >>> parse_range("--param", "0:2.5mm:3", "length")
     (0.0, 0.0025, 3)
+    >>> [round(v, 4) for v in parse_range("--x", "10:170deg:3", "angle")[:2]]  # the unit of both ends
+    [0.1745, 2.9671]
     >>> parse_range("--speeds-rpm", "0:1e300:5", high=1e7, unit=" rpm")
     Traceback (most recent call last):
     ...
@@ -134,18 +138,24 @@ def parse_range(option: str, text: str, dimension: str | None = None, *, sample:
     if len(fields) != (2 if sample else 3):
         raise BadInput(head + form)
     ends = []
+    # one unit written on either end is the unit of both: 10:170deg is 10 deg to 170 deg
+    shared = _written_units(fields[:2]) if dimension is not None else None
     for name, field in zip(("LOW", "HIGH") if sample else ("START", "STOP"), fields):
         try:
             ends.append(float(field))
+            if shared is None:
+                continue
+            field = f"{field.strip()} {shared}"
+            ends.pop()
         except ValueError:
             if dimension is None:
                 raise BadInput(head + f"{name} = {field!r} is not a number") from None
-            from rotorlab.io import CaseError, to_si
+        from rotorlab.io import CaseError, to_si
 
-            try:
-                ends.append(to_si(field.strip(), dimension, option))
-            except (CaseError, ValueError) as exc:
-                raise BadInput(head + str(exc)) from None
+        try:
+            ends.append(to_si(field.strip(), dimension, option))
+        except (CaseError, ValueError) as exc:
+            raise BadInput(head + str(exc)) from None
     start, stop = ends
     first, last = ("LOW", "HIGH") if sample else ("START", "STOP")
     problems = []
@@ -172,6 +182,27 @@ def parse_range(option: str, text: str, dimension: str | None = None, *, sample:
     if problems:
         raise BadInput(head + "; ".join(problems))
     return start, stop, n
+
+
+_NUMBER = re.compile(r"^\s*[-+]?(?:\d+\.?\d*|\.\d+)(?:[eE][-+]?\d+)?\s*")
+
+
+def _written_units(fields: list[str]) -> str | None:
+    """The unit written after the number of the range ends, when exactly one unit is written
+    (on one end, or the same on both); None when neither end has one or they differ.
+
+    Examples
+    --------
+    >>> _written_units(["10", "170deg"]), _written_units(["1", "2"]), _written_units(["1 g", "2 kg"]) is None
+    ('deg', None, True)
+    """
+    units = set()
+    for field in fields:
+        m = _NUMBER.match(field)
+        rest = field[m.end():].strip() if m else field.strip()
+        if rest:
+            units.add(rest)
+    return units.pop() if len(units) == 1 else None
 
 
 def parse_speed_range(text: str, option: str = "--speeds-rpm", min_count: int = 2) -> tuple[float, float, int]:
