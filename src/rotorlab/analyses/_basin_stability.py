@@ -11,6 +11,7 @@ longer change", or the horizon that would do) is :func:`rotorlab.analyses._verdi
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Callable
 from dataclasses import replace
@@ -188,5 +189,5 @@ def basin_stability_document(ds: xarray.Dataset) -> dict[str, Any]:
         "confidence": float(ds.attrs["confidence"]), "seed": int(ds.attrs["seed"]),
         "starts_total": int(ds["n"].values.sum()), "rounds": int(ds.attrs["rounds"]),
         "t_end_s": float(ds["horizon"].values[-1]), "horizon_rule": str(ds.attrs.get("horizon_rule", "")),
-        "ranges": ds.attrs.get("ranges"), "rows": rows,
+        "ranges": json.loads(ds.attrs.get("ranges", "{}")), "rows": rows,
     }  # fmt: skip

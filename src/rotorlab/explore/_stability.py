@@ -17,6 +17,7 @@ depend only on the results, so a resumed run replays them and computes only what
 
 from __future__ import annotations
 
+import json
 import math
 from collections.abc import Callable, Mapping
 from dataclasses import dataclass
@@ -234,8 +235,8 @@ def basin_stability_over(
         :data:`ADAPTIVE_CHUNK`).
     store, resume, executor
         As for :func:`rotorlab.sweep.run_sweep`: a Zarr store of the sweep ``(parameter,
-        start)``, continued with ``resume``; without a store the rounds run through a temporary
-        one. Results do not depend on the executor or on interruptions.
+        start)``, continued with ``resume``; without a store the rounds keep their starts in
+        memory. Results do not depend on the executor or on interruptions.
     progress : callable, optional
         ``progress(done, planned)`` in starts (planned grows with the rounds).
     input_units : mapping of str to str, optional
@@ -250,17 +251,16 @@ def basin_stability_over(
         (value, start), the per-start ``outcome``, ``status``, ``label_since`` and (a balancer)
         ``settle_estimate`` at the last horizon, and the drawn ``start_<name>``; attrs of the
         analysis plus ``seed``, ``confidence``, ``mode`` ("starts" or "ci-width"), ``target_half_width``,
-        ``chunk``, ``pool``, ``rounds``, ``param``.
+        ``chunk``, ``pool``, ``rounds``, ``param``, ``ranges`` (JSON: name -> [low, high]).
 
     References
     ----------
     Menck P.J., Heitzig J., Marwan N., Kurths J. How basin stability complements the linear-
     stability paradigm. Nature Physics 9 (2013) 89-92.
     """
-    import tempfile
-
     from rotorlab.explore._mapper import AbstractMapper, MapperAnalysis
     from rotorlab.sweep import GridAxis, Sweep, run_sweep
+    from rotorlab.sweep._store import MemorySink
 
     if starts is not None and ci_width is not None:
         raise ValueError("give starts or ci_width, not both")
@@ -282,28 +282,28 @@ def basin_stability_over(
     per = pool // chunk
     n = np.full(axis.num, pool if starts is not None else min(pool, chunk * -(-_first_guess(ci_width, confidence) // chunk)))
     rounds = 0
-    with tempfile.TemporaryDirectory(prefix="rotorlab-basin-stability-") as tmp:
-        path = store if store is not None else f"{tmp}/starts.zarr"
-        while True:
-            rounds += 1
-            wanted = [i * per + b for i in range(axis.num) for b in range(int(n[i]) // chunk)]
-            ds = run_sweep(sweep, store=path, resume=resume or rounds > 1, chunk_size=chunk, executor=executor,
-                           only=wanted, progress=_progress(progress, chunk, int(n.sum())))  # fmt: skip
-            counts = _final_counts(ds, n, axis.name)
-            if starts is not None:
-                break
-            wide = half_widths(counts, n, confidence) > ci_width
-            grow = np.array([min(pool, max(n[i] + chunk, min(needed_starts(counts[i], int(n[i]), ci_width, confidence,
-                                                                            chunk, pool), 4 * n[i])))
-                             if wide[i] and n[i] < pool else n[i] for i in range(axis.num)])  # fmt: skip
-            if np.array_equal(grow, n):
-                break
-            n = grow
-        out = _summary(ds, n, axis.name, confidence)
+    sink = store if store is not None else MemorySink(sweep, chunk)
+    while True:
+        rounds += 1
+        wanted = [i * per + b for i in range(axis.num) for b in range(int(n[i]) // chunk)]
+        ds = run_sweep(sweep, store=sink, resume=store is not None and (resume or rounds > 1),
+                       chunk_size=chunk if store is not None else None, executor=executor, only=wanted,
+                       progress=_progress(progress, chunk, int(n.sum())))  # fmt: skip
+        counts = _final_counts(ds, n, axis.name)
+        if starts is not None:
+            break
+        wide = half_widths(counts, n, confidence) > ci_width
+        grow = np.array([min(pool, max(n[i] + chunk, min(needed_starts(counts[i], int(n[i]), ci_width, confidence,
+                                                                        chunk, pool), 4 * n[i])))
+                         if wide[i] and n[i] < pool else n[i] for i in range(axis.num)])  # fmt: skip
+        if np.array_equal(grow, n):
+            break
+        n = grow
+    out = _summary(ds, n, axis.name, confidence)
     out.attrs.update(seed=int(seed), confidence=float(confidence), mode="starts" if starts is not None else "ci-width",
                      target_half_width=float("nan") if ci_width is None else float(ci_width), chunk=int(chunk),
                      pool=int(pool), rounds=rounds, param=axis.name,
-                     ranges=[[k, float(v[0]), float(v[1])] for k, v in ranges.items()])  # fmt: skip
+                     ranges=json.dumps({k: [float(v[0]), float(v[1])] for k, v in ranges.items()}))  # fmt: skip
     return out
 
 
@@ -373,4 +373,6 @@ def _summary(ds: Any, n: np.ndarray, dim: str, confidence: float) -> Any:
     attrs = {k: v for k, v in ds.attrs.items() if k not in ("sweep", "fingerprint", "complete")}
     attrs["labels"] = labels
     return xr.Dataset(data, coords={dim: (dim, values, dict(part[dim].attrs)), "regime": labels,
-                                    "horizon": part["horizon"], START_DIM: np.arange(keep)}, attrs=attrs)  # fmt: skip
+                                    "horizon": part["horizon"],
+                                    START_DIM: (START_DIM, np.arange(keep), {"units": "1", "description": "start number"})},
+                      attrs=attrs)  # fmt: skip

@@ -54,9 +54,10 @@ def run_sweep(
     ----------
     sweep : Sweep
         What to compute.
-    store : path-like, optional
+    store : path-like or MemorySink, optional
         A Zarr store (folder) to write each chunk to as it finishes, with a completion mark; the
-        result is then read back from it. Without it, results are collected in memory.
+        result is then read back from it. Without it, results are collected in memory (in the
+        given ``MemorySink`` of this sweep, which keeps them for the next run).
     resume : bool
         Continue the store: compute only its missing chunks. The store must hold the same sweep
         (same :meth:`Sweep.describe`) written by the same rotorlab version; a store that does not
@@ -102,10 +103,15 @@ def run_sweep(
 
     if not isinstance(sweep, Sweep):
         raise TypeError(f"sweep must be a Sweep, got {type(sweep).__name__}")
-    if store is None:
+    if isinstance(store, MemorySink):  # chunks kept in memory between runs of this sweep
+        if store.sweep is not sweep or (chunk_size is not None and chunk_size != store.chunk_size):
+            raise ValueError("a MemorySink store continues only the sweep (and chunk size) it was made for")
+        sink: Any = store
+        size = store.chunk_size
+    elif store is None:
         if resume:
             raise ValueError("resume needs a store")
-        sink: Any = MemorySink(sweep, chunk_size)
+        sink = MemorySink(sweep, chunk_size)
         size = DEFAULT_CHUNK if chunk_size is None else chunk_size
     else:
         sink = ZarrSink(store, sweep, chunk_size, resume=resume)

@@ -146,15 +146,21 @@ def _fill(dtype: np.dtype) -> Any:
 
 
 class MemorySink:
-    """Collect the chunks of a sweep in memory (no store)."""
+    """Collect the chunks of a sweep in memory (no store). Given to :func:`rotorlab.sweep.run_sweep`
+    as its ``store``, it keeps its chunks between runs of the same sweep (a sweep computed in
+    parts, e.g. adaptive rounds)."""
 
-    def __init__(self, sweep: Any, chunk_size: int) -> None:
+    def __init__(self, sweep: Any, chunk_size: int | None) -> None:
+        from rotorlab.sweep._spec import DEFAULT_CHUNK
+
         self.sweep = sweep
         self.n = sweep.n_points
+        self.chunk_size = DEFAULT_CHUNK if chunk_size is None else int(chunk_size)
         self.vars: dict[str, tuple[tuple[str, ...], np.ndarray, dict]] = {}
+        self.done: set[int] = set()
 
     def missing(self, n_chunks: int) -> list[int]:
-        return list(range(n_chunks))
+        return [k for k in range(n_chunks) if k not in self.done]
 
     def write(self, k: int, lo: int, hi: int, result: dict[str, tuple]) -> None:
         for name, (dims, values, attrs) in result.items():
@@ -162,6 +168,7 @@ class MemorySink:
                 self.vars[name] = (dims, np.full((self.n, *values.shape[1:]), _fill(values.dtype), dtype=values.dtype),
                                    attrs)  # fmt: skip
             self.vars[name][1][lo:hi] = values
+        self.done.add(k)
 
     def close(self) -> None:
         pass
