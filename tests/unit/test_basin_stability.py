@@ -208,12 +208,15 @@ def test_command_json_figure_and_netcdf(tmp_path):
     import xarray as xr
 
     args = ["basin-stability", "autobalancer", "--param", "ball_damping=1e-3:2e-3:2", "--starts", "24", "--t-end",
-            "1.0", "--seed", "9", "--plot", str(tmp_path / "f.png"), "--out", str(tmp_path / "r.nc")]
+            "1.0", "--seed", "9", "--range", "psi_1=0:180deg", "--range", "psi_2=180:360deg", "--plot",
+            str(tmp_path / "f.png"), "--out", str(tmp_path / "r.nc")]
     res = CliRunner().invoke(app, [*args, "--json"])
     assert res.exit_code == 0, res.output
     doc = json.loads(res.stdout)
     assert doc["param"] == "ball_damping" and doc["values"] == [1e-3, 2e-3] and doc["mode"] == "starts"
     assert [r["n"] for r in doc["rows"]] == [24, 24] and doc["starts_total"] == 48 and doc["seed"] == 9
+    assert doc["ranges"] == {"psi_1": [0.0, pytest.approx(math.pi)], "psi_2": [pytest.approx(math.pi),
+                                                                                pytest.approx(2 * math.pi)]}
     assert all(abs(sum(r["fractions"].values()) - 1.0) < 1e-12 for r in doc["rows"])
     assert (tmp_path / "f.png").stat().st_size > 10_000
     back = xr.open_dataset(tmp_path / "r.nc")
@@ -232,3 +235,23 @@ def test_range_unit_applies_to_both_ends(tmp_path):
     ds = xr.open_dataset(tmp_path / "b.nc")
     np.testing.assert_allclose(np.degrees(ds.psi_1.values), [10.0, 90.0, 170.0])
     np.testing.assert_allclose(np.degrees(ds.psi_2.values), [200.0, 350.0])
+
+
+def test_random_starts_over_the_rotor_state(case):
+    from rotorlab.analyses._basin import basin_mapper
+
+    mapper = basin_mapper(case.model, case.analysis("basin"))
+    omega = mapper.model.speed.speed
+    assert omega == pytest.approx(2.0 * 125.668, rel=1e-5)  # 2 p, the basin's speed_ratio
+    model, y0, _ = mapper.starts({"rotor_u": np.array([1e-3, 0.0]), "rotor_v": np.array([0.0, -2e-3]),
+                                  "psi_1": np.array([1.0, 1.0])})  # fmt: skip
+    # fixed frame at t = 0: the disc centre at (u, v), moving with the rotor, omega x r
+    assert model.frame == "fixed"
+    np.testing.assert_allclose(y0[:, :4], [[1e-3, 0.0, 0.0, omega * 1e-3], [0.0, -2e-3, omega * 2e-3, 0.0]],
+                               rtol=1e-12, atol=1e-15)  # fmt: skip
+    # the unbalance alone deflects the disc by 1.88 mm at 2 p: starts anywhere within +-2 mm balance
+    ds = _run(case, param={"ball_damping": [2e-3, 2e-3, 1]}, starts=32, seed=1,
+              ranges={"psi_1": [0.0, 2 * math.pi], "psi_2": [0.0, 2 * math.pi], "rotor_u": [-2e-3, 2e-3],
+                      "rotor_v": [-2e-3, 2e-3]})  # fmt: skip
+    u = ds.start_rotor_u.values[0]
+    assert u.min() < -1e-3 and u.max() > 1e-3 and np.all(ds.outcome.values[0] == 0)

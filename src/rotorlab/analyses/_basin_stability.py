@@ -101,7 +101,7 @@ def run_basin_stability_analysis(case_model: Any, analysis: Any, progress: Calla
     mapper, rates, rule = stability_mapper(case_model, analysis, t_end=t_end)
     name, a, b, n = analysis.param_axis
     units = dict(mapper.coordinate_units)
-    shown = {k: v for k, v in analysis.input_units.items() if k in (name, *analysis.start_ranges(case_model))}
+    shown = {k: v for k, v in analysis.input_units.items() if k == name}  # the drawn starts are no sweep axis
     ds = basin_stability_over(mapper, GridAxis(name, a, b, n), analysis.start_ranges(case_model), seed=analysis.seed,
                               starts=analysis.starts, ci_width=analysis.ci_width, confidence=analysis.confidence,
                               chunk_size=chunk_size if chunk_size is not None else analysis.chunk, store=store,

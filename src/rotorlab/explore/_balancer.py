@@ -32,6 +32,8 @@ __all__ = ["BalancerRegimes", "balancer_labels"]
 
 _ROTOR_UNITS = {"disc_mass": "kg", "eccentricity": "m", "stiffness": "N/m", "damping": "N s/m"}
 _BALL_UNITS = {"ball_mass": "kg", "ball_radius": "m", "ball_damping": "N m s/rad", "ball_friction": "1"}
+#: The rotor's start: disc centre position (u, v) in the co-rotating frame, at rest relative to it.
+_ROTOR_STATE = {"rotor_u": "m", "rotor_v": "m"}
 
 
 def _vary_ball(ball: BallParams, kw: Mapping[str, float]) -> BallParams:
@@ -69,8 +71,9 @@ def balancer_labels(n_balls: int) -> tuple[str, ...]:
 class BalancerRegimes:
     """Mapper of start points of a :class:`~rotorlab.models.JeffcottBalls` model to regimes.
 
-    Trajectories start with the disc centre at rest on the axis and the balls at given angles
-    and rates relative to the rotor. They are integrated in ``frame``; the features are taken
+    Trajectories start with the disc centre on the axis (or at ``rotor_u``, ``rotor_v`` in the
+    co-rotating frame, m), at rest relative to the co-rotating frame, and the balls at given
+    angles and rates relative to the rotor. They are integrated in ``frame``; the features are taken
     from the states in the co-rotating frame (converted where integrated in the fixed one).
 
     Parameters
@@ -154,7 +157,7 @@ class BalancerRegimes:
     @property
     def coordinate_units(self) -> Mapping[str, str]:
         units = ball_coordinate_units(self.model.n_balls)
-        return {**units, "spin_speed": "rad/s", **_ROTOR_UNITS, **_BALL_UNITS}
+        return {**units, **_ROTOR_STATE, "spin_speed": "rad/s", **_ROTOR_UNITS, **_BALL_UNITS}
 
     @property
     def window(self) -> float:
@@ -209,6 +212,8 @@ class BalancerRegimes:
         if the balls differ in it); None for any other name."""
         if name == "spin_speed":
             return float(self.model.speed.speed)
+        if name in _ROTOR_STATE:
+            return 0.0
         if name in _ROTOR_UNITS:
             return float(getattr(self.model.rotor, name))
         if name in _BALL_UNITS:
@@ -223,6 +228,7 @@ class BalancerRegimes:
                            for i in range(nb)], axis=1) if nb else np.empty((n_pts, 0))  # fmt: skip
         rates = np.stack([np.broadcast_to(coords.get(f"dpsi_{i + 1}", 0.0), (n_pts,))
                           for i in range(nb)], axis=1) if nb else np.empty((n_pts, 0))  # fmt: skip
+        rotor = [np.broadcast_to(coords.get(k, 0.0), (n_pts,)) for k in _ROTOR_STATE]
         params = [k for k in (*("spin_speed",), *_ROTOR_UNITS, *_BALL_UNITS) if k in coords]
         if params:
             keys = np.stack([coords[k] for k in params], axis=1)
@@ -243,11 +249,17 @@ class BalancerRegimes:
             sel = np.flatnonzero(inverse == j)
             if model.has_friction:  # each start's stick/slip modes settled one at a time
                 Y0[sel] = [model.initial_state(angles[i], ball_rates=rates[i]) for i in sel]
-            else:  # model.initial_state of all starts at once (0.18 ms a start one at a time)
-                yr = np.zeros((sel.size, model.n_state))
+            shifted = model.has_friction and (np.any(rotor[0][sel]) or np.any(rotor[1][sel]))
+            if not model.has_friction or shifted:  # all starts at once (0.18 ms a start one at a time)
+                yr = np.zeros((sel.size, model.n_state))  # the starts in the co-rotating frame
+                yr[:, 0], yr[:, 1] = rotor[0][sel], rotor[1][sel]
                 yr[:, 4 : 4 + nb] = angles[sel]
-                yr[:, 4 + nb :] = rates[sel]
-                Y0[sel] = model.with_frame("rotating").to_frame(0.0, yr, model.frame)
+                yr[:, 4 + nb : 4 + 2 * nb] = rates[sel]
+                fixed = model.with_frame("rotating").to_frame(0.0, yr, model.frame)
+                if shifted:  # with friction only the rotor moves: the balls keep their modes
+                    Y0[sel, :4] = fixed[:, :4]
+                else:
+                    Y0[sel] = fixed
             P[sel] = model.to_array()
         return first, Y0, P
 

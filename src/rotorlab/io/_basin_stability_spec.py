@@ -75,8 +75,10 @@ class BasinStabilitySpec(BaseSpeedSpec, RecordsInputUnits):
     confidence : float
         Level of the Wilson intervals, in (0, 1).
     ranges : {NAME: [low, high]}, optional
-        Start coordinates drawn uniformly (``psi_<i>`` in rad, ``dpsi_<i>`` in rad/s; a toroidal
-        ball's ``psi``, ``alpha``, ``dpsi``, ``dalpha``); default every ball angle over a turn.
+        Start coordinates drawn uniformly (``psi_<i>`` in rad, ``dpsi_<i>`` in rad/s, a rotor
+        with balls' start position ``rotor_u``, ``rotor_v`` in m (co-rotating frame, at rest in
+        it); a toroidal ball's ``psi``, ``alpha``, ``dpsi``, ``dalpha``); default every ball angle
+        over a turn, the rotor at rest on the axis.
     speed_ratio, speed, t_end, n_horizons, window_revolutions, spare_turns, rtol, atol, races
         As for ``sweep``; without ``t_end`` the horizon comes from the balanced state's slowest
         mode at every parameter value (the longest of them).

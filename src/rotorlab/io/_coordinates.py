@@ -29,6 +29,7 @@ __all__ = [
     "TORUS_COORDINATES",
     "BALANCER_COORDINATES",
     "MACHINE_COORDINATES",
+    "ROTOR_STATE_COORDINATES",
     "BALL_COORDINATE",
     "COORDINATE_BOUNDS",
     "KEY_PREFIX",
@@ -71,6 +72,11 @@ BALANCER_COORDINATES: dict[str, str] = {
     "ball_damping": "torque_damping",
     "ball_friction": "dimensionless",
 }
+
+#: Start state of the rotor of a balancer (:class:`rotorlab.explore.BalancerRegimes`): the disc
+#: centre's position in the co-rotating frame (u along the unbalance, v ahead of it), at rest
+#: relative to that frame; name -> dimension. Unlike the parameters they are initial conditions.
+ROTOR_STATE_COORDINATES: dict[str, str] = {"rotor_u": "length", "rotor_v": "length"}
 
 #: Start coordinates of a machine's balancer besides ``psi_<i>`` and ``dpsi_<i>`` (every ball of
 #: every race; :class:`rotorlab.explore.MachineRegimes`).
@@ -232,6 +238,8 @@ def _any_dimension(name: str) -> str | None:
         return TORUS_COORDINATES[name]
     if name in BALANCER_COORDINATES:
         return BALANCER_COORDINATES[name]
+    if name in ROTOR_STATE_COORDINATES:
+        return ROTOR_STATE_COORDINATES[name]
     m = BALL_COORDINATE.match(name)
     if m:
         return "angular_speed" if m.group(1) else "angle"

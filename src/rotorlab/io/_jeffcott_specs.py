@@ -305,10 +305,11 @@ class JeffcottBallsSpec(AbstractModelSpec):
         return self.speed
 
     def start_coordinates(self) -> dict[str, str]:
-        """``psi_<i>``, ``dpsi_<i>`` and the rotor's and balls' parameters (none without balls)."""
-        from rotorlab.io._coordinates import BALANCER_COORDINATES, ball_coordinates
+        """``psi_<i>``, ``dpsi_<i>``, the rotor's start position ``rotor_u``, ``rotor_v`` and the
+        rotor's and balls' parameters (none without balls)."""
+        from rotorlab.io._coordinates import BALANCER_COORDINATES, ROTOR_STATE_COORDINATES, ball_coordinates
 
-        return ball_coordinates(self.n_balls, BALANCER_COORDINATES)
+        return ball_coordinates(self.n_balls, {**ROTOR_STATE_COORDINATES, **BALANCER_COORDINATES})
 
     def missing_coordinate(self, name: str) -> str | None:
         """``has <n> ball(s)`` for the angle or rate of a ball the model does not have."""

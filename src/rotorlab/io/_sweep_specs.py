@@ -20,7 +20,7 @@ from pydantic import Field, PlainValidator, WithJsonSchema
 from pydantic_core import PydanticCustomError
 
 from rotorlab._limits import MAX_CHUNK
-from rotorlab.io._coordinates import (BALL_COORDINATE, TORUS_COORDINATES, RecordsInputUnits, _any_dimension,
+from rotorlab.io._coordinates import (BALL_COORDINATE, ROTOR_STATE_COORDINATES, TORUS_COORDINATES, RecordsInputUnits, _any_dimension,
                                      coordinate_dimensions, coordinates_text, key_quantity, mappable_text)
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import (AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, Unit, _error, _QuantityValidator,
@@ -47,7 +47,7 @@ TORUS_STATES = ("psi", "alpha", "dpsi", "dalpha")
 
 
 def _is_state(name: str) -> bool:
-    return name in TORUS_STATES or BALL_COORDINATE.match(name) is not None
+    return name in TORUS_STATES or name in ROTOR_STATE_COORDINATES or BALL_COORDINATE.match(name) is not None
 
 
 def coordinate_dimension(name: str, kind: str) -> str | None:
@@ -99,7 +99,8 @@ def _allowed(kind: str) -> str:
     if kind == "param":
         params = [*SWEEP_PARAMETERS, *(k for k in TORUS_COORDINATES if k not in SWEEP_PARAMETERS and not _is_state(k))]
         return ", ".join(params)
-    return "psi_<i> (ball angle), dpsi_<i> (ball rate); toroidal ball: " + ", ".join(TORUS_STATES)
+    return ("psi_<i> (ball angle), dpsi_<i> (ball rate), rotor_u, rotor_v (rotor position); toroidal ball: "
+            + ", ".join(TORUS_STATES))
 
 
 class _AxesValidator:
