@@ -255,3 +255,25 @@ def test_random_starts_over_the_rotor_state(case):
                       "rotor_v": [-2e-3, 2e-3]})  # fmt: skip
     u = ds.start_rotor_u.values[0]
     assert u.min() < -1e-3 and u.max() > 1e-3 and np.all(ds.outcome.values[0] == 0)
+
+
+def test_a_case_file_analysis_runs_under_rotorlab_run_with_its_report(tmp_path):
+    from importlib import resources
+
+    text = resources.files("rotorlab.cases").joinpath("autobalancer.toml").read_text(encoding="utf-8")
+    text = text[: text.index("[[analysis]]")] + '''
+[[analysis]]
+type = "basin-stability"
+name = "damping-range"
+param = {ball_damping = ["1e-3 N*m*s", "2e-3 N*m*s", 2]}
+starts = 16
+seed = 1
+t_end = "1 s"
+'''
+    (tmp_path / "c.toml").write_text(text, encoding="utf-8")
+    res = CliRunner().invoke(app, ["run", str(tmp_path / "c.toml"), "--out", str(tmp_path / "out")])
+    assert res.exit_code == 0, res.output
+    assert "damping-range: Over ball_damping" in res.stdout
+    html = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
+    assert "the share of random start-ups that end balanced" in html and "16 starts per value" in html
+    assert list((tmp_path / "out").rglob("damping-range_basin_stability.png"))
