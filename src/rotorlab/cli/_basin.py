@@ -75,8 +75,6 @@ def _input_units(base: Any, x: str | None, y: str | None, fix: list[str] | None)
 
 def _effective_spec(loaded: Any, base: Any, updates: dict[str, Any]) -> Any:
     """The basin analysis with the command-line options applied, validated against the model."""
-    from pydantic import ValidationError
-
     from rotorlab.io import BasinSpec
 
     data = base.model_dump() if base is not None else {"type": "basin", "name": "basin"}
@@ -90,18 +88,29 @@ def _effective_spec(loaded: Any, base: Any, updates: dict[str, Any]) -> Any:
     if missing:
         raise BadInput(f"case {loaded.name} has no basin analysis: give {' and '.join(missing)} "
                        "(NAME=A:B:N)")  # fmt: skip
+    return validated_spec(BasinSpec, data, loaded, _OPTION_OF)
+
+
+def validated_spec(kind: Any, data: dict[str, Any], loaded: Any, option_of: dict[str, str],
+                   where: bool = False) -> Any:  # fmt: skip
+    """The analysis spec ``kind`` of ``data`` (a case's analysis with command-line options applied),
+    checked against the case's model: the first problem is BadInput naming the option that sets
+    its key (``option_of``; with ``where`` also the rest of its key path)."""
+    from pydantic import ValidationError
+
     try:
-        spec = BasinSpec.model_validate(data)
+        spec = kind.model_validate(data)
     except ValidationError as exc:
         err = exc.errors()[0]
         key = str(err["loc"][0]) if err["loc"] else ""
         msg = err["msg"].removeprefix("Value error, ")
-        raise BadInput(f"{_OPTION_OF.get(key, key)}: {msg}" if key else msg) from None
+        raise BadInput(f"{option_of.get(key, key)}: {msg}" if key else msg) from None
     issues = spec.case_issues(loaded.model)
     if issues:
         first = issues[0]
         key = str(first.loc[0]) if first.loc else ""
-        raise BadInput(f"{_OPTION_OF.get(key, 'case ' + loaded.name)}: {first.message}")
+        rest = " ".join(str(k) for k in first.loc[1:]) if where else ""
+        raise BadInput(f"{option_of.get(key, 'case ' + loaded.name)}{' ' + rest if rest else ''}: {first.message}")
     return spec
 
 
@@ -164,15 +173,9 @@ def basin_command(
     with handled(settings):
         if t_end is not None and not (t_end > 0 and t_end < float("inf")):
             raise BadInput(f"--t-end = {t_end:g}: must be a finite number > 0 (s)")
-        _check_plot("--plot", plot)
-        _check_plot("--out", out)
-        from rotorlab.cli._sweep_common import check_store_path, executor_from_options, run_into_store
+        from rotorlab.cli._sweep_common import run_into_store
 
-        executor = executor_from_options(scheduler, workers)
-        if resume and store is None:
-            raise BadInput("--resume needs --store STORE.zarr (the store to continue)")
-        if store is not None:
-            check_store_path(store, resume, "--store")
+        executor = checked_outputs(plot, out, store, resume, scheduler, workers)
         loaded = _load(case, sets)
         from rotorlab.io import coordinate_dimensions
 
@@ -199,29 +202,49 @@ def basin_command(
                 loaded.model, spec, chunk_size=chunk, progress=lambda done, total: update(spec.name, done, total),
                 store=store, resume=resume, executor=executor), store, "--store")  # fmt: skip
         ds.attrs["case"] = loaded.name
-        written = []
-        if plot is not None:
-            from rotorlab.plot import basin_figure
-
-            written.append(_save_plot(basin_figure(ds, title=f"{loaded.name}: regimes after "
-                                                              f"{float(ds.horizon[-1]):g} s"), plot))  # fmt: skip
-        if out is not None:
-            from rotorlab.io import save_netcdf
-
-            written.append(str(save_netcdf(ds, out)))
-        doc = basin_document(ds)
-        if json_out:
-            emit_json({**_json_case(loaded), "analysis": spec.name, **doc,
-                       "files": written})  # fmt: skip
-            exit_if_failed({spec.name: ds})
-            return
         from rotorlab.analyses._basin import basin_rows
+        from rotorlab.plot import basin_figure
 
-        for table in basin_tables({spec.name: ds}, {spec.name: basin_rows(ds)}):
+        write_and_report(loaded, spec.name, ds, lambda: basin_figure(
+            ds, title=f"{loaded.name}: regimes after {float(ds.horizon[-1]):g} s"), plot, out, json_out,
+            lambda: basin_document(ds), lambda: basin_tables({spec.name: ds}, {spec.name: basin_rows(ds)}))  # fmt: skip
+
+
+def checked_outputs(plot: Path | None, out: Path | None, store: Path | None, resume: bool, scheduler: str | None,
+                    workers: int | None) -> Any:  # fmt: skip
+    """Check ``--plot``, ``--out``, ``--store``/``--resume`` and ``--scheduler``/``--workers`` before
+    anything runs (BadInput naming the option); return the executor."""
+    from rotorlab.cli._sweep_common import check_store_path, executor_from_options
+
+    _check_plot("--plot", plot)
+    _check_plot("--out", out)
+    executor = executor_from_options(scheduler, workers)
+    if resume and store is None:
+        raise BadInput("--resume needs --store STORE.zarr (the store to continue)")
+    if store is not None:
+        check_store_path(store, resume, "--store")
+    return executor
+
+
+def write_and_report(loaded: Any, name: str, ds: Any, figure: Any, plot: Path | None, out: Path | None,
+                     json_out: bool, document: Any, tables: Any) -> None:  # fmt: skip
+    """Save ``figure()`` to ``--plot`` and ``ds`` to ``--out``, then print ``document()`` (``--json``)
+    or ``tables()`` and the files written; exit 3 if some result of ``ds`` failed."""
+    written = []
+    if plot is not None:
+        written.append(_save_plot(figure(), plot))
+    if out is not None:
+        from rotorlab.io import save_netcdf
+
+        written.append(str(save_netcdf(ds, out)))
+    if json_out:
+        emit_json({**_json_case(loaded), "analysis": name, **document(), "files": written})
+    else:
+        for table in tables():
             stdout().print(table)
         for path in written:
             stdout().print(f"Wrote {path}", markup=False)
-        exit_if_failed({spec.name: ds})
+    exit_if_failed({name: ds})
 
 
 def _verdict_caption(ds: Any) -> str | None:

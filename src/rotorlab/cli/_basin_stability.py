@@ -15,7 +15,7 @@ import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
 from rotorlab.cli._options import MAX_SEED, count_option
-from rotorlab.cli._output import BadInput, emit_json, exit_if_failed, handled, info, progress_bar, stdout
+from rotorlab.cli._output import BadInput, handled, info, progress_bar
 from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt
 
 __all__ = ["basin_stability_command"]
@@ -39,8 +39,6 @@ def _check_width(ci_width: float | None) -> None:
 
 def _spec(loaded: Any, base: Any, updates: dict[str, Any]) -> Any:
     """The analysis with the options applied, validated against the model (BadInput naming the option)."""
-    from pydantic import ValidationError
-
     from rotorlab.io import BasinStabilitySpec
 
     data = base.model_dump() if base is not None else {"type": "basin-stability", "name": "basin-stability"}
@@ -55,20 +53,9 @@ def _spec(loaded: Any, base: Any, updates: dict[str, Any]) -> Any:
     data.update({k: v for k, v in updates.items() if v is not None})
     if not data.get("param"):
         raise BadInput(f"case {loaded.name} has no basin-stability analysis: give --param NAME=A:B:N")
-    try:
-        spec = BasinStabilitySpec.model_validate(data)
-    except ValidationError as exc:
-        err = exc.errors()[0]
-        key = str(err["loc"][0]) if err["loc"] else ""
-        msg = err["msg"].removeprefix("Value error, ")
-        raise BadInput(f"{_OPTION_OF.get(key, key)}: {msg}" if key else msg) from None
-    issues = spec.case_issues(loaded.model)
-    if issues:
-        first = issues[0]
-        key = str(first.loc[0]) if first.loc else ""
-        where = " ".join(str(k) for k in first.loc[1:])
-        raise BadInput(f"{_OPTION_OF.get(key, 'case ' + loaded.name)}{' ' + where if where else ''}: {first.message}")
-    return spec
+    from rotorlab.cli._basin import validated_spec
+
+    return validated_spec(BasinStabilitySpec, data, loaded, _OPTION_OF, where=True)
 
 
 def _axes(param: str | None, ranges: list[str] | None, loaded: Any) -> dict[str, Any]:
@@ -163,17 +150,10 @@ def basin_stability_command(
                 raise BadInput(f"{option} = {value:g}: must be a finite number > 0")
         if speed_rpm is not None and speed_ratio is not None:
             raise BadInput("--speed-rpm and --speed-ratio exclude each other: give only one")
-        from rotorlab.cli._basin import _save_plot
-        from rotorlab.cli._steady import _check_plot
-        from rotorlab.cli._sweep_common import check_store_path, executor_from_options, run_into_store
+        from rotorlab.cli._basin import checked_outputs
+        from rotorlab.cli._sweep_common import run_into_store
 
-        _check_plot("--plot", plot)
-        _check_plot("--out", out)
-        executor = executor_from_options(scheduler, workers)
-        if resume and store is None:
-            raise BadInput("--resume needs --store STORE.zarr (the store to continue)")
-        if store is not None:
-            check_store_path(store, resume, "--store")
+        executor = checked_outputs(plot, out, store, resume, scheduler, workers)
         loaded = _load(case, sets)
         from rotorlab._constants import RPM_PER_RAD_S
         from rotorlab.io._coordinates import mappable_text, record_input_units
@@ -208,23 +188,10 @@ def basin_stability_command(
                 loaded.model, spec, progress=lambda done, total: update(spec.name, done, total), store=store,
                 resume=resume, executor=executor), store, "--store")  # fmt: skip
         ds.attrs["case"] = loaded.name
-        written = []
-        if plot is not None:
-            from rotorlab.plot._basin_stability import basin_stability_figure
-
-            written.append(_save_plot(basin_stability_figure(ds), plot))
-        if out is not None:
-            from rotorlab.io import save_netcdf
-
-            written.append(str(save_netcdf(ds, out)))
-        if json_out:
-            emit_json({**_json_case(loaded), "analysis": spec.name, **basin_stability_document(ds), "files": written})
-            exit_if_failed({spec.name: ds})
-            return
+        from rotorlab.cli._basin import write_and_report
+        from rotorlab.plot._basin_stability import basin_stability_figure
         from rotorlab.report._basin_stability import basin_stability_tables
 
-        for table in basin_stability_tables({spec.name: ds}, {spec.name: basin_stability_rows(ds)}):
-            stdout().print(table)
-        for path in written:
-            stdout().print(f"Wrote {path}", markup=False)
-        exit_if_failed({spec.name: ds})
+        write_and_report(loaded, spec.name, ds, lambda: basin_stability_figure(ds), plot, out, json_out,
+                         lambda: basin_stability_document(ds),
+                         lambda: basin_stability_tables({spec.name: ds}, {spec.name: basin_stability_rows(ds)}))
