@@ -55,7 +55,7 @@ def starts_for_half_width(width: float, confidence: float = 0.95) -> int:
     Examples
     --------
     >>> starts_for_half_width(0.05), starts_for_half_width(0.01)
-    (381, 9601)
+    (381, 9600)
     """
     if not 0.0 < width < 0.5:
         raise ValueError(f"width must be in (0, 0.5), got {width!r}")
