@@ -7,7 +7,7 @@ never answers or allocate a chunk no machine holds; these bounds are named in th
 
 from __future__ import annotations
 
-__all__ = ["MAX_WORKERS", "MAX_CHUNK", "MAX_COUNT", "MAX_SEED", "MAX_SPEED_RPM"]
+__all__ = ["MAX_WORKERS", "MAX_CHUNK", "MAX_COUNT", "MAX_SEED", "MAX_SPEED_RPM", "MAX_STARTS"]
 
 #: Workers of a local Dask cluster (threads of one command).
 MAX_WORKERS = 256
@@ -24,3 +24,7 @@ MAX_SEED = 2**63 - 1
 #: Fastest spin speed an option takes (rpm): ten times the fastest machine rotors (turbine and
 #: dental-drill rotors, ~1e6 rpm); beyond it the structure's matrices overflow.
 MAX_SPEED_RPM = 1e7
+
+#: Random starts at one value of a basin-stability parameter (``--starts``, and what a target
+#: ``--ci-width`` may need).
+MAX_STARTS = 200_000

@@ -277,3 +277,23 @@ t_end = "1 s"
     html = (tmp_path / "out" / "report.html").read_text(encoding="utf-8")
     assert "the share of random start-ups that end balanced" in html and "16 starts per value" in html
     assert list((tmp_path / "out").rglob("damping-range_basin_stability.png"))
+
+
+def test_case_file_checks_name_the_key(case, tmp_path):
+    from importlib import resources
+
+    from pydantic import ValidationError
+
+    spec = BasinStabilitySpec(param={"ball_damping": [1e-3, 2e-3, 2]}, ci_width=0.001)
+    issue = spec.case_issues(case.model)[0]
+    assert issue.loc == ("ci_width",) and "must be >= 0.00219" in issue.message and "200000 starts" in issue.message
+    with pytest.raises(ValidationError, match="psi_1: unknown param coordinate"):
+        BasinStabilitySpec(param={"psi_1": [0.0, 1.0, 2]})
+    third = BasinStabilitySpec(param={"ball_damping": [1e-3, 2e-3, 2]}, ranges={"psi_3": [0.0, 1.0]})
+    assert [(i.loc, i.message) for i in third.case_issues(case.model)] == [(("ranges", "psi_3"), "the model has 2 ball(s)")]
+    text = resources.files("rotorlab.cases").joinpath("autobalancer.toml").read_text(encoding="utf-8")
+    text = text[: text.index("[[analysis]]")] + ('[[analysis]]\ntype = "basin-stability"\nparam = {ball_damping = '
+                                                 '[1e-3, 2e-3, 2]}\nstarts = 10\nci_width = 0.1\n')
+    (tmp_path / "c.toml").write_text(text, encoding="utf-8")
+    res = CliRunner().invoke(app, ["validate", str(tmp_path / "c.toml")])
+    assert res.exit_code == 2 and "analysis[0]" in res.output and "ci_width" in res.output, res.output

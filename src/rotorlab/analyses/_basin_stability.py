@@ -114,7 +114,7 @@ def run_basin_stability_analysis(case_model: Any, analysis: Any, progress: Calla
 
 def basin_stability_task_size(case_model: Any, analysis: Any) -> int:
     """The most starts a case's ``basin-stability`` analysis may run (its progress-bar total)."""
-    from rotorlab.explore import starts_for_half_width
+    from rotorlab._wilson import starts_for_half_width
 
     per = analysis.starts if analysis.starts is not None else starts_for_half_width(analysis.ci_width or 0.05,
                                                                                    analysis.confidence)

@@ -14,27 +14,27 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _settings, app, find_analysis
+from rotorlab._limits import MAX_STARTS
 from rotorlab.cli._options import MAX_SEED, count_option
 from rotorlab.cli._output import BadInput, handled, info, progress_bar
 from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt
 
 __all__ = ["basin_stability_command"]
 
-_MAX_STARTS = 200_000  # rotorlab.explore._stability.MAX_STARTS (not imported: the command line starts fast)
 # the options that set each key of the analysis, for messages
 _OPTION_OF = {"param": "--param", "starts": "--starts", "ci_width": "--ci-width", "seed": "--seed",
               "ranges": "--range", "t_end": "--t-end", "speed": "--speed-rpm", "speed_ratio": "--speed-ratio"}
 
 
 def _check_width(ci_width: float | None) -> None:
-    from rotorlab.explore._stability import min_half_width
+    from rotorlab._wilson import min_half_width
 
     if ci_width is None:
         return
     low = min_half_width()
     if not (math.isfinite(ci_width) and low <= ci_width < 0.5):
         raise BadInput(f"--ci-width = {ci_width:g}: must be a number in [{low:.3g}, 0.5) (the target half-width of "
-                       f"the Wilson 95 % intervals; {low:.3g} needs the most starts allowed, {_MAX_STARTS} per value)")
+                       f"the Wilson 95 % intervals; {low:.3g} needs the most starts allowed, {MAX_STARTS} per value)")
 
 
 def _spec(loaded: Any, base: Any, updates: dict[str, Any]) -> Any:
@@ -101,7 +101,7 @@ def basin_stability_command(
         "--param", metavar="NAME=A:B:N", help="The parameter and its N values from A to B (SI or with a unit: "
         "spin_speed=1500rpm:3000rpm:16), one of the names of rotorlab sweep --param.")] = None,
     starts: Annotated[Optional[int], count_option(  # noqa: UP007
-        "--starts", high=_MAX_STARTS, what="random starts per value", metavar="N",
+        "--starts", high=MAX_STARTS, what="random starts per value", metavar="N",
         help="N random starts at every value (instead of --ci-width).")] = None,
     ci_width: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--ci-width", metavar="W", help="Add random starts at each value until every Wilson 95 % interval is within "

@@ -11,6 +11,7 @@ from typing import Any
 
 import numpy as np
 
+from rotorlab._wilson import wilson_interval
 from rotorlab.explore._mapper import AbstractMapper, MapperAnalysis, run_mapped
 from rotorlab.sweep._axes import GridAxis, Sample
 
@@ -120,52 +121,6 @@ def basin_fractions(ds):
         coords={"horizon": ds["horizon"], "regime": names},
         attrs={"n": n},
     )
-
-
-def wilson_interval(count, n, confidence: float = 0.95):
-    """Wilson score interval of a binomial proportion.
-
-    Parameters
-    ----------
-    count : int or array_like
-        Successes.
-    n : int or array_like
-        Trials, >= 1 (broadcast against ``count``).
-    confidence : float
-        In (0, 1).
-
-    Returns
-    -------
-    (low, high) : ndarrays
-        Of the broadcast shape of ``count`` and ``n``: ``(k + z^2/2) / (n + z^2) -+ z / (n + z^2)
-        sqrt(k (n - k) / n + z^2 / 4)`` with ``z`` the two-sided normal quantile, the interval of
-        ``scipy.stats.binomtest(k, n).proportion_ci(confidence, method="wilson")`` in closed form
-        (vectorised: adaptive basin stability evaluates it for many counts).
-
-    References
-    ----------
-    Wilson E.B. Probable inference, the law of succession, and statistical inference. J. Amer.
-    Statist. Assoc. 22 (1927) 209-212.
-
-    Examples
-    --------
-    >>> [round(float(v), 4) for v in wilson_interval(50, 100)]
-    [0.4038, 0.5962]
-    """
-    from scipy.stats import norm
-
-    if not 0.0 < confidence < 1.0:
-        raise ValueError(f"confidence must be in (0, 1), got {confidence!r}")
-    k, n = np.broadcast_arrays(np.asarray(count, dtype=float), np.asarray(n, dtype=float))
-    if np.any(n < 1):
-        raise ValueError(f"n must be >= 1, got {np.asarray(n).min()!r}")
-    z = float(norm.ppf(0.5 + confidence / 2.0))
-    centre = (k + z * z / 2.0) / (n + z * z)
-    half = z / (n + z * z) * np.sqrt(np.maximum(k * (n - k) / n, 0.0) + z * z / 4.0)
-    low, high = np.clip(centre - half, 0.0, 1.0), np.clip(centre + half, 0.0, 1.0)
-    low = np.where(k <= 0, 0.0, low)  # exact ends, as SciPy's
-    high = np.where(k >= n, 1.0, high)
-    return low, high
 
 
 def basin_stability(

@@ -25,7 +25,8 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab.explore._basin import wilson_interval
+from rotorlab._limits import MAX_STARTS
+from rotorlab._wilson import _z, min_half_width, starts_for_half_width, wilson_interval
 
 __all__ = ["RandomStarts", "basin_stability_over", "starts_for_half_width", "needed_starts", "half_widths",
            "START_DIM", "MAX_STARTS", "ADAPTIVE_CHUNK"]  # fmt: skip
@@ -34,33 +35,8 @@ __all__ = ["RandomStarts", "basin_stability_over", "starts_for_half_width", "nee
 START_DIM = "start"
 #: Starts drawn from one seeded generator: start ``j`` comes from block ``j // _BLOCK``.
 _BLOCK = 256
-#: Most starts at one parameter value (what a target half-width may ask for).
-MAX_STARTS = 200_000
 #: Starts per chunk of an adaptive run when none is given (the step in which a value grows).
 ADAPTIVE_CHUNK = 128
-
-
-def _z(confidence: float) -> float:
-    from scipy.stats import norm
-
-    return float(norm.ppf(0.5 + confidence / 2.0))
-
-
-def starts_for_half_width(width: float, confidence: float = 0.95) -> int:
-    """The fewest starts whose Wilson interval has a half-width <= ``width`` whatever the fraction.
-
-    The half-width ``z / (n + z^2) sqrt(k (n - k) / n + z^2 / 4)`` is largest at ``k = n / 2``,
-    where it is ``z / (2 sqrt(n + z^2))``; so ``n >= z^2 / (4 W^2) - z^2`` starts always do.
-
-    Examples
-    --------
-    >>> starts_for_half_width(0.05), starts_for_half_width(0.01)
-    (381, 9600)
-    """
-    if not 0.0 < width < 0.5:
-        raise ValueError(f"width must be in (0, 0.5), got {width!r}")
-    z = _z(confidence)
-    return max(1, math.ceil(z * z / (4.0 * width * width) - z * z))
 
 
 def half_widths(counts, n, confidence: float = 0.95) -> np.ndarray:
@@ -305,12 +281,6 @@ def basin_stability_over(
                      pool=int(pool), rounds=rounds, param=axis.name,
                      ranges=json.dumps({k: [float(v[0]), float(v[1])] for k, v in ranges.items()}))  # fmt: skip
     return out
-
-
-def min_half_width(confidence: float = 0.95) -> float:
-    """The narrowest target half-width :data:`MAX_STARTS` starts per value guarantee."""
-    z = _z(confidence)
-    return z / (2.0 * math.sqrt(MAX_STARTS + z * z))
 
 
 def _first_guess(width: float, confidence: float) -> int:

@@ -28,15 +28,13 @@ from typing import Any, ClassVar, Literal
 
 from pydantic import Field
 
+from rotorlab._limits import MAX_STARTS
 from rotorlab.io._coordinates import RecordsInputUnits, coordinate_dimensions, coordinates_text, mappable_text
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import AbstractModelSpec, RaceIndices, chosen_race_issues, integer, quantity
 from rotorlab.io._sweep_specs import BaseSpeedSpec, _axes, sweep_coordinates
 
-__all__ = ["BasinStabilitySpec", "MAX_STARTS", "default_start_ranges"]
-
-#: Most random starts at one parameter value (:data:`rotorlab.explore._stability.MAX_STARTS`).
-MAX_STARTS = 200_000
+__all__ = ["BasinStabilitySpec", "default_start_ranges"]
 
 
 def default_start_ranges(model: AbstractModelSpec, races: tuple[int, ...] | None = None) -> dict[str, tuple]:
@@ -149,6 +147,11 @@ class BasinStabilitySpec(BaseSpeedSpec, RecordsInputUnits):
                     issues.append(Issue((key, name), "high must be > low (fix a value with --set instead)",
                                         list(entry)))  # fmt: skip
         issues += chosen_race_issues(model, self.races, [(("ranges", k), k) for k in self.ranges])
+        from rotorlab._wilson import min_half_width
+
+        if self.ci_width is not None and self.ci_width < min_half_width(self.confidence):
+            issues.append(Issue(("ci_width",), f"must be >= {min_half_width(self.confidence):.3g}: a narrower interval "
+                                               f"needs more than {MAX_STARTS} starts per value", self.ci_width))
         if not issues and not self.start_ranges(model):
             issues.append(Issue(("ranges",), "give the start coordinates to draw {NAME = [low, high]}", None,
                                 show_value=False))  # fmt: skip
