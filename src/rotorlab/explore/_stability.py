@@ -17,6 +17,7 @@ depend only on the results, so a resumed run replays them and computes only what
 
 from __future__ import annotations
 
+import contextlib
 import json
 import math
 from collections.abc import Callable, Mapping
@@ -235,7 +236,7 @@ def basin_stability_over(
     stability paradigm. Nature Physics 9 (2013) 89-92.
     """
     from rotorlab.explore._mapper import AbstractMapper, MapperAnalysis
-    from rotorlab.sweep import GridAxis, Sweep, run_sweep
+    from rotorlab.sweep import GridAxis, Sweep
     from rotorlab.sweep._store import MemorySink
 
     if starts is not None and ci_width is not None:
@@ -257,30 +258,42 @@ def basin_stability_over(
                   input_units=dict(input_units or {}))  # fmt: skip
     per = pool // chunk
     n = np.full(axis.num, pool if starts is not None else min(pool, chunk * -(-_first_guess(ci_width, confidence) // chunk)))
-    rounds = 0
     sink = store if store is not None else MemorySink(sweep, chunk)
-    while True:
-        rounds += 1
-        wanted = [i * per + b for i in range(axis.num) for b in range(int(n[i]) // chunk)]
-        ds = run_sweep(sweep, store=sink, resume=store is not None and (resume or rounds > 1),
-                       chunk_size=chunk if store is not None else None, executor=executor, only=wanted,
-                       progress=_progress(progress, chunk, int(n.sum())))  # fmt: skip
-        counts = _final_counts(ds, n, axis.name)
-        if starts is not None:
-            break
-        wide = half_widths(counts, n, confidence) > ci_width
-        grow = np.array([min(pool, max(n[i] + chunk, min(needed_starts(counts[i], int(n[i]), ci_width, confidence,
-                                                                        chunk, pool), 4 * n[i])))
-                         if wide[i] and n[i] < pool else n[i] for i in range(axis.num)])  # fmt: skip
-        if np.array_equal(grow, n):
-            break
-        n = grow
+    with contextlib.ExitStack() as stack:
+        # one Dask cluster (or client) for all rounds, not one per round
+        executor = stack.enter_context(executor.session()) if hasattr(executor, "session") else executor
+        ds, n, rounds = _rounds(sweep, sink, store, resume, chunk, executor, progress, n, axis.num, per, pool, starts,
+                                ci_width, confidence)  # fmt: skip
     out = _summary(ds, n, axis.name, confidence)
     out.attrs.update(seed=int(seed), confidence=float(confidence), mode="starts" if starts is not None else "ci-width",
                      target_half_width=float("nan") if ci_width is None else float(ci_width), chunk=int(chunk),
                      pool=int(pool), rounds=rounds, param=axis.name,
                      ranges=json.dumps({k: [float(v[0]), float(v[1])] for k, v in ranges.items()}))  # fmt: skip
     return out
+
+
+def _rounds(sweep, sink, store, resume, chunk, executor, progress, n, n_values, per, pool, starts, ci_width,
+            confidence):  # fmt: skip
+    """Run the rounds of :func:`basin_stability_over`: its last Dataset, starts per value, rounds."""
+    from rotorlab.sweep import run_sweep
+
+    rounds = 0
+    while True:
+        rounds += 1
+        wanted = [i * per + b for i in range(n_values) for b in range(int(n[i]) // chunk)]
+        ds = run_sweep(sweep, store=sink, resume=store is not None and (resume or rounds > 1),
+                       chunk_size=chunk if store is not None else None, executor=executor, only=wanted,
+                       progress=_progress(progress, chunk, int(n.sum())))  # fmt: skip
+        if starts is not None:
+            return ds, n, rounds
+        counts = _final_counts(ds, n, sweep.axes[0].name)
+        wide = half_widths(counts, n, confidence) > ci_width
+        grow = np.array([min(pool, max(n[i] + chunk, min(needed_starts(counts[i], int(n[i]), ci_width, confidence,
+                                                                        chunk, pool), 4 * n[i])))
+                         if wide[i] and n[i] < pool else n[i] for i in range(n_values)])  # fmt: skip
+        if np.array_equal(grow, n):
+            return ds, n, rounds
+        n = grow
 
 
 def _first_guess(width: float, confidence: float) -> int:

@@ -9,6 +9,7 @@ the executor changes only the wall time.
 
 from __future__ import annotations
 
+import contextlib
 import os
 import uuid
 from collections.abc import Callable, Iterable, Iterator
@@ -202,25 +203,9 @@ class DaskExecutor:
 
     def imap(self, fn: Callable, analysis: Any, tasks: Iterable[Task]) -> Iterator[Any]:
         """Submit every task, then yield results as they finish."""
-        from distributed import Client, as_completed
+        from distributed import as_completed
 
-        owned: list[Any] = []
-        threads = self.threads
-        if self.client is not None:
-            client = self.client
-        elif self.scheduler is not None:
-            try:
-                client = Client(self.scheduler, timeout="10s")
-            except (OSError, TimeoutError) as exc:
-                raise ExecutorError(f"--scheduler = {self.scheduler}: cannot connect ({exc})") from None
-            owned.append(client)
-        else:
-            n = self.workers or 2
-            threads = threads or max(1, _cores() // n)
-            cluster = local_cluster(n, processes=threads > 1 and not _parallel_regions_threadsafe())
-            owned.append(cluster)
-            client = Client(cluster)
-            owned.insert(0, client)
+        client, threads, owned = self._connect()
         run = uuid.uuid4().hex[:12]
         futures = []
         try:
@@ -234,6 +219,38 @@ class DaskExecutor:
             pending = [f for f in futures if not f.done()]
             if pending:
                 client.cancel(pending)
+            for obj in owned:
+                try:
+                    obj.close()
+                except Exception:  # noqa: BLE001, S110 - closing is best effort
+                    pass
+
+    def _connect(self) -> tuple[Any, int | None, list[Any]]:
+        """The client, the integrator threads per task and what to close afterwards."""
+        from distributed import Client
+
+        if self.client is not None:
+            return self.client, self.threads, []
+        if self.scheduler is not None:
+            try:
+                client = Client(self.scheduler, timeout="10s")
+            except (OSError, TimeoutError) as exc:
+                raise ExecutorError(f"--scheduler = {self.scheduler}: cannot connect ({exc})") from None
+            return client, self.threads, [client]
+        n = self.workers or 2
+        threads = self.threads or max(1, _cores() // n)
+        cluster = local_cluster(n, processes=threads > 1 and not _parallel_regions_threadsafe())
+        client = Client(cluster)
+        return client, threads, [client, cluster]
+
+    @contextlib.contextmanager
+    def session(self) -> Iterator[DaskExecutor]:
+        """This executor bound to one client for several runs (a local cluster starts once), e.g.
+        the rounds of an adaptive basin stability."""
+        client, threads, owned = self._connect()
+        try:
+            yield DaskExecutor(threads=threads, client=client)
+        finally:
             for obj in owned:
                 try:
                     obj.close()
