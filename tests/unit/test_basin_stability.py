@@ -297,3 +297,36 @@ def test_case_file_checks_name_the_key(case, tmp_path):
     (tmp_path / "c.toml").write_text(text, encoding="utf-8")
     res = CliRunner().invoke(app, ["validate", str(tmp_path / "c.toml")])
     assert res.exit_code == 2 and "analysis[0]" in res.output and "ci_width" in res.output, res.output
+
+
+def test_balancer_group_in_arrays_is_classify_per_start(case):
+    # group() labels whole chunks in array operations (it holds the GIL); one classify call per
+    # start and horizon is the reference, on features spread around every threshold
+    from rotorlab.analyses._basin import basin_mapper
+    from rotorlab.explore._outcome import classify
+    from rotorlab.explore._settle import NOT_SETTLED
+    from rotorlab.integrate import Status
+
+    mapper = basin_mapper(case.model, case.analysis("basin"))
+    rng = np.random.default_rng(11)
+    n, h = 3000, 3
+    ref = rng.uniform(1e-3, 3e-3, n)
+    f = {"amplitude": ref[:, None] * rng.choice([0.01, 0.049, 0.051, 0.5, 2.0], (n, h)),
+         "reference_amplitude": ref, "rotor_speed": rng.choice([250.0, -250.0], n),
+         "max_rate": 250.0 * rng.choice([0.0, 0.9e-4, 1.1e-4, 1e-2, np.nan], (n, h)),
+         "status_code": rng.choice([0, 0, 0, 1, -1, -3], n),
+         "settle_estimate": np.where(rng.random((n, h)) < 0.2, 5.0, np.nan)}  # fmt: skip
+    for b in (1, 2):  # near 0, near 180 deg, in between, just inside/outside the 30 deg tolerance, NaN
+        degrees = rng.choice([0.0, 10.0, -29.0, 31.0, 90.0, 175.0, -151.0, 149.0, np.nan], (n, h))
+        f[f"ball_angle_{b}"] = np.radians(degrees)
+    f["amplitude"][rng.random((n, h)) < 0.02] = np.nan
+    got = mapper.group(f)
+    names = mapper.labels
+    for i, j in np.ndindex(n, h):
+        code = int(f["status_code"][i])
+        text = classify(code, Status(code).message, f["amplitude"][i, j], ref[i],
+                        [f["ball_angle_1"][i, j], f["ball_angle_2"][i, j]], f["max_rate"][i, j], f["rotor_speed"][i])
+        if text != "balanced" and code >= 0 and np.isfinite(f["settle_estimate"][i, j]):
+            text = NOT_SETTLED
+        assert got[i, j] == (names.index(text) if text in names else names.index("other")), (i, j, text)
+    assert len(set(got.ravel().tolist())) == len(names)  # every label occurs

@@ -22,10 +22,11 @@ from dataclasses import dataclass, field, replace
 import numpy as np
 
 from rotorlab._kernels import jeffcott_balls as _jk
-from rotorlab.explore._outcome import BALANCED_FRACTION, SETTLE_RATE, classify, reference_amplitude, wrap_angle
+from rotorlab.explore._outcome import (BALANCED_FRACTION, SETTLE_RATE, SIDE_TOLERANCE, reference_amplitude,
+                                      wrap_angle)
 from rotorlab.explore._settle import NOT_SETTLED, settle_estimate, slowest_decay_rate
 from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
-from rotorlab.integrate import Status, StepControl
+from rotorlab.integrate import StepControl
 from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, Parameter, fixed_to_rotating
 
 __all__ = ["BalancerRegimes", "balancer_labels"]
@@ -302,18 +303,26 @@ class BalancerRegimes:
         return out
 
     def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray:
+        """The labels of :func:`~rotorlab.analyses.classify` (then *not settled* where a start is
+        still converging), for all starts and horizons at once: the same rules as one
+        ``classify`` call per start and horizon (``tests/unit/test_basin_stability.py`` checks),
+        in array operations, since this runs in Python holding the GIL on every chunk."""
         names = self.labels
-        index = {name: k for k, name in enumerate(names)}
         nb = self.model.n_balls
-        amp = features["amplitude"]
-        out = np.empty(amp.shape, dtype=np.int16)
-        for i, j in np.ndindex(*amp.shape):
-            code = int(features["status_code"][i])
-            text = classify(code, Status(code).message, float(amp[i, j]),
-                            float(features["reference_amplitude"][i]),
-                            [features[f"ball_angle_{b + 1}"][i, j] for b in range(nb)],
-                            float(features["max_rate"][i, j]), float(features["rotor_speed"][i]))  # fmt: skip
-            if text != "balanced" and code >= 0 and np.isfinite(features["settle_estimate"][i, j]):
-                text = NOT_SETTLED
-            out[i, j] = index.get(text, index["other"])
-        return out
+        amp = np.asarray(features["amplitude"], dtype=float)
+        status = np.asarray(features["status_code"]).reshape(-1, 1)
+        omega = np.abs(np.asarray(features["rotor_speed"], dtype=float)).reshape(-1, 1)
+        ref = np.asarray(features["reference_amplitude"], dtype=float).reshape(-1, 1)
+        angles = wrap_angle(np.stack([features[f"ball_angle_{b + 1}"] for b in range(nb)], axis=-1)) if nb else \
+            np.empty((*amp.shape, 0))  # fmt: skip
+        moving = ~(np.asarray(features["max_rate"]) <= SETTLE_RATE * omega) | ~np.all(np.isfinite(angles), axis=-1)
+        balanced = amp <= BALANCED_FRACTION * ref + 1e-15
+        near_zero = np.abs(angles) <= SIDE_TOLERANCE
+        side = np.all(near_zero | (np.abs(angles) >= math.pi - SIDE_TOLERANCE), axis=-1) & (nb > 0)
+        # side motions are listed by the number of balls at 180 deg (balancer_labels), after "balanced"
+        code = np.where(side, 1 + np.sum(~near_zero, axis=-1), names.index("other"))
+        code = np.where(balanced, names.index("balanced"), code)
+        code = np.where(moving, names.index("non-synchronous"), code)
+        waiting = np.isfinite(np.asarray(features["settle_estimate"], dtype=float))
+        code = np.where((code != names.index("balanced")) & waiting, names.index(NOT_SETTLED), code)
+        return np.where(status < 0, names.index("other"), code).astype(np.int16)
