@@ -70,6 +70,8 @@ from rotorlab.explore._outcome import (
     wrap_angle,
 )
 from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
+from rotorlab.analyses._facts import MACHINE_FACTS, MachineFacts, machine_facts, register_machine_facts
+from rotorlab.analyses._sanity import SANITY_CHECKS, SanityWarning, register_sanity_check, sanity_warnings
 from rotorlab.analyses._machine import machine_simulate, machine_steady
 from rotorlab.analyses._machine_run_up import PassingTorque, machine_run_up, passing_torque
 from rotorlab.analyses._steady import (
@@ -82,6 +84,14 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
+    "MACHINE_FACTS",
+    "MachineFacts",
+    "machine_facts",
+    "register_machine_facts",
+    "SANITY_CHECKS",
+    "SanityWarning",
+    "register_sanity_check",
+    "sanity_warnings",
     "PassingTorque",
     "passing_torque",
     "machine_run_up",
