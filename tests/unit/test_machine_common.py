@@ -308,7 +308,7 @@ def test_simulate_findings_without_balls_name_no_ball_angles():
     rows = [{"ic": 0, "outcome": "no balancer", "amplitude": {"rotor": 1.04e-3},
              "reference_amplitude": {"rotor": 1.0e-3}, "final_ball_angles_deg": {}}]
     found = _simulate_findings(None, rows)
-    assert found.numbers == ("largest vibration / unbalance response 1.04", "start 0: no balancer")
+    assert found.numbers == ("largest vibration / unbalance response 104 %", "start 0: no balancer")
     assert "104 %" in found.verdict
 
 
@@ -343,6 +343,7 @@ def test_run_up_report_says_what_its_result_arrays_say():
     vibration is the tail orbit of the amplitude array, "balanced" iff that is at most
     BALANCED_FRACTION of the locked unbalance response U w^2 / |c - M w^2 + i d w| at the final
     speed; the planar case with a motor is the kernel of test_machine_analyses' run-up test."""
+    from rotorlab import _people as people
     from rotorlab.explore._outcome import BALANCED_FRACTION
     from rotorlab.report._machine import machine_findings, machine_rows_table
 
@@ -372,7 +373,7 @@ def test_run_up_report_says_what_its_result_arrays_say():
         assert (r["outcome"] == "balanced") == balanced
         assert f"start {i}: passes {r['passed']} critical speed(s), reaches {w * 30 / math.pi:.4g} rpm" \
             in found.verdict
-        assert f"start {i}: residual vibration disc: {r['residual_amplitude']['disc'] * 1e3:.4g} mm" in found.numbers[i]
+        assert f"start {i}: residual vibration disc: {people.length(r['residual_amplitude']['disc'])}" in found.numbers[i]
         assert body[i][header.index("passed")] == str(r["passed"])
     good = [r["ic"] for r in rows if r["outcome"] == "balanced"]
     assert good[:1] == [0]  # the balls apart balance above p

@@ -71,6 +71,7 @@ from rotorlab.explore._outcome import (
 )
 from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
 from rotorlab.analyses._facts import MACHINE_FACTS, MachineFacts, machine_facts, register_machine_facts
+from rotorlab.analyses._page_verdict import VERDICT_EVIDENCE, VerdictLine, explain_regime, machine_verdict, register_evidence
 from rotorlab.analyses._sanity import SANITY_CHECKS, SanityWarning, register_sanity_check, sanity_warnings
 from rotorlab.analyses._machine import machine_simulate, machine_steady
 from rotorlab.analyses._machine_run_up import PassingTorque, machine_run_up, passing_torque
@@ -88,6 +89,11 @@ __all__ = [
     "MachineFacts",
     "machine_facts",
     "register_machine_facts",
+    "VERDICT_EVIDENCE",
+    "VerdictLine",
+    "explain_regime",
+    "machine_verdict",
+    "register_evidence",
     "SANITY_CHECKS",
     "SanityWarning",
     "register_sanity_check",

@@ -244,17 +244,24 @@ def run_command(
         with status(settings, "Drawing figures and writing the report ..."):
             figures = {name: shown[name].figures(ds, name) for name, ds in results.items()}
             report = write_report(out, loaded, results, figures, tables)
+        from rotorlab.analyses import machine_verdict
+
+        verdict = machine_verdict(loaded, results, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results),
                         *(f"{k}.png" for stems in figures.values() for k in stems)])
         total = time.perf_counter() - start
         if json_out:
             emit_json({**_json_case(loaded), "out_dir": str(report.parent), "report": str(report),
                        "files": files, "seconds": round(total, 3), "warnings": [w.to_dict() for w in warnings],
+                       "verdict": [line.to_dict() for line in verdict],
                        "analyses": {name: {"type": ds.attrs.get("analysis", ""), "rows": tables[name]}
                                     for name, ds in results.items()}})  # fmt: skip
             exit_if_failed(results)
             return
         con = stdout()
+        from rotorlab.cli._verdict import verdict_text
+
+        con.print(verdict_text(verdict), markup=False, highlight=False)
         for family, presentation in PRESENTATIONS.items():
             chosen = {n: ds for n, ds in results.items() if entries[n].family == family}
             if not chosen:

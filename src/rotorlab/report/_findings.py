@@ -14,6 +14,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from rotorlab import _people as people
+
 if TYPE_CHECKING:
     import xarray
 
@@ -40,8 +42,8 @@ def _pct(part: int, whole: int) -> str:
     return f"{100.0 * part / whole:.1f} %" if whole else "–"
 
 
-def _span(values: Sequence[float]) -> str:
-    low, high = f"{min(values):.3g}", f"{max(values):.3g}"
+def _span(values: Sequence[float], shown: Callable[[float], str] = lambda v: f"{v:.3g}") -> str:
+    low, high = shown(min(values)), shown(max(values))
     return low if low == high else f"{low} to {high}"
 
 
@@ -84,8 +86,8 @@ def simulation_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
         amps = [r["final_amplitude"] for r in here if r["final_amplitude"] is not None]
         ratios = [r["amplitude_ratio"] for r in here if r["amplitude_ratio"] is not None]
         if amps:
-            numbers.append(f"final shaft deflection at {rpm:.0f} rpm: {_span([a * 1e3 for a in amps])} mm"
-                           + (f" ({_span(ratios)} × the unbalance alone)" if ratios else ""))
+            numbers.append(f"final shaft deflection at {rpm:.0f} rpm: {_span(amps, people.length)}"
+                           + (f" ({_span(ratios, people.relative)} of the unbalance alone)" if ratios else ""))
     return Findings(". ".join(verdicts), tuple(numbers))
 
 

@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from rotorlab import _people as people
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.report._findings import Findings
 
@@ -30,6 +31,13 @@ def _races(angles) -> str:
     if not angles:
         return "-"
     return "; ".join(f"{k}: {', '.join(_g(a, 5) for a in v)}" for k, v in angles.items())
+
+
+def _angles(angles) -> str:
+    """Ball angles by race for a sentence, to 0.1 degree."""
+    if not angles:
+        return "-"
+    return "; ".join(f"{k}: {', '.join(people.angle_deg(a) for a in v)}" for k, v in angles.items())
 
 
 def _stations(rows: Rows, key: str) -> list[str]:
@@ -138,7 +146,7 @@ def _steady_findings(ds, rows):
                 "station (see the whirl per station).")
     return Findings(f"{len(stable)} of {len(rows)} {'/'.join(kinds)} steady motion(s){at} are stable (exact "
                     f"eigenvalues): {what}{beyond}",
-                    tuple(f"motion {r.get('label', r['motion'])}: balls at {_races(r['ball_angles_deg'])} deg, "
+                    tuple(f"motion {r.get('label', r['motion'])}: balls at {_angles(r['ball_angles_deg'])}, "
                           f"max Re(lambda) = {_g(r['max_real_eigenvalue'])} 1/s" for r in stable))
 
 
@@ -183,10 +191,11 @@ def _simulate_findings(ds, rows):
     if not rows:
         return Findings("No starts.")
     if "no balancer" in by:
-        verdict = (f"Without a balancer the vibration is {100 * worst:.3g} % of the locked unbalance response "
+        verdict = (f"Without a balancer the vibration is {people.relative(worst)} of the locked unbalance response "
                    "(the reference for the variants with balls).")
     elif len(good) == len(rows):
-        verdict = f"The balancer balances from every start ({len(rows)}): vibration at most {100 * worst:.3g} % of "                   "the unbalance response."
+        verdict = f"The balancer balances from every start ({len(rows)}): vibration at most {people.relative(worst)} of " \
+                  "the unbalance response."
     elif good:
         verdict = (f"The balancer balances from {len(good)} of {len(rows)} starts (start(s) "
                    f"{', '.join(map(str, good))}); " + "; ".join(f"{k} from start(s) {', '.join(map(str, v))}"
@@ -194,10 +203,10 @@ def _simulate_findings(ds, rows):
     else:
         verdict = ("The balancer does not balance from any start: " + "; ".join(
             f"{k} from start(s) {', '.join(map(str, v))}" for k, v in by.items()) +
-            f" (vibration up to {100 * worst:.3g} % of the unbalance response).")
-    return Findings(verdict, (f"largest vibration / unbalance response {worst:.3g}",
+            f" (vibration up to {people.relative(worst)} of the unbalance response).")
+    return Findings(verdict, (f"largest vibration / unbalance response {people.relative(worst)}",
                               *(f"start {r['ic']}: {r['outcome']}" + (f", final ball angles "
-                                f"{_races(r['final_ball_angles_deg'])} deg" if r["outcome"] != "no balancer" else "")
+                                f"{_angles(r['final_ball_angles_deg'])}" if r["outcome"] != "no balancer" else "")
                                 for r in rows)))
 
 
@@ -214,7 +223,7 @@ def _run_up_findings(ds, rows):
         else:
             parts.append(f"start {r['ic']}: passes {r['passed']} critical speed(s), reaches "
                          f"{r['final_speed_rpm']:.4g} rpm; {verdicts.get(r['outcome'], r['outcome'])}")
-        res = ", ".join(f"{s}: {_mm(v)} mm (without balancing {_mm(r['reference_amplitude'][s])} mm)"
+        res = ", ".join(f"{s}: {people.length(v)} (without balancing {people.length(r['reference_amplitude'][s])})"
                         for s, v in r["residual_amplitude"].items())
         numbers.append(f"start {r['ic']}: residual vibration {res}")
     good = [r["ic"] for r in rows if r["outcome"] == "balanced"]

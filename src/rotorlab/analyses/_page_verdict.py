@@ -1,0 +1,364 @@
+"""The engineer's verdict on a machine: one screen that opens every report and ``rotorlab run``.
+
+Lines, each with a topic, a status (``yes``, ``no``, ``not-settled`` or ``info``), a sentence
+with numbers rounded for people (:mod:`rotorlab._people`) and, for a "no", the one change that
+would fix it: the critical speeds (which unbalance excites), the operating speed against them,
+whether it balances (from what share of starts, within what time), the stable speed range, the
+run-up (passes the criticals? transient peak) and contact (share of run-ups). Everything comes
+from the results the case's analyses produced; where an analysis was not in the case the line
+says "not computed" and names the analysis that would tell. Only the critical speeds are
+computed here (a linear eigenvalue problem).
+
+For implementers
+----------------
+An analysis type adds its evidence with ``register_evidence("my-type", evidence)``, where
+``evidence(ds, rows, facts) -> list[VerdictLine]`` reads its Dataset and summary rows
+(:func:`rotorlab.analyses.summarize`); ``facts`` is the case's
+:class:`~rotorlab.analyses._facts.MachineFacts` or None.
+"""
+
+from __future__ import annotations
+
+import math
+from collections.abc import Callable, Mapping, Sequence
+from dataclasses import dataclass
+from typing import Any
+
+from rotorlab import _people as people
+from rotorlab._constants import RPM_PER_RAD_S as _RPM
+from rotorlab._registry import Registry
+from rotorlab.analyses._facts import MachineFacts, machine_facts
+
+__all__ = ["VerdictLine", "STATUSES", "VERDICT_EVIDENCE", "register_evidence", "machine_verdict", "explain_regime"]
+
+#: The statuses of a verdict line.
+STATUSES = ("yes", "no", "not-settled", "info")
+Rows = Sequence[Mapping[str, Any]]
+
+
+@dataclass(frozen=True)
+class VerdictLine:
+    """One line of the verdict: ``topic``, ``status`` (one of :data:`STATUSES`), ``sentence`` and
+    ``fix`` (the one change that would turn a "no" into a "yes"; "" when none is known)."""
+
+    topic: str
+    status: str
+    sentence: str
+    fix: str = ""
+
+    def to_dict(self) -> dict[str, str]:
+        return {"topic": self.topic, "status": self.status, "sentence": self.sentence, "fix": self.fix}
+
+
+Evidence = Callable[[Any, Rows, "MachineFacts | None"], list[VerdictLine]]
+#: Evidence functions by analysis type (see the module's "For implementers" list).
+VERDICT_EVIDENCE: Registry[Evidence] = Registry("analysis type with verdict evidence")
+
+
+def register_evidence(analysis_type: str, evidence: Evidence, *, replace: bool = False) -> None:
+    """Add the verdict evidence of an analysis type to :data:`VERDICT_EVIDENCE`."""
+    VERDICT_EVIDENCE.register(analysis_type, evidence, replace=replace)
+
+
+# --------------------------------------------------------------------------- regime names
+
+_REGIMES: dict[str, str] = {
+    "balanced": "the balls settled where they cancel the unbalance",
+    "side": "the balls settled on the line through the unbalance (the nominal angles in brackets, 0° on the "
+            "unbalance's side): they do not cancel it, at 0° they add to it",
+    "non-synchronous": "the balls keep circling relative to the rotor instead of settling",
+    "not settled": "still converging towards balance when the simulation ended",
+    "steady": "the balls settled off the balanced angles (held by friction)",
+    "not balanced": "the balls settled but the vibration is above the balanced threshold",
+    "captured": "the rotor is held at a critical speed (the Sommerfeld effect)",
+    "unbalanced": "a rotor without balls",
+    "no balancer": "no balls: the reference",
+    "below critical speed": "the run-up ended below the first critical speed, where a balancer cannot balance",
+}
+
+
+def explain_regime(label: str) -> str:
+    """What a regime label means, in words.
+
+    >>> explain_regime("side (0°, 0°)")[:45]
+    'the balls settled on the line through the unb'
+    """
+    for key in sorted(_REGIMES, key=len, reverse=True):
+        if label == key or label.startswith(key + " (") or label.startswith(key + ":"):
+            return _REGIMES[key]
+    return ""
+
+
+def _named(label: str, angles: Sequence[float | None] | None = None) -> str:
+    why = explain_regime(label)
+    seen = f"; measured {', '.join(people.angle_deg(a) for a in angles)}" if angles else ""
+    return f"{label} ({why}{seen})" if why else label
+
+
+# --------------------------------------------------------------------------- evidence
+
+
+def _balance_status(outcomes: Sequence[str]) -> str:
+    if outcomes and all(o == "balanced" for o in outcomes):
+        return "yes"
+    return "not-settled" if any(o == "not settled" for o in outcomes) else "no"
+
+
+def _balance_fix(facts: MachineFacts | None, speed: float | None, status: str, t_end: float | None) -> str:
+    if status == "yes":
+        return ""
+    if facts is not None and facts.balls and facts.capacity < facts.unbalance:
+        return (f"heavier balls: they cancel at most {people.unbalance(facts.capacity)}, the unbalance is "
+                f"{people.unbalance(facts.unbalance)}")
+    p = facts.first_forward if facts is not None else None
+    if p is not None and speed is not None and speed < p:
+        return f"run above the first forward critical speed of {people.speed(p)}, or soften the mounts"
+    if status == "not-settled" and t_end:
+        return f"simulate longer than {people.duration(t_end)} for a verdict"
+    return ""
+
+
+def _angles_of(row: Mapping[str, Any]) -> list[float | None] | None:
+    a = row.get("final_ball_angles_deg")
+    if isinstance(a, Mapping):
+        return [v for vs in a.values() for v in vs]
+    return list(a) if a else None
+
+
+def _starts(rows: Rows, facts: MachineFacts | None, speed: float | None, t_end: float | None,
+            where: str) -> VerdictLine:
+    outcomes = [str(r["outcome"]) for r in rows]
+    status = _balance_status(outcomes)
+    counts: dict[str, list[Mapping[str, Any]]] = {}
+    for r in rows:
+        counts.setdefault(str(r["outcome"]), []).append(r)
+    parts = [f"{_named(o, _angles_of(rs[0]) if o != 'balanced' else None)} from {people.share(len(rs), len(rows))} "
+             "starts" for o, rs in sorted(counts.items(), key=lambda kv: -len(kv[1]))]
+    within = f" within {people.duration(t_end)}" if t_end else ""
+    word = {"yes": "Balances", "no": "Does not balance", "not-settled": "Not settled"}[status]
+    return VerdictLine("balances", status, f"{word} {where}{within}: " + "; ".join(parts) + ".",
+                       _balance_fix(facts, speed, status, t_end))
+
+
+def _simulate_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    t_end = ds.attrs.get("t_end")
+    t_end = float(t_end) if t_end is not None else float(ds.time.values[-1]) if "time" in ds.coords else None
+    by_speed: dict[float, list[Mapping[str, Any]]] = {}
+    for r in rows:
+        rpm = r.get("speed_rpm", r.get("final_speed_rpm"))
+        by_speed.setdefault(round(float(rpm), 6) if rpm is not None else math.nan, []).append(r)
+    out = []
+    name = ds.attrs.get("name", "")
+    for rpm, rs in by_speed.items():
+        if all(r["outcome"] == "no balancer" for r in rs):
+            continue
+        speed = rpm / _RPM if math.isfinite(rpm) else None
+        out.append(_starts(rs, facts, speed, t_end, f"at {people.speed(speed)} ({name})"))
+    return out
+
+
+def _basin_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    if not rows or "count" not in ds or "outcome" not in ds:
+        return []
+    from rotorlab.analyses._verdict import basin_verdict
+
+    test = basin_verdict(ds)
+    n = rows[0]["n"]
+    parts = [f"{_named(str(r['regime']))} from {people.share(int(r['count']), n)} starts" for r in rows if r["count"]]
+    good = sum(int(r["count"]) for r in rows if r["regime"] == "balanced")
+    status = "not-settled" if not test["settled"] else ("yes" if good == n else "no")
+    speed = ds.attrs.get("spin_speed")
+    where = f"at {people.speed(float(speed))} " if speed is not None else ""
+    fix = (f"a horizon of {people.duration(test['horizon_needed_s'])}" if status == "not-settled" else
+           _balance_fix(facts, float(speed) if speed is not None else None, status, None))
+    word = {"yes": "Balances", "no": "Balances only partly", "not-settled": "No verdict yet"}[status]
+    t_end = float(ds["horizon"].values[-1])
+    return [VerdictLine("balances", status, f"{word} {where}({ds.attrs.get('name', '')}, basin, within "
+                        f"{people.duration(t_end)}): " + "; ".join(parts) + ".", fix)]
+
+
+def _run_up_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    if not rows or "passed" not in rows[0]:
+        return _jeffcott_run_up(ds, rows, facts)
+    import numpy as np
+
+    name = ds.attrs.get("name", "")
+    crit = rows[0]["critical_speeds"]
+    passed = [r for r in rows if r["captured_at"] is None and r["passed"] >= 1]
+    peak = float(np.nanmax(ds["amplitude"].values)) if "amplitude" in ds else math.nan
+    status = "yes" if len(passed) == len(rows) else "no"
+    first = f" (first at {people.speed(crit[0])})" if crit else ""
+    sentence = (f"Run-up {name}: {people.share(len(passed), len(rows))} starts pass the critical speed{first}; "
+                f"transient peak {people.length(peak)}, final speed "
+                f"{people.speed(max(r['final_speed'] for r in rows if r['final_speed'] is not None))}.")
+    fix = ""
+    if status == "no":
+        need = [r.get("passing_torque") for r in rows if r.get("passing_torque") is not None]
+        fix = (f"a stall torque of at least {people.torque(max(need))} (the smallest that passes)" if need else
+               "a stronger motor (more stall torque); passing_torque = true finds the least")
+    lines = [VerdictLine("run-up", status, sentence, fix)]
+    with_balls = [r for r in rows if r["outcome"] != "no balancer"]
+    if with_balls:
+        t_end = float(ds.time.values[-1]) if "time" in ds.coords else None
+        top = max(r["final_speed"] for r in with_balls if r["final_speed"] is not None)
+        lines.append(_starts(with_balls, facts, top, t_end, f"after the run-up ({name})"))
+    return lines
+
+
+def _jeffcott_run_up(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    if not rows or "max_amplitude" not in rows[0]:
+        return []
+    peak = max(rows, key=lambda r: r["max_amplitude"] or 0.0)
+    synced = sum(bool(r["synchronised"]) for r in rows)
+    status = "yes" if synced == len(rows) else "no"
+    return [VerdictLine("run-up", status, f"Run-up {ds.attrs.get('name', '')}: transient peak "
+                        f"{people.length(peak['max_amplitude'])} at {people.number(peak['speed_at_max_rpm'])} rpm "
+                        f"(without balls {people.length(peak['max_amplitude_without'])}); balls synchronised in "
+                        f"{people.share(synced, len(rows))} run-ups.",
+                        "" if status == "yes" else "a faster run-up through the critical speed")]
+
+
+def _chart_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    from rotorlab.explore._outcome import true_runs
+
+    if not rows or "speed_rpm" not in rows[0] or "stable" not in rows[0] or any(
+            k in rows[0] for k in ("ball_mass", "ball_damping")):
+        return []
+    speeds = [r["speed_rpm"] for r in rows]
+    spans = true_runs(speeds, [bool(r["stable"]) and bool(r["exists"]) for r in rows])
+    checked = f"{people.number(min(speeds))} to {people.number(max(speeds))} rpm"
+    name = ds.attrs.get("name", "")
+    if spans:
+        text = ", ".join(f"{people.number(a)} to {people.number(b)} rpm" if a != b else f"{people.number(a)} rpm"
+                         for a, b in spans)
+        return [VerdictLine("stable speeds", "yes", f"The balanced state is stable from {text} ({name}; checked "
+                            f"{checked}, exact eigenvalues).")]
+    p = facts.first_forward if facts is not None else None
+    reason, fix = "", ""
+    if p is not None and max(speeds) < p * _RPM:
+        reason = f": every speed checked lies below the first forward critical speed {people.speed(p)}"
+    if p is not None:
+        fix = f"run above the first forward critical speed of {people.speed(p)}, or soften the mounts"
+    return [VerdictLine("stable speeds", "no", f"The balanced state is unstable at every speed checked ({checked}, "
+                        f"{name}){reason}.", fix)]
+
+
+def _knock_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    if not rows:
+        return []
+    probs = [(r["contact_probability"], r) for r in rows if r.get("contact_probability") is not None]
+    if not probs:
+        return []
+    worst, r = max(probs, key=lambda kv: kv[0])
+    best, rb = min(probs, key=lambda kv: kv[0])
+    status = "yes" if worst == 0 else "no"
+    sentence = (f"Contact in {people.relative(worst)} of run-ups at worst (ball damping "
+                f"{people.number(r['ball_damping'])} N*m*s/rad, largest impulse "
+                f"{people.number(r['largest_impulse'])} N*s), {people.relative(best)} at best; the least margin "
+                "to the stator is not recorded by machine-knock.")
+    fix = "" if status == "yes" else (
+        f"a ball damping of {people.number(rb['ball_damping'])} N*m*s/rad" if best < worst else
+        "a larger gap, or model.clearances[0].center_at_rest = true if the stator is centred where the rotor rests")
+    return [VerdictLine("contact", "no" if worst > 0 else "yes", "Knocks? " + sentence, fix)]
+
+
+def _steady_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    if not rows or "stable" not in rows[0] or "kind" not in rows[0]:
+        return []
+    speed = rows[0].get("speed")
+    stable_balanced = any(r["exists"] and r["stable"] and r["kind"] == "balanced" for r in rows)
+    status = "yes" if stable_balanced else "no"
+    at = f" at {people.speed(speed)}" if speed else ""
+    text = "stable (exact eigenvalues)" if stable_balanced else "absent or unstable"
+    return [VerdictLine("balances", status, f"The balanced steady motion{at} is {text} ({ds.attrs.get('name', '')}).",
+                        _balance_fix(facts, speed, status, None))]
+
+
+for _type, _fn in (("simulate", _simulate_evidence), ("basin", _basin_evidence), ("run-up", _run_up_evidence),
+                   ("stability-chart", _chart_evidence), ("machine-knock", _knock_evidence),
+                   ("steady", _steady_evidence)):
+    register_evidence(_type, _fn)
+
+
+# --------------------------------------------------------------------------- the verdict
+
+_WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
+
+
+def _critical_line(case: Any, facts: MachineFacts | None) -> VerdictLine | None:
+    entries = facts.critical_speeds if facts is not None else []
+    where = "balls locked" if facts is not None and facts.balls else "structure"
+    if not entries:
+        from rotorlab.analyses._linear import critical_summary
+
+        entries = critical_summary(case.model).get("critical_speeds", [])
+    if not entries:
+        p = case.model.critical_speed() if hasattr(case.model, "critical_speed") else None
+        if p is None:
+            return None
+        return VerdictLine("critical speeds", "info", f"Critical speed {people.speed(p)} (undamped).")
+    seen, parts = set(), []
+    for e in entries:
+        key = (people.number(e["speed_rpm"]), e["whirl"])
+        if key in seen or len(parts) >= 4:
+            continue
+        seen.add(key)
+        excited = "excited by unbalance" if e["excited_by_unbalance"] else (e["note"] or "not excited by unbalance")
+        parts.append(f"{people.number(e['speed_rpm'])} rpm {_WHIRL.get(e['whirl'], e['whirl'])} ({excited})")
+    return VerdictLine("critical speeds", "info", f"Critical speeds (undamped, {where}): " + "; ".join(parts) + ".")
+
+
+def _operating_line(facts: MachineFacts | None) -> VerdictLine | None:
+    if facts is None or not facts.operating or facts.first_forward is None:
+        return None
+    p = facts.first_forward
+    parts = [f"{where} {people.speed(w)} = {people.number(w / p)} × the first forward critical speed"
+             for where, w in facts.operating]
+    low = [w for _, w in facts.operating if w < p]
+    if not facts.balls:
+        return VerdictLine("operating speed", "info", "Runs at: " + "; ".join(parts) + f" ({people.speed(p)}).")
+    status = "no" if low else "yes"
+    tail = (f" A balancer works only above {people.speed(p)}." if low else
+            f" All above {people.speed(p)}, where a balancer can work.")
+    fix = f"run above {people.speed(p)}, or soften the mounts until the critical speed falls below " \
+          f"{people.speed(min(low))}" if low else ""
+    return VerdictLine("operating speed", status, "Runs at: " + "; ".join(parts) + "." + tail, fix)
+
+
+def machine_verdict(case: Any, results: Mapping[str, Any], rows: Mapping[str, Rows]) -> list[VerdictLine]:
+    """The verdict on a case's machine from its results.
+
+    Parameters
+    ----------
+    case : rotorlab.io.Case
+    results : mapping of str to xarray.Dataset
+        By analysis name (:func:`rotorlab.analyses.run_case`).
+    rows : mapping of str to list of dict
+        Their summary rows (:func:`rotorlab.analyses.summarize`).
+
+    Returns
+    -------
+    list of VerdictLine
+        Critical speeds and the operating speed first, then the evidence of each analysis in
+        the case's order, then "not computed" lines for a balancer machine's missing topics.
+    """
+    try:
+        facts = machine_facts(case)
+    except (ValueError, ArithmeticError):
+        facts = None
+    lines = [line for line in (_critical_line(case, facts), _operating_line(facts)) if line is not None]
+    for a in case.analyses:
+        ds = results.get(a.name)
+        evidence = VERDICT_EVIDENCE.get(a.type)
+        if ds is not None and evidence is not None:
+            lines += evidence(ds, rows.get(a.name, []), facts)
+    if facts is not None and facts.balls:
+        have = {line.topic for line in lines}
+        for topic, analysis in (("balances", "simulate or basin"), ("stable speeds", "stability-chart"),
+                                ("run-up", "run-up")):
+            if topic not in have:
+                lines.append(VerdictLine(topic, "info", f"{topic.capitalize()}: not computed; add a {analysis} "
+                                         "analysis to the case."))
+        if facts.gap is not None and "contact" not in have:
+            lines.append(VerdictLine("contact", "info", "Contact: not computed; add a machine-knock analysis."))
+    return lines
