@@ -64,8 +64,6 @@ def register_evidence(analysis_type: str, evidence: Evidence, *, replace: bool =
 
 _REGIMES: dict[str, str] = {
     "balanced": "the balls settled where they cancel the unbalance",
-    "side": "the balls settled on the line through the unbalance (the nominal angles in brackets, 0° on the "
-            "unbalance's side): they do not cancel it, at 0° they add to it",
     "non-synchronous": "the balls keep circling relative to the rotor instead of settling",
     "not settled": "still converging towards balance when the simulation ended",
     "steady": "the balls settled off the balanced angles (held by friction)",
@@ -77,12 +75,24 @@ _REGIMES: dict[str, str] = {
 }
 
 
+def _side(label: str) -> str:
+    nominal = label[label.index("(") + 1:label.rindex(")")].split(",")
+    on = sum(a.strip() == "0°" for a in nominal)
+    where = ("all on the unbalance's side, adding to it" if on == len(nominal) else
+             "all opposite the unbalance" if on == 0 else f"{on} on the unbalance's side, {len(nominal) - on} opposite")
+    return f"the balls settled on the line through the unbalance, {where}; nominal angles"
+
+
 def explain_regime(label: str) -> str:
     """What a regime label means, in words.
 
-    >>> explain_regime("side (0°, 0°)")[:45]
-    'the balls settled on the line through the unb'
+    >>> explain_regime("side (0°, 0°)")
+    "the balls settled on the line through the unbalance, all on the unbalance's side, adding to it; nominal angles"
+    >>> explain_regime("non-synchronous")
+    'the balls keep circling relative to the rotor instead of settling'
     """
+    if label.startswith("side (") and label.endswith(")"):
+        return _side(label)
     for key in sorted(_REGIMES, key=len, reverse=True):
         if label == key or label.startswith(key + " (") or label.startswith(key + ":"):
             return _REGIMES[key]
@@ -91,8 +101,8 @@ def explain_regime(label: str) -> str:
 
 def _named(label: str, angles: Sequence[float | None] | None = None) -> str:
     why = explain_regime(label)
-    seen = f"; measured {', '.join(people.angle_deg(a) for a in angles)}" if angles else ""
-    return f"{label} ({why}{seen})" if why else label
+    seen = f", measured {', '.join(people.angle_deg(a) for a in angles)}" if angles and why.endswith("angles") else ""
+    return f"{label} [{why}{seen}]" if why else label
 
 
 # --------------------------------------------------------------------------- evidence
@@ -259,7 +269,7 @@ def _knock_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ver
     fix = "" if status == "yes" else (
         f"a ball damping of {people.number(rb['ball_damping'])} N*m*s/rad" if best < worst else
         "a larger gap, or model.clearances[0].center_at_rest = true if the stator is centred where the rotor rests")
-    return [VerdictLine("contact", "no" if worst > 0 else "yes", "Knocks? " + sentence, fix)]
+    return [VerdictLine("contact", "no" if worst > 0 else "yes", sentence, fix)]
 
 
 def _steady_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
@@ -296,7 +306,7 @@ def _critical_line(case: Any, facts: MachineFacts | None) -> VerdictLine | None:
         p = case.model.critical_speed() if hasattr(case.model, "critical_speed") else None
         if p is None:
             return None
-        return VerdictLine("critical speeds", "info", f"Critical speed {people.speed(p)} (undamped).")
+        return VerdictLine("critical speeds", "info", f"{people.speed(p)} (undamped).")
     seen, parts = set(), []
     for e in entries:
         key = (people.number(e["speed_rpm"]), e["whirl"])
@@ -305,24 +315,28 @@ def _critical_line(case: Any, facts: MachineFacts | None) -> VerdictLine | None:
         seen.add(key)
         excited = "excited by unbalance" if e["excited_by_unbalance"] else (e["note"] or "not excited by unbalance")
         parts.append(f"{people.number(e['speed_rpm'])} rpm {_WHIRL.get(e['whirl'], e['whirl'])} ({excited})")
-    return VerdictLine("critical speeds", "info", f"Critical speeds (undamped, {where}): " + "; ".join(parts) + ".")
+    return VerdictLine("critical speeds", "info", f"undamped, {where}: " + "; ".join(parts) + ".")
 
 
 def _operating_line(facts: MachineFacts | None) -> VerdictLine | None:
     if facts is None or not facts.operating or facts.first_forward is None:
         return None
     p = facts.first_forward
-    parts = [f"{where} {people.speed(w)} = {people.number(w / p)} × the first forward critical speed"
-             for where, w in facts.operating]
+    speeds: dict[str, list[str]] = {}
+    for where, w in facts.operating:
+        speeds.setdefault(people.number(w), []).append(where.removeprefix("analysis ").replace(
+            "the drive's final speed", "drive"))
+    parts = [f"{people.speed(w)} ({', '.join(speeds[people.number(w)])}) = {people.number(w / p)} p"
+             for w in sorted({float(people.number(w)): w for _, w in facts.operating}.values())]
     low = [w for _, w in facts.operating if w < p]
+    head = f"p = {people.speed(p)}, the first forward critical speed; runs at " + "; ".join(parts) + "."
     if not facts.balls:
-        return VerdictLine("operating speed", "info", "Runs at: " + "; ".join(parts) + f" ({people.speed(p)}).")
-    status = "no" if low else "yes"
-    tail = (f" A balancer works only above {people.speed(p)}." if low else
-            f" All above {people.speed(p)}, where a balancer can work.")
-    fix = f"run above {people.speed(p)}, or soften the mounts until the critical speed falls below " \
-          f"{people.speed(min(low))}" if low else ""
-    return VerdictLine("operating speed", status, "Runs at: " + "; ".join(parts) + "." + tail, fix)
+        return VerdictLine("operating speed", "info", head)
+    if not low:
+        return VerdictLine("operating speed", "yes", head + " All above p, where a balancer can work.")
+    return VerdictLine("operating speed", "no", head + f" A balancer works only above {people.speed(p)}.",
+                       f"run above {people.speed(p)}, or soften the mounts until p falls below "
+                       f"{people.speed(min(low))}")
 
 
 def machine_verdict(case: Any, results: Mapping[str, Any], rows: Mapping[str, Rows]) -> list[VerdictLine]:
@@ -357,8 +371,7 @@ def machine_verdict(case: Any, results: Mapping[str, Any], rows: Mapping[str, Ro
         for topic, analysis in (("balances", "simulate or basin"), ("stable speeds", "stability-chart"),
                                 ("run-up", "run-up")):
             if topic not in have:
-                lines.append(VerdictLine(topic, "info", f"{topic.capitalize()}: not computed; add a {analysis} "
-                                         "analysis to the case."))
+                lines.append(VerdictLine(topic, "info", f"not computed; add a {analysis} analysis to the case."))
         if facts.gap is not None and "contact" not in have:
-            lines.append(VerdictLine("contact", "info", "Contact: not computed; add a machine-knock analysis."))
+            lines.append(VerdictLine("contact", "info", "not computed; add a machine-knock analysis to the case."))
     return lines

@@ -165,7 +165,15 @@ def _chart_findings(ds, rows):
 
     spans = true_runs([r["speed_rpm"] for r in rows], [r["stable"] for r in rows])
     if not spans:
-        return Findings(f"The {kind} state is unstable at every speed checked: the balancer does not settle there.")
+        p = ds.attrs.get("first_critical_speed")
+        speeds = [r["speed_rpm"] for r in rows]
+        why = (f" Every speed checked ({people.number(min(speeds))} to {people.number(max(speeds))} rpm) lies below "
+               f"the first forward critical speed {people.speed(p)}, where no balancer can balance." if p is not None
+               and max(speeds) < p * _RPM else "")
+        fix = (f" Run above the first forward critical speed of {people.speed(p)}, or soften the mounts."
+               if p is not None else "")
+        return Findings(f"The {kind} state is unstable at every speed checked: the balancer does not settle there."
+                        + why + fix)
     text = ", ".join(f"{a:.5g}-{b:.5g}" if a != b else f"{a:.5g}" for a, b in spans)
     return Findings(f"The {kind} state is stable from {text} rpm (exact eigenvalues; {sum(r['stable'] for r in rows)} "
                     f"of {len(rows)} speeds): " + ("the balancer balances there." if balanced else
