@@ -221,7 +221,7 @@ def run_command(
         from rotorlab.analyses import sanity_warnings
 
         warnings = sanity_warnings(loaded)
-        for w in warnings:  # before the run, never stopping it (errors stay errors)
+        for w in () if settings.quiet else warnings:  # before the run, never stopping it (errors stay errors)
             say(f"warning ({w.check}): {w.text}")
         count = len(loaded.analyses)
         info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
