@@ -145,7 +145,9 @@ def _starts(rows: Rows, facts: MachineFacts | None, speed: float | None, t_end: 
     parts = [f"{_named(o, _angles_of(rs[0]) if o != 'balanced' else None)} from {people.share(len(rs), len(rows))} "
              "starts" for o, rs in sorted(counts.items(), key=lambda kv: -len(kv[1]))]
     within = f" within {people.duration(t_end)}" if t_end else ""
-    word = {"yes": "Balances", "no": "Does not balance", "not-settled": "Not settled"}[status]
+    good = len(counts.get("balanced", []))
+    word = {"yes": "Balances", "no": "Balances from some starts only" if good else "Does not balance",
+            "not-settled": "Not settled"}[status]
     return VerdictLine("balances", status, f"{word} {where}{within}: " + "; ".join(parts) + ".",
                        _balance_fix(facts, speed, status, t_end))
 
@@ -197,9 +199,10 @@ def _run_up_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ve
     passed = [r for r in rows if r["captured_at"] is None and r["passed"] >= 1]
     peak = float(np.nanmax(ds["amplitude"].values)) if "amplitude" in ds else math.nan
     status = "yes" if len(passed) == len(rows) else "no"
-    first = f" (first at {people.speed(crit[0])})" if crit else ""
-    sentence = (f"Run-up {name}: {people.share(len(passed), len(rows))} starts pass the critical speed{first}; "
-                f"transient peak {people.length(peak)}, final speed "
+    first = f" ({people.speed(crit[0])})" if crit else ""
+    sag = " (the static sag under gravity included)" if facts is not None and facts.lateral_gravity > 0 else ""
+    sentence = (f"{name}: {people.share(len(passed), len(rows))} starts pass the first critical speed{first}; "
+                f"largest distance from the axis {people.length(peak)}{sag}, final speed "
                 f"{people.speed(max(r['final_speed'] for r in rows if r['final_speed'] is not None))}.")
     fix = ""
     if status == "no":
@@ -221,7 +224,7 @@ def _jeffcott_run_up(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ve
     peak = max(rows, key=lambda r: r["max_amplitude"] or 0.0)
     synced = sum(bool(r["synchronised"]) for r in rows)
     status = "yes" if synced == len(rows) else "no"
-    return [VerdictLine("run-up", status, f"Run-up {ds.attrs.get('name', '')}: transient peak "
+    return [VerdictLine("run-up", status, f"{ds.attrs.get('name', '')}: transient peak "
                         f"{people.length(peak['max_amplitude'])} at {people.number(peak['speed_at_max_rpm'])} rpm "
                         f"(without balls {people.length(peak['max_amplitude_without'])}); balls synchronised in "
                         f"{people.share(synced, len(rows))} run-ups.",

@@ -2,6 +2,7 @@
 
 from __future__ import annotations
 
+import re
 import textwrap
 from collections.abc import Sequence
 from typing import Any
@@ -11,6 +12,14 @@ __all__ = ["verdict_text", "WIDTH"]
 #: Columns the verdict fits in.
 WIDTH = 100
 _MARK = {"yes": "YES", "no": "NO", "not-settled": "NOT SETTLED", "info": "-"}
+# a number and its unit stay on one line (a no-break space while wrapping)
+_UNIT = re.compile(r"(\d) (?=(?:rpm|mm|µm|nm|m|ms|s|min|h|%|×|kg|g|N\*m|kg\*m|g\*mm|p)\b|[%×])")
+
+
+def _wrap(text: str, width: int, first: str, rest: str) -> list[str]:
+    lines = textwrap.wrap(_UNIT.sub("\\1\u00a0", text), width, initial_indent=first, subsequent_indent=rest,
+                          break_on_hyphens=False)
+    return [line.replace("\u00a0", " ") for line in lines]
 
 
 def verdict_text(lines: Sequence[Any], width: int = WIDTH) -> str:
@@ -28,9 +37,7 @@ def verdict_text(lines: Sequence[Any], width: int = WIDTH) -> str:
     out = ["Verdict"]
     for line in lines:
         first = f"  {_MARK[line.status]:<12} "
-        out += textwrap.wrap(f"{line.topic}: {line.sentence}", width, initial_indent=first,
-                             subsequent_indent=indent, break_on_hyphens=False)
+        out += _wrap(f"{line.topic}: {line.sentence}", width, first, indent)
         if line.fix:
-            out += textwrap.wrap(f"fix: {line.fix}", width, initial_indent=indent, subsequent_indent=indent + "  ",
-                                 break_on_hyphens=False)
+            out += _wrap(f"fix: {line.fix}", width, indent, indent + "  ")
     return "\n".join(out)

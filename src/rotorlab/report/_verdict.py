@@ -10,15 +10,16 @@ from rotorlab.report._table import escape as _e
 
 __all__ = ["verdict_section", "VERDICT_CSS"]
 
-_MARK = {"yes": "yes", "no": "no", "not-settled": "not settled", "info": "·"}
+_MARK = {"yes": "yes", "no": "no", "not-settled": "not settled", "info": "–"}
 
 VERDICT_CSS = """
 #verdict{border:2px solid #556;border-radius:6px;padding:.2em 1em .6em;margin:1em 0 1.5em;background:#fbfbfd}
-#verdict h2{margin-top:.4em;border:none}#verdict .verdict-line{margin:.35em 0}
-#verdict .mark{display:inline-block;min-width:6.5em;font-weight:700}
+#verdict h2{margin-top:.4em;border:none}
+#verdict .verdict-line{margin:.35em 0;display:grid;grid-template-columns:7em 1fr;column-gap:.4em}
+#verdict .mark{font-weight:700}
 #verdict [data-verdict=yes] .mark{color:#1a7f37}#verdict [data-verdict=no] .mark{color:#b3261e}
 #verdict [data-verdict=not-settled] .mark{color:#b35900}#verdict [data-verdict=info] .mark{color:#666}
-#verdict .topic{font-weight:600}#verdict .fix{display:block;margin-left:6.9em;color:#333}
+#verdict .topic{font-weight:600}#verdict .fix{display:block;color:#333}
 """
 
 
@@ -36,6 +37,6 @@ def verdict_section(lines: Sequence[Any]) -> str:
     for line in lines:
         fix = f'<span class="fix">Fix: {_e(line.fix)}</span>' if line.fix else ""
         items.append(f'<p class="verdict-line" data-verdict="{_e(line.status)}" data-topic="{_e(line.topic)}">'
-                     f'<span class="mark">{_e(_MARK[line.status])}</span><span class="topic">{_e(line.topic)}</span>'
-                     f": {_e(line.sentence)}{fix}</p>")
+                     f'<span class="mark">{_e(_MARK[line.status])}</span><span class="body"><span class="topic">'
+                     f"{_e(line.topic)}</span>: {_e(line.sentence)}{fix}</span></p>")
     return '<section id="verdict"><h2>Verdict</h2>' + "".join(items) + "</section>"
