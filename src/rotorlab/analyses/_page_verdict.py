@@ -257,22 +257,27 @@ def _chart_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ver
 
 
 def _knock_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
-    if not rows:
-        return []
-    probs = [(r["contact_probability"], r) for r in rows if r.get("contact_probability") is not None]
+    probs = [r for r in rows if r.get("contact_probability") is not None]
     if not probs:
         return []
-    worst, r = max(probs, key=lambda kv: kv[0])
-    best, rb = min(probs, key=lambda kv: kv[0])
-    status = "yes" if worst == 0 else "no"
-    sentence = (f"Contact in {people.relative(worst)} of run-ups at worst (ball damping "
-                f"{people.number(r['ball_damping'])} N*m*s/rad, largest impulse "
-                f"{people.number(r['largest_impulse'])} N*s), {people.relative(best)} at best; the least margin "
-                "to the stator is not recorded by machine-knock.")
-    fix = "" if status == "yes" else (
-        f"a ball damping of {people.number(rb['ball_damping'])} N*m*s/rad" if best < worst else
-        "a larger gap, or model.clearances[0].center_at_rest = true if the stator is centred where the rotor rests")
-    return [VerdictLine("contact", "no" if worst > 0 else "yes", sentence, fix)]
+
+    def at(r: Mapping[str, Any]) -> str:
+        n = int(r["runs"]) - int(r.get("failed") or 0)
+        hit = round(r["contact_probability"] * n)
+        bound = (f", at most {people.relative(r['probability_high'])} with 95 % confidence"
+                 if hit == 0 and r.get("probability_high") is not None else "")
+        return (f"{people.share(hit, n)} run-ups at ball damping {people.number(r['ball_damping'])} N*m*s/rad"
+                + bound + (f", largest impulse {people.number(r['largest_impulse'])} N*s" if hit else ""))
+
+    worst = max(probs, key=lambda r: r["contact_probability"])
+    best = min(probs, key=lambda r: r["contact_probability"])
+    if worst["contact_probability"] == 0:
+        return [VerdictLine("contact", "yes", f"No contact: {at(worst)} ({ds.attrs.get('name', '')}).")]
+    text = f"Touches the stator in {at(worst)}" + (f"; {at(best)}" if best is not worst else "")
+    fix = (f"a ball damping of {people.number(best['ball_damping'])} N*m*s/rad"
+           if best["contact_probability"] < worst["contact_probability"] else
+           "a larger gap (or, for a stator centred where the rotor rests, model.clearances[0].center_at_rest = true)")
+    return [VerdictLine("contact", "no", text + f" ({ds.attrs.get('name', '')}; least margin not recorded).", fix)]
 
 
 def _steady_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
