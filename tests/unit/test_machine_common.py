@@ -378,3 +378,29 @@ def test_run_up_report_says_what_its_result_arrays_say():
     good = [r["ic"] for r in rows if r["outcome"] == "balanced"]
     assert good[:1] == [0]  # the balls apart balance above p
     assert found.verdict.startswith(f"The balancer balances from start(s) {', '.join(map(str, good))} ({len(good)} of 2)")
+
+
+def test_a_chart_unstable_everywhere_below_the_critical_speed_says_why_and_the_remedy(planar):
+    """Issue 29: a subcritical machine was "unstable at every speed checked" with no reason and no
+    remedy. Below p = 1 / sqrt(1.04) rad/s = 9.36 rpm (balls locked) the balanced state is
+    unstable (Zhakash et al. 2024): the findings and the verdict name p and the fix."""
+    from rotorlab.analyses import machine_verdict
+    from rotorlab.report._machine import machine_findings
+
+    text = PLANAR[:PLANAR.index("[[analysis]]")] + (
+        '[[analysis]]\ntype = "stability-chart"\nname = "low"\nspeeds = ["0.3 rad/s", "0.9 rad/s", 3]\n')
+    case = parse_case(text)
+    ds = run_analysis(case.model, case.analysis("low"))
+    rows = summarize(ds)
+    assert not any(r["stable"] for r in rows)
+    assert ds.attrs["first_critical_speed"] == pytest.approx(P, rel=1e-9)
+    found = machine_findings(ds, rows).verdict
+    assert found == ("The balanced state is unstable at every speed checked: the balancer does not settle there. "
+                     "Every speed checked (2.86 to 8.59 rpm) lies below the first forward critical speed 9.36 rpm, "
+                     "where no balancer can balance. Run above the first forward critical speed of 9.36 rpm, or "
+                     "soften the mounts.")
+    lines = [v for v in machine_verdict(case, {"low": ds}, {"low": rows}) if v.topic == "stable speeds"]
+    assert [(v.status, v.sentence, v.fix) for v in lines] == [(
+        "no", "The balanced state is unstable at every speed checked (2.86 to 8.59 rpm, low): every speed checked "
+        "lies below the first forward critical speed 9.36 rpm.",
+        "run above the first forward critical speed of 9.36 rpm, or soften the mounts")]

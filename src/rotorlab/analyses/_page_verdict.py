@@ -93,6 +93,13 @@ def explain_regime(label: str) -> str:
     """
     if label.startswith("side (") and label.endswith(")"):
         return _side(label)
+    bits = label.removeprefix("side ")
+    if bits != label and bits and set(bits) <= {"0", "1"}:  # a steady side motion (seed 003's number k)
+        away = bits.count("1")
+        return (f"a side motion: the balls on the line of the rotor's deflection, {len(bits) - away} towards it and "
+                f"{away} away from it; they do not cancel the unbalance")
+    if label.startswith("main"):
+        return "a balanced motion: the balls where they cancel the unbalance"
     for key in sorted(_REGIMES, key=len, reverse=True):
         if label == key or label.startswith(key + " (") or label.startswith(key + ":"):
             return _REGIMES[key]
@@ -234,11 +241,19 @@ def _jeffcott_run_up(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ve
 def _chart_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
     from rotorlab.explore._outcome import true_runs
 
-    if not rows or "speed_rpm" not in rows[0] or "stable" not in rows[0] or any(
-            k in rows[0] for k in ("ball_mass", "ball_damping")):
+    if not rows or ds.attrs.get("parameter") or any(k in rows[0] for k in ("ball_mass", "ball_damping")):
         return []
-    speeds = [r["speed_rpm"] for r in rows]
-    spans = true_runs(speeds, [bool(r["stable"]) and bool(r["exists"]) for r in rows])
+    if "start_rpm" in rows[0]:  # a rotor with balls: the stable intervals of the balanced (main) motions
+        main = [r for r in rows if r["method"] == "exact" and str(r["motion"]).startswith("main")]
+        spans = sorted(dict.fromkeys((r["start_rpm"], r["stop_rpm"]) for r in main))
+        speeds = list(ds.speed.values * _RPM) if "speed" in ds.coords else [a for s in spans for a in s]
+    elif "speed_rpm" in rows[0] and "stable" in rows[0]:
+        speeds = [r["speed_rpm"] for r in rows]
+        spans = true_runs(speeds, [bool(r["stable"]) and bool(r["exists"]) for r in rows])
+    else:
+        return []
+    if not speeds:
+        return []
     checked = f"{people.number(min(speeds))} to {people.number(max(speeds))} rpm"
     name = ds.attrs.get("name", "")
     if spans:
@@ -281,13 +296,23 @@ def _knock_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ver
 
 
 def _steady_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
-    if not rows or "stable" not in rows[0] or "kind" not in rows[0]:
+    if not rows or "exists" not in rows[0]:
         return []
-    speed = rows[0].get("speed")
-    stable_balanced = any(r["exists"] and r["stable"] and r["kind"] == "balanced" for r in rows)
+    speed = rows[0].get("speed", ds.attrs.get("spin_speed"))
+    speed = float(speed) if speed is not None else None
+
+    def stable_balanced_motion(r: Mapping[str, Any]) -> bool:
+        if "verdict_exact" in r:  # a rotor with balls: the main (balanced) motions, exact eigenvalues
+            return str(r["motion"]).startswith("main") and r["verdict_exact"] == "stable"
+        return bool(r["stable"]) and r["kind"] == "balanced"
+
+    stable_balanced = any(r["exists"] and stable_balanced_motion(r) for r in rows)
     status = "yes" if stable_balanced else "no"
     at = f" at {people.speed(speed)}" if speed else ""
-    text = "stable (exact eigenvalues)" if stable_balanced else "absent or unstable"
+    stable = [str(r.get("label", r["motion"])) for r in rows if r["exists"] and (
+        r["verdict_exact"] == "stable" if "verdict_exact" in r else r["stable"])]
+    text = ("stable (exact eigenvalues)" if stable_balanced else "absent or unstable") + (
+        f"; stable there: {', '.join(_named(m) for m in stable)}" if stable and not stable_balanced else "")
     return [VerdictLine("balances", status, f"The balanced steady motion{at} is {text} ({ds.attrs.get('name', '')}).",
                         _balance_fix(facts, speed, status, None))]
 
