@@ -394,11 +394,23 @@ def machine_verdict(case: Any, results: Mapping[str, Any], rows: Mapping[str, Ro
     except (ValueError, ArithmeticError):
         facts = None
     lines = [line for line in (_critical_line(case, facts), _operating_line(facts)) if line is not None]
+    stable_at: dict[Any, str] = {}  # the races of a variant -> the chart that found it stable somewhere
+    found = []
     for a in case.analyses:
         ds = results.get(a.name)
         evidence = VERDICT_EVIDENCE.get(a.type)
         if ds is not None and evidence is not None:
-            lines += evidence(ds, rows.get(a.name, []), facts)
+            races = ds.attrs.get("races")
+            key = None if races is None else tuple(int(r) for r in (races if hasattr(races, "__len__") else [races]))
+            for line in evidence(ds, rows.get(a.name, []), facts):
+                found.append((key, line))
+                if line.topic == "stable speeds" and line.status == "yes":
+                    stable_at.setdefault(key, a.name)
+    for key, line in found:  # a "no" without a fix: where a chart of the same races found it stable
+        if line.topic == "balances" and line.status == "no" and not line.fix and key in stable_at:
+            line = VerdictLine(line.topic, line.status, line.sentence,
+                               f"run at a speed where the balanced state is stable (see {stable_at[key]})")
+        lines.append(line)
     if facts is not None and facts.balls:
         have = {line.topic for line in lines}
         for topic, analysis in (("balances", "simulate or basin"), ("stable speeds", "stability-chart"),
