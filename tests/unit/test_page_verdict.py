@@ -96,3 +96,16 @@ def test_a_machine_without_results_still_gets_its_critical_speeds_and_what_to_ad
                                  "All above p, where a balancer can work.")
     text = verdict_text(lines)
     assert max(map(len, text.splitlines())) <= 100 and text.startswith("Verdict\n  -            critical speeds:")
+
+
+def test_how_fast_a_start_balances_is_read_from_its_saved_history():
+    """A deflection ref * exp(-t) falls below BALANCED_FRACTION = 5 % of the unbalance response at
+    t = ln 20 = 2.996 s: on a 0.5 s grid the first saved time below is 3 s."""
+    t = np.arange(0.0, 10.01, 0.5)
+    ds = xr.Dataset({"amplitude": (("speed", "ic", "time"), 1e-3 * np.exp(-t)[None, None, :]),
+                     "reference_amplitude": (("speed",), [1e-3])},
+                    coords={"speed": [251.3], "ic": [0], "time": t}, attrs={"name": "sim", "t_end": 10.0})
+    rows = [{"speed": 251.3, "speed_rpm": 251.3 * 30 / math.pi, "ic": 0, "outcome": "balanced",
+             "final_ball_angles_deg": [120.0, -120.0]}]
+    (line,) = VERDICT_EVIDENCE["simulate"](ds, rows, None)
+    assert line.status == "yes" and line.sentence.endswith("starts; the balanced ones settled by 3 s.")

@@ -159,6 +159,32 @@ def _starts(rows: Rows, facts: MachineFacts | None, speed: float | None, t_end: 
                        _balance_fix(facts, speed, status, t_end))
 
 
+def _settled_by(ds: Any, row: Mapping[str, Any]) -> float | None:
+    """When a balanced start's vibration fell for good below the balanced threshold
+    (:data:`~rotorlab.explore._outcome.BALANCED_FRACTION` of the unbalance response), from its
+    saved history (s); None without one."""
+    import numpy as np
+
+    from rotorlab.explore._outcome import BALANCED_FRACTION
+
+    var = "amplitude" if "amplitude" in ds and "time" in ds["amplitude"].dims else "displacement"
+    if var not in ds or "time" not in ds[var].dims or "reference_amplitude" not in ds:
+        return None
+    ratio = ds[var] / ds["reference_amplitude"]
+    if "station" in ratio.dims:
+        ratio = ratio.max("station")
+    pick = {d: row[k] for d, k in (("ic", "ic"), ("speed", "speed")) if d in ratio.dims and k in row}
+    try:
+        r = np.asarray(ratio.sel(pick).values, dtype=float).reshape(-1)
+    except (KeyError, ValueError):
+        return None
+    above = np.nonzero(~(r <= BALANCED_FRACTION))[0]
+    t = np.asarray(ds["time"].values, dtype=float)
+    if r.size != t.size or (above.size and above[-1] == r.size - 1):
+        return None
+    return float(t[above[-1] + 1]) if above.size else float(t[0])
+
+
 def _simulate_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
     t_end = ds.attrs.get("t_end")
     t_end = float(t_end) if t_end is not None else float(ds.time.values[-1]) if "time" in ds.coords else None
@@ -172,7 +198,12 @@ def _simulate_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[
         if all(r["outcome"] == "no balancer" for r in rs):
             continue
         speed = rpm / _RPM if math.isfinite(rpm) else None
-        out.append(_starts(rs, facts, speed, t_end, f"at {people.speed(speed)} ({name})"))
+        line = _starts(rs, facts, speed, t_end, f"at {people.speed(speed)} ({name})")
+        times = [_settled_by(ds, r) for r in rs if r["outcome"] == "balanced"]
+        if times and all(t is not None for t in times):
+            line = VerdictLine(line.topic, line.status, line.sentence[:-1] + f"; the balanced ones settled by "
+                               f"{people.duration(max(times))}.", line.fix)
+        out.append(line)
     return out
 
 
