@@ -208,8 +208,8 @@ def _simulate_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[
 
 
 def _basin_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
-    if not rows or "count" not in ds or "outcome" not in ds:
-        return []
+    if not rows or "count" not in ds or "outcome" not in ds or "balanced" not in [str(r) for r in ds["regime"].values]:
+        return []  # not a balancer's basin (e.g. a toroidal ball's working and spare points)
     from rotorlab.analyses._verdict import basin_verdict
 
     test = basin_verdict(ds)
