@@ -258,7 +258,7 @@ def test_basin_findings_state_the_fraction_in_words():
              "fraction_half": 6 / 1296, "horizon_half_s": 10.0}]
     found = presentation_of("basin").findings(ds, rows)
     assert found.verdict == "balanced from 1290 of 1296 starts (99.5 %) after 20 s"
-    assert found.numbers == ("non-synchronous: 6 of 1296 starts (0.5 %)",)
+    assert found.numbers == ("non-synchronous: 6 of 1296 starts (0.463 %)",)
 
 
 def test_working_point_findings_name_the_point_and_its_band():
