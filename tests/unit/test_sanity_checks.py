@@ -43,6 +43,13 @@ def test_a_bare_length_far_outside_machine_sizes_is_a_unit_slip():
                      'e.g. "20 mm"']
 
 
+def test_a_shaft_of_20_read_as_20_m_is_a_unit_slip():
+    """The issue's own example, on the Friswell rotor (an fe_rotor: no balancer checks apply)."""
+    lines = _validate("friswell-rotor", "model.shaft[0].length=20")
+    assert lines == ['warning (unit-slip): model.shaft[0].length = 20 m is far outside the sizes of the machines '
+                     'rotorlab models (up to 5 m): a number without a unit is read in SI; write its unit, e.g. "20 mm"']
+
+
 def test_an_unbalance_that_puts_the_mass_centre_metres_off_the_axis_is_a_unit_slip():
     """50 read as 50 kg*m on the 40 kg drum: e = 50 / 40 = 1.25 m (and the balls' 0.27 kg*m
     cannot cancel it)."""
