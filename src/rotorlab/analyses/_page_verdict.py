@@ -201,8 +201,9 @@ def _simulate_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[
         line = _starts(rs, facts, speed, t_end, f"at {people.speed(speed)} ({name})")
         times = [_settled_by(ds, r) for r in rs if r["outcome"] == "balanced"]
         if times and all(t is not None for t in times):
-            line = VerdictLine(line.topic, line.status, line.sentence[:-1] + f"; the balanced ones settled by "
-                               f"{people.duration(max(times))}.", line.fix)
+            when = (f"settled by {people.duration(max(times))}" if max(times) > 0 else
+                    "were balanced from the start")
+            line = VerdictLine(line.topic, line.status, line.sentence[:-1] + f"; the balanced ones {when}.", line.fix)
         out.append(line)
     return out
 
