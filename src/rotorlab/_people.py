@@ -18,7 +18,7 @@ from __future__ import annotations
 import math
 from collections.abc import Callable
 
-__all__ = ["number", "length", "angle", "angle_deg", "speed", "mass", "duration", "relative", "share",
+__all__ = ["number", "length", "angle", "angle_deg", "speed", "mass", "duration", "relative", "relative_to", "share",
            "quantity", "unbalance", "torque"]
 
 #: A length below this is shown as "< 1 nm" (m): numerical noise, not a vibration.
@@ -119,6 +119,16 @@ def relative(ratio: float | None) -> str:
     if 0 < abs(ratio) < 1e-3:
         return "< 0.1 %"
     return f"{number(100.0 * ratio)} %"
+
+
+def relative_to(ratio: float | None, what: str) -> str:
+    """``"33.9 × the unbalance response"`` or ``"4.21 % of the unbalance response"``.
+
+    >>> relative_to(33.9, "the unbalance response"), relative_to(0.0421, "the unbalance response")
+    ('33.9 × the unbalance response', '4.21 % of the unbalance response')
+    """
+    text = relative(ratio)
+    return f"{text} {what}" if text.endswith("×") else f"{text} of {what}"
 
 
 def share(part: int, whole: int) -> str:

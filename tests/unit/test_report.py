@@ -237,11 +237,11 @@ def test_findings_round_numbers_for_people():
     rows = [{"speed_rpm": 2400.0, "speed_ratio": 2.0, "outcome": "balanced", "final_amplitude": 5.88e-12,
              "amplitude_ratio": 4e-9}]
     numbers = simulation_findings(None, rows).numbers
-    assert numbers == ("final shaft deflection at 2400 rpm: < 1 nm (< 0.1 % of the unbalance alone)",)
+    assert numbers == ("final shaft deflection at 2400 rpm: < 1 nm (< 0.1 % against the unbalance alone)",)
     machine = [{"ic": 0, "outcome": "side (0°, 0°)", "amplitude": {"rotor": 33.9e-3},
                 "reference_amplitude": {"rotor": 1e-3}, "final_ball_angles_deg": {"race 0": [1.7847, -16.0512]}}]
     found = _simulate_findings(None, machine)
-    assert "vibration up to 33.9 × of the unbalance response" in found.verdict and "e+03" not in found.verdict
+    assert "vibration up to 33.9 × the unbalance response" in found.verdict and "e+03" not in found.verdict
     assert found.numbers == ("largest vibration / unbalance response 33.9 ×",
                              "start 0: side (0°, 0°), final ball angles race 0: 1.8°, -16.1°")
 

@@ -91,7 +91,7 @@ def simulation_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
         ratios = [r["amplitude_ratio"] for r in here if r["amplitude_ratio"] is not None]
         if amps:
             numbers.append(f"final shaft deflection at {rpm:.0f} rpm: {_span(amps, people.length)}"
-                           + (f" ({_span(ratios, people.relative)} of the unbalance alone)" if ratios else ""))
+                           + (f" ({_span(ratios, people.relative)} against the unbalance alone)" if ratios else ""))
     return Findings(". ".join(verdicts), tuple(numbers))
 
 

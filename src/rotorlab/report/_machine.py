@@ -199,11 +199,11 @@ def _simulate_findings(ds, rows):
     if not rows:
         return Findings("No starts.")
     if "no balancer" in by:
-        verdict = (f"Without a balancer the vibration is {people.relative(worst)} of the locked unbalance response "
+        verdict = (f"Without a balancer the vibration is {people.relative_to(worst, 'the locked unbalance response')} "
                    "(the reference for the variants with balls).")
     elif len(good) == len(rows):
-        verdict = f"The balancer balances from every start ({len(rows)}): vibration at most {people.relative(worst)} of " \
-                  "the unbalance response."
+        verdict = f"The balancer balances from every start ({len(rows)}): vibration at most " \
+                  f"{people.relative_to(worst, 'the unbalance response')}."
     elif good:
         verdict = (f"The balancer balances from {len(good)} of {len(rows)} starts (start(s) "
                    f"{', '.join(map(str, good))}); " + "; ".join(f"{k} from start(s) {', '.join(map(str, v))}"
@@ -211,7 +211,7 @@ def _simulate_findings(ds, rows):
     else:
         verdict = ("The balancer does not balance from any start: " + "; ".join(
             f"{k} from start(s) {', '.join(map(str, v))}" for k, v in by.items()) +
-            f" (vibration up to {people.relative(worst)} of the unbalance response).")
+            f" (vibration up to {people.relative_to(worst, 'the unbalance response')}).")
     return Findings(verdict, (f"largest vibration / unbalance response {people.relative(worst)}",
                               *(f"start {r['ic']}: {r['outcome']}" + (f", final ball angles "
                                 f"{_angles(r['final_ball_angles_deg'])}" if r["outcome"] != "no balancer" else "")
