@@ -28,16 +28,13 @@ def _mm(v) -> str:
 
 
 def _races(angles) -> str:
-    if not angles:
-        return "-"
-    return "; ".join(f"{k}: {', '.join(_g(a, 5) for a in v)}" for k, v in angles.items())
-
-
-def _angles(angles) -> str:
-    """Ball angles by race for a sentence, to 0.1 degree."""
+    """Ball angles by race, to 0.1 degree (a table's cell or a sentence)."""
     if not angles:
         return "-"
     return "; ".join(f"{k}: {', '.join(people.angle_deg(a) for a in v)}" for k, v in angles.items())
+
+
+
 
 
 def _stations(rows: Rows, key: str) -> list[str]:
@@ -49,7 +46,7 @@ def _stations(rows: Rows, key: str) -> list[str]:
 
 def _steady(rows: Rows):
     stations = _stations(rows, "amplitude")
-    header = ("motion", "kind", "ball angles (deg)", "exact", "seed 003 (Hamilton)", "seed 002 (averaged)",
+    header = ("motion", "kind", "ball angles", "exact", "seed 003 (Hamilton)", "seed 002 (averaged)",
               "max Re(lambda) (1/s)", *(f"whirl at {s} (mm)" for s in stations))
     body = [(r.get("label", str(r["motion"])), r["kind"] if r["exists"] else "absent", _races(r["ball_angles_deg"]),
              r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"], _g(r["max_real_eigenvalue"]),
@@ -60,7 +57,7 @@ def _steady(rows: Rows):
 def _chart(rows: Rows):
     stations = _stations(rows, "amplitude")
     param = [k for k in (rows[0] if rows else {}) if k in ("ball_mass", "ball_damping")]
-    header = (*param, "speed (rpm)", "steady motion", "stable", "max Re(lambda) (1/s)", "ball angles (deg)",
+    header = (*param, "speed (rpm)", "steady motion", "stable", "max Re(lambda) (1/s)", "ball angles",
               *(f"whirl at {s} (mm)" for s in stations))
     body = [(*(_g(r[k]) for k in param), _g(r["speed_rpm"], 6),
              ("balanced" if r["balanced"] else "partly balanced") if r["exists"] else "none",
@@ -71,7 +68,7 @@ def _chart(rows: Rows):
 
 def _simulate(rows: Rows):
     stations = _stations(rows, "amplitude")
-    header = ("start", "initial ball angles (deg)", "final speed (rpm)", "final ball angles (deg)",
+    header = ("start", "initial ball angles", "final speed (rpm)", "final ball angles",
               *(f"vibration at {s} (mm)" for s in stations), "outcome", "status")
     body = [(str(r["ic"]), _races(r["initial_ball_angles_deg"]), _g(r["final_speed_rpm"], 6),
              _races(r["final_ball_angles_deg"]), *(_mm(r["amplitude"][s]) for s in stations), r["outcome"],
@@ -146,7 +143,7 @@ def _steady_findings(ds, rows):
                 "station (see the whirl per station).")
     return Findings(f"{len(stable)} of {len(rows)} {'/'.join(kinds)} steady motion(s){at} are stable (exact "
                     f"eigenvalues): {what}{beyond}",
-                    tuple(f"motion {r.get('label', r['motion'])}: balls at {_angles(r['ball_angles_deg'])}, "
+                    tuple(f"motion {r.get('label', r['motion'])}: balls at {_races(r['ball_angles_deg'])}, "
                           f"max Re(lambda) = {_g(r['max_real_eigenvalue'])} 1/s" for r in stable))
 
 
@@ -214,7 +211,7 @@ def _simulate_findings(ds, rows):
             f" (vibration up to {people.relative_to(worst, 'the unbalance response')}).")
     return Findings(verdict, (f"largest vibration / unbalance response {people.relative(worst)}",
                               *(f"start {r['ic']}: {r['outcome']}" + (f", final ball angles "
-                                f"{_angles(r['final_ball_angles_deg'])}" if r["outcome"] != "no balancer" else "")
+                                f"{_races(r['final_ball_angles_deg'])}" if r["outcome"] != "no balancer" else "")
                                 for r in rows)))
 
 
