@@ -36,18 +36,42 @@ def test_the_built_in_washers_and_centrifuges_pass_every_check():
         assert _validate(case) == [], case
 
 
-def test_a_bare_length_far_outside_machine_sizes_is_a_unit_slip():
-    lines = _validate("washer-knock", "model.structure.bodies[0].position=20")
-    assert lines == ['warning (unit-slip): model.structure.bodies[0].position = 20 m is far outside the sizes of the '
-                     'machines rotorlab models (up to 5 m): a number without a unit is read in SI; write its unit, '
-                     'e.g. "20 mm"']
+# (case, --set values, the one warning printed); the numbers from closed forms:
+SINGLE = [
+    # a bare 20 read as 20 m (the issue's own examples: a body position, a shaft)
+    ("washer-knock", ["model.structure.bodies[0].position=20"],
+     'warning (unit-slip): model.structure.bodies[0].position = 20 m is far outside the sizes of the machines '
+     'rotorlab models (up to 5 m): a number without a unit is read in SI; write its unit, e.g. "20 mm"'),
+    ("friswell-rotor", ["model.shaft[0].length=20"],
+     'warning (unit-slip): model.shaft[0].length = 20 m is far outside the sizes of the machines rotorlab models (up '
+     'to 5 m): a number without a unit is read in SI; write its unit, e.g. "20 mm"'),
+    # autobalancer: p = sqrt(c / (M1 + 2 m)) = sqrt(16740 / 1.06) = 125.67 rad/s = 1200 rpm; its subcritical
+    # analysis runs at 0.6 p = 720 rpm
+    ("autobalancer", [],
+     "warning (below-critical): analysis subcritical is 720 rpm, below the first forward critical speed 1200 rpm "
+     "(undamped, balls locked): a balancer works only above 1200 rpm, below it the balls add to the unbalance; run "
+     "above 1200 rpm, or soften the mounts (lower support stiffness) until the critical speed falls below 720 rpm"),
+    # at rest the drum and balls (41 kg) sag 41 x 9.81 / 25000 = 16.1 mm against the 10 mm gap
+    ("washer-knock", ["model.clearances[0].center_at_rest=false"],
+     "warning (sag-gap): at rest under gravity the clearance station lies 16.1 mm from the stator's centre, against "
+     "a gap of 10 mm: the rotor rests on its stator and knocks in every run-up, with or without balls; give "
+     "model.clearances[0].center_at_rest = true (the stator centred where the rotor rests)"),
+    # U g = 0.125 x 9.81 = 1.23 N*m
+    ("washer-horizontal", ["model.drive.stall_torque=1 N*m"],
+     "warning (motor-torque): the motor's stall torque 1 N*m is below the unbalance's gravity torque U g = 1.23 N*m: "
+     "from rest it cannot lift the unbalance over the top; give model.drive.stall_torque > 1.23 N*m"),
+    # the suspension mode decays at c / (2 M), M = 41 kg (balls locked): tau = 82 / 400 = 0.205 s; 0.4 s < 3 tau,
+    # and 10 tau = 2.05 s rounds up to 2.1 s
+    ("washer-knock", ["analysis[0].t_end=0.4 s"],
+     "warning (horizon): analysis[0] (knock).t_end = 400 ms is shorter than 3 time constants of the slowest mode "
+     "(205 ms, structure with the balls locked): its start-up transient has not died out; give t_end >= 2.1 s (10 "
+     "time constants)"),
+]
 
 
-def test_a_shaft_of_20_read_as_20_m_is_a_unit_slip():
-    """The issue's own example, on the Friswell rotor (an fe_rotor: no balancer checks apply)."""
-    lines = _validate("friswell-rotor", "model.shaft[0].length=20")
-    assert lines == ['warning (unit-slip): model.shaft[0].length = 20 m is far outside the sizes of the machines '
-                     'rotorlab models (up to 5 m): a number without a unit is read in SI; write its unit, e.g. "20 mm"']
+@pytest.mark.parametrize(("case", "sets", "message"), SINGLE, ids=[m.split(")")[0][9:] + "-" + c for c, _, m in SINGLE])
+def test_each_check_prints_its_numbers_and_fix(case, sets, message):
+    assert _validate(case, *sets) == [message]
 
 
 def test_an_unbalance_that_puts_the_mass_centre_metres_off_the_axis_is_a_unit_slip():
@@ -75,43 +99,6 @@ def test_balls_that_cannot_cancel_the_unbalance_say_both_numbers():
     assert "warning (ball-capacity): the balls can cancel at most 0.27 kg*m (sum of ball mass x race radius); the " \
            "unbalance is 0.5 kg*m: they cannot balance it; make the balls at least 1.85 times heavier (or their " \
            "race radius larger), or the unbalance smaller" in lines
-
-
-def test_a_balancer_below_the_first_forward_critical_speed_names_that_speed():
-    """autobalancer: p = sqrt(c / (M1 + 2 m)) = sqrt(16740 / 1.06) = 125.67 rad/s = 1200 rpm; its
-    subcritical analysis runs at 0.6 p = 720 rpm."""
-    lines = _validate("autobalancer")
-    assert lines == ["warning (below-critical): analysis subcritical is 720 rpm, below the first forward critical "
-                     "speed 1200 rpm (undamped, balls locked): a balancer works only above 1200 rpm, below it the "
-                     "balls add to the unbalance; run above 1200 rpm, or soften the mounts (lower support stiffness) "
-                     "until the critical speed falls below 720 rpm"]
-
-
-def test_a_rotor_sagging_beyond_its_gap_names_center_at_rest():
-    """At rest the drum and balls (41 kg) sag 41 x 9.81 / 25000 = 16.1 mm against the 10 mm gap."""
-    lines = _validate("washer-knock", "model.clearances[0].center_at_rest=false")
-    assert 41 * 9.81 / 25e3 == pytest.approx(0.01609, abs=1e-5)
-    assert lines == ["warning (sag-gap): at rest under gravity the clearance station lies 16.1 mm from the stator's "
-                     "centre, against a gap of 10 mm: the rotor rests on its stator and knocks in every run-up, with "
-                     "or without balls; give model.clearances[0].center_at_rest = true (the stator centred where the "
-                     "rotor rests)"]
-
-
-def test_a_motor_weaker_than_the_unbalance_gravity_torque_names_the_torque_needed():
-    """U g = 0.125 x 9.81 = 1.23 N*m."""
-    lines = _validate("washer-horizontal", "model.drive.stall_torque=1 N*m")
-    assert lines == ["warning (motor-torque): the motor's stall torque 1 N*m is below the unbalance's gravity torque "
-                     "U g = 1.23 N*m: from rest it cannot lift the unbalance over the top; give "
-                     "model.drive.stall_torque > 1.23 N*m"]
-
-
-def test_a_horizon_shorter_than_the_slowest_mode_names_the_horizon_that_would_do():
-    """The suspension mode decays at c / (2 M) with M = 41 kg (balls locked): tau = 82 / 400 =
-    0.205 s; 0.4 s < 3 tau, and 10 tau = 2.05 s rounds up to 2.1 s."""
-    lines = _validate("washer-knock", "analysis[0].t_end=0.4 s")
-    assert lines == ["warning (horizon): analysis[0] (knock).t_end = 400 ms is shorter than 3 time constants of the "
-                     "slowest mode (205 ms, structure with the balls locked): its start-up transient has not died "
-                     "out; give t_end >= 2.1 s (10 time constants)"]
 
 
 def test_every_check_is_tested_here_and_validate_json_lists_the_warnings():
