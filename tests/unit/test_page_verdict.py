@@ -109,3 +109,18 @@ def test_how_fast_a_start_balances_is_read_from_its_saved_history():
              "final_ball_angles_deg": [120.0, -120.0]}]
     (line,) = VERDICT_EVIDENCE["simulate"](ds, rows, None)
     assert line.status == "yes" and line.sentence.endswith("starts; the balanced ones settled by 3 s.")
+
+
+def test_contact_of_a_rotor_resting_on_its_stator_names_center_at_rest_not_ball_damping():
+    """The issue's tub: sag beyond the gap "knocks in 100 % of run-ups, even without balls". The
+    washer-knock drum (41 kg on 25 kN/m) sags 16.1 mm against its 10 mm gap without
+    center_at_rest."""
+    from rotorlab.io import parse_override
+
+    case = load_case("washer-knock", overrides=dict([parse_override("model.clearances[0].center_at_rest=false")]))
+    rows = [{"ball_damping": d, "contact_probability": 1.0, "probability_low": 0.68, "probability_high": 1.0,
+             "largest_impulse": 2.0, "runs": 8, "failed": 0} for d in (0.01, 0.2)]
+    (line,) = VERDICT_EVIDENCE["machine-knock"](xr.Dataset(attrs={"name": "knock"}), rows, machine_facts(case))
+    assert line.status == "no" and ("at rest the rotor already lies 16.1 mm from the stator's centre, beyond the gap "
+                                    "10 mm: it rests on the stator, with or without balls") in line.sentence
+    assert line.fix == "give model.clearances[0].center_at_rest = true (the stator centred where the rotor rests)"

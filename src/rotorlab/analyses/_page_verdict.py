@@ -324,6 +324,10 @@ def _knock_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ver
     fix = (f"a ball damping of {people.number(best['ball_damping'])} N*m*s/rad"
            if best["contact_probability"] < worst["contact_probability"] else
            "a larger gap (or, for a stator centred where the rotor rests, model.clearances[0].center_at_rest = true)")
+    if facts is not None and facts.rest_offset is not None and facts.gap is not None and facts.rest_offset > facts.gap:
+        text += (f"; at rest the rotor already lies {people.length(facts.rest_offset)} from the stator's centre, "
+                 f"beyond the gap {people.length(facts.gap)}: it rests on the stator, with or without balls")
+        fix = f"give {facts.gap_key}.center_at_rest = true (the stator centred where the rotor rests)"
     return [VerdictLine("contact", "no", text + f" ({ds.attrs.get('name', '')}; least margin not recorded).", fix)]
 
 
