@@ -229,6 +229,12 @@ def test_run_writes_report_results_and_figures(small, tmp_path):
     assert "Outcomes" in result.stdout and f"Report: {out / 'report.html'}" in result.stdout
     assert "below" in result.stdout and "side (0°, 0°) ×2" in result.stdout
     assert "balanced ×1" in result.stdout
+    # the sanity warning before the run (the run goes on), the verdict first on stdout (issue 29)
+    assert "warning (below-critical): analysis below is 720 rpm" in result.stderr
+    assert "\nVerdict\n" in result.stdout and result.stdout.index("Verdict") < result.stdout.index("Outcomes")
+    verdict = result.stdout[result.stdout.index("Verdict"):result.stdout.index("Outcomes")]
+    assert "  NO           operating speed: p = 1200 rpm" in verdict
+    assert max(len(line) for line in verdict.splitlines()) <= 100
     names = sorted(p.name for p in out.iterdir())
     assert names == sorted([".rotorlab-files", "report.html", "below.nc", "above.nc"] + [
         f"{a}_{k}.png" for a in ("below", "above") for k in ("amplitude", "ball_angles", "final_positions")
@@ -241,7 +247,10 @@ def test_run_json(small, tmp_path):
     result = invoke("run", str(small), "--out", str(out), "--json")
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)  # stdout is nothing but the JSON document
-    assert set(doc) == {"case", "source", "out_dir", "report", "files", "seconds", "analyses"}
+    assert set(doc) == {"case", "source", "out_dir", "report", "files", "seconds", "analyses", "warnings", "verdict"}
+    assert [w["check"] for w in doc["warnings"]] == ["below-critical"]
+    assert [(v["topic"], v["status"]) for v in doc["verdict"][:2]] == [("critical speeds", "info"),
+                                                                      ("operating speed", "no")]
     assert doc["case"] == "small" and doc["source"] == str(small.resolve())
     assert doc["report"] == str(out / "report.html") and "below.nc" in doc["files"]
     assert set(doc["analyses"]) == {"below", "above"}
@@ -252,6 +261,11 @@ def test_run_json(small, tmp_path):
     assert row["speed_ratio"] == pytest.approx(0.6)
     assert row["initial_ball_angles_deg"] == [0.0, 90.0]
     assert row["final_amplitude"] == pytest.approx(2.97 * row["reference_amplitude"], rel=0.01)
+    balances = [v["sentence"] for v in doc["verdict"] if v["topic"] == "balances"]
+    measured = ", ".join(f"{a:.1f}°" for a in row["final_ball_angles_deg"])
+    assert balances[0].startswith("Does not balance at 720 rpm (below) within 8 s: side (0°, 0°) [the balls settled "
+                                  "on the line through the unbalance, all on the unbalance's side, adding to it; "
+                                  f"nominal angles, measured {measured}] from 2 of 2 (100 %) starts")
     above = doc["analyses"]["above"]["rows"][0]
     assert above["outcome"] == "balanced" and sorted(above["final_ball_angles_deg"]) == [-120.0, 120.0]
 

@@ -308,7 +308,7 @@ def test_simulate_findings_without_balls_name_no_ball_angles():
     rows = [{"ic": 0, "outcome": "no balancer", "amplitude": {"rotor": 1.04e-3},
              "reference_amplitude": {"rotor": 1.0e-3}, "final_ball_angles_deg": {}}]
     found = _simulate_findings(None, rows)
-    assert found.numbers == ("largest vibration / unbalance response 1.04", "start 0: no balancer")
+    assert found.numbers == ("largest vibration / unbalance response 104 %", "start 0: no balancer")
     assert "104 %" in found.verdict
 
 
@@ -343,6 +343,7 @@ def test_run_up_report_says_what_its_result_arrays_say():
     vibration is the tail orbit of the amplitude array, "balanced" iff that is at most
     BALANCED_FRACTION of the locked unbalance response U w^2 / |c - M w^2 + i d w| at the final
     speed; the planar case with a motor is the kernel of test_machine_analyses' run-up test."""
+    from rotorlab import _people as people
     from rotorlab.explore._outcome import BALANCED_FRACTION
     from rotorlab.report._machine import machine_findings, machine_rows_table
 
@@ -372,8 +373,34 @@ def test_run_up_report_says_what_its_result_arrays_say():
         assert (r["outcome"] == "balanced") == balanced
         assert f"start {i}: passes {r['passed']} critical speed(s), reaches {w * 30 / math.pi:.4g} rpm" \
             in found.verdict
-        assert f"start {i}: residual vibration disc: {r['residual_amplitude']['disc'] * 1e3:.4g} mm" in found.numbers[i]
+        assert f"start {i}: residual vibration disc: {people.length(r['residual_amplitude']['disc'])}" in found.numbers[i]
         assert body[i][header.index("passed")] == str(r["passed"])
     good = [r["ic"] for r in rows if r["outcome"] == "balanced"]
     assert good[:1] == [0]  # the balls apart balance above p
     assert found.verdict.startswith(f"The balancer balances from start(s) {', '.join(map(str, good))} ({len(good)} of 2)")
+
+
+def test_a_chart_unstable_everywhere_below_the_critical_speed_says_why_and_the_remedy(planar):
+    """Issue 29: a subcritical machine was "unstable at every speed checked" with no reason and no
+    remedy. Below p = 1 / sqrt(1.04) rad/s = 9.36 rpm (balls locked) the balanced state is
+    unstable (Zhakash et al. 2024): the findings and the verdict name p and the fix."""
+    from rotorlab.analyses import machine_verdict
+    from rotorlab.report._machine import machine_findings
+
+    text = PLANAR[:PLANAR.index("[[analysis]]")] + (
+        '[[analysis]]\ntype = "stability-chart"\nname = "low"\nspeeds = ["0.3 rad/s", "0.9 rad/s", 3]\n')
+    case = parse_case(text)
+    ds = run_analysis(case.model, case.analysis("low"))
+    rows = summarize(ds)
+    assert not any(r["stable"] for r in rows)
+    assert ds.attrs["first_critical_speed"] == pytest.approx(P, rel=1e-9)
+    found = machine_findings(ds, rows).verdict
+    assert found == ("The balanced state is unstable at every speed checked: the balancer does not settle there. "
+                     "Every speed checked (2.86 to 8.59 rpm) lies below the first forward critical speed 9.36 rpm, "
+                     "where no balancer can balance. Run above the first forward critical speed of 9.36 rpm, or "
+                     "soften the mounts.")
+    lines = [v for v in machine_verdict(case, {"low": ds}, {"low": rows}) if v.topic == "stable speeds"]
+    assert [(v.status, v.sentence, v.fix) for v in lines] == [(
+        "no", "The balanced state is unstable at every speed checked (2.86 to 8.59 rpm, low): every speed checked "
+        "lies below the first forward critical speed 9.36 rpm.",
+        "run above the first forward critical speed of 9.36 rpm, or soften the mounts")]

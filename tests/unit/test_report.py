@@ -197,6 +197,55 @@ def test_report_opens_with_the_findings_of_each_analysis(run, tmp_path):
     assert boxes.count("<img") == 0
 
 
+def test_report_opens_with_the_verdict_of_the_machine(run, tmp_path):
+    """The verdict block first (issue 29 item 1), one element per line with its status: the
+    critical speed p = sqrt(c / (M1 + 2 m)) = sqrt(16740 / 1.06) = 125.67 rad/s = 1200 rpm, the
+    720 rpm analysis below it (0.6 p: "no", with the fix), each analysis' outcomes from its rows
+    with the measured ball angles to 0.1 degree, and "not computed" for what the case lacks."""
+    case, results, tables = run
+    text = write_report(tmp_path / "o", case, results, _figures(results), tables).read_text()
+    start = text.index('<section id="verdict">')
+    assert start < text.index("<h2>Findings</h2>")
+    block = text[start:text.index("</section>", start)]
+    lines = re.findall(r'<p class="verdict-line" data-verdict="([a-z-]+)" data-topic="([a-z -]+)">(.*?)</p>', block)
+    found = {(topic, status) for status, topic, _ in lines}
+    assert ("critical speeds", "info") in found and ("operating speed", "no") in found
+    assert "undamped, balls locked: 1200 rpm forward (excited by unbalance)" in block
+    assert "runs at 720 rpm (below) = 0.6 p" in block and "Fix: run above 1200 rpm, or soften the mounts" in block
+    balance = [(status, html.unescape(body.split("</span>: ", 1)[1].split("<")[0])) for status, topic, body in lines
+               if topic == "balances"]
+    assert len(balance) == 2
+    for rows, (status, sentence) in zip(tables.values(), balance):
+        every = all(r["outcome"] == "balanced" for r in rows)
+        assert status == ("yes" if every else "no")
+        assert sentence.startswith("Balances" if every else "Does not balance")
+        for r in rows:
+            assert f"{r['outcome']} [" in sentence  # each regime named and explained
+            assert f"from {sum(x['outcome'] == r['outcome'] for x in rows)} of {len(rows)}" in sentence
+            if r["outcome"].startswith("side"):
+                measured = ", ".join(f"{a:.1f}°" for a in r["final_ball_angles_deg"])
+                assert f"measured {measured}" in sentence
+    assert ("stable speeds", "info") in found and ("run-up", "info") in found
+    assert "not computed; add a stability-chart analysis" in block
+
+
+def test_findings_round_numbers_for_people():
+    """Issue 29: "5.88e-09 mm" for zero, "3.39e+03 %" beside "33.9 x", "1.7847 deg"."""
+    from rotorlab.report._findings import simulation_findings
+    from rotorlab.report._machine import _simulate_findings
+
+    rows = [{"speed_rpm": 2400.0, "speed_ratio": 2.0, "outcome": "balanced", "final_amplitude": 5.88e-12,
+             "amplitude_ratio": 4e-9}]
+    numbers = simulation_findings(None, rows).numbers
+    assert numbers == ("final shaft deflection at 2400 rpm: < 1 nm (< 0.1 % against the unbalance alone)",)
+    machine = [{"ic": 0, "outcome": "side (0°, 0°)", "amplitude": {"rotor": 33.9e-3},
+                "reference_amplitude": {"rotor": 1e-3}, "final_ball_angles_deg": {"race 0": [1.7847, -16.0512]}}]
+    found = _simulate_findings(None, machine)
+    assert "vibration up to 33.9 × the unbalance response" in found.verdict and "e+03" not in found.verdict
+    assert found.numbers == ("largest vibration / unbalance response 33.9 ×",
+                             "start 0: side (0°, 0°), final ball angles race 0: 1.8°, -16.1°")
+
+
 def test_basin_findings_state_the_fraction_in_words():
     import xarray as xr
 
@@ -209,7 +258,7 @@ def test_basin_findings_state_the_fraction_in_words():
              "fraction_half": 6 / 1296, "horizon_half_s": 10.0}]
     found = presentation_of("basin").findings(ds, rows)
     assert found.verdict == "balanced from 1290 of 1296 starts (99.5 %) after 20 s"
-    assert found.numbers == ("non-synchronous: 6 of 1296 starts (0.5 %)",)
+    assert found.numbers == ("non-synchronous: 6 of 1296 starts (0.463 %)",)
 
 
 def test_working_point_findings_name_the_point_and_its_band():

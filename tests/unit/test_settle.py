@@ -88,6 +88,13 @@ def test_long_horizon_every_start_off_the_diagonal_balances(case):
     assert ds.attrs["horizon_rule"] == ("horizon 20 s, from the t_end given (127 time constants of the balanced "
                                         "state's slowest mode, 0.158 s)")
     assert "no longer change" in " ".join(basin_findings(ds, _rows(ds)).numbers)
+    # the verdict (issue 29): settled, balanced from the 12 starts off the diagonal only
+    from rotorlab.analyses import VERDICT_EVIDENCE
+
+    (line,) = VERDICT_EVIDENCE["basin"](ds, _rows(ds), None)
+    assert (line.topic, line.status) == ("balances", "no")
+    assert "within 20 s): balanced [the balls settled where they cancel the unbalance] from 12 of 16 (75 %) starts; " \
+        "side (" in line.sentence and line.sentence.startswith("Balances only partly")
 
 
 def _rows(ds):

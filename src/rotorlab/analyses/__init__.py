@@ -70,6 +70,9 @@ from rotorlab.explore._outcome import (
     wrap_angle,
 )
 from rotorlab.analyses._simulate import SETTLE_REVOLUTIONS, simulate
+from rotorlab.analyses._facts import MACHINE_FACTS, MachineFacts, machine_facts, register_machine_facts
+from rotorlab.analyses._page_verdict import VERDICT_EVIDENCE, VerdictLine, explain_regime, machine_verdict, register_evidence
+from rotorlab.analyses._sanity import SANITY_CHECKS, SanityWarning, register_sanity_check, sanity_warnings
 from rotorlab.analyses._machine import machine_simulate, machine_steady
 from rotorlab.analyses._machine_run_up import PassingTorque, machine_run_up, passing_torque
 from rotorlab.analyses._steady import (
@@ -82,6 +85,19 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
+    "MACHINE_FACTS",
+    "MachineFacts",
+    "machine_facts",
+    "register_machine_facts",
+    "VERDICT_EVIDENCE",
+    "VerdictLine",
+    "explain_regime",
+    "machine_verdict",
+    "register_evidence",
+    "SANITY_CHECKS",
+    "SanityWarning",
+    "register_sanity_check",
+    "sanity_warnings",
     "PassingTorque",
     "passing_torque",
     "machine_run_up",

@@ -459,13 +459,18 @@ def critical_summary(spec: Any, n: int = 6) -> dict[str, Any]:
     structure = spec.linear_structure()
     if structure is None:
         return {}
+    return {"critical_speeds": critical_entries(build_linear_system(structure), n)}
+
+
+def critical_entries(system: Any, n: int = 6) -> list[dict[str, Any]]:
+    """The lowest ``n`` undamped 1x critical speeds of a ``LinearSystem`` as entries of
+    :func:`critical_entry` (each with its damped crossing), those unbalance excites first."""
     from rotorlab.linear import critical_speeds
 
-    system = build_linear_system(structure)
     lowest = critical_speeds(system, damped=False).speed[:n]  # damped crossings of these only
     cs = critical_speeds(system, max_speed=float(lowest[-1]) if lowest.size else None)
     ds = cs.to_dataset().isel(critical=slice(0, n))
     ds["critical_frequency"] = ("critical", ds.harmonic.values * ds.critical_speed.values / (2.0 * math.pi))
     ds.attrs["analysis"] = "critical_speeds"
-    return {"critical_speeds": [critical_entry(r) for r in _crossing_rows(ds, mode=False)]}
+    return [critical_entry(r) for r in _crossing_rows(ds, mode=False)]
 

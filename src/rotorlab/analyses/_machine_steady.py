@@ -369,6 +369,11 @@ def _run_chart(case_model, analysis, progress=None):
                                          {"units": STEADY_PARAMETERS[analysis.param][2]}))
         ds.attrs["parameter"] = analysis.param
     ds.attrs["analysis"] = "stability-chart"
+    from rotorlab.models._machine_physics import structure_critical_speeds
+
+    crit = structure_critical_speeds(m)  # the reason and remedy of a chart unstable everywhere
+    if crit.size:
+        ds.attrs["first_critical_speed"] = float(crit[0])
     return _annotate(ds, case_model, analysis)
 
 

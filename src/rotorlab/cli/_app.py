@@ -32,6 +32,7 @@ from rotorlab.cli._output import (
     info,
     outcome_table,
     progress_bar,
+    say,
     status,
     stdout,
 )
@@ -161,6 +162,9 @@ def validate_command(ctx: typer.Context, case: CaseArg, sets: SetOpt = None, jso
             raise
         p = loaded.model.critical_speed()
         analyses = _analysis_summary(loaded)
+        from rotorlab.analyses import sanity_warnings
+
+        warnings = sanity_warnings(loaded)
         if json_out:
             extra = {"n_dof": loaded.model.n_dof} if hasattr(loaded.model, "n_dof") else {}
             from rotorlab.analyses import critical_summary
@@ -170,7 +174,8 @@ def validate_command(ctx: typer.Context, case: CaseArg, sets: SetOpt = None, jso
                     **critical_summary(loaded.model)}
             emit_json({"ok": True, **_json_case(loaded), "description": loaded.description,
                        "critical_speed": p, **crit, "n_balls": loaded.model.n_balls, **extra,
-                       "model": loaded.model_dump_si()["model"], "analyses": analyses})  # fmt: skip
+                       "model": loaded.model_dump_si()["model"], "analyses": analyses,
+                       "warnings": [w.to_dict() for w in warnings]})  # fmt: skip
             return
         con = stdout()
         con.print(f"OK: {loaded.name} ({loaded.source})", markup=False)
@@ -179,6 +184,8 @@ def validate_command(ctx: typer.Context, case: CaseArg, sets: SetOpt = None, jso
         con.print(f"  model: {loaded.model.describe()}", markup=False)
         for a in loaded.analyses:
             con.print(f"  analysis {a.name} ({a.type}): {a.describe(loaded.model)}", markup=False)
+        for w in warnings:
+            con.print(f"warning ({w.check}): {w.text}", markup=False)
 
 
 # --------------------------------------------------------------------------- run
@@ -211,6 +218,11 @@ def run_command(
             if a.type not in ANALYSIS_TYPES:
                 raise BadInput(f'analysis[{i}].type = "{a.type}": rotorlab run cannot run this '
                                f"analysis type yet (runnable: {', '.join(ANALYSIS_TYPES)})")  # fmt: skip
+        from rotorlab.analyses import sanity_warnings
+
+        warnings = sanity_warnings(loaded)
+        for w in () if settings.quiet else warnings:  # before the run, never stopping it (errors stay errors)
+            say(f"warning ({w.check}): {w.text}")
         count = len(loaded.analyses)
         info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
              json_mode=json_out)  # fmt: skip
@@ -232,17 +244,24 @@ def run_command(
         with status(settings, "Drawing figures and writing the report ..."):
             figures = {name: shown[name].figures(ds, name) for name, ds in results.items()}
             report = write_report(out, loaded, results, figures, tables)
+        from rotorlab.analyses import machine_verdict
+
+        verdict = machine_verdict(loaded, results, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results),
                         *(f"{k}.png" for stems in figures.values() for k in stems)])
         total = time.perf_counter() - start
         if json_out:
             emit_json({**_json_case(loaded), "out_dir": str(report.parent), "report": str(report),
-                       "files": files, "seconds": round(total, 3),
+                       "files": files, "seconds": round(total, 3), "warnings": [w.to_dict() for w in warnings],
+                       "verdict": [line.to_dict() for line in verdict],
                        "analyses": {name: {"type": ds.attrs.get("analysis", ""), "rows": tables[name]}
                                     for name, ds in results.items()}})  # fmt: skip
             exit_if_failed(results)
             return
         con = stdout()
+        from rotorlab.cli._verdict import verdict_text
+
+        con.print(verdict_text(verdict), markup=False, highlight=False)
         for family, presentation in PRESENTATIONS.items():
             chosen = {n: ds for n, ds in results.items() if entries[n].family == family}
             if not chosen:

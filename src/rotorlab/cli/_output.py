@@ -21,6 +21,8 @@ from typing import Any
 
 import typer
 
+from rotorlab._people import length, relative
+
 __all__ = [
     "Settings",
     "BadInput",
@@ -448,7 +450,7 @@ def _fmt_angles(values: Sequence[float | None]) -> str:
 
 
 def _fmt_mm(value: float | None) -> str:
-    return "-" if value is None else f"{value * 1e3:.4g}"
+    return "-" if value is None else length(value)
 
 
 def outcome_table(title: str, rows: Sequence[Mapping[str, Any]]) -> Any:
@@ -457,14 +459,14 @@ def outcome_table(title: str, rows: Sequence[Mapping[str, Any]]) -> Any:
 
     table = Table(title=title, title_justify="left")
     for name, justify in (("speed (rpm)", "right"), ("ω/p", "right"), ("start (deg)", "left"),
-                          ("deflection (mm)", "right"), ("× unbalance alone", "right"),
+                          ("deflection", "right"), ("of unbalance alone", "right"),
                           ("final angles (deg)", "left"), ("outcome", "left")):  # fmt: skip
         table.add_column(name, justify=justify)
     for r in rows:
         ratio = r["amplitude_ratio"]
         table.add_row(
             f"{r['speed_rpm']:.0f}", f"{r['speed_ratio']:.3g}", _fmt_angles(r["initial_ball_angles_deg"]),
-            _fmt_mm(r["final_amplitude"]), "-" if ratio is None else f"{ratio:.3g}",
+            _fmt_mm(r["final_amplitude"]), "-" if ratio is None else relative(ratio),
             _fmt_angles(r["final_ball_angles_deg"]), r["outcome"],
         )  # fmt: skip
     return table
@@ -476,7 +478,7 @@ def summary_table(results: Mapping[str, Sequence[Mapping[str, Any]]]) -> Any:
 
     table = Table(title="Outcomes", title_justify="left")
     for name, justify in (("analysis", "left"), ("speed (rpm)", "right"), ("ω/p", "right"),
-                          ("outcomes", "left"), ("deflection (mm)", "right")):  # fmt: skip
+                          ("outcomes", "left"), ("deflection", "right")):  # fmt: skip
         table.add_column(name, justify=justify)
     for name, rows in results.items():
         by_speed: dict[float, list[Mapping[str, Any]]] = {}
@@ -487,7 +489,8 @@ def summary_table(results: Mapping[str, Sequence[Mapping[str, Any]]]) -> Any:
             for r in group:
                 counts[r["outcome"]] = counts.get(r["outcome"], 0) + 1
             amps = [r["final_amplitude"] for r in group if r["final_amplitude"] is not None]
-            span = "-" if not amps else f"{min(amps) * 1e3:.3g} … {max(amps) * 1e3:.3g}"
+            low, high = (_fmt_mm(min(amps)), _fmt_mm(max(amps))) if amps else ("-", "-")
+            span = low if low == high else f"{low} … {high}"
             text = ", ".join(f"{k} ×{v}" for k, v in counts.items())
             first = group[0]
             table.add_row(name, f"{first['speed_rpm']:.0f}", f"{first['speed_ratio']:.3g}", text, span)

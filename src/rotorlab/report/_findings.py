@@ -14,6 +14,8 @@ from collections.abc import Callable, Mapping, Sequence
 from dataclasses import dataclass
 from typing import TYPE_CHECKING, Any
 
+from rotorlab import _people as people
+
 if TYPE_CHECKING:
     import xarray
 
@@ -37,11 +39,15 @@ def _count(n: int, noun: str) -> str:
 
 
 def _pct(part: int, whole: int) -> str:
-    return f"{100.0 * part / whole:.1f} %" if whole else "–"
+    return f"{people.number(100.0 * part / whole)} %" if whole else "–"
 
 
-def _span(values: Sequence[float]) -> str:
-    low, high = f"{min(values):.3g}", f"{max(values):.3g}"
+def _percent(fraction: float) -> str:
+    return f"{people.number(100.0 * fraction)} %"
+
+
+def _span(values: Sequence[float], shown: Callable[[float], str] = lambda v: f"{v:.3g}") -> str:
+    low, high = shown(min(values)), shown(max(values))
     return low if low == high else f"{low} to {high}"
 
 
@@ -61,7 +67,7 @@ def simulation_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
     ...          "final_amplitude": 1e-6, "amplitude_ratio": 0.001}] * 2
     >>> f = simulation_findings(None, rows)
     >>> f.verdict
-    'at 2400 rpm (omega/p = 2): balanced from 2 of 2 starts (100.0 %)'
+    'at 2400 rpm (omega/p = 2): balanced from 2 of 2 starts (100 %)'
     """
     from rotorlab.analyses._verdict import round_up_horizon
     from rotorlab.explore._settle import NOT_SETTLED
@@ -84,8 +90,8 @@ def simulation_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
         amps = [r["final_amplitude"] for r in here if r["final_amplitude"] is not None]
         ratios = [r["amplitude_ratio"] for r in here if r["amplitude_ratio"] is not None]
         if amps:
-            numbers.append(f"final shaft deflection at {rpm:.0f} rpm: {_span([a * 1e3 for a in amps])} mm"
-                           + (f" ({_span(ratios)} × the unbalance alone)" if ratios else ""))
+            numbers.append(f"final shaft deflection at {rpm:.0f} rpm: {_span(amps, people.length)}"
+                           + (f" ({_span(ratios, people.relative)} against the unbalance alone)" if ratios else ""))
     return Findings(". ".join(verdicts), tuple(numbers))
 
 
@@ -112,15 +118,15 @@ def _fractions(ds: xarray.Dataset, rows: Rows) -> Findings:
     n = rows[0]["n"]
     t_end = float(ds["horizon"].values[-1]) if "horizon" in ds.coords else math.nan
     first = rows[0]
-    verdict = (f"{first['regime']} from {first['count']} of {n} starts ({100.0 * first['fraction']:.1f} %) "
+    verdict = (f"{first['regime']} from {first['count']} of {n} starts ({_percent(first['fraction'])}) "
                f"after {t_end:g} s")
-    numbers = [f"{r['regime']}: {r['count']} of {n} starts ({100.0 * r['fraction']:.1f} %)" for r in rows[1:]
+    numbers = [f"{r['regime']}: {r['count']} of {n} starts ({_percent(r['fraction'])})" for r in rows[1:]
                if r["count"]]
     if first.get("ci_low") is not None:
-        numbers.append(f"{first['regime']} confidence interval {100.0 * first['ci_low']:.1f} to "
-                       f"{100.0 * first['ci_high']:.1f} %")  # fmt: skip
+        numbers.append(f"{first['regime']} confidence interval {people.number(100.0 * first['ci_low'])} to "
+                       f"{_percent(first['ci_high'])}")  # fmt: skip
     if first.get("fraction_half") is not None and first["fraction_half"] != first["fraction"]:
-        numbers.append(f"{first['regime']} after {first['horizon_half_s']:g} s: {100.0 * first['fraction_half']:.1f} %")
+        numbers.append(f"{first['regime']} after {first['horizon_half_s']:g} s: {_percent(first['fraction_half'])}")
     if "count" in ds and "outcome" in ds:
         from rotorlab.analyses._verdict import basin_verdict
 
@@ -197,7 +203,7 @@ def _verify(ds: xarray.Dataset, rows: Rows) -> Findings:
     parts, numbers = [], []
     for r in rows:
         best = max(r["fractions"].items(), key=lambda kv: kv[1]) if r["fractions"] else ("none", 0.0)
-        parts.append(f"at {r['speed_rpm']:.0f} rpm {100.0 * best[1]:.1f} % of {r['starts']} starts end {best[0]}")
+        parts.append(f"at {r['speed_rpm']:.0f} rpm {_percent(best[1])} of {r['starts']} starts end {best[0]}")
         numbers.append(f"at {r['speed_rpm']:.0f} rpm the simulation agrees with: "
                        + (", ".join(m for m in ("exact", "hamilton", "averaged") if r[f"agrees_{m}"]) or "no method"))
     return Findings("; ".join(parts), tuple(numbers))

@@ -16,6 +16,7 @@ from rotorlab.io import field_unit
 from rotorlab.report._presentations import PRESENTATIONS, presentation_of
 from rotorlab.report._table import escape as _e
 from rotorlab.report._table import table as _table
+from rotorlab.report._verdict import VERDICT_CSS, verdict_section
 
 __all__ = ["render_report", "parameter_rows", "versions"]
 
@@ -197,11 +198,14 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapp
         "<!DOCTYPE html>",
         '<html lang="en"><head><meta charset="utf-8">',
         f"<title>rotorlab report: {_e(case.name)}</title>",
-        f"<style>{_CSS}</style></head><body>",
+        f"<style>{_CSS}{VERDICT_CSS}</style></head><body>",
         f"<h1>rotorlab report: {_e(case.name)}</h1>",
         f"<p>{_e(case.description)}</p>" if case.description else "",
         f'<p class="muted">Case source: {_e(case.source)} · generated {now}</p>',
     ]
+    from rotorlab.analyses import machine_verdict
+
+    parts.append(verdict_section(machine_verdict(case, results, summary_tables)))  # the verdict first
     if case.overrides:
         from rotorlab.io._overrides import describe_overrides
 

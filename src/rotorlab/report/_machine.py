@@ -10,6 +10,7 @@ from typing import Any
 
 import numpy as np
 
+from rotorlab import _people as people
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.report._findings import Findings
 
@@ -27,9 +28,13 @@ def _mm(v) -> str:
 
 
 def _races(angles) -> str:
+    """Ball angles by race, to 0.1 degree (a table's cell or a sentence)."""
     if not angles:
         return "-"
-    return "; ".join(f"{k}: {', '.join(_g(a, 5) for a in v)}" for k, v in angles.items())
+    return "; ".join(f"{k}: {', '.join(people.angle_deg(a) for a in v)}" for k, v in angles.items())
+
+
+
 
 
 def _stations(rows: Rows, key: str) -> list[str]:
@@ -41,7 +46,7 @@ def _stations(rows: Rows, key: str) -> list[str]:
 
 def _steady(rows: Rows):
     stations = _stations(rows, "amplitude")
-    header = ("motion", "kind", "ball angles (deg)", "exact", "seed 003 (Hamilton)", "seed 002 (averaged)",
+    header = ("motion", "kind", "ball angles", "exact", "seed 003 (Hamilton)", "seed 002 (averaged)",
               "max Re(lambda) (1/s)", *(f"whirl at {s} (mm)" for s in stations))
     body = [(r.get("label", str(r["motion"])), r["kind"] if r["exists"] else "absent", _races(r["ball_angles_deg"]),
              r["verdict_exact"], r["verdict_hamilton"], r["verdict_averaged"], _g(r["max_real_eigenvalue"]),
@@ -52,7 +57,7 @@ def _steady(rows: Rows):
 def _chart(rows: Rows):
     stations = _stations(rows, "amplitude")
     param = [k for k in (rows[0] if rows else {}) if k in ("ball_mass", "ball_damping")]
-    header = (*param, "speed (rpm)", "steady motion", "stable", "max Re(lambda) (1/s)", "ball angles (deg)",
+    header = (*param, "speed (rpm)", "steady motion", "stable", "max Re(lambda) (1/s)", "ball angles",
               *(f"whirl at {s} (mm)" for s in stations))
     body = [(*(_g(r[k]) for k in param), _g(r["speed_rpm"], 6),
              ("balanced" if r["balanced"] else "partly balanced") if r["exists"] else "none",
@@ -63,7 +68,7 @@ def _chart(rows: Rows):
 
 def _simulate(rows: Rows):
     stations = _stations(rows, "amplitude")
-    header = ("start", "initial ball angles (deg)", "final speed (rpm)", "final ball angles (deg)",
+    header = ("start", "initial ball angles", "final speed (rpm)", "final ball angles",
               *(f"vibration at {s} (mm)" for s in stations), "outcome", "status")
     body = [(str(r["ic"]), _races(r["initial_ball_angles_deg"]), _g(r["final_speed_rpm"], 6),
              _races(r["final_ball_angles_deg"]), *(_mm(r["amplitude"][s]) for s in stations), r["outcome"],
@@ -138,7 +143,7 @@ def _steady_findings(ds, rows):
                 "station (see the whirl per station).")
     return Findings(f"{len(stable)} of {len(rows)} {'/'.join(kinds)} steady motion(s){at} are stable (exact "
                     f"eigenvalues): {what}{beyond}",
-                    tuple(f"motion {r.get('label', r['motion'])}: balls at {_races(r['ball_angles_deg'])} deg, "
+                    tuple(f"motion {r.get('label', r['motion'])}: balls at {_races(r['ball_angles_deg'])}, "
                           f"max Re(lambda) = {_g(r['max_real_eigenvalue'])} 1/s" for r in stable))
 
 
@@ -157,7 +162,15 @@ def _chart_findings(ds, rows):
 
     spans = true_runs([r["speed_rpm"] for r in rows], [r["stable"] for r in rows])
     if not spans:
-        return Findings(f"The {kind} state is unstable at every speed checked: the balancer does not settle there.")
+        p = ds.attrs.get("first_critical_speed")
+        speeds = [r["speed_rpm"] for r in rows]
+        why = (f" Every speed checked ({people.number(min(speeds))} to {people.number(max(speeds))} rpm) lies below "
+               f"the first forward critical speed {people.speed(p)}, where no balancer can balance." if p is not None
+               and max(speeds) < p * _RPM else "")
+        fix = (f" Run above the first forward critical speed of {people.speed(p)}, or soften the mounts."
+               if p is not None else "")
+        return Findings(f"The {kind} state is unstable at every speed checked: the balancer does not settle there."
+                        + why + fix)
     text = ", ".join(f"{a:.5g}-{b:.5g}" if a != b else f"{a:.5g}" for a, b in spans)
     return Findings(f"The {kind} state is stable from {text} rpm (exact eigenvalues; {sum(r['stable'] for r in rows)} "
                     f"of {len(rows)} speeds): " + ("the balancer balances there." if balanced else
@@ -183,10 +196,11 @@ def _simulate_findings(ds, rows):
     if not rows:
         return Findings("No starts.")
     if "no balancer" in by:
-        verdict = (f"Without a balancer the vibration is {100 * worst:.3g} % of the locked unbalance response "
+        verdict = (f"Without a balancer the vibration is {people.relative_to(worst, 'the locked unbalance response')} "
                    "(the reference for the variants with balls).")
     elif len(good) == len(rows):
-        verdict = f"The balancer balances from every start ({len(rows)}): vibration at most {100 * worst:.3g} % of "                   "the unbalance response."
+        verdict = f"The balancer balances from every start ({len(rows)}): vibration at most " \
+                  f"{people.relative_to(worst, 'the unbalance response')}."
     elif good:
         verdict = (f"The balancer balances from {len(good)} of {len(rows)} starts (start(s) "
                    f"{', '.join(map(str, good))}); " + "; ".join(f"{k} from start(s) {', '.join(map(str, v))}"
@@ -194,10 +208,10 @@ def _simulate_findings(ds, rows):
     else:
         verdict = ("The balancer does not balance from any start: " + "; ".join(
             f"{k} from start(s) {', '.join(map(str, v))}" for k, v in by.items()) +
-            f" (vibration up to {100 * worst:.3g} % of the unbalance response).")
-    return Findings(verdict, (f"largest vibration / unbalance response {worst:.3g}",
+            f" (vibration up to {people.relative_to(worst, 'the unbalance response')}).")
+    return Findings(verdict, (f"largest vibration / unbalance response {people.relative(worst)}",
                               *(f"start {r['ic']}: {r['outcome']}" + (f", final ball angles "
-                                f"{_races(r['final_ball_angles_deg'])} deg" if r["outcome"] != "no balancer" else "")
+                                f"{_races(r['final_ball_angles_deg'])}" if r["outcome"] != "no balancer" else "")
                                 for r in rows)))
 
 
@@ -214,7 +228,7 @@ def _run_up_findings(ds, rows):
         else:
             parts.append(f"start {r['ic']}: passes {r['passed']} critical speed(s), reaches "
                          f"{r['final_speed_rpm']:.4g} rpm; {verdicts.get(r['outcome'], r['outcome'])}")
-        res = ", ".join(f"{s}: {_mm(v)} mm (without balancing {_mm(r['reference_amplitude'][s])} mm)"
+        res = ", ".join(f"{s}: {people.length(v)} (without balancing {people.length(r['reference_amplitude'][s])})"
                         for s, v in r["residual_amplitude"].items())
         numbers.append(f"start {r['ic']}: residual vibration {res}")
     good = [r["ic"] for r in rows if r["outcome"] == "balanced"]
