@@ -113,3 +113,16 @@ def test_every_check_is_tested_here_and_validate_json_lists_the_warnings():
     assert w["numbers"]["gravity_torque"] == pytest.approx(0.125 * 9.81)
     assert w["fix"] == "give model.drive.stall_torque > 1.23 N*m"
     assert [x.check for x in sanity_warnings(load_case("washer-horizontal"))] == []
+
+
+def test_every_command_prints_the_warnings_before_it_runs_and_quiet_hides_them():
+    # campbell: a single-analysis command (linear, no compile); the warning reaches stderr before its
+    # progress line, the command still succeeds, and -q keeps stderr empty
+    args = ["campbell", "friswell-rotor", "--set", "model.shaft[0].length=20", "--json"]
+    result = runner.invoke(app, args)
+    assert result.exit_code == 0, result.output
+    lines = result.stderr.splitlines()
+    assert lines[0].startswith("warning (unit-slip): model.shaft[0].length = 20 m is far outside"), lines
+    json.loads(result.stdout)  # the JSON on stdout is untouched
+    quiet = runner.invoke(app, ["-q", *args])
+    assert quiet.exit_code == 0 and quiet.stderr == ""

@@ -104,12 +104,24 @@ def _settings(ctx: typer.Context) -> Settings:
     return obj if isinstance(obj, Settings) else Settings()
 
 
-def _load(source: str, sets: list[str] | None = None) -> Any:
-    """Load a case with the command's ``--set KEY=VALUE`` options applied (the one place that does)."""
+def _load(source: str, sets: list[str] | None = None, settings: Settings | None = None) -> Any:
+    """Load a case with the command's ``--set KEY=VALUE`` options applied (the one place that does).
+
+    Given the command's ``settings`` (every command but ``validate`` and ``run``, which print
+    them in their own place) the case's sanity warnings
+    (:func:`rotorlab.analyses.sanity_warnings`) go to stderr before the command runs, unless
+    ``-q``; they never stop it.
+    """
     from rotorlab.io import load_case, parse_override
 
     overrides = dict(parse_override(text) for text in sets or ())
-    return load_case(source, overrides=overrides)
+    loaded = load_case(source, overrides=overrides)
+    if settings is not None and not settings.quiet:
+        from rotorlab.analyses import sanity_warnings
+
+        for w in sanity_warnings(loaded):
+            say(f"warning ({w.check}): {w.text}")
+    return loaded
 
 
 def _json_case(case: Any) -> dict[str, Any]:
@@ -403,7 +415,7 @@ def simulate_command(
                 raise BadInput(f"--out = {out}: is a folder (give a .nc file name)")
             if not out.absolute().parent.is_dir():
                 raise BadInput(f"--out = {out}: folder {out.absolute().parent} does not exist")
-        loaded = _load(case, sets)
+        loaded = _load(case, sets, settings)
         if own_entry(loaded, "simulate"):
             spec = _pick_analysis(loaded, analysis)
             if len(rpm) + len(ratio) > 1:

@@ -176,7 +176,7 @@ def basin_command(
         from rotorlab.cli._sweep_common import run_into_store
 
         executor = checked_outputs(plot, out, store, resume, scheduler, workers)
-        loaded = _load(case, sets)
+        loaded = _load(case, sets, settings)
         from rotorlab.io import coordinate_dimensions
 
         known = coordinate_dimensions(loaded.model)

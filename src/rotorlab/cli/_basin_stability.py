@@ -154,7 +154,7 @@ def basin_stability_command(
         from rotorlab.cli._sweep_common import run_into_store
 
         executor = checked_outputs(plot, out, store, resume, scheduler, workers)
-        loaded = _load(case, sets)
+        loaded = _load(case, sets, settings)
         from rotorlab._constants import RPM_PER_RAD_S
         from rotorlab.io._coordinates import mappable_text, record_input_units
         from rotorlab.io._sweep_specs import sweep_coordinates

@@ -98,7 +98,7 @@ def continue_command(
         second = None if param2 is None else parse_named_range("--param2", param2)
         _check_plot("--plot", plot)
         _check_plot("--out", out)
-        loaded = _load(case, sets)
+        loaded = _load(case, sets, settings)
         spec = _spec(loaded, first, second, start_from, speed_rpm)
         from rotorlab.analyses import run_analysis, summarize
         from rotorlab.analyses._continuation import continuation_machine

@@ -45,10 +45,10 @@ def _check(stone_mass: float | None, t_end: float | None, seed: int | None, plot
     _check_plot("--out", out)
 
 
-def _impact_case(case: str, sets: list[str] | None = None) -> Any:
+def _impact_case(case: str, sets: list[str] | None = None, settings: Any = None) -> Any:
     from rotorlab.io import ImpactsSpec
 
-    loaded = _load(case, sets)
+    loaded = _load(case, sets, settings)
     problem = ImpactsSpec.wrong_model(loaded.model)
     if problem is not None:
         raise BadInput(f"case {loaded.name}: {problem}")
@@ -119,7 +119,7 @@ def impacts_command(
     settings = _settings(ctx)
     with handled(settings):
         _check(stone_mass, t_end, seed, plot, out)
-        loaded = _impact_case(case, sets)
+        loaded = _impact_case(case, sets, settings)
         spec = _spec(loaded, "impacts", analysis)
         from rotorlab.analyses import impact_model, impact_run, impact_summary
 
@@ -247,7 +247,7 @@ def impacts_sweep_command(
         store = out if out is not None and out.suffix == ".zarr" else None
         _check(None, t_end, seed, plot, None if store is not None else out)
         executor = _executor(workers, scheduler, chunk, store, resume)
-        loaded = _impact_case(case, sets)
+        loaded = _impact_case(case, sets, settings)
         spec = _spec(loaded, "impacts-sweep", analysis)
         if name is None:
             name, values = spec.param, list(spec.values)

@@ -28,8 +28,8 @@ _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}
 _LINEAR_MODELS = ("multibody", "fe_rotor")
 
 
-def _linear_case(source: str, command: str, sets: list[str] | None = None) -> Any:
-    loaded = _load(source, sets)
+def _linear_case(source: str, command: str, sets: list[str] | None = None, settings: Any = None) -> Any:
+    loaded = _load(source, sets, settings)
     if loaded.model.linear_structure() is None:
         raise BadInput(f"case {loaded.name}: its model is '{loaded.model.type}'; {command} "
                        f"needs a linear rotor model ([model] type {' or '.join(_LINEAR_MODELS)}) or a "
@@ -182,7 +182,7 @@ def campbell_command(
         rng = None if speeds_rpm is None else parse_speed_range(speeds_rpm)
         if plot is not None:
             check_plot_path(plot)
-        loaded = _linear_case(case, "campbell", sets)
+        loaded = _linear_case(case, "campbell", sets, settings)
         spec = _first(loaded, "campbell")
         if rng is None and spec is None:
             raise BadInput(f"case {loaded.name} has no campbell analysis: give --speeds-rpm "
@@ -247,7 +247,7 @@ def modes_command(
     with handled(settings):
         if speed_rpm is not None:
             check_speed(speed_rpm)
-        loaded = _linear_case(case, "modes", sets)
+        loaded = _linear_case(case, "modes", sets, settings)
         _check_modes(modes, loaded.model.linear_structure().n_dof)
         spec = _first(loaded, "modes")
         from rotorlab.io import ModesSpec

@@ -142,7 +142,7 @@ def steady_command(
         _positive("--speed-ratio", speed_ratio)
         if speed_rpm is not None and speed_ratio is not None:
             raise BadInput("--speed-rpm and --speed-ratio exclude each other: give only one")
-        loaded = _load(case, sets)
+        loaded = _load(case, sets, settings)
         if own_entry(loaded, "steady"):
             _own_steady(settings, loaded, speed_rpm, speed_ratio, json_out)
             return
@@ -258,7 +258,7 @@ def stability_chart_command(
         name, values = _param(param)
         _check_plot("--plot", plot)
         _check_plot("--out", out)
-        loaded = _load(case, sets)
+        loaded = _load(case, sets, settings)
         if own_entry(loaded, "stability-chart"):
             _own_chart(settings, loaded, rpm, ratios, name, values, out, json_out)
             return
@@ -356,7 +356,7 @@ def run_up_command(
     with handled(settings):
         _positive("--t-end", t_end)
         _check_plot("--out", out)
-        loaded = _load(case, sets)
+        loaded = _load(case, sets, settings)
         spec = find_analysis(loaded, "run-up", analysis)
         if spec is None:
             raise BadInput(f"case {loaded.name} has no run-up analysis ([[analysis]] type \"run-up\")")

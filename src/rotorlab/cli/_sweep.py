@@ -202,7 +202,7 @@ def sweep_command(
         if sample is not None and not axes:
             raise BadInput("--sample needs the ranges to draw from: give --param and/or --ic NAME=LOW:HIGH")
         check_store_path(out, resume)
-        loaded = _load(case, sets)
+        loaded = _load(case, sets, settings)
         from rotorlab.io import SweepSpec
         from rotorlab.io._sweep_specs import sweep_coordinates
 
@@ -295,7 +295,7 @@ def _stability_sweep(settings: Any, case: str, sets: list[str] | None, out: Path
         raise BadInput(f"--speed-{'rpm' if speed_rpm is not None else 'ratio'}: the speed is swept by "
                        f"--param {next(iter(swept_speed))}")  # fmt: skip
     check_store_path(out, resume)
-    loaded = _load(case, sets)
+    loaded = _load(case, sets, settings)
     from rotorlab.cli._steady import _model
 
     model = _model(loaded, {}, "stability-chart")  # per-point stability: the stability chart's check
