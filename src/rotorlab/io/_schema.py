@@ -96,6 +96,7 @@ from rotorlab.io._linear_analyses import (
     UnbalanceResponseSpec,
 )
 from rotorlab.io._knock_spec import MachineKnockSpec
+from rotorlab.io._margin_specs import FrictionMarginSpec, ShockMarginSpec
 from rotorlab.io._machine_spec import MachineSpec
 from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._rub_specs import JeffcottRubSpec, RubMapSpec, RubSpec
@@ -157,7 +158,7 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
                      WorkingPointSpec, SweepSpec, BasinStabilitySpec, ImpactsSpec, ImpactsSweepSpec, RubSpec, MachineKnockSpec,
-                     RubMapSpec, ContinuationSpec)  # fmt: skip
+                     RubMapSpec, ContinuationSpec, ShockMarginSpec, FrictionMarginSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:

@@ -1,0 +1,135 @@
+"""Case-file specs of the margin analyses: ``shock-margin`` (:mod:`rotorlab.analyses._shock_margin`) and
+``friction-margin`` (:mod:`rotorlab.analyses._friction_margin`).
+
+Layout::
+
+    [[analysis]]
+    type = "shock-margin"
+    speed_ratio = [1.5, 2.0, 3.0]     # or speed = ["2400 rpm", ...]; neither: the model's speed
+    directions = 24                   # knock and load-shift directions over a turn
+    simulate = true                   # bisect the impulse and check the load shift by simulation
+
+    [[analysis]]
+    type = "friction-margin"
+    speed = ["120 rad/s", "140 rad/s"]
+
+Examples
+--------
+>>> ShockMarginSpec(speed_ratio=[2, 3]).directions
+24
+"""
+
+from __future__ import annotations
+
+from typing import ClassVar, Literal
+
+from pydantic import Field
+
+from rotorlab.io._errors import Issue
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, flag, integer, quantity
+
+__all__ = ["ShockMarginSpec", "FrictionMarginSpec"]
+
+
+class _Speeds(AbstractAnalysisSpec):
+    """Speeds as multiples of the critical speed or in rad/s (or the model's constant speed)."""
+
+    exclusive = (("speed_ratio", "speed", False),)
+    speed_ratio: tuple[quantity("dimensionless", gt=0), ...] | None = Field(
+        None, min_length=1, description="spin speeds as multiples of the critical speed p (-)")
+    speed: tuple[quantity("angular_speed", gt=0), ...] | None = Field(
+        None, min_length=1, description="spin speeds (rad/s)")
+
+    def speed_values(self, model: AbstractModelSpec, critical_speed: float | None = None) -> list[float]:
+        """The speeds (rad/s): ``speed``, ``speed_ratio`` times p, else the model's constant speed."""
+        if self.speed is not None:
+            return list(self.speed)
+        if self.speed_ratio is not None:
+            p = model.critical_speed() if critical_speed is None else critical_speed
+            return [r * p for r in self.speed_ratio]
+        profile = model.speed_profile()
+        if profile is not None and profile.is_constant:
+            return [profile.final_speed]
+        spin = getattr(model, "spin_speed", None)  # a body spinning at one speed (toroidal_ball)
+        return [] if spin is None else [spin]
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        issues = super().case_issues(model)
+        if issues:
+            return issues
+        if self.speed_ratio is not None and model.critical_speed() is None:
+            return [Issue(("speed_ratio",), "the model has no critical speed: give speed", self.speed_ratio)]
+        if not self.speed_values(model):
+            return [Issue(("speed",), "the model's speed is not constant: give speed or speed_ratio", None,
+                          show_value=False)]
+        return []
+
+
+class ShockMarginSpec(_Speeds):
+    """Minimal fatal lateral impulse (N s) and step change of unbalance (kg m) of the balanced state,
+    over speed and direction."""
+
+    type: Literal["shock-margin"] = "shock-margin"
+    model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls",)
+    wrong_model_message: ClassVar[str] = ('needs a rotor with balls ([model] type "jeffcott_balls"), but the '
+                                          'case\'s model is "{kind}"')
+    directions: integer(ge=1, le=720) = Field(24, description="directions of the knock and the load shift over a turn")
+    simulate: flag() = Field(True, description="bisect the impulse and check the load shift by simulation")
+    rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-7, description="relative tolerance")
+    atol: quantity("dimensionless", gt=0) = Field(1e-9, description="absolute tolerance")
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        issues = super().case_issues(model)
+        if issues:
+            return issues
+        if not model.balls:
+            return [Issue(("type",), "needs balls on the rotor ([[model.balls]])", self.type)]
+        if any(b.friction > 0 for b in model.balls):
+            return [Issue(("type",), "needs balls without Coulomb friction (the balanced state is then an "
+                                     "isolated equilibrium): set the balls' friction to 0 or use friction-margin",
+                          self.type)]  # fmt: skip
+        return []
+
+    def describe(self, model: AbstractModelSpec) -> str:
+        n = len(self.speed_values(model))
+        return (f"shock margin: {self.directions} directions x {n} speed(s)"
+                + (", simulated" if self.simulate else ", linearised only"))
+
+
+class FrictionMarginSpec(_Speeds):
+    """Band of ball positions held by friction and the worst residual vibration over it, over speed."""
+
+    type: Literal["friction-margin"] = "friction-margin"
+    model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls", "toroidal_ball")
+    wrong_model_message: ClassVar[str] = ('needs a balancer with ball friction ([model] type "jeffcott_balls" or '
+                                          '"toroidal_ball"), but the case\'s model is "{kind}"')
+    grid: integer(ge=21, le=2001) = Field(241, description="grid points per ball angle over the band search")
+    simulate: flag() = Field(True, description="check the band's worst point by simulation")
+
+    def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
+        issues = super().case_issues(model)
+        if issues:
+            return issues
+        return _friction_issues(model)
+
+    def describe(self, model: AbstractModelSpec) -> str:
+        return f"friction margin: band and worst residual at {len(self.speed_values(model))} speed(s)"
+
+
+def _friction_issues(model: AbstractModelSpec) -> list[Issue]:
+    """No friction, no band: a rotor's balls need Coulomb friction, a torus ball rolling friction."""
+    balls = getattr(model, "balls", None)
+    if balls is not None:
+        if not balls:
+            return [Issue(("type",), "needs balls on the rotor ([[model.balls]])", "friction-margin")]
+        if len(balls) > 2:
+            return [Issue(("type",), f"maps the band of one or two balls, the model has {len(balls)}",
+                          "friction-margin")]
+        if not any(b.friction > 0 for b in balls):
+            return [Issue(("type",), "needs Coulomb friction on the balls (model.balls[i].friction > 0): "
+                                     "without it the band is a point", "friction-margin")]
+        return []
+    if getattr(model, "rolling_friction", 0.0) <= 0:
+        return [Issue(("type",), "needs rolling friction (model.rolling_friction > 0): without it the band is a point",
+                      "friction-margin")]
+    return []
