@@ -193,7 +193,8 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
         ``1 -+ SHIFT_CHECK`` times the bound). Over ``speed``: ``stable`` (1 if the balanced state
         exists and is stable), ``decay_rate`` (1/s), ``horizon`` (s), ``meeting_distance`` (rad),
         ``min_impulse_linear``, ``min_impulse_simulated``, ``min_load_shift`` and the worst
-        directions ``worst_impulse_direction``, ``worst_shift_direction`` (rad).
+        directions ``worst_linear_direction`` (of the estimate), ``worst_impulse_direction`` (of the
+        simulated impulse where one was found, else of the estimate), ``worst_shift_direction`` (rad).
 
     Raises
     ------
@@ -244,7 +245,9 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
         ctx = _Lanes(rot, speeds, stable, start, horizon, rtol, atol, threads)
         simulated, searched = ctx.bisect_impulse(bound, kicks, dist, progress)
         below, above = ctx.check_shift(shift, beta, moments)
-    worst_i = np.where(stable == 1, np.nanargmin(np.where(np.isfinite(bound), bound, np.inf), axis=1), -1)
+    worst_i = np.where(stable == 1, np.argmin(np.where(np.isfinite(bound), bound, np.inf), axis=1), -1)
+    has_sim = np.any(np.isfinite(simulated), axis=1)
+    worst_sim = np.where(has_sim, np.argmin(np.where(np.isfinite(simulated), simulated, np.inf), axis=1), worst_i)
     worst_s = np.where(stable == 1, np.argmin(np.where(np.isfinite(shift), shift, np.inf), axis=1), -1)
 
     def pick(values, idx):
@@ -268,7 +271,9 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
             "min_impulse_linear": (("speed",), pick(bound, worst_i), {"units": "N s"}),
             "min_impulse_simulated": (("speed",), min_sim, {"units": "N s"}),
             "min_load_shift": (("speed",), pick(shift, worst_s), {"units": "kg m"}),
-            "worst_impulse_direction": (("speed",), np.where(worst_i >= 0, beta[np.maximum(worst_i, 0)], np.nan),
+            "worst_linear_direction": (("speed",), np.where(worst_i >= 0, beta[np.maximum(worst_i, 0)], np.nan),
+                                       {"units": "rad"}),
+            "worst_impulse_direction": (("speed",), np.where(worst_sim >= 0, beta[np.maximum(worst_sim, 0)], np.nan),
                                         {"units": "rad"}),
             "worst_shift_direction": (("speed",), np.where(worst_s >= 0, beta[np.maximum(worst_s, 0)], np.nan),
                                       {"units": "rad"}),

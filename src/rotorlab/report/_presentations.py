@@ -175,5 +175,9 @@ for _entry in (
                  lazy("rotorlab.cli._continuation:continuation_tables")),
     Presentation("knock", lazy("rotorlab.report._knock:knock_figures"), lazy("rotorlab.report._knock:knock_section"),
                  lazy("rotorlab.report._knock:knock_findings"), lazy("rotorlab.report._knock:knock_tables")),
+    *(Presentation(f"{kind}-margin", lazy(f"rotorlab.plot._margins:{kind}_margin_figures"),
+                   lazy(f"rotorlab.report._margins:{kind}_margin_section"),
+                   lazy(f"rotorlab.report._margins:{kind}_margin_findings"),
+                   lazy(f"rotorlab.report._margins:{kind}_margin_tables")) for kind in ("shock", "friction")),
 ):  # fmt: skip
     register_presentation(_entry)
