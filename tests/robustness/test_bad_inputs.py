@@ -410,6 +410,30 @@ BOUNDS = [
                                           + "]" * 20], None, ["nested deeper than 32 levels"]),  # fmt: skip
 ]
 CORPUS += BOUNDS
+# ---- the margin analyses (issue 26 items 3, 4) ----------------------------------------------------
+MARGINS = [
+    ("sm-zero-directions", ["shock-margin", "autobalancer", "--directions", "0"], None, ["--directions", "0"]),
+    ("sm-negative-speed", ["shock-margin", "autobalancer", "--speed-rpm", "-5"], None,
+     ["--speed-rpm", "-5", "> 0"]),
+    ("sm-both-speeds", ["shock-margin", "autobalancer", "--speed-rpm", "2400", "--speed-ratio", "2"], None,
+     ["--speed-rpm", "--speed-ratio", "only one"]),
+    ("sm-torus", ["shock-margin", "strautmanis-torus"], None, ["shock-margin", "jeffcott_balls", "toroidal_ball"]),
+    ("sm-friction-balls", ["shock-margin", FILE], ("autobalancer", 'damping = "2e-3 N*m*s"',
+                                                   'damping = "2e-3 N*m*s"\nfriction = 0.01'),
+     ["shock-margin.type", "without Coulomb friction"]),
+    ("sm-out-is-folder", ["shock-margin", "autobalancer", "--out", "{d}/plain"], None, ["--out", "folder"]),
+    ("sm-case-directions", ["validate", FILE], ("autobalancer", "n_horizons = 10",
+                                                'n_horizons = 10\n\n[[analysis]]\ntype = "shock-margin"\n'
+                                                'directions = -3'),
+     ["directions", "-3"]),
+    ("fm-no-friction", ["friction-margin", "autobalancer"], None, ["friction-margin", "friction", "> 0"]),
+    ("fm-torus-no-friction", ["friction-margin", FILE], ("strautmanis-torus", 'rolling_friction = "1e-5 m"',
+                                                         'rolling_friction = "0 m"'),
+     ["rolling_friction", "> 0"]),
+    ("fm-small-grid", ["friction-margin", "strautmanis-torus", "--grid", "5"], None, ["--grid", "5"]),
+    ("fm-nan-ratio", ["friction-margin", "strautmanis-torus", "--speed-ratio", "nan"], None, ["--speed-ratio"]),
+]
+CORPUS += MARGINS
 if resources.files("rotorlab.cases").joinpath("washer-knock.toml").is_file():
     CORPUS.append(("mk-center-outside-gap", ["validate", FILE], ("washer-knock", "center_at_rest = true",
                                                                  'center = ["0 mm", "12 mm"]'),
