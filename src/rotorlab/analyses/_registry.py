@@ -208,14 +208,13 @@ def _register_builtins() -> None:
                                         _rub.rub_map_task_size, progress_unit="points"))
     from rotorlab.analyses import _continuation, _friction_margin, _shock_margin
 
+    register_analysis_type(AnalysisType("continuation", _continuation.run_continuation_analysis,
+                                        _continuation.continuation_rows, "continuation"))
     register_analysis_type(AnalysisType("shock-margin", _shock_margin.run_shock_margin_analysis,
                                         _shock_margin.shock_margin_rows, "shock-margin",
                                         _shock_margin.shock_margin_task_size, progress_unit="ensembles"))
     register_analysis_type(AnalysisType("friction-margin", _friction_margin.run_friction_margin_analysis,
                                         _friction_margin.friction_margin_rows, "friction-margin"))
-
-    register_analysis_type(AnalysisType("continuation", _continuation.run_continuation_analysis,
-                                        _continuation.continuation_rows, "continuation"))
 
 
 _register_builtins()
