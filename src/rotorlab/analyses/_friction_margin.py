@@ -249,14 +249,10 @@ def run_friction_margin_analysis(case_model: Any, analysis: Any,
     return ds
 
 
-def _num(v) -> float | None:
-    v = float(v)
-    return v if math.isfinite(v) else None
-
-
 def friction_margin_rows(ds) -> list[dict[str, Any]]:
     """One row per speed: the band of every coordinate (deg), the worst residual and the checks."""
     from rotorlab._constants import RPM_PER_RAD_S
+    from rotorlab.analyses._shock_margin import _num
 
     rows = []
     for i, om in enumerate(ds.speed.values):

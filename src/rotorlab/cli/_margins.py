@@ -12,6 +12,7 @@ import typer
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app, find_analysis, run_through_entry
 from rotorlab.cli._output import BadInput, handled
 from rotorlab.cli._options import count_option
+from rotorlab.cli._steady import _check_plot
 
 __all__: list[str] = []
 
@@ -42,19 +43,15 @@ def _speeds(rpm: list[float] | None, ratio: list[float] | None) -> dict[str, Any
     return {}
 
 
-def _check_out(out: Path | None) -> None:
-    if out is None:
-        return
-    if out.is_dir():
-        raise BadInput(f"--out = {out}: is a folder (give a .nc file name)")
-    if not out.absolute().parent.is_dir():
-        raise BadInput(f"--out = {out}: folder {out.absolute().parent} does not exist")
-
-
-def _run(ctx, kind: str, case: str, sets, analysis, update: dict[str, Any], out, json_out) -> None:
+def _run(ctx, kind: str, case: str, sets, analysis, speeds: tuple[Any, Any], no_simulate: bool,
+         extra: dict[str, Any], out, json_out) -> None:
+    """Start from the case's analysis of ``kind`` (or a default one), apply the options, run it."""
     settings = _settings(ctx)
     with handled(settings):
-        _check_out(out)
+        update = {**_speeds(*speeds), **{k: v for k, v in extra.items() if v is not None}}
+        if no_simulate:
+            update["simulate"] = False
+        _check_plot("--out", out)
         loaded = _load(case, sets)
         from rotorlab.io import ANALYSIS_SPECS
 
@@ -84,13 +81,8 @@ def shock_margin_command(
 ) -> None:
     """Minimal fatal shock of the balanced state: the smallest knock (N s) and load shift (g mm) that
     throw the balls out of balance, with the worst direction, at each speed."""
-    with handled(_settings(ctx)):
-        update = _speeds(speed_rpm, speed_ratio)
-    if directions is not None:
-        update["directions"] = directions
-    if no_simulate:
-        update["simulate"] = False
-    _run(ctx, "shock-margin", case, sets, analysis, update, out, json_out)
+    _run(ctx, "shock-margin", case, sets, analysis, (speed_rpm, speed_ratio), no_simulate,
+         {"directions": directions}, out, json_out)
 
 
 @app.command("friction-margin")
@@ -110,10 +102,5 @@ def friction_margin_command(
 ) -> None:
     """Friction band: where friction holds the balls near the balanced position, and the worst residual
     vibration over it, at each speed (checked by simulation)."""
-    with handled(_settings(ctx)):
-        update = _speeds(speed_rpm, speed_ratio)
-    if grid is not None:
-        update["grid"] = grid
-    if no_simulate:
-        update["simulate"] = False
-    _run(ctx, "friction-margin", case, sets, analysis, update, out, json_out)
+    _run(ctx, "friction-margin", case, sets, analysis, (speed_rpm, speed_ratio), no_simulate, {"grid": grid}, out,
+         json_out)
