@@ -58,14 +58,16 @@ def test_shock_margin_through_run_and_the_report(tmp_path):
     text = resources.files("rotorlab.cases").joinpath("autobalancer.toml").read_text(encoding="utf-8")
     case = tmp_path / "case.toml"
     case.write_text(text[: text.index("[[analysis]]")] + '[[analysis]]\ntype = "shock-margin"\nname = "sm"\n'
-                    'speed_ratio = [2.0, 3.0]\ndirections = 8\nsimulate = false\n', encoding="utf-8")  # fmt: skip
+                    'speed_ratio = [0.8, 2.0, 3.0]\ndirections = 8\nsimulate = false\n', encoding="utf-8")  # fmt: skip
     result = runner.invoke(app, ["run", str(case), "--out", str(tmp_path / "o"), "--json"])
     assert result.exit_code == 0, result.output
     out = json.loads(result.stdout)
     assert "sm_shock_margin.png" in out["files"]
-    rows = out["analyses"]["sm"]["rows"]
+    below, *rows = out["analyses"]["sm"]["rows"]
+    assert below["stable"] is False and below["min_impulse_linear"] is None
     # the linearised estimate grows with speed (3 p: 4.0 N s against 2.4 N s at 2 p); the load shift does not
     assert rows[1]["min_impulse_linear"] > 1.5 * rows[0]["min_impulse_linear"]
     assert rows[0]["min_load_shift"] == rows[1]["min_load_shift"]
     page = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
     assert "Weakest: At 2400 rpm a knock of" in page and "1500 g mm" in page
+    assert "The balanced state is not stable at 960 rpm: no margin there." in page

@@ -175,7 +175,7 @@ def torus_band(model, speeds, *, grid: int = 241, simulate: bool = True, threads
             inside[i], outside[i] = _check_torus(m, wp, psi_e, threads)
     return {"band_low": low, "band_high": high, "worst_residual": worst, "worst_angles": worst_at,
             "check_inside": inside, "check_outside": outside, "coordinates": ["psi", "alpha"],
-            "residual": "residual unbalance per kg of ball", "units": "m"}  # fmt: skip
+            "residual": "ball offset (residual unbalance per kg of ball)", "units": "m"}  # fmt: skip
 
 
 def _rho(model, alpha: float) -> float:

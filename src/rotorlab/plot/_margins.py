@@ -33,9 +33,13 @@ def shock_margin_figure(ds: xarray.Dataset) -> Figure:
     ax3 = ax1.twinx()
     ax3.plot(rpm, ds.min_load_shift.values * 1e6, "^:", color="tab:green", label="load shift")
     ax3.set_ylabel("minimal fatal load shift (g mm)")
+    ax1.set_ylim(bottom=0.0)
+    ax3.set_ylim(bottom=0.0)
     lines = ax1.get_lines() + ax3.get_lines()
-    ax1.legend(lines, [ln.get_label() for ln in lines], loc="best", fontsize="small")
-    ax1.set_title(f"{ds.attrs.get('name', 'shock margin')}: worst direction per speed")
+    ax1.legend(lines, [ln.get_label() for ln in lines], loc="lower right", fontsize="small")
+    unstable = [f"{v:.0f}" for v, ok in zip(rpm, ds.stable.values) if not ok]
+    note = f"\n(balanced state not stable at {', '.join(unstable)} rpm: no margin)" if unstable else ""
+    ax1.set_title(f"{ds.attrs.get('name', 'shock margin')}: worst direction per speed{note}", fontsize="medium")
     ax2 = fig.add_subplot(1, 2, 2, projection="polar")
     beta = np.append(ds.direction.values, ds.direction.values[:1])
     for i, om in enumerate(ds.speed.values):
@@ -72,6 +76,8 @@ def friction_margin_figure(ds: xarray.Dataset) -> Figure:
     ax1.legend(fontsize="small")
     ax1.set_title(f"{ds.attrs.get('name', 'friction margin')}: where friction holds the balls")
     ax2.plot(rpm, ds.worst_residual.values * 1e6, "o-", color="tab:red")
+    ax2.ticklabel_format(axis="y", useOffset=False)
+    ax2.set_ylim(bottom=0.0)
     ax2.set_ylabel(f"worst {ds.attrs.get('residual', 'residual')} (um)")
     ax2.set_xlabel("speed (rpm)")
     return fig

@@ -65,9 +65,11 @@ def shock_margin_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
         return r["min_impulse_simulated"] if r["min_impulse_simulated"] is not None else r["min_impulse_linear"]
 
     weakest = min(ok, key=lambda r: key(r) or float("inf"))
+    bad = [f"{r['speed_rpm']:.0f}" for r in rows if not r["stable"]]
+    tail = f" The balanced state is not stable at {', '.join(bad)} rpm: no margin there." if bad else ""
     numbers = tuple(f"{r['speed_rpm']:.0f} rpm: impulse {_g(key(r), unit=' N s')}, load shift "
                     f"{_g(r['min_load_shift'], '.4g', ' g mm', 1e6)}" for r in ok)  # fmt: skip
-    return Findings("Weakest: " + _shock_sentence(weakest), numbers)
+    return Findings("Weakest: " + _shock_sentence(weakest) + tail, numbers)
 
 
 def shock_margin_tables(results: Mapping[str, Any], rows: Mapping[str, Rows]) -> list[Any]:
@@ -95,7 +97,7 @@ def _coords(r: Mapping[str, Any]) -> list[str]:
 def _check(r: Mapping[str, Any]) -> str:
     code = (r["check_inside"], r["check_outside"])
     if code == (1, 1):
-        return "confirmed (just inside stays, just outside moves)"
+        return "confirmed by simulation: released just inside it stays, just outside it moves"
     if -1 in code:
         return "not simulated or failed"
     return "NOT confirmed by simulation"
