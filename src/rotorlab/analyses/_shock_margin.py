@@ -188,7 +188,9 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
     xarray.Dataset
         Over ``(speed, direction)``: ``impulse_linear`` (N s, the linearised-basin estimate), ``impulse_simulated``
         (N s, bisected; NaN where even ``BRACKET`` times the bound returned, see
-        ``impulse_searched_to``), ``load_shift_bound`` (kg m, closed form), ``shift_below`` and
+        ``impulse_searched_to``), ``fatal_outcome`` (where the smallest fatal knock found left the
+        balls: ``"balanced"`` (again, in another arrangement), ``"side (...)"``,
+        ``"non-synchronous"``, ...; empty where none was found), ``load_shift_bound`` (kg m, closed form), ``shift_below`` and
         ``shift_above`` (1: balanced, 0: not, -1: not settled or failed; simulated at
         ``1 -+ SHIFT_CHECK`` times the bound). Over ``speed``: ``stable`` (1 if the balanced state
         exists and is stable), ``decay_rate`` (1/s), ``horizon`` (s), ``meeting_distance`` (rad),
@@ -239,11 +241,12 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
     shift = np.where(stable[:, None] == 1, shift, np.nan)
     simulated = np.full((ns, nd), np.nan)
     searched = np.full((ns, nd), np.nan)
+    after = np.full((ns, nd), "", dtype=object).astype(str)
     below = np.full((ns, nd), -1, dtype=np.int64)
     above = np.full((ns, nd), -1, dtype=np.int64)
     if simulate and stable.any():
         ctx = _Lanes(rot, speeds, stable, start, horizon, rtol, atol, threads)
-        simulated, searched = ctx.bisect_impulse(bound, kicks, dist, progress)
+        simulated, searched, after = ctx.bisect_impulse(bound, kicks, dist, progress)
         below, above = ctx.check_shift(shift, beta, moments)
     worst_i = np.where(stable == 1, np.argmin(np.where(np.isfinite(bound), bound, np.inf), axis=1), -1)
     has_sim = np.any(np.isfinite(simulated), axis=1)
@@ -261,6 +264,7 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
             "impulse_linear": (dims, bound, {"units": "N s"}),
             "impulse_simulated": (dims, simulated, {"units": "N s"}),
             "impulse_searched_to": (dims, searched, {"units": "N s"}),
+            "fatal_outcome": (dims, after, {"units": "1"}),
             "load_shift_bound": (dims, shift, {"units": "kg m"}),
             "shift_below": (dims, below, {"units": "1"}),
             "shift_above": (dims, above, {"units": "1"}),
@@ -308,7 +312,10 @@ class _Lanes:
         return self.rot.pack({"speed.speed": float(self.speeds[i]), **extra})
 
     def bisect_impulse(self, bound, kicks, dist, progress):
-        """Bisect the impulse magnitude of every stable (speed, direction) at once."""
+        """Bisect the impulse magnitude of every stable (speed, direction) at once; also where the
+        smallest fatal knock found left the balls (:func:`rotorlab.explore._outcome.classify`)."""
+        from rotorlab.explore._outcome import classify, reference_amplitude
+
         ns, nd = bound.shape
         n = self.rot.n_balls
         lanes = [(i, j) for i in self.rows for j in range(nd) if np.isfinite(bound[i, j])]
@@ -321,31 +328,41 @@ class _Lanes:
         hi = BRACKET * bound[idx]
         total = BISECTIONS + 1
 
+        om = np.array([self.speeds[i] for i, _ in lanes])
+        rotor = self.rot.rotor
+        ref = reference_amplitude(rotor.imbalance, rotor.stiffness, self.rot.total_mass, rotor.damping, om)
+
         def fatal(mag):
             y0 = np.array([self.start[i] for i, _ in lanes])
             dq = kicks[idx] * mag[:, None]
             y0[:, 2:4] += dq[:, :2]
             y0[:, 4 + n : 4 + 2 * n] += dq[:, 2:]
             sol = self._solve(y0, params, t_end)
-            psi = np.asarray(sol.y_final)[:, 4 : 4 + n]
-            back = (np.asarray(sol.status) >= 0) & (np.abs(psi - angles).max(axis=1) < 0.5 * r)
-            return ~back, np.asarray(sol.status) < 0
+            yf, status = np.asarray(sol.y_final), np.asarray(sol.status)
+            back = (status >= 0) & (np.abs(yf[:, 4 : 4 + n] - angles).max(axis=1) < 0.5 * r)
+            where = [classify(int(st), "", float(np.hypot(y[0], y[1])), float(rf), y[4 : 4 + n],
+                              float(np.abs(y[4 + n : 4 + 2 * n]).max()), float(w))
+                     for st, y, rf, w in zip(status, yf, ref, om)]  # fmt: skip
+            return ~back, status < 0, np.array(where, dtype=object)
 
-        top, failed = fatal(hi)
+        top, failed, outcome = fatal(hi)
         if progress is not None:
             progress(1, total)
         for step in range(BISECTIONS):
             mid = 0.5 * (lo + hi)
-            f, _ = fatal(mid)
+            f, _, where = fatal(mid)
             hi = np.where(f, mid, hi)
             lo = np.where(f, lo, mid)
+            outcome = np.where(f, where, outcome)
             if progress is not None:
                 progress(step + 2, total)
         simulated = np.full((ns, nd), np.nan)
         searched = np.full((ns, nd), np.nan)
+        after = np.full((ns, nd), "", dtype=object)
         simulated[idx] = np.where(top & ~failed, 0.5 * (lo + hi), np.nan)
         searched[idx] = BRACKET * bound[idx]
-        return simulated, searched
+        after[idx] = np.where(top & ~failed, outcome, "")
+        return simulated, searched, after.astype(str)
 
     def check_shift(self, shift, beta, moments):
         """Simulate every (speed, direction) with the unbalance shifted by (1 -+ SHIFT_CHECK) S(beta)."""
@@ -416,6 +433,15 @@ def _num(v) -> float | None:
     return v if math.isfinite(v) else None
 
 
+def _outcome_at(ds, i: int) -> str | None:
+    """Where the smallest fatal knock at the worst direction of speed ``i`` left the balls, or None."""
+    b = ds.worst_impulse_direction.values[i]
+    if not np.isfinite(b):
+        return None
+    label = str(ds.fatal_outcome.values[i, int(np.argmin(np.abs(ds.direction.values - b)))])
+    return label or None
+
+
 def shock_margin_rows(ds) -> list[dict[str, Any]]:
     """One row per speed: the minimal fatal impulse (bound and simulated) and load shift, worst directions."""
     from rotorlab._constants import RPM_PER_RAD_S
@@ -431,6 +457,7 @@ def shock_margin_rows(ds) -> list[dict[str, Any]]:
             "min_impulse_linear": _num(ds.min_impulse_linear.values[i]),
             "min_impulse_simulated": _num(ds.min_impulse_simulated.values[i]),
             "worst_impulse_direction_deg": _num(np.degrees(ds.worst_impulse_direction.values[i])),
+            "fatal_outcome": _outcome_at(ds, i),
             "min_load_shift": _num(ds.min_load_shift.values[i]),
             "worst_shift_direction_deg": _num(np.degrees(ds.worst_shift_direction.values[i])),
             "shift_checked": int(np.sum(finite & (below == 1) & (above == 0))),

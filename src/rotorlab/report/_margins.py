@@ -34,8 +34,11 @@ def _shock_sentence(r: Mapping[str, Any]) -> str:
     knock = (f"a knock of {_g(sim, unit=' N s')} (simulated; linearised estimate {_g(r['min_impulse_linear'], unit=' N s')})"
              if sim is not None else f"a knock of {_g(r['min_impulse_linear'], unit=' N s')} (linearised estimate"
              ", not simulated or none found in the searched range)")  # fmt: skip
+    end = r.get("fatal_outcome")
+    where = "" if not end else (" (they balance again, in another arrangement, after passing unbalanced ones)"
+                                if end == "balanced" else f" (they end in: {end})")
     return (f"At {rpm} {knock} at {_g(r['worst_impulse_direction_deg'], '.0f', '°')} from the unbalance throws "
-            f"the balls out of balance; a load shift of {_g(r['min_load_shift'], '.4g', ' g mm', 1e6)} at "
+            f"the balls out of balance{where}; a load shift of {_g(r['min_load_shift'], '.4g', ' g mm', 1e6)} at "
             f"{_g(r['worst_shift_direction_deg'], '.0f', '°')} leaves the balls unable to balance "
             f"(confirmed by simulation just below and above it in {_shift_check(r)} directions).")
 
