@@ -31,8 +31,10 @@ import tempfile
 from pathlib import Path
 from typing import Any
 
+from rotorlab._kernels import machine_contact as _mc
+from rotorlab._kernels.machine_emit import _sum, ldl_lines, reactions, solve_lines
 from rotorlab._kernels.machine_friction import friction_functions, friction_solve, friction_torques
-from rotorlab._kernels.machine_layout import Layout, _sum
+from rotorlab._kernels.machine_layout import Layout
 from rotorlab._kernels.machine_tilt import tilt_lines, tilt_schur
 
 __all__ = ["Layout", "kernel_module"]
@@ -49,8 +51,6 @@ def generate(lay: Layout) -> str:
         a("    forced = -1")
     corr = prefix(lay, L)
     if lay.clearance:
-        from rotorlab._kernels import machine_contact as _mc
-
         L += _mc.rhs_contact_lines(lay, corr)
     if lay.friction:
         friction_torques(lay, L, corr)
@@ -61,9 +61,9 @@ def generate(lay: Layout) -> str:
         header = header.replace("import profile\n", "import profile\n" + _mc.IMPORTS, 1)
     src = header + body + "\n"
     if lay.clearance:
-        src += _mc.extra_functions(lay, corr)
+        src += _mc.extra_functions(lay, corr, prefix)
     if lay.friction:
-        src += friction_functions(lay)
+        src += friction_functions(lay, prefix)
     return src
 
 
@@ -227,82 +227,11 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
     if lay.friction:
         friction_solve(lay, L, unknowns, t_vec, station)
         return reactions(lay, L, "g", "x")
-    # LDL^T (S symmetric positive definite: a Schur complement of the mass matrix)
-    for j in range(n_s):
-        a(f"    D{j} = S{j}_{j}" + "".join(f" - L{j}_{k} * L{j}_{k} * D{k}" for k in range(j)))
-        for i in range(j + 1, n_s):
-            a(f"    L{i}_{j} = (S{i}_{j}" + "".join(f" - L{i}_{k} * L{j}_{k} * D{k}" for k in range(j))
-              + f") / D{j}")
+    ldl_lines(n_s, L)  # S symmetric positive definite: a Schur complement of the mass matrix
     if not solve:
         return []
     solve_lines(lay, L, "x", "q")
     return reactions(lay, L, "g", "x")
-
-
-def unit_rhs(lay: Layout, L: list[str], tag: str, s: int, tq: str, ind: str) -> None:
-    """Append ``{tag}q{i} = -X_i^T H B_s^T f`` for a unit force ``f = ({tag}fx, {tag}fy)`` at
-    station ``s`` (and the spin torque ``tq`` on theta's row): the right-hand side of the
-    Schur system for the response to a force (the clearance's Delassus terms)."""
-    br, nr, nb = lay.ball_race, lay.n_races, lay.n_balls
-    a = lambda x: L.append(ind + x)  # noqa: E731
-
-    def proj(s2, vx, vy):
-        kk = lay.pair_L(s2, s)
-        return (f"{vx} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
-                f" + {vy} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy)")
-
-    for b in range(nb):
-        kk = lay.pair_L(br[b], s)
-        extra = ""
-        if lay.tilt:
-            extra = " + " + proj(lay.tilt_station(br[b]), f"nx{b}", f"ny{b}")
-        a(f"{tag}q{b} = -ml{b} * (-s{b} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
-          f" + c{b} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy))"
-          + (f" - ({extra[3:]})" if extra else ""))
-    if lay.motor:
-        terms = []
-        for u in range(lay.n_unbalance):
-            kk = lay.pair_L(nr + u, s)
-            terms.append(f"U{u} * (-euy{u} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
-                         f" + eux{u} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy))")
-        a(f"{tag}q{nb} = {tq} - ({_sum(terms)})")
-    if lay.tilt:
-        i0 = nb + (1 if lay.motor else 0)
-        for b in range(nb):
-            a(f"{tag}q{i0 + b} = -({proj(lay.tilt_station(br[b]), f'c{b}', f's{b}')})")
-
-
-def solve_lines(lay: Layout, L: list[str], x: str, q: str, indent: str = "    ") -> None:
-    """Append the forward and back substitution ``S x = q`` with the LDL^T factors of :func:`prefix`."""
-    n_s = lay.n_schur
-    for i in range(n_s):
-        L.append(f"{indent}{x}{i} = {q}{i}" + "".join(f" - L{i}_{k} * {x}{k}" for k in range(i)))
-    for i in reversed(range(n_s)):
-        L.append(f"{indent}{x}{i} = {x}{i} / D{i}" + "".join(f" - L{k}_{i} * {x}{k}" for k in range(i + 1, n_s)))
-
-
-def reactions(lay: Layout, L: list[str], g: str, x: str, indent: str = "    ") -> list[tuple[int, str, str]]:
-    """Append the station forces of the ball (and spin) accelerations ``x``: ``(g}x_s, g}y_s)``."""
-    nb, br, nr = lay.n_balls, lay.ball_race, lay.n_races
-    corr = []
-    for r in range(nr):
-        bs = [b for b in range(nb) if br[b] == r]
-        L.append(f"{indent}{g}x{r} = {_sum([f'-ml{b} * {x}{b} * s{b}' for b in bs])}")
-        L.append(f"{indent}{g}y{r} = {_sum([f'ml{b} * {x}{b} * c{b}' for b in bs])}")
-        corr.append((r, f"{g}x{r}", f"{g}y{r}"))
-    if lay.motor:
-        for u in range(lay.n_unbalance):
-            L.append(f"{indent}{g}x{nr + u} = -U{u} * {x}{nb} * euy{u}")
-            L.append(f"{indent}{g}y{nr + u} = U{u} * {x}{nb} * eux{u}")
-            corr.append((nr + u, f"{g}x{nr + u}", f"{g}y{nr + u}"))
-    if lay.tilt:  # the balls' moments on their races' tilt: n_b phi_b'' + e_b mu_b
-        i0 = nb + (1 if lay.motor else 0)
-        for ts in lay.tilt_stations:
-            bs = lay.tilt_balls(ts)
-            L.append(f"{indent}{g}x{ts} = {_sum([f'nx{b} * {x}{b} + c{b} * {x}{i0 + b}' for b in bs])}")
-            L.append(f"{indent}{g}y{ts} = {_sum([f'ny{b} * {x}{b} + s{b} * {x}{i0 + b}' for b in bs])}")
-            corr.append((ts, f"{g}x{ts}", f"{g}y{ts}"))
-    return corr
 
 
 def _tail(lay: Layout, L: list[str], corr: list[tuple[int, str, str]]) -> None:
@@ -347,8 +276,6 @@ def _tail(lay: Layout, L: list[str], corr: list[tuple[int, str, str]]) -> None:
                  for i in range(nz) for j in range(nz)]
         a(f"    out[{ie + 1}] = {_sum(diss)}")
     if cl:
-        from rotorlab._kernels import machine_contact as _mc
-
         L += _mc.rhs_tail_lines(lay)
     if lay.friction:
         for b in range(nb):

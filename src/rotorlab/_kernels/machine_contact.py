@@ -39,7 +39,7 @@ the slip, 2 rolling) at the end of the state.
 
 from __future__ import annotations
 
-from rotorlab._kernels.machine_layout import _DECO, _less_reactions, _sum
+from rotorlab._kernels.machine_emit import _DECO, _less_reactions, _sum, reactions, solve_lines, unit_rhs
 
 __all__ = ["IMPORTS", "rhs_contact_lines", "rhs_tail_lines", "extra_functions"]
 
@@ -57,8 +57,6 @@ def _unit(lay, L: list[str], ind: str, tag: str, fx: str, fy: str, tq: str, full
     Defines ``{tag}acx, {tag}acy`` (contact point's acceleration), ``{tag}dom`` (spin's) and
     with ``full`` ``{tag}z{i}`` (structure) and ``{tag}x{b}`` (balls, spin).
     """
-    from rotorlab._kernels.machine_codegen import reactions, solve_lines, unit_rhs
-
     nz, nb, br, nr, nu = lay.n_z, lay.n_balls, lay.ball_race, lay.n_races, lay.n_unbalance
     sc = _station(lay)
     a = lambda s: L.append(ind + s)  # noqa: E731
@@ -202,10 +200,9 @@ def rhs_tail_lines(lay) -> list[str]:
     return L
 
 
-def extra_functions(lay, corr) -> str:
-    """Source of ``contact_terms``, ``apply_impulse``, ``project``, ``enter_mode``, ``events``, ``reset``."""
-    from rotorlab._kernels.machine_codegen import prefix
-
+def extra_functions(lay, corr, prefix) -> str:
+    """Source of ``contact_terms``, ``apply_impulse``, ``project``, ``enter_mode``, ``events``, ``reset``
+    (``prefix``: :func:`rotorlab._kernels.machine_codegen.prefix`, the lines every function starts with)."""
     nz, nb = lay.n_z, lay.n_balls
     kc = lay.offsets["clearance"]
     sc = _station(lay)

@@ -5,7 +5,8 @@ kernel module. :mod:`rotorlab._kernels.machine_codegen` calls them."""
 
 from __future__ import annotations
 
-from rotorlab._kernels.machine_layout import _DECO, Layout, _less_reactions, _sum
+from rotorlab._kernels.machine_emit import _DECO, _less_reactions, _sum
+from rotorlab._kernels.machine_layout import Layout
 
 __all__ = ["friction_solve", "friction_torques", "friction_functions"]
 
@@ -111,10 +112,9 @@ def friction_torques(lay: Layout, L: list[str], corr, zdd: str = "out") -> None:
         a(f"    bd{b} = kap{b} * (ml{b} * wn{b} * wn{b} + {m} * (c{b} * (gx - fax{r}) + s{b} * (gy - fay{r})))")
 
 
-def friction_functions(lay: Layout) -> str:
-    """Source of ``terms``, ``events`` and ``reset`` of the balls' stick/slip (friction layouts)."""
-    from rotorlab._kernels.machine_codegen import prefix  # the generator calls this module
-
+def friction_functions(lay: Layout, prefix) -> str:
+    """Source of ``terms``, ``events`` and ``reset`` of the balls' stick/slip (friction layouts;
+    ``prefix``: :func:`rotorlab._kernels.machine_codegen.prefix`, the lines ``terms`` starts with)."""
     nb, im, n = lay.n_balls, lay.i_modes, lay.n_state
     L: list[str] = []
     corr = prefix(lay, L)

@@ -268,20 +268,3 @@ class Layout:
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
                 f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
                 f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}")
-
-
-def _sum(terms: list[str]) -> str:
-    return " + ".join(terms) if terms else "0.0"
-
-
-def _less_reactions(lay: Layout, r: int, row: int, corr: list[tuple[int, str, str]]) -> list[str]:
-    """Terms ``-(L_(r, s) g_s)[row]`` of station ``r``'s acceleration for the station forces
-    ``corr`` (``(s, gx name, gy name)``, from :func:`rotorlab._kernels.machine_codegen.reactions`)."""
-    out = []
-    for s, gx, gy in corr:
-        k = lay.pair_L(r, s) + 2 * row
-        out.append(f"-(p[{k}] * {gx} + p[{k + 1}] * {gy})")
-    return out
-
-
-_DECO = '\n\n@njit(cache=True, nogil=True, error_model="numpy")\n'

@@ -5,7 +5,8 @@ matrix with one axial unknown per ball (rigid ball kinematics, :mod:`rotorlab.mo
 
 from __future__ import annotations
 
-from rotorlab._kernels.machine_layout import Layout, _sum
+from rotorlab._kernels.machine_emit import _sum
+from rotorlab._kernels.machine_layout import Layout
 
 __all__ = ["tilt_lines", "loads", "tilt_schur"]
 
