@@ -15,7 +15,7 @@ Packed parameters ``p`` (float64; offsets from :class:`Layout`)
                    c (N m s/rad)
 ``unbalances``     3 per unbalance: U = m e (kg m), cos beta, sin beta (beta: phase, rad)
 ``stations``       per station (races, then unbalances, then the clearance's, then with ``tilt``
-                   one per distinct race node): B (2 x n_z, row-major), then H B^T (n_z x 2,
+                   one per distinct race node, then the parts'): B (2 x n_z, row-major), then H B^T (n_z x 2,
                    row-major); ``B z`` is the lateral displacement of the station (a tilt
                    station's ``B`` is its node's tilt ``T``)
 ``L``              per ordered pair of stations (s, s'): B_s H B_s'^T (2 x 2, row-major)
@@ -28,6 +28,8 @@ Packed parameters ``p`` (float64; offsets from :class:`Layout`)
                    (m)
 ``tilt``           n_b, only with ``tilt``: each ball's ``D = m l^2`` (kg m^2), its inertia
                    about its race's diameters
+``part<k>``        the block of each attachment part ``k`` (:mod:`rotorlab.models._parts`), its
+                   size and contents its own
 =================  ===========================================================================
 
 ``H = M0^-1`` with ``M0 = M_s + sum_r m_r B_r^T B_r`` (the structure plus the ball masses carried
@@ -36,7 +38,7 @@ by the races).
 States
 ------
 ``[z (n_z), z' (n_z), phi (n_b), phi' (n_b), (theta, Omega) with a motor, (W, D) with energy
-states, (clearance states), (n_b stick/slip modes) with ball friction]``: structure coordinates
+states, (the parts' states), (clearance states), (n_b stick/slip modes) with ball friction]``: structure coordinates
 and their rates, absolute ball angles and rates, spin angle and speed, drive work and dissipated
 energy; the clearance's states are listed in :mod:`rotorlab._kernels.machine_contact`, and a
 ball's mode is -1 / +1 slipping with that sign of ``phi' - Omega``, 0 stuck.
@@ -45,13 +47,23 @@ ball's mode is -1 / +1 slipping with that sign of ``phi' - Omega``, 0 stuck.
 from __future__ import annotations
 
 from dataclasses import dataclass
+from typing import Any, NamedTuple
 
-__all__ = ["Layout", "SPEED_KINDS", "DRIVE_KINDS"]
+__all__ = ["Layout", "PartPlace", "SPEED_KINDS", "DRIVE_KINDS"]
 
 # the prescribed speed kinds, each with whether its generated profile is plain arithmetic (the
 # kernel then vectorises in the lane driver); a Hill run-up needs exp, log and series with branches
 SPEED_KINDS = {"constant": True, "ramp": True, "hill": False}
 DRIVE_KINDS = ("profile", "linear", "table")
+
+
+class PartPlace(NamedTuple):
+    """Where an attachment part's block sits: its first state, first packed parameter and first
+    station (the index for :meth:`Layout.station_B`)."""
+
+    state: int
+    param: int
+    station: int
 
 
 @dataclass(frozen=True)
@@ -86,6 +98,10 @@ class Layout:
         distinct nodes: the balls follow the tilting race plane (rigid ball kinematics, see
         :mod:`rotorlab.models._machine`); adds a tilt station per distinct node and one axial
         unknown per ball to the Schur system.
+    parts : tuple
+        The kernel parts of the machine's attachments (:class:`rotorlab.models._parts.AbstractKernelPart`:
+        frozen objects with ``key``, ``n_states``, ``n_param``, ``n_stations`` and the lines
+        they add to the kernel), in order.
     """
 
     n_z: int
@@ -99,6 +115,7 @@ class Layout:
     clearance: str = ""
     friction: bool = False
     tilt: tuple[int, ...] = ()
+    parts: tuple[Any, ...] = ()
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "races", tuple(int(n) for n in self.races))
@@ -136,8 +153,25 @@ class Layout:
     @property
     def n_all_stations(self) -> int:
         """Stations with packed B, H B^T and pair matrices: the lateral ones, then (with
-        ``tilt``) one tilt station per distinct race node, whose ``B`` is that node's tilt ``T``."""
-        return self.n_stations + self.n_tilt
+        ``tilt``) one tilt station per distinct race node, whose ``B`` is that node's tilt ``T``,
+        then the parts' stations."""
+        return self.n_stations + self.n_tilt + sum(part.n_stations for part in self.parts)
+
+    @property
+    def placed_parts(self) -> list[tuple[Any, PartPlace]]:
+        """Each part with its :class:`PartPlace`, in order."""
+        o = self.offsets
+        out, i, s = [], self.i_parts, self.n_stations + self.n_tilt
+        for k, part in enumerate(self.parts):
+            out.append((part, PartPlace(i, o[f"part{k}"], s)))
+            i += part.n_states
+            s += part.n_stations
+        return out
+
+    @property
+    def i_parts(self) -> int:
+        """First state of the parts (after the energy states)."""
+        return self.i_energy + (2 if self.energy else 0)
 
     @property
     def n_tilt(self) -> int:
@@ -194,7 +228,7 @@ class Layout:
         """First state of the clearance: the housing's (x, y, vx, vy) if it moves, then the
         contact's dissipated energy and drive work, then its three discrete states (impacts,
         largest normal impulse, mode) at the very end."""
-        return self.i_energy + (2 if self.energy else 0)
+        return self.i_parts + sum(part.n_states for part in self.parts)
 
     @property
     def n_clearance_states(self) -> int:
@@ -236,7 +270,7 @@ class Layout:
             ("clearance", 11 if self.clearance else 0),
             ("friction", self.n_balls if self.friction else 0),
             ("tilt", self.n_balls if self.tilt else 0),
-        ]
+        ] + [(f"part{k}", part.n_param) for k, part in enumerate(self.parts)]
         out, k = {}, 0
         for name, size in sizes:
             out[name] = k
@@ -267,4 +301,5 @@ class Layout:
         return (f"z{self.n_z}r{races}u{self.n_unbalance}{self.drive[0]}{self.speed_kind[0]}"
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
                 f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
-                f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}")
+                f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}"
+                + "".join(f"p{part.key}" for part in self.parts))

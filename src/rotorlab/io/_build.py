@@ -125,9 +125,12 @@ def build_machine(spec: Any) -> Any:
     }
     drive = drives[d.profile]()
     gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)
+    from rotorlab.io._part_specs import PART_SPECS
+
+    parts = tuple(item.build(spec.node_of(item)) for key in PART_SPECS for item in getattr(spec, key))
     return Machine(source.system, races=races, unbalances=unb, gravity=gravity, drive=drive,
                    n_modes=spec.n_modes, clearances=tuple(_clearance(spec, c) for c in spec.clearances),
-                   structure_source=source)
+                   parts=parts, structure_source=source)
 
 
 def _clearance(spec: Any, c: Any) -> Any:

@@ -59,8 +59,9 @@ from rotorlab.io._fe_rotor_spec import FeRotorSpec
 from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _Spec, integer, quantity
 from rotorlab.io._jeffcott_specs import MAX_BALLS, SPEED_PROFILES, AbstractSpeedProfile, _too_many_balls
 from rotorlab.io._linear_analyses import UnbalanceSpec
-from rotorlab.io._linear_common import label
 from rotorlab.io._multibody_spec import MultibodySpec
+from rotorlab.io._part_specs import PART_SPECS
+from rotorlab.io._station import _Station
 
 __all__ = ["MachineBallSpec", "RaceSpec", "MachineUnbalanceSpec", "GravitySpec", "MotorSpec",
            "StatorSpec", "ConicalGapSpec", "ClearanceSpec",
@@ -72,24 +73,6 @@ __all__ = ["MachineBallSpec", "RaceSpec", "MachineUnbalanceSpec", "GravitySpec",
 MACHINE_STEADY_PARAMETERS = ("ball_mass", "ball_damping")
 #: Steady-motion analysis types that run on a machine.
 _STEADY_TYPES = ("steady", "stability-chart", "run-up")
-
-
-class _Station(_Spec):
-    """Where an attachment sits: one of ``node`` (index), ``at`` (name) or ``position`` (z)."""
-
-    node: integer(ge=0) | None = Field(None, description="node index")
-    at: label() | None = Field(None, description="name of a node or component")
-    position: quantity("length") | None = Field(None, description="axial position of a node (m)")
-    axial_offset: quantity("length") = Field(0.0, description="offset along +z from the node (m)")
-
-    @model_validator(mode="after")
-    def _one_place(self):
-        given = [k for k in ("node", "at", "position") if getattr(self, k) is not None]
-        if len(given) != 1:
-            raise IssueGroup([Issue((), "give exactly one of node, at or position"
-                                    + (f" (got {', '.join(given)})" if given else ""),
-                                    show_value=False)])
-        return self
 
 
 class MachineBallSpec(_Spec):
@@ -358,12 +341,15 @@ class MachineSpec(AbstractModelSpec):
     n_modes: integer(ge=1) | None = Field(None, description="modes of the structure kept")
     clearances: tuple[ClearanceSpec, ...] = Field(
         (), max_length=1, description="rotor-stator clearances (at most one)")
+    # the attachment parts (rotorlab.models._parts): one key each, ``[[model.<key>]]``
+    __annotations__.update({key: tuple[spec, ...] for key, spec in PART_SPECS.items()})
+    locals().update({key: Field((), description=spec.description) for key, spec in PART_SPECS.items()})
 
     @model_validator(mode="after")
     def _check_places(self):
         issues = []
         for key, items in (("races", self.races), ("unbalances", self.unbalances),
-                           ("clearances", self.clearances)):
+                           ("clearances", self.clearances), *((k, getattr(self, k)) for k in PART_SPECS)):
             for i, it in enumerate(items):
                 node, bad, msg = self.structure.locate(it.node, it.at, it.position)
                 if node is None:

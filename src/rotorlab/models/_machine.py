@@ -107,6 +107,7 @@ from rotorlab.models._machine_clearance import _ClearanceParts
 from rotorlab.models._machine_physics import _Physics
 from rotorlab.models._machine_rotating import MachineLinearization, _RotatingFrame
 from rotorlab.models._parameters import machine_slots
+from rotorlab.models._parts import AbstractPart, part_indices
 from rotorlab.models._protocol import ParametrisedMixin
 from rotorlab.models._machine_validity import _Validity
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
@@ -156,6 +157,9 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
         Rotor-stator contact; at most one clearance per machine for now. It adds its states
         (see :mod:`rotorlab._kernels.machine_contact`), its events ``contact``, ``lift_off``,
         ``stick``, ``slip`` and their reset maps.
+    parts : tuple of AbstractPart
+        Further attachments, each owning its states, parameters and kernel lines
+        (:mod:`rotorlab.models._parts`), e.g. :class:`rotorlab.models.TunedMassAbsorber`.
     structure_source : optional
         Where ``structure`` came from, when it has named parameters of its own (a machine built
         from a case: :class:`rotorlab.io.StructureSource`): ``parameters`` lists them as
@@ -189,6 +193,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
     n_modes: int | None = field(default=None, kw_only=True)
     energy_states: bool = field(default=False, kw_only=True)
     clearances: tuple[Clearance, ...] = field(default=(), kw_only=True)
+    parts: tuple[AbstractPart, ...] = field(default=(), kw_only=True)
     structure_source: Any = field(default=None, kw_only=True, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
@@ -209,9 +214,10 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
         if len(self.clearances) > 1:
             raise ValueError(f"Machine.clearances: at most one clearance per machine is implemented, "
                              f"got {len(self.clearances)}")
+        object.__setattr__(self, "parts", _tuple_of("Machine.parts", self.parts, AbstractPart))
         nn = self.structure.n_nodes
         for what, items in (("races", self.races), ("unbalances", self.unbalances),
-                            ("clearances", self.clearances)):
+                            ("clearances", self.clearances), ("parts", self.parts)):
             for i, it in enumerate(items):
                 if it.node >= nn:
                     raise ValueError(f"Machine.{what}[{i}].node must be < {nn} (the structure's "
@@ -267,7 +273,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
                 clearance=self.clearances[0].kind if self.clearances else "",
                 friction=self.has_friction,
-                tilt=self._tilt_numbers())
+                tilt=self._tilt_numbers(), parts=tuple(part.kernel() for part in self.parts))
         return self._cache["layout"]
 
     @property
@@ -335,6 +341,8 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
             names += ["theta", "omega"]
         if self.energy_states:
             names += ["work", "dissipated"]
+        for part, i in zip(self.parts, part_indices(self.parts)):
+            names += part.state_names(i)
         if self.clearances:
             if self.clearances[0].kind == "housing":
                 names += ["x_housing", "y_housing", "vx_housing", "vy_housing"]
@@ -413,7 +421,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
         ``tilt``) the tilt ``T_r`` of each race's node."""
         nodes = list(dict.fromkeys(r.node for r in self.races)) if self.layout.tilt else []
         extra = [self.tilt_matrix(n) for n in nodes]
-        return self._stations + extra
+        return self._stations + extra + [B for part in self.parts for B in part.stations(self)]
 
     @property
     def _stations(self) -> list[np.ndarray]:
@@ -519,6 +527,9 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
 
             lam = sla.eigvals(red["K"], self._m0())
             p[o["clearance"] + 10] = math.sqrt(max(float(np.max(np.abs(lam))), 1e-300))
+        for part, place in zip(self.parts, (pl for _, pl in lay.placed_parts)):
+            blk = part.pack(self)
+            p[place.param:place.param + blk.size] = blk
         self._cache["p"] = p
         return p.copy()
 

@@ -74,6 +74,8 @@ class _Physics:
             if not self.clearances or self.clearances[0].kind != "housing":
                 raise ValueError("initial_state: housing given but the machine has no moving housing")
             y[lay.i_clearance:lay.i_clearance + 4] = np.asarray(housing, dtype=float).reshape(4)
+        for part, (_, place) in zip(self.parts, lay.placed_parts):
+            part.initial(self, y, place)
         if self.clearances:
             self._clearance_initial(y, om)
         if self.has_friction:
@@ -172,6 +174,7 @@ class _Physics:
         for _, _, me, beta in self._point_unbalances:
             a = th + beta
             pot -= me * (gx * math.cos(a) + gy * math.sin(a))
+        pot += sum(part.energy(self, y, place) for part, (_, place) in zip(self.parts, lay.placed_parts))
         return float(kin + pot + self._clearance_energy(y))
 
     def energy_balance(self, ts, ys) -> np.ndarray:

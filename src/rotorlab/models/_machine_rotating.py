@@ -47,8 +47,7 @@ class _RotatingFrame:
 
         Needs an isotropic structure, no lateral gravity and a constant prescribed speed.
         """
-        return (self.structure.is_isotropic and not self.is_motor and not self.has_friction
-                and isinstance(self.drive, ConstantSpeed) and self.lateral_gravity == (0.0, 0.0))
+        return self.why_no_rotating_frame() is None
 
     def why_no_rotating_frame(self) -> str | None:
         """The reason the co-rotating frame has no equilibria, or None if it has."""
@@ -63,7 +62,7 @@ class _RotatingFrame:
                     "revolution, so there is no steady motion; simulate instead")
         if self.is_motor or not isinstance(self.drive, ConstantSpeed):
             return "the spin speed is not constant (steady motions need a ConstantSpeed drive)"
-        return None
+        return next((why for why in (part.rotating_refusal() for part in self.parts) if why), None)
 
     def _require_rotating(self) -> float:
         why = self.why_no_rotating_frame()

@@ -163,7 +163,10 @@ def _gravity_slots(m) -> list[Slot]:
 def machine_slots(m) -> list[Slot]:
     """The named parameters of a :class:`rotorlab.models.Machine` (then those of its structure's
     source, when it was built from a case: ``structure.<key path>``)."""
+    from rotorlab.models._parts import part_slots
+
     out = _race_slots(m) + _unbalance_slots(m) + _drive_slots(m) + _clearance_slots(m) + _gravity_slots(m)
+    out += part_slots(m)
     if m.n_modes is not None:
         out.append(_slot("n_modes", "1", m.n_modes, (None, 1.0, None, float(m.structure.n_dof)),
                          lambda mm, v: replace(mm, n_modes=_integer("n_modes", v)), structural=True))

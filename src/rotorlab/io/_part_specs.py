@@ -1,0 +1,16 @@
+"""The registry of a ``machine``'s attachment parts in case files (:mod:`rotorlab.models._parts`).
+
+Each entry maps a case key (``[[model.<key>]]``, a field of :class:`rotorlab.io.MachineSpec`) to
+its spec class: a :class:`rotorlab.io._station._Station` (where it sits) with its quantities, a
+class attribute ``description`` and ``build(node)``, which returns the part
+(:class:`rotorlab.models._parts.AbstractPart`). Registering a part is one line here.
+"""
+
+from __future__ import annotations
+
+from typing import Any
+
+__all__ = ["PART_SPECS"]
+
+PART_SPECS: dict[str, Any] = {
+}

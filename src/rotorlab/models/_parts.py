@@ -1,0 +1,130 @@
+"""Attachment parts of the composed machine: one object per attachment that owns its states,
+packed parameters, kernel lines, energy terms and named parameters.
+
+A :class:`rotorlab.models.Machine` holds its parts in ``parts`` (a tuple of
+:class:`AbstractPart`); the machine loops over them wherever it lays out, packs, names, starts or
+sums something, and the kernel generator (:mod:`rotorlab._kernels.machine_codegen`) loops over
+their kernel parts (:class:`AbstractKernelPart`) through the common operations of
+:mod:`rotorlab._kernels.machine_emit`. A case file lists a part under its own key
+(``[[model.<key>]]``); its spec registers there (:data:`rotorlab.io._part_specs.PART_SPECS`).
+
+A part whose attachment is *soft* (a spring, a damper: no rigid constraint on the structure)
+needs nothing else: it reads the displacement and rate of its stations (``B_s z``, ``B_s z'``),
+writes the forces it puts on them (they enter ``h = H R_z`` with the other station forces, so
+the Schur system of the balls sees them) and the rates of its own states.
+
+For implementers
+----------------
+1. Subclass :class:`AbstractPart` as a frozen dataclass whose fields are SI numbers (and a
+   ``node``, ``axial_offset`` for where it sits); set :attr:`AbstractPart.key` (the case key, e.g.
+   ``"absorbers"``) and :attr:`AbstractPart.fields` (``(field, unit, bounds)`` of its named
+   parameters, the case file's key paths ``<key>[i].<field>``); raise ``ValueError`` in
+   ``__post_init__`` on bad values.
+2. :meth:`AbstractPart.kernel` returns its kernel part: a frozen, hashable object (equal for
+   equal sizes) with ``key`` (short tag in the generated module's name), ``n_states``,
+   ``n_param``, ``n_stations`` and three line writers, each given the
+   :class:`~rotorlab._kernels.machine_layout.Layout` and its
+   :class:`~rotorlab._kernels.machine_layout.PartPlace`: ``force_lines(lay, L, place)`` appends
+   lines that define the forces on its stations and returns them as ``[(station, fx name, fy
+   name)]``; ``rate_lines(lay, place)`` returns the lines writing ``out[...]`` of its states;
+   ``dissipation_terms(lay, place)`` returns the terms of its dissipated power (energy states).
+   Generated variables: ``z{i}``, ``v{i}`` (structure coordinates and rates), ``gx``, ``gy``
+   (lateral gravity), ``om``, ``theta`` (spin); name yours with a prefix of your own.
+3. :meth:`AbstractPart.stations` returns the ``B`` (2 x n_z) of its stations
+   (:meth:`Machine.station_matrix`), :meth:`AbstractPart.pack` its ``n_param`` numbers.
+4. :meth:`AbstractPart.state_names`, :meth:`AbstractPart.initial` (its states in a new initial
+   state), :meth:`AbstractPart.energy` (its kinetic and potential energy: the machine's energy
+   ledger adds it) and :meth:`AbstractPart.rotating_refusal` (why the co-rotating frame has no
+   equilibria with it, or None).
+5. Register its spec (one line in :mod:`rotorlab.io._part_specs`), add a figure in ``plot/``
+   and tests against a closed form.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from typing import Any, ClassVar
+
+import numpy as np
+
+__all__ = ["AbstractPart", "AbstractKernelPart", "part_slots"]
+
+
+class AbstractKernelPart:
+    """The sizes and kernel lines of a part (see the module docstring, item 2)."""
+
+    key: ClassVar[str] = ""
+    n_states: ClassVar[int] = 0
+    n_param: ClassVar[int] = 0
+    n_stations: ClassVar[int] = 0
+
+    def force_lines(self, lay, L: list[str], place) -> list[tuple[int, str, str]]:
+        raise NotImplementedError
+
+    def rate_lines(self, lay, place) -> list[str]:
+        raise NotImplementedError
+
+    def dissipation_terms(self, lay, place) -> list[str]:
+        raise NotImplementedError
+
+
+class AbstractPart:
+    """An attachment of a machine (see the module docstring's "For implementers" list)."""
+
+    key: ClassVar[str] = ""
+    #: (field, unit, bounds) of the named parameters; bounds are (gt, ge, lt, le), None: open
+    fields: ClassVar[tuple[tuple[str, str, tuple], ...]] = ()
+    node: int
+
+    def kernel(self) -> AbstractKernelPart:
+        raise NotImplementedError
+
+    def stations(self, machine) -> list[np.ndarray]:
+        raise NotImplementedError
+
+    def pack(self, machine) -> np.ndarray:
+        raise NotImplementedError
+
+    def state_names(self, index: int) -> list[str]:
+        """Names of its states; ``index`` counts the parts of its key (0, 1, ...)."""
+        raise NotImplementedError
+
+    def initial(self, machine, y: np.ndarray, place) -> None:
+        """Set its states in the new initial state ``y`` (structure coordinates already set)."""
+        raise NotImplementedError
+
+    def energy(self, machine, y: np.ndarray, place) -> float:
+        """Its kinetic and potential energy (J) at the fixed-frame state ``y``."""
+        raise NotImplementedError
+
+    def rotating_refusal(self) -> str | None:
+        """Why the co-rotating frame has no equilibria with this part, None if it has."""
+        raise NotImplementedError
+
+
+def part_slots(m) -> list[Any]:
+    """The named parameters of a machine's parts: ``<key>[i].<field>`` (i counts the parts of
+    one key), each set by replacing that part."""
+    from rotorlab.models._protocol import Parameter, Slot
+
+    out, seen = [], {}
+    for k, part in enumerate(m.parts):
+        i = seen[part.key] = seen.get(part.key, -1) + 1
+        for name, unit, bounds in part.fields:
+            def set_(mm, v, k=k, name=name):
+                parts = mm.parts[:k] + (replace(mm.parts[k], **{name: v}),) + mm.parts[k + 1:]
+                return replace(mm, parts=parts)
+
+            out.append(Slot(Parameter(f"{part.key}[{i}].{name}", unit, float(getattr(part, name)), bounds),
+                            set_))
+    return out
+
+
+def part_indices(parts) -> list[int]:
+    """Each part's index among the parts of its key."""
+    seen: dict[str, int] = {}
+    out = []
+    for part in parts:
+        seen[part.key] = seen.get(part.key, -1) + 1
+        out.append(seen[part.key])
+    return out
