@@ -10,7 +10,10 @@ from __future__ import annotations
 
 from typing import Any
 
+from rotorlab.io._absorber_spec import AbsorberSpec
+
 __all__ = ["PART_SPECS"]
 
 PART_SPECS: dict[str, Any] = {
+    "absorbers": AbsorberSpec,
 }

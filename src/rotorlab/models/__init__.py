@@ -1,5 +1,6 @@
 """Models: frozen parameter objects plus compiled kernels (see :mod:`rotorlab.models._base`)."""
 
+from rotorlab.models._absorber import TunedMassAbsorber, absorber_response
 from rotorlab.models._base import AbstractModel, EventSpec, Kernels, no_events, no_reset
 from rotorlab.models._benchmark import BENCHMARK, BenchmarkProblem
 from rotorlab.models._impact_rotor import (
@@ -39,4 +40,5 @@ __all__ += ["ImpactRotor", "CentrifugeRotor", "Housing", "StoneFeed", "StonePush
             "krasnov_crusher", "stone_push"]
 __all__ += ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor",
             "Clearance", "ElasticStator"]
+__all__ += ["TunedMassAbsorber", "absorber_response"]
 __all__ += ["AbstractParametrisedModel", "Parameter", "ParameterSpace"]

@@ -4,6 +4,7 @@ Numerics never import this package. Figures are made without pyplot (Agg canvas)
 or using it changes no global matplotlib state.
 """
 
+from rotorlab.plot._absorber import absorber_response_figure
 from rotorlab.plot._basin import basin_figure, basin_figures, fractions_figure, restoring_force_figure, sweep_figures
 from rotorlab.plot._continuation import bifurcation_figure, continuation_figures, two_parameter_figure
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
@@ -22,6 +23,7 @@ from rotorlab.plot._simulate import (
 
 __all__ = [
     "WHIRL_STYLES",
+    "absorber_response_figure",
     "amplitude_figure",
     "ball_angle_figure",
     "basin_figure",

@@ -1,0 +1,127 @@
+"""The tuned mass absorber as a machine part: its case key, named parameters, kernel layout,
+co-rotating refusal and figure (the physics: tests/validation/test_absorber.py). Nothing here
+compiles a kernel."""
+
+import numpy as np
+import pytest
+
+from rotorlab.io import CaseError, parse_case
+from rotorlab.io._build import build_machine
+from rotorlab.models import TunedMassAbsorber, absorber_response
+
+CASE = """
+schema_version = 1
+name = "absorbed"
+
+[model]
+type = "machine"
+
+[model.structure]
+type = "multibody"
+
+[[model.structure.bodies]]
+name = "disc"
+position = "0 m"
+mass = "1 kg"
+diametral_inertia = "0.1 kg*m^2"
+polar_inertia = "0 kg*m^2"
+spinning = false
+
+[model.structure.elastic]
+stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "1 N*m/rad"]]
+damping = [["0.1 N*s/m", "0 N*s/rad"], ["0 N*s/rad", "0 N*m*s/rad"]]
+
+[[model.unbalances]]
+at = "disc"
+magnitude = "10 g*m"
+
+[[model.absorbers]]
+at = "disc"
+mass = "100 g"
+stiffness = "{stiffness}"
+damping = "20 g/s"
+
+[model.drive]
+profile = "constant"
+speed = "1.5 rad/s"
+
+[[analysis]]
+type = "simulate"
+name = "run"
+t_end = "10 s"
+initial_ball_angles = [[]]
+"""
+
+
+def test_the_case_key_builds_the_part_with_si_values_and_named_parameters():
+    """``[[model.absorbers]]`` through the unit parser: 100 g, 225 N/mm -> 225000 N/m, 20 g/s;
+    its parameters ``absorbers[0].<field>`` with units, bounds checked by ``with_parameters``."""
+    m = build_machine(parse_case(CASE.format(stiffness="225 N/mm")).model)
+    (a,) = m.parts
+    assert (a.node, a.mass, a.stiffness, a.damping) == (0, pytest.approx(0.1), pytest.approx(225000.0),
+                                                        pytest.approx(0.02))
+    ps = m.parameters
+    assert ps["absorbers[0].mass"].unit == "kg" and ps["absorbers[0].stiffness"].unit == "N/m"
+    assert ps["absorbers[0].stiffness"].value == pytest.approx(225000.0)
+    m2 = m.with_parameters(**{"absorbers[0].stiffness": 0.225})
+    p2 = m.pack({"absorbers[0].stiffness": 0.225})
+    np.testing.assert_array_equal(m2.to_array(), p2)
+    assert m2.layout == m.layout and p2[m.layout.placed_parts[0][1].param + 1] == 0.225
+    with pytest.raises(ValueError, match=r"absorbers\[0\]\.mass = -1: must be > 0 kg"):
+        m.with_parameters(**{"absorbers[0].mass": -1.0})
+
+
+def test_a_bad_absorber_names_its_key_path_and_value():
+    with pytest.raises(CaseError) as exc:
+        parse_case(CASE.format(stiffness="-3 N/m"))
+    assert "model.absorbers[0].stiffness" in str(exc.value) and "-3" in str(exc.value)
+    with pytest.raises(CaseError, match=r"model\.absorbers\[0\]\.stiffness"):
+        parse_case(CASE.format(stiffness="3 kg"))
+
+
+def test_the_absorber_s_states_names_and_parameter_block_extend_the_layout():
+    m = build_machine(parse_case(CASE.format(stiffness="0.225 N/m")).model)
+    lay = m.layout
+    assert m.state_names[lay.i_parts:lay.i_parts + 4] == ("x_absorber_1", "y_absorber_1", "vx_absorber_1",
+                                                         "vy_absorber_1")
+    assert lay.n_state == 8 + 4 and lay.key.endswith("pta")
+    (part, place), = lay.placed_parts
+    p = m.to_array()
+    np.testing.assert_array_equal(p[place.param:place.param + 3], [0.1, 0.225, 0.02])
+    np.testing.assert_array_equal(p[lay.station_B(place.station):lay.station_B(place.station) + 8],
+                                  m.station_matrix(0).ravel())
+    y = m.initial_state(z=[1e-3, -2e-3, 0.0, 0.0], dz=[0.1, 0.2, 0.0, 0.0])
+    np.testing.assert_array_equal(y[place.state:place.state + 4], [1e-3, -2e-3, 0.1, 0.2])
+
+
+def test_the_co_rotating_frame_refuses_an_absorber_and_says_why():
+    m = build_machine(parse_case(CASE.format(stiffness="0.225 N/m")).model)
+    assert not m.has_rotating_frame
+    assert "tuned mass absorber" in m.why_no_rotating_frame()
+    with pytest.raises(ValueError, match="no co-rotating equilibria: the machine has a tuned mass absorber"):
+        m.steady_state()
+
+
+def test_bad_absorber_values_are_refused():
+    with pytest.raises(ValueError, match=r"TunedMassAbsorber\.damping must be >= 0"):
+        TunedMassAbsorber(0, 1.0, 1.0, -0.1)
+    with pytest.raises(ValueError, match=r"TunedMassAbsorber\.mass must be > 0"):
+        TunedMassAbsorber(0, 0.0, 1.0)
+
+
+def test_the_figure_draws_the_response_with_and_without_the_absorber():
+    from rotorlab.plot import absorber_response_figure
+
+    m = build_machine(parse_case(CASE.format(stiffness="0.225 N/m")).model)
+    ds = absorber_response(m, 0, np.linspace(0.5, 2.5, 41))
+    fig = absorber_response_figure(ds)
+    without, with_ = fig.axes[0].get_lines()
+    np.testing.assert_allclose(without.get_ydata(), ds.amplitude_without.values * 1e3)
+    np.testing.assert_allclose(with_.get_ydata(), ds.amplitude.values * 1e3)
+    np.testing.assert_allclose(with_.get_xdata(), ds.speed.values * 30 / np.pi)
+    # tuned to w = 1.5 rad/s (k_a = m_a w^2), damped: the absorber's dynamic stiffness there is
+    # -m_a w^2 + i m_a w k_a / c_a, so the amplitude is U w^2 / |K - M w^2 + i w C - m_a w^2 + i m_a w k_a / c_a|
+    k, w = 20, 1.5
+    expect = 0.01 * w * w / abs(1.0 - w * w + 0.1j * w - 0.1 * w * w + 1j * 0.1 * w * 0.225 / 0.02)
+    assert ds.speed.values[k] == pytest.approx(w, rel=1e-12)
+    assert ds.amplitude.values[k] == pytest.approx(expect, rel=1e-12) and expect < 0.6 * ds.amplitude_without.values[k]
