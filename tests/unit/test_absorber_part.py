@@ -1,13 +1,17 @@
 """The tuned mass absorber as a machine part: its case key, named parameters, kernel layout,
-co-rotating refusal and figure (the physics: tests/validation/test_absorber.py). Nothing here
-compiles a kernel."""
+co-rotating refusal and figure (the physics: tests/validation/test_absorber.py), and its place
+among the other attachments (one compiled layout: the two-plane rotor of test_machine with a
+motor, tilting races, gravity and an absorber)."""
 
 import numpy as np
 import pytest
 
+from test_machine import rigid_two_plane
+
+from rotorlab.integrate import SaveAt, StepControl, solve
 from rotorlab.io import CaseError, parse_case
 from rotorlab.io._build import build_machine
-from rotorlab.models import TunedMassAbsorber, absorber_response
+from rotorlab.models import Gravity, Motor, TunedMassAbsorber, absorber_response
 
 CASE = """
 schema_version = 1
@@ -125,3 +129,29 @@ def test_the_figure_draws_the_response_with_and_without_the_absorber():
     expect = 0.01 * w * w / abs(1.0 - w * w + 0.1j * w - 0.1 * w * w + 1j * 0.1 * w * 0.225 / 0.02)
     assert ds.speed.values[k] == pytest.approx(w, rel=1e-12)
     assert ds.amplitude.values[k] == pytest.approx(expect, rel=1e-12) and expect < 0.6 * ds.amplitude_without.values[k]
+
+
+def test_power_balance_with_balls_on_tilting_races_a_motor_gravity_and_an_absorber():
+    """The absorber's station forces enter the Schur system of the balls and the spin (``h``):
+    drive work = change of energy + dissipated energy along a run-up of the gyroscopic,
+    anisotropic two-plane rotor with two tilting 2-ball races, a motor, lateral gravity and an
+    absorber off the node (axial offset 1.5), from a disturbed start; and without the absorber's
+    energy and dissipation the balance fails by far more than its tolerance."""
+    base = rigid_two_plane(motor=Motor(0.4, polar_inertia=0.6, no_load_speed=2.0), gravity=Gravity((0.2, -0.3, -9.8)))
+    from dataclasses import replace
+
+    mac = replace(base, parts=(TunedMassAbsorber(0, 0.15, 0.4, 0.05, axial_offset=1.5),), energy_states=True)
+    assert mac.layout.tilt and mac.layout.motor
+    y0 = mac.initial_state([0.1, 2.0, 4.0, 5.0], ball_rates=[0.3, -0.2, 0.0, 0.1], spin_speed=0.1,
+                           z=[0.01, -0.02, 0.003, 0.001])
+    i = mac.layout.i_parts
+    y0[i:i + 4] += [0.05, -0.03, 0.02, 0.01]  # the absorber off its station, moving
+    ts = np.linspace(0.0, 25.0, 26)
+    sol = solve(mac, y0, (0.0, 25.0), save_at=SaveAt(ts=ts), control=StepControl(rtol=1e-11, atol=1e-13))
+    assert sol.status.name == "SUCCESS"
+    res = mac.energy_balance(sol.ts, sol.ys)
+    work = np.abs(sol.ys[:, mac.layout.i_energy]).max()
+    assert work > 1e-3 and np.abs(res).max() < 1e-6 * work
+    part, place = mac.parts[0], mac.layout.placed_parts[0][1]
+    own = np.array([part.energy(mac, y, place) for y in sol.ys])
+    assert np.ptp(own) > 1e-3 * work
