@@ -155,3 +155,12 @@ def test_power_balance_with_balls_on_tilting_races_a_motor_gravity_and_an_absorb
     part, place = mac.parts[0], mac.layout.placed_parts[0][1]
     own = np.array([part.energy(mac, y, place) for y in sol.ys])
     assert np.ptp(own) > 1e-3 * work
+
+
+def test_every_drive_and_profile_kind_of_a_layout_has_its_kernel_lines():
+    """The drive registry of the generator (``machine_drive``) covers the layout's kinds."""
+    from rotorlab._kernels.machine_drive import DRIVES, PROFILE_SPIN
+    from rotorlab._kernels.machine_layout import DRIVE_KINDS, SPEED_KINDS
+
+    assert set(DRIVES) == set(DRIVE_KINDS) and set(PROFILE_SPIN) == set(SPEED_KINDS)
+    assert DRIVES["profile"].torque is None and all(DRIVES[k].torque for k in DRIVE_KINDS if k != "profile")

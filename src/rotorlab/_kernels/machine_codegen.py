@@ -35,6 +35,7 @@ from pathlib import Path
 from typing import Any
 
 from rotorlab._kernels import machine_contact as _mc
+from rotorlab._kernels.machine_drive import spin_lines, torque_lines
 from rotorlab._kernels.machine_emit import _sum, ldl_lines, reactions, solve_lines
 from rotorlab._kernels.machine_friction import friction_functions, friction_solve, friction_torques
 from rotorlab._kernels.machine_layout import Layout
@@ -80,26 +81,7 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
     races, br = lay.races, lay.ball_race
     nr, nu = lay.n_races, lay.n_unbalance
     a = L.append
-    # ---- spin
-    if lay.motor:
-        a(f"    theta = y[{lay.i_theta}]")
-        a(f"    om = y[{lay.i_theta + 1}]")
-    elif lay.speed_kind == "constant":
-        a(f"    om = p[{o['speed'] + 1}]")
-        a("    theta = om * t")
-        a("    dom = 0.0")
-    elif lay.speed_kind == "ramp":
-        k = o["speed"]
-        a(f"    w0 = p[{k + 1}]")
-        a(f"    w1 = p[{k + 2}]")
-        a(f"    dur = p[{k + 3}]")
-        a("    slope = (w1 - w0) / dur")
-        a("    tc = min(max(t, 0.0), dur)")
-        a("    om = w0 + slope * tc")
-        a("    theta = w0 * tc + 0.5 * slope * tc * tc + om * (t - tc)")
-        a("    dom = slope if (t >= 0.0 and t < dur) else 0.0")
-    else:
-        a(f"    theta, om, dom = profile(t, p, {o['speed']})")
+    L += spin_lines(lay)
     # ---- coordinates
     for i in range(nz):
         a(f"    z{i} = y[{i}]")
@@ -216,16 +198,7 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             ts = lay.tilt_station(br[idx])
             a(f"    q{i} = -(c{idx} * ax{ts} + s{idx} * ay{ts})")
         else:
-            km = o["motor"]
-            if lay.drive == "linear":
-                a(f"    torque = p[{km + 1}] * (1.0 - om / p[{km + 2}])")
-            else:
-                nt = lay.n_table
-                ks, kt = km + 3, km + 3 + nt
-                a(f"    torque = p[{kt}]")
-                for q in range(nt - 1):
-                    a(f"    fr = min(max((om - p[{ks + q}]) / (p[{ks + q + 1}] - p[{ks + q}]), 0.0), 1.0)")
-                    a(f"    torque += fr * (p[{kt + q + 1}] - p[{kt + q}])")
+            L += torque_lines(lay)
             terms = ["torque"] + [f"cb{b} * rel{b}" for b in range(nb)]
             terms += [f"U{u} * (-gx * euy{u} + gy * eux{u})" for u in range(nu)]
             terms += [f"-U{u} * (-euy{u} * ax{nr + u} + eux{u} * ay{nr + u})" for u in range(nu)]
