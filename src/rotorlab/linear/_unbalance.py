@@ -5,6 +5,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -62,6 +63,12 @@ class Unbalance:
     >>> Unbalance(0, couple=2e-3, couple_phase=0.0).node_force()[2:]
     array([0.002+0.j   , 0.   -0.002j])
     """
+
+    #: Named parameters (field, unit, bounds (gt, ge, lt, le)) of a machine's ``unbalances[i]``
+    #: (:mod:`rotorlab.models._parameters`); a couple from or to 0 changes the compiled layout.
+    fields: ClassVar[tuple] = (("magnitude", "kg*m", (None, 0.0, None, None)), ("phase", "rad", (None, None, None, None)),
+                               ("axial_offset", "m", (None, None, None, None)), ("couple", "kg*m^2", (None, 0.0, None, None)),
+                               ("couple_phase", "rad", (None, None, None, None)))
 
     node: int
     magnitude: float = 0.0

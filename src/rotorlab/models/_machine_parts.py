@@ -8,6 +8,7 @@ from __future__ import annotations
 
 import math
 from dataclasses import dataclass
+from typing import ClassVar
 
 import numpy as np
 
@@ -60,6 +61,11 @@ class Ball:
         Rolling-friction arm (m), >= 0 (see ``coulomb``).
     """
 
+    #: Named parameters (field, unit, bounds (gt, ge, lt, le)): ``races[i].balls[j].<field>``
+    fields: ClassVar[tuple] = (("mass", "kg", (0.0, None, None, None)), ("inertia", "kg*m^2", (None, 0.0, None, None)),
+                               ("damping", "N*m*s/rad", (None, 0.0, None, None)), ("coulomb", "1", (None, 0.0, None, None)),
+                               ("rolling", "m", (None, 0.0, None, None)))
+
     mass: float
     inertia: float = 0.0
     damping: float = 0.0
@@ -90,6 +96,9 @@ class BallRace:
         Axial distance a of the race plane from the node along +z (m): the race centre moves by
         ``(x + a phi_x, y + a phi_y)``, so an offset race couples to the tilt.
     """
+
+    #: Named parameters of its own: ``races[i].<field>`` (its balls' are theirs)
+    fields: ClassVar[tuple] = (("radius", "m", (0.0, None, None, None)), ("axial_offset", "m", (None, None, None, None)))
 
     node: int
     radius: float
@@ -237,6 +246,10 @@ class ElasticStator:
         position and velocity).
     """
 
+    #: Named parameters: ``clearances[i].stator.<field>``; a housing mass from or to 0 changes
+    #: the compiled layout (housing states)
+    fields: ClassVar[tuple] = (("stiffness", "N/m", (0.0, None, None, None)), ("damping", "N*s/m", (None, 0.0, None, None)), ("mass", "kg", (None, 0.0, None, None)))
+
     stiffness: float
     damping: float = 0.0
     mass: float = 0.0
@@ -291,6 +304,12 @@ class Clearance:
         it; ``"static"``: where the station rests under gravity (the housing built around the
         sagging rotor), see :meth:`rotorlab.models.Machine.clearance_center`.
     """
+
+    #: Named parameters of its own numbers: ``clearances[i].<field>`` (its stator's, cone's and
+    #: centre's: see :func:`rotorlab.models._parameters.machine_slots`)
+    fields: ClassVar[tuple] = (("gap", "m", (0.0, None, None, None)), ("restitution", "1", (None, 0.0, None, 1.0)),
+                               ("friction", "1", (None, 0.0, None, None)), ("rotor_radius", "m", (None, 0.0, None, None)),
+                               ("axial_offset", "m", (None, None, None, None)), ("rest_speed", "m/s", (0.0, None, None, None)))
 
     node: int
     gap: float

@@ -51,38 +51,36 @@ def _set_item(items: tuple, i: int, **kw) -> tuple:
 
 
 # ---------------------------------------------------------------------------------------- machine
-def _item_setter(attr: str, i: int, field: str):
-    """A setter of ``field`` of item ``i`` of the model's tuple ``attr`` (a race, an unbalance ...)."""
-    return lambda mm, v: replace(mm, **{attr: _set_item(getattr(mm, attr), i, **{field: v})})
+def owned_slots(prefix: str, item: Any, set_item: Any) -> list[Slot]:
+    """The slots of the numbers an attachment owns (its class's ``fields``: ``(field, unit,
+    bounds)``), named ``<prefix>.<field>``; ``set_item(model, field, value)`` returns the model
+    with that field of the attachment replaced."""
+    return [_slot(f"{prefix}.{name}", unit, getattr(item, name), bounds,
+                  lambda mm, v, name=name: set_item(mm, name, v))
+            for name, unit, bounds in type(item).fields]
+
+
+def _item_setter(attr: str, i: int):
+    """A setter of a field of item ``i`` of the model's tuple ``attr`` (a race, an unbalance ...)."""
+    return lambda mm, name, v: replace(mm, **{attr: _set_item(getattr(mm, attr), i, **{name: v})})
 
 
 def _race_slots(m) -> list[Slot]:
     out = []
     for i, race in enumerate(m.races):
-        out.append(_slot(f"races[{i}].radius", "m", race.radius, _GT0, _item_setter("races", i, "radius")))
-        out.append(_slot(f"races[{i}].axial_offset", "m", race.axial_offset, _FREE,
-                         _item_setter("races", i, "axial_offset")))
+        out += owned_slots(f"races[{i}]", race, _item_setter("races", i))
         for j, ball in enumerate(race.balls):
-            for key, unit, bounds in (("mass", "kg", _GT0), ("inertia", "kg*m^2", _GE0),
-                                      ("damping", "N*m*s/rad", _GE0), ("coulomb", "1", _GE0),
-                                      ("rolling", "m", _GE0)):
-                def set_ball(mm, v, i=i, j=j, key=key):
-                    r = mm.races[i]
-                    return replace(mm, races=_set_item(mm.races, i, balls=_set_item(r.balls, j, **{key: v})))
+            def set_ball(mm, name, v, i=i, j=j):
+                return replace(mm, races=_set_item(mm.races, i, balls=_set_item(mm.races[i].balls, j, **{name: v})))
 
-                out.append(_slot(f"races[{i}].balls[{j}].{key}", unit, getattr(ball, key), bounds, set_ball))
+            out += owned_slots(f"races[{i}].balls[{j}]", ball, set_ball)
     return out
 
 
 def _unbalance_slots(m) -> list[Slot]:
-    out = []
-    for i, u in enumerate(m.unbalances):
-        for key, unit, bounds in (("magnitude", "kg*m", _GE0), ("phase", "rad", _FREE), ("axial_offset", "m", _FREE),
-                                  ("couple", "kg*m^2", _GE0), ("couple_phase", "rad", _FREE)):
-            # a couple from or to 0 changes the compiled layout (two more point unbalances): refused by pack
-            out.append(_slot(f"unbalances[{i}].{key}", unit, getattr(u, key), bounds,
-                             _item_setter("unbalances", i, key)))
-    return out
+    # a couple from or to 0 changes the compiled layout (two more point unbalances): refused by pack
+    return [s for i, u in enumerate(m.unbalances)
+            for s in owned_slots(f"unbalances[{i}]", u, _item_setter("unbalances", i))]
 
 
 def _drive_slots(m) -> list[Slot]:
@@ -114,18 +112,14 @@ def _clearance_slots(m) -> list[Slot]:
     out = []
     for i, c in enumerate(m.clearances):
         p = f"clearances[{i}]"
-        for key, unit, bounds in (("gap", "m", _GT0), ("restitution", "1", (None, 0.0, None, 1.0)),
-                                  ("friction", "1", _GE0), ("rotor_radius", "m", _GE0),
-                                  ("axial_offset", "m", _FREE), ("rest_speed", "m/s", _GT0)):
-            out.append(_slot(f"{p}.{key}", unit, getattr(c, key), bounds, _item_setter("clearances", i, key)))
+        out += owned_slots(p, c, _item_setter("clearances", i))
         if not isinstance(c.stator, str):
-            for key, unit, bounds in (("stiffness", "N/m", _GT0), ("damping", "N*s/m", _GE0), ("mass", "kg", _GE0)):
-                def set_stator(mm, v, i=i, key=key):
-                    cl = mm.clearances[i]
-                    return replace(mm, clearances=_set_item(mm.clearances, i, stator=replace(cl.stator, **{key: v})))
+            def set_stator(mm, name, v, i=i):
+                cl = mm.clearances[i]
+                return replace(mm, clearances=_set_item(mm.clearances, i, stator=replace(cl.stator, **{name: v})))
 
-                # a housing mass from or to 0 changes the compiled layout (housing states): refused by pack
-                out.append(_slot(f"{p}.stator.{key}", unit, getattr(c.stator, key), bounds, set_stator))
+            # a housing mass from or to 0 changes the compiled layout (housing states): refused by pack
+            out += owned_slots(f"{p}.stator", c.stator, set_stator)
         if c.conical is not None:
             for k, (key, unit, bounds) in enumerate((("half_angle", "rad", (0.0, None, None, math.pi / 2)),
                                                      ("lever", "m", _FREE))):
@@ -199,7 +193,8 @@ def jeffcott_slots(m) -> list[Slot]:
     for i, b in enumerate(m.balls):
         for key, unit, bounds in (("mass", "kg", _GT0), ("radius", "m", _GT0), ("inertia", "kg*m^2", _GE0),
                                   ("damping", "N*m*s/rad", _GE0), ("friction", "1", _GE0)):
-            out.append(_slot(f"balls[{i}].{key}", unit, getattr(b, key), bounds, _item_setter("balls", i, key)))
+            out.append(_slot(f"balls[{i}].{key}", unit, getattr(b, key), bounds,
+                             lambda mm, v, i=i, key=key: _item_setter("balls", i)(mm, key, v)))
     return out + _profile_slots("speed", m.speed, "speed")
 
 

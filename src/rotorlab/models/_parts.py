@@ -105,18 +105,14 @@ class AbstractPart:
 def part_slots(m) -> list[Any]:
     """The named parameters of a machine's parts: ``<key>[i].<field>`` (i counts the parts of
     one key), each set by replacing that part."""
-    from rotorlab.models._protocol import Parameter, Slot
+    from rotorlab.models._parameters import owned_slots
 
-    out, seen = [], {}
-    for k, part in enumerate(m.parts):
-        i = seen[part.key] = seen.get(part.key, -1) + 1
-        for name, unit, bounds in part.fields:
-            def set_(mm, v, k=k, name=name):
-                parts = mm.parts[:k] + (replace(mm.parts[k], **{name: v}),) + mm.parts[k + 1:]
-                return replace(mm, parts=parts)
+    out = []
+    for k, (part, i) in enumerate(zip(m.parts, part_indices(m.parts))):
+        def set_(mm, name, v, k=k):
+            return replace(mm, parts=mm.parts[:k] + (replace(mm.parts[k], **{name: v}),) + mm.parts[k + 1:])
 
-            out.append(Slot(Parameter(f"{part.key}[{i}].{name}", unit, float(getattr(part, name)), bounds),
-                            set_))
+        out += owned_slots(f"{part.key}[{i}]", part, set_)
     return out
 
 
