@@ -11,6 +11,9 @@ import numpy as np
 
 from rotorlab.linear._elements import _num
 
+# bounds (gt, ge, lt, le) of the named parameters (rotorlab.models._parameters)
+_GT0, _GE0, _FREE = (0.0, None, None, None), (None, 0.0, None, None), (None, None, None, None)
+
 __all__ = ["Unbalance", "COUPLE_LEVER"]
 
 #: Lever d (m) of the two opposite point unbalances ``couple / d`` at ``axial_offset +- d / 2``
@@ -66,9 +69,9 @@ class Unbalance:
 
     #: Named parameters (field, unit, bounds (gt, ge, lt, le)) of a machine's ``unbalances[i]``
     #: (:mod:`rotorlab.models._parameters`); a couple from or to 0 changes the compiled layout.
-    fields: ClassVar[tuple] = (("magnitude", "kg*m", (None, 0.0, None, None)), ("phase", "rad", (None, None, None, None)),
-                               ("axial_offset", "m", (None, None, None, None)), ("couple", "kg*m^2", (None, 0.0, None, None)),
-                               ("couple_phase", "rad", (None, None, None, None)))
+    fields: ClassVar[tuple] = (("magnitude", "kg*m", _GE0), ("phase", "rad", _FREE),
+                               ("axial_offset", "m", _FREE), ("couple", "kg*m^2", _GE0),
+                               ("couple_phase", "rad", _FREE))
 
     node: int
     magnitude: float = 0.0

@@ -31,11 +31,10 @@ from typing import ClassVar
 import numpy as np
 
 from rotorlab._kernels.machine_emit import station_rows
+from rotorlab.models._parameters import _FREE, _GE0, _GT0
 from rotorlab.models._parts import AbstractKernelPart, AbstractPart
 
 __all__ = ["TunedMassAbsorber", "absorber_response"]
-
-_GT0 = (0.0, None, None, None)
 
 
 @dataclass(frozen=True)
@@ -93,9 +92,8 @@ class TunedMassAbsorber(AbstractPart):
     """
 
     key: ClassVar[str] = "absorbers"
-    fields: ClassVar[tuple] = (("mass", "kg", _GT0), ("stiffness", "N/m", _GT0),
-                               ("damping", "N*s/m", (None, 0.0, None, None)),
-                               ("axial_offset", "m", (None, None, None, None)))
+    fields: ClassVar[tuple] = (("mass", "kg", _GT0), ("stiffness", "N/m", _GT0), ("damping", "N*s/m", _GE0),
+                               ("axial_offset", "m", _FREE))
 
     node: int
     mass: float

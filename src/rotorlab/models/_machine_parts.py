@@ -13,6 +13,7 @@ from typing import ClassVar
 import numpy as np
 
 from rotorlab.linear._unbalance import Unbalance  # the one unbalance type, static and couple
+from rotorlab.models._parameters import _FREE, _GE0, _GT0  # bounds (gt, ge, lt, le) of named parameters
 
 __all__ = ["Ball", "BallRace", "Unbalance", "Gravity", "Motor", "Clearance", "ElasticStator"]
 
@@ -62,9 +63,9 @@ class Ball:
     """
 
     #: Named parameters (field, unit, bounds (gt, ge, lt, le)): ``races[i].balls[j].<field>``
-    fields: ClassVar[tuple] = (("mass", "kg", (0.0, None, None, None)), ("inertia", "kg*m^2", (None, 0.0, None, None)),
-                               ("damping", "N*m*s/rad", (None, 0.0, None, None)), ("coulomb", "1", (None, 0.0, None, None)),
-                               ("rolling", "m", (None, 0.0, None, None)))
+    fields: ClassVar[tuple] = (("mass", "kg", _GT0), ("inertia", "kg*m^2", _GE0),
+                               ("damping", "N*m*s/rad", _GE0), ("coulomb", "1", _GE0),
+                               ("rolling", "m", _GE0))
 
     mass: float
     inertia: float = 0.0
@@ -98,7 +99,7 @@ class BallRace:
     """
 
     #: Named parameters of its own: ``races[i].<field>`` (its balls' are theirs)
-    fields: ClassVar[tuple] = (("radius", "m", (0.0, None, None, None)), ("axial_offset", "m", (None, None, None, None)))
+    fields: ClassVar[tuple] = (("radius", "m", _GT0), ("axial_offset", "m", _FREE))
 
     node: int
     radius: float
@@ -248,7 +249,7 @@ class ElasticStator:
 
     #: Named parameters: ``clearances[i].stator.<field>``; a housing mass from or to 0 changes
     #: the compiled layout (housing states)
-    fields: ClassVar[tuple] = (("stiffness", "N/m", (0.0, None, None, None)), ("damping", "N*s/m", (None, 0.0, None, None)), ("mass", "kg", (None, 0.0, None, None)))
+    fields: ClassVar[tuple] = (("stiffness", "N/m", _GT0), ("damping", "N*s/m", _GE0), ("mass", "kg", _GE0))
 
     stiffness: float
     damping: float = 0.0
@@ -307,9 +308,9 @@ class Clearance:
 
     #: Named parameters of its own numbers: ``clearances[i].<field>`` (its stator's, cone's and
     #: centre's: see :func:`rotorlab.models._parameters.machine_slots`)
-    fields: ClassVar[tuple] = (("gap", "m", (0.0, None, None, None)), ("restitution", "1", (None, 0.0, None, 1.0)),
-                               ("friction", "1", (None, 0.0, None, None)), ("rotor_radius", "m", (None, 0.0, None, None)),
-                               ("axial_offset", "m", (None, None, None, None)), ("rest_speed", "m/s", (0.0, None, None, None)))
+    fields: ClassVar[tuple] = (("gap", "m", _GT0), ("restitution", "1", (None, 0.0, None, 1.0)),
+                               ("friction", "1", _GE0), ("rotor_radius", "m", _GE0),
+                               ("axial_offset", "m", _FREE), ("rest_speed", "m/s", _GT0))
 
     node: int
     gap: float
