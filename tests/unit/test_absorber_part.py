@@ -7,38 +7,20 @@ import numpy as np
 import pytest
 
 from test_machine import rigid_two_plane
+from test_machine_common import PLANAR
 
 from rotorlab.io import CaseError, parse_case
 from rotorlab.io._build import build_machine
 from rotorlab.models import Gravity, Motor, TunedMassAbsorber, absorber_response
 
-CASE = """
-schema_version = 1
-name = "absorbed"
-
-[model]
-type = "machine"
-
-[model.structure]
-type = "multibody"
-
-[[model.structure.bodies]]
-name = "disc"
-position = "0 m"
-mass = "1 kg"
-diametral_inertia = "0.1 kg*m^2"
-polar_inertia = "0 kg*m^2"
-spinning = false
-
-[model.structure.elastic]
-stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "1 N*m/rad"]]
-damping = [["0.1 N*s/m", "0 N*s/rad"], ["0 N*s/rad", "0 N*m*s/rad"]]
-
+# the planar machine of test_machine_common (1 kg disc on 1 N/m, 0.1 N s/m; its two translation
+# modes) without its races, with an absorber
+CASE = PLANAR.split("[[model.races]]")[0].replace("{", "{{").replace("}", "}}") + """
 [[model.unbalances]]
+magnitude = "10 g*m"             # U w^2 = 22.5 mN at 1.5 rad/s
 at = "disc"
-magnitude = "10 g*m"
 
-[[model.absorbers]]
+[[model.absorbers]]              # a 100 g mass on a spring and a damper at the disc
 at = "disc"
 mass = "100 g"
 stiffness = "{stiffness}"
@@ -87,13 +69,13 @@ def test_the_absorber_s_states_names_and_parameter_block_extend_the_layout():
     lay = m.layout
     assert m.state_names[lay.i_parts:lay.i_parts + 4] == ("x_absorber_1", "y_absorber_1", "vx_absorber_1",
                                                          "vy_absorber_1")
-    assert lay.n_state == 8 + 4 and lay.key.endswith("pta")
+    assert lay.n_state == 4 + 4 and lay.key.endswith("pta")
     (part, place), = lay.placed_parts
     p = m.to_array()
     np.testing.assert_array_equal(p[place.param:place.param + 3], [0.1, 0.225, 0.02])
-    np.testing.assert_array_equal(p[lay.station_B(place.station):lay.station_B(place.station) + 8],
+    np.testing.assert_array_equal(p[lay.station_B(place.station):lay.station_B(place.station) + 4],
                                   m.station_matrix(0).ravel())
-    y = m.initial_state(z=[1e-3, -2e-3, 0.0, 0.0], dz=[0.1, 0.2, 0.0, 0.0])
+    y = m.initial_state(z=[1e-3, -2e-3], dz=[0.1, 0.2])
     np.testing.assert_array_equal(y[place.state:place.state + 4], [1e-3, -2e-3, 0.1, 0.2])
 
 
