@@ -73,6 +73,13 @@ class Ball:
     coulomb: float = 0.0
     rolling: float = 0.0
 
+    def rotating_refusal(self) -> str | None:
+        """Why the co-rotating frame has no equilibria with this ball, None if it has."""
+        if self.coulomb > 0 or self.rolling > 0:
+            return ("the balls have Coulomb or rolling friction (stick-slip): steady motions are "
+                    "not equilibria of a smooth system; simulate instead")
+        return None
+
     def __post_init__(self) -> None:
         o = "Ball"
         object.__setattr__(self, "mass", _num(o, "mass", self.mass, "kg", strict=True))
@@ -149,6 +156,13 @@ class Gravity:
         """``(g_x, g_y)`` (m/s^2)."""
         return self.vector[0], self.vector[1]
 
+    def rotating_refusal(self) -> str | None:
+        """Why the co-rotating frame has no equilibria under this gravity, None if it has."""
+        if self.lateral == (0.0, 0.0):
+            return None
+        return ("gravity acts across the axis: the balls are pulled down once per "
+                "revolution, so there is no steady motion; simulate instead")
+
 
 @dataclass(frozen=True, slots=True)
 class Motor:
@@ -190,6 +204,10 @@ class Motor:
                 raise ValueError("Motor.no_load_speed must be a finite number > 0 (rad/s) for a "
                                  f"linear characteristic, got {self.no_load_speed!r}")
         object.__setattr__(self, "no_load_speed", float(self.no_load_speed))
+
+    def rotating_refusal(self) -> str:
+        """A motor's speed follows its torque balance: no co-rotating equilibria."""
+        return "the spin speed is not constant (steady motions need a ConstantSpeed drive)"
 
     @property
     def kind(self) -> str:

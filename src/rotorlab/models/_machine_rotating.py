@@ -12,7 +12,6 @@ from dataclasses import dataclass, replace
 import numpy as np
 
 from rotorlab.models._jeffcott_physics import Linearization
-from rotorlab.models._speed import ConstantSpeed
 
 __all__ = ["MachineLinearization"]
 
@@ -51,18 +50,15 @@ class _RotatingFrame:
 
     def why_no_rotating_frame(self) -> str | None:
         """The reason the co-rotating frame has no equilibria, or None if it has."""
-        if self.has_friction:
-            return ("the balls have Coulomb or rolling friction (stick-slip): steady motions are "
-                    "not equilibria of a smooth system; simulate instead")
+        # each attachment says why it has none (balls with friction, gravity across the axis, a
+        # drive without a constant speed, a part whose states the frame does not carry)
+        reasons = [b.rotating_refusal() for r in self.races for b in r.balls]
         if not self.structure.is_isotropic:
-            return ("the structure is anisotropic (its supports differ in x and y): the balls "
-                    "and the rotor never reach a steady motion; simulate instead")
-        if self.lateral_gravity != (0.0, 0.0):
-            return ("gravity acts across the axis: the balls are pulled down once per "
-                    "revolution, so there is no steady motion; simulate instead")
-        if self.is_motor or not isinstance(self.drive, ConstantSpeed):
-            return "the spin speed is not constant (steady motions need a ConstantSpeed drive)"
-        return next((why for why in (part.rotating_refusal() for part in self.parts) if why), None)
+            reasons.append("the structure is anisotropic (its supports differ in x and y): the balls "
+                           "and the rotor never reach a steady motion; simulate instead")
+        reasons += [None if self.gravity is None else self.gravity.rotating_refusal(), self.drive.rotating_refusal()]
+        reasons += [part.rotating_refusal() for part in self.parts]
+        return next((why for why in reasons if why), None)
 
     def _require_rotating(self) -> float:
         why = self.why_no_rotating_frame()

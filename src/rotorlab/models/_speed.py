@@ -45,6 +45,12 @@ class _ProfileMixin:
 
     __slots__ = ()
 
+    def rotating_refusal(self) -> str | None:
+        """Why a machine driven by this profile has no co-rotating equilibria (a constant speed
+        has them: None)."""
+        return None if isinstance(self, ConstantSpeed) else (
+            "the spin speed is not constant (steady motions need a ConstantSpeed drive)")
+
     def _evaluate(self, t) -> np.ndarray:
         from rotorlab._kernels.speed import evaluate
 
