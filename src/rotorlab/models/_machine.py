@@ -23,6 +23,9 @@ f`` over the DOFs ``x, y, phi_x, phi_y`` of every node, optionally reduced to it
   ``jeffcott_balls``; one mode state per ball at the end of the state, events ``stick_<r>_<b>``,
   ``slip_<r>_<b>`` and their reset maps (:func:`rotorlab._kernels.machine_codegen.friction_solve`);
   the friction power ``-tau_b (phi_b' - Omega)`` counts as dissipated. Not with a clearance.
+- **parts** (:mod:`rotorlab.models._parts`): attachments that own their states, packed block,
+  kernel lines, energy and named parameters, e.g. a tuned mass absorber
+  (:class:`rotorlab.models.TunedMassAbsorber`); their states follow the energy states.
 
 Equations (fixed frame, always)
 -------------------------------
@@ -88,7 +91,8 @@ Where the code lives: this module holds the machine's sizes, structure reduction
 kernels; its initial states, mass matrix and energy are in ``_machine_physics``, its clearance
 helpers in ``_machine_clearance``, its co-rotating frame (linearization, steady states) in
 ``_machine_rotating`` and its validity limits and sanity monitor in ``_machine_validity`` (mixed
-into :class:`Machine`); the attachments in ``_machine_parts``.
+into :class:`Machine`); the attachments in ``_machine_parts``, the attachment parts' protocol in
+``_parts``.
 """
 
 from __future__ import annotations
