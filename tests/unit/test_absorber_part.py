@@ -153,3 +153,19 @@ def test_every_drive_and_profile_kind_of_a_layout_has_its_kernel_lines():
 
     assert set(DRIVES) == set(DRIVE_KINDS) and set(PROFILE_SPIN) == set(SPEED_KINDS)
     assert DRIVES["profile"].torque is None and all(DRIVES[k].torque for k in DRIVE_KINDS if k != "profile")
+
+
+def test_the_reference_without_balancing_includes_the_absorber():
+    """A simulation's ``reference_amplitude`` (the unbalance response without balancing) is that
+    of the machine with its absorber: at the tuned speed, damped, the closed form of
+    test_the_figure_draws_the_response_with_and_without_the_absorber (9.55 mm, not the bare
+    17.87 mm), and the response of absorber_response at every speed."""
+    from rotorlab.analyses._machine_common import unbalance_amplitudes
+
+    m = build_machine(parse_case(CASE.format(stiffness="0.225 N/m")).model)
+    w = 1.5
+    expect = 0.01 * w * w / abs(1.0 - w * w + 0.1j * w - 0.1 * w * w + 1j * 0.1 * w * 0.225 / 0.02)
+    assert unbalance_amplitudes(m, w)[0] == pytest.approx(expect, rel=1e-12)
+    for om in (0.7, 1.2, 2.0):
+        assert unbalance_amplitudes(m, om)[0] == pytest.approx(float(absorber_response(m, 0, [om]).amplitude[0]),
+                                                               rel=1e-10)

@@ -74,11 +74,16 @@ def unbalance_amplitudes(machine, spin_speed: float) -> np.ndarray:
     """Steady radial amplitude per node (m) of the unbalance response without balls.
 
     The largest radius of each node's (elliptical) orbit, ``sqrt((|X|^2 + |Y|^2)/2 +
-    |X^2 + Y^2|/2)``, from the full structure with the balls locked but not acting as balancers.
+    |X^2 + Y^2|/2)``, from the full structure with the balls locked but not acting as balancers,
+    and the linear parts' dynamic stiffness (a tuned mass absorber's,
+    :meth:`rotorlab.models._parts.AbstractPart.dynamic_stiffness`).
     """
     s = locked_structure(machine)
     om = float(spin_speed)
     D = s.K + 1j * om * (s.C + om * s.G) - om * om * s.M
+    for part in machine.parts:
+        Z = part.dynamic_stiffness(machine, om)
+        D = D if Z is None else D + Z
     f = np.zeros(s.n_dof, dtype=complex)
     for u in machine.unbalances:
         f[4 * u.node:4 * u.node + 4] += om * om * u.node_force()

@@ -146,6 +146,11 @@ class TunedMassAbsorber(AbstractPart):
         return ("the machine has a tuned mass absorber, whose states the co-rotating frame does not "
                 "carry yet: simulate instead, or use its linear response (rotorlab.models.absorber_response)")
 
+    def dynamic_stiffness(self, machine, omega: float) -> np.ndarray:
+        """``Z(w) e^T e`` over the structure's DOFs (``e``: its station, :meth:`harmonic_stiffness`)."""
+        e = machine.station_matrix(self.node, self.axial_offset, dofs=True)
+        return self.harmonic_stiffness(omega) * (e.T @ e)
+
     def harmonic_stiffness(self, omega: float) -> complex:
         """``Z(w) = -m_a w^2 k^* / (k^* - m_a w^2)``, ``k^* = k_a + i w c_a``: the station force per
         unit harmonic station motion is ``-Z`` (N/m)."""

@@ -398,14 +398,15 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
             self._cache["reduced"] = {n: phi.T @ getattr(s, n) @ phi for n in ("M", "C", "G", "K")}
         return self._cache["reduced"]
 
-    def station_matrix(self, node: int, axial_offset: float = 0.0) -> np.ndarray:
-        """B, shape (2, n_z): the lateral displacement ``(x + a phi_x, y + a phi_y)`` of a station."""
+    def station_matrix(self, node: int, axial_offset: float = 0.0, *, dofs: bool = False) -> np.ndarray:
+        """B, shape (2, n_z): the lateral displacement ``(x + a phi_x, y + a phi_y)`` of a station
+        (with ``dofs``: over the structure's DOFs, shape (2, n_dof))."""
         e = np.zeros((2, self.structure.n_dof))
         e[0, 4 * node] = 1.0
         e[1, 4 * node + 1] = 1.0
         e[0, 4 * node + 2] = axial_offset
         e[1, 4 * node + 3] = axial_offset
-        return e @ self.basis
+        return e if dofs else e @ self.basis
 
     def _tilt_numbers(self) -> tuple[int, ...]:
         """Per race the number of its node among the races' distinct nodes, or () when no race

@@ -35,7 +35,9 @@ For implementers
 4. :meth:`AbstractPart.state_names`, :meth:`AbstractPart.initial` (its states in a new initial
    state), :meth:`AbstractPart.energy` (its kinetic and potential energy: the machine's energy
    ledger adds it) and :meth:`AbstractPart.rotating_refusal` (why the co-rotating frame has no
-   equilibria with it, or None).
+   equilibria with it, or None); a linear part also gives its
+   :meth:`AbstractPart.dynamic_stiffness` (the reference "without balancing" of a simulation
+   then includes it).
 5. Register its spec (one line in :mod:`rotorlab.io._part_specs`), add a figure in ``plot/``
    and tests against a closed form.
 """
@@ -100,6 +102,12 @@ class AbstractPart:
     def rotating_refusal(self) -> str | None:
         """Why the co-rotating frame has no equilibria with this part, None if it has."""
         raise NotImplementedError
+
+    def dynamic_stiffness(self, machine, omega: float) -> np.ndarray | None:
+        """What it adds to the structure's dynamic stiffness ``K + i w C - w^2 M`` over the DOFs
+        (shape (n_dof, n_dof), complex) under a harmonic motion at ``omega`` (rad/s), for the
+        locked-ball unbalance responses; None: nothing."""
+        return None
 
 
 def part_slots(m) -> list[Any]:
