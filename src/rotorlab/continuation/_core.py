@@ -75,6 +75,10 @@ class ContinuationSettings:
         The parameter range; the curve ends where it leaves it (the last point lies on the bound).
     direction : {1, -1}
         Initial direction of ``lam`` (+1: increasing).
+    chord : bool
+        Correct each step with the Jacobian of the last accepted point (a chord method: no new
+        Jacobian during the iterations; full Newton only where the chord iteration fails). For
+        residuals whose Jacobian costs many residual calls (the fold and Hopf curves).
     """
 
     ds: float = 1e-2
@@ -87,6 +91,7 @@ class ContinuationSettings:
     locate_tol: float = 1e-9
     bounds: tuple[float, float] = (-math.inf, math.inf)
     direction: int = 1
+    chord: bool = False
 
     def __post_init__(self) -> None:
         if not (0 < self.ds_min <= self.ds <= self.ds_max):
@@ -210,16 +215,19 @@ class _Stepper:
         t /= np.linalg.norm(t)
         return t if t @ previous >= 0 else -t
 
-    def correct(self, u_pred: np.ndarray, t: np.ndarray) -> tuple[np.ndarray | None, int]:
-        """Newton on ``F(u) = 0, t . (u - u_pred) = 0`` (scaled); the point and the iterations."""
+    def correct(self, u_pred: np.ndarray, t: np.ndarray,
+                chord: np.ndarray | None = None) -> tuple[np.ndarray | None, int]:
+        """Newton on ``F(u) = 0, t . (u - u_pred) = 0`` (scaled); the point and the iterations.
+        With ``chord`` (a Jacobian dF/du, unscaled) that matrix serves every iteration."""
         w = u_pred / self.scale
         w_pred = w.copy()
+        fixed = None if chord is None else np.vstack([chord * self.scale[None, :], t])
         for k in range(1, self.st.max_newton + 1):
             u = w * self.scale
             f = np.asarray(self.F(u), dtype=float)
             if not np.all(np.isfinite(f)):
                 return None, k
-            a = np.vstack([self.jac_scaled(u), t])
+            a = fixed if fixed is not None else np.vstack([self.jac_scaled(u), t])
             r = np.concatenate([f, [t @ (w - w_pred)]])
             try:
                 dw = np.linalg.solve(a, -r)
@@ -332,7 +340,9 @@ def continue_curve(
         q = None
         while ds >= st.ds_min:
             u_pred = (p.u / scale + ds * p.tangent) * scale
-            u, its = stepper.correct(u_pred, p.tangent)
+            u, its = stepper.correct(u_pred, p.tangent, p.jacobian) if st.chord else (None, 0)
+            if u is None:
+                u, its = stepper.correct(u_pred, p.tangent)
             if u is not None:
                 q = stepper.point(u, p.tangent, p.s + ds)
                 if q.tangent @ p.tangent >= math.cos(st.max_turn):
@@ -371,7 +381,7 @@ def continue_curve(
             end = "closed"
             break
         p = q
-        if its <= 3:
+        if its <= (6 if st.chord else 3):  # a chord iteration contracts linearly: more of them
             ds = min(st.ds_max, 1.5 * ds)
         elif its >= st.max_newton - 2:
             ds = max(st.ds_min, 0.7 * ds)

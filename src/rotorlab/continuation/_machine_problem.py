@@ -27,8 +27,11 @@ from rotorlab._constants import RPM_PER_RAD_S
 __all__ = ["NAMED_PARAMETERS", "as_machine", "with_value", "current_value", "parameter_unit", "format_value", "MachineEquilibria",
            "starting_motions", "START_KINDS"]
 
-#: Parameters that set every ball at once (the stability chart's names): name -> (Ball field, unit).
-NAMED_PARAMETERS = {"ball_mass": ("mass", "kg"), "ball_damping": ("damping", "N*m*s/rad")}
+#: Parameters that set every ball at once (the stability chart's names): name -> (Ball field, unit,
+#: the Ball fields scaled in proportion). ``ball_mass_scaled_damping`` keeps each ball's damping per
+#: unit mass (Rodrigues et al. 2008 hold ``c_b = b / (m Omega_1 R^2)`` fixed as m varies, Fig. 5).
+NAMED_PARAMETERS = {"ball_mass": ("mass", "kg", ()), "ball_damping": ("damping", "N*m*s/rad", ()),
+                    "ball_mass_scaled_damping": ("mass", "kg", ("damping",))}
 
 #: What ``start_from`` may name (besides a motion's label such as ``"side 01"``).
 START_KINDS = ("balanced", "side", "all")
@@ -41,10 +44,17 @@ def _parse(model, name: str):
     if name == "drive.speed":  # a constant speed replaces any drive (steady motions need one)
         return (lambda m, v: m.with_drive(ConstantSpeed(v))), "rad/s"
     if name in NAMED_PARAMETERS:
-        key, unit = NAMED_PARAMETERS[name]
+        key, unit, scaled = NAMED_PARAMETERS[name]
+
+        def one(b, v):
+            old = float(getattr(b, key))
+            ratio = v / old if old != 0.0 else math.nan
+            if scaled and not math.isfinite(ratio):
+                raise ValueError(f"{name}: a ball of {key} 0 cannot scale its {', '.join(scaled)}")
+            return replace(b, **{key: v}, **{f: getattr(b, f) * ratio for f in scaled})
 
         def every_ball(m, v):
-            races = tuple(replace(r, balls=tuple(replace(b, **{key: v}) for b in r.balls)) for r in m.races)
+            races = tuple(replace(r, balls=tuple(one(b, v) for b in r.balls)) for r in m.races)
             return replace(m, races=races)
 
         return every_ball, unit
@@ -63,7 +73,8 @@ def with_value(model, name: str, value: float):
     """Return ``model`` (a :class:`rotorlab.models.Machine`) with parameter ``name`` = ``value`` (SI).
 
     Names: ``drive.speed`` (rad/s; a constant speed replaces any drive), ``ball_mass`` /
-    ``ball_damping`` (every ball, the stability chart's names), and every named parameter of the
+    ``ball_damping`` (every ball, the stability chart's names), ``ball_mass_scaled_damping``
+    (every ball's mass, its damping scaled in proportion: damping per unit mass fixed), and every named parameter of the
     model (:attr:`Machine.parameters`: the case file's key paths ``races[i].balls[j].mass``,
     ``unbalances[i].magnitude``, ``structure.bearings[0].kxx`` ...), set with
     ``model.with_parameters``.
@@ -161,6 +172,55 @@ def format_value(value: float, unit: str) -> str:
     return f"{value:.4g} {unit}"
 
 
+class _Frame:
+    """:meth:`Machine.rotating_rhs` and the Jacobian of :meth:`Machine.linearize` for one machine,
+    with its checks, packed parameters and kernel looked up once (the continuation evaluates them
+    some ten thousand times per curve; per call they cost 30 us against the kernel's 2 us).
+    ``tests/unit/test_continuation_two_parameter.py`` checks both against the Machine's own."""
+
+    def __init__(self, machine):
+        self.om = machine._require_rotating()
+        lay = machine.layout
+        self.nz, self.nb, self.i_phi, self.i_w = lay.n_z, lay.n_balls, lay.i_phi, lay.i_w
+        self.y = np.zeros(lay.n_state)
+        self.p = machine.to_array()
+        self.kernel = machine.kernels.rhs
+        nz, nb = self.nz, self.nb  # Machine._fd_step: one step per block (z, z', psi and psi')
+        self.steps = np.repeat([machine._fd_step(j, self.om) for j in (0, nz, 2 * nz)], [nz, nz, 2 * nb])
+
+    def rhs(self, yr: np.ndarray) -> np.ndarray:
+        return self.rhs_many(np.asarray(yr, dtype=float)[None, :])[0]
+
+    def rhs_many(self, yr: np.ndarray) -> np.ndarray:
+        """:meth:`Machine.rotating_rhs` of each row of ``yr`` (shape (k, 2 (n_z + n_balls)))."""
+        nz, nb, om = self.nz, self.nb, self.om
+        z, v = yr[:, :nz], yr[:, nz:2 * nz]
+        y = np.zeros((yr.shape[0], self.y.size))
+        y[:, :nz] = z
+        y[:, nz:2 * nz:2] = v[:, 0::2] - om * z[:, 1::2]
+        y[:, nz + 1:2 * nz:2] = v[:, 1::2] + om * z[:, 0::2]
+        y[:, self.i_phi:self.i_phi + nb] = yr[:, 2 * nz:2 * nz + nb]
+        y[:, self.i_w:self.i_w + nb] = yr[:, 2 * nz + nb:] + om
+        f = np.empty_like(y)
+        for k in range(y.shape[0]):
+            self.kernel(0.0, y[k], self.p, f[k])
+        out = np.empty_like(yr)
+        out[:, :nz] = v
+        out[:, nz:2 * nz:2] = f[:, nz:2 * nz:2] + 2.0 * om * v[:, 1::2] + om * om * z[:, 0::2]
+        out[:, nz + 1:2 * nz:2] = f[:, nz + 1:2 * nz:2] - 2.0 * om * v[:, 0::2] + om * om * z[:, 1::2]
+        out[:, 2 * nz:2 * nz + nb] = yr[:, 2 * nz + nb:]
+        out[:, 2 * nz + nb:] = f[:, self.i_w:self.i_w + nb]
+        return out
+
+    def matrix(self, yr: np.ndarray) -> np.ndarray:
+        """The co-rotating Jacobian, fourth-order central differences as :meth:`Machine.linearize`."""
+        n = yr.size
+        e = np.diag(self.steps)
+        f = self.rhs_many(np.concatenate([yr + e, yr - e, yr + 2 * e, yr - 2 * e]))
+        f1, f2 = f[:n] - f[n:2 * n], f[2 * n:3 * n] - f[3 * n:]
+        return ((8.0 * f1 - f2) / (12.0 * self.steps[:, None])).T
+
+
 class MachineEquilibria:
     """The residual, Jacobian and spectrum of a machine's co-rotating equilibria in named parameters.
 
@@ -189,6 +249,7 @@ class MachineEquilibria:
         u = sum(x.magnitude for x in machine.unbalances) + sum(r.capacity for r in machine.races)
         self.z_scale = max(u / max(machine.structure.total_mass, 1e-300), 1e-12)
         self._machines: dict[tuple[float, ...], object] = {}
+        self._frames: dict[tuple[float, ...], _Frame] = {}
         self._spectra: dict[bytes, np.ndarray] = {}
 
     # ------------------------------------------------------------------ building blocks
@@ -203,8 +264,17 @@ class MachineEquilibria:
                 m._cache.setdefault("kernels", self.base.kernels)
             if len(self._machines) > 64:
                 self._machines.clear()
+                self._frames.clear()
             self._machines[key] = m
         return m
+
+    def frame(self, values) -> _Frame:
+        """The co-rotating right-hand side of the machine at parameter ``values`` (cached)."""
+        key = tuple(float(v) for v in values)
+        fr = self._frames.get(key)
+        if fr is None:
+            fr = self._frames[key] = _Frame(self.machine(key))
+        return fr
 
     def state(self, x) -> np.ndarray:
         """The co-rotating state at rest ``[z, 0, psi, 0]`` of ``x = (z, psi)``."""
@@ -228,10 +298,10 @@ class MachineEquilibria:
         refused by the model (a negative mass or damping: the corrector then shortens its step)."""
         u = np.asarray(u, dtype=float)
         try:
-            m = self.machine(u[self.n:])
+            fr = self.frame(u[self.n:])
         except ValueError:
             return np.full(self.n, np.nan)
-        f = m.rotating_rhs(self.state(u[:self.n]))
+        f = fr.rhs(self.state(u[:self.n]))
         return np.concatenate([f[self.nz:2 * self.nz], f[2 * self.nz + self.nb:]])
 
     def jacobian(self, u) -> np.ndarray:
@@ -251,17 +321,85 @@ class MachineEquilibria:
         u = np.asarray(u, dtype=float)
         return self.machine(u[self.n:]).linearize(self.state(u[:self.n]))
 
+    def matrix(self, u) -> np.ndarray:
+        """The co-rotating linearization's matrix at ``u`` (that of :meth:`linearization`)."""
+        u = np.asarray(u, dtype=float)
+        return self.frame(u[self.n:]).matrix(self.state(u[:self.n]))
+
     def eigenvalues(self, u) -> np.ndarray:
         """Eigenvalues of the co-rotating linearization at ``u`` (cached)."""
         u = np.asarray(u, dtype=float)
         key = u.tobytes()
         ev = self._spectra.get(key)
         if ev is None:
-            ev = self.linearization(u).eigenvalues
+            ev = np.linalg.eigvals(self.matrix(u))
             if len(self._spectra) > 4096:
                 self._spectra.clear()
             self._spectra[key] = ev
         return ev
+
+    def eigen_triplet(self, u, near: complex, previous=None) -> tuple[complex, np.ndarray, np.ndarray]:
+        """The eigenvalue of the linearization at ``u`` that continues a tracked one, with its right
+        and left eigenvectors (``w^H v = 1``).
+
+        Without ``previous`` (the last right eigenvector) the eigenvalue nearest ``near``; with
+        it, the one whose eigenvector is most parallel to ``previous`` among the eigenvalues
+        within a quarter of the spectral radius of ``near``: two pairs passing close to one
+        another are then told apart by their modes, not by their frequencies alone.
+        """
+        import scipy.linalg
+
+        u = np.asarray(u, dtype=float)
+        lam, w, v = scipy.linalg.eig(self.matrix(u), left=True, right=True)
+        self._spectra[u.tobytes()] = lam
+        dist = np.abs(lam - near)
+        k = int(np.argmin(dist))
+        if previous is not None:
+            close = np.flatnonzero(dist <= max(0.25 * np.abs(lam).max(), dist[k]))
+            overlap = np.abs(v[:, close].conj().T @ previous) / np.linalg.norm(v[:, close], axis=0)
+            k = int(close[np.argmax(overlap)])
+        vk, wk = v[:, k], w[:, k]
+        vk = vk / np.linalg.norm(vk)
+        wk = wk / np.conj(wk.conj() @ vk)
+        return complex(lam[k]), vk, wk
+
+    def eigenvalue_gradient(self, u, v: np.ndarray, w: np.ndarray) -> np.ndarray:
+        """``d lambda / d u`` of a simple eigenvalue with right and left eigenvectors ``v``, ``w``
+        (``w^H v = 1``): ``w^H (dA/du_j) v`` (first-order perturbation theory).
+
+        ``A(u) v`` is a directional derivative of the co-rotating right-hand side, so each entry
+        is a mixed second difference of it (steps 1e-4 of the typical sizes along v and the state,
+        the parameters' steps of :meth:`jacobian`):
+        8 right-hand-side calls per unknown, where differencing two linearizations costs 256.
+        """
+        u = np.asarray(u, dtype=float)
+        f0 = self.frame(u[self.n:])
+        vs = v / np.max(np.abs(v) / (1e3 * f0.steps))  # largest entry one typical size
+        h = 1e-4
+        sc = self.scale(u[self.n:])
+        # parameter steps those of :meth:`jacobian`: the machines built there are reused here
+        eps = np.where(np.arange(u.size) < self.n, 1e-4 * sc, 1e-6 * np.maximum(np.abs(u), sc))
+        y0 = self.state(u[:self.n])
+        dirs = h * np.array([vs.real, -vs.real, vs.imag, -vs.imag])  # (+re, -re, +im, -im)
+
+        def av(fr, ys):  # A v at each of the states ys, shape (k, n_state): (k, n_state) complex
+            f = fr.rhs_many((ys[:, None, :] + dirs[None]).reshape(-1, y0.size)).reshape(len(ys), 4, -1)
+            return ((f[:, 0] - f[:, 1]) + 1j * (f[:, 2] - f[:, 3])) / (2.0 * h)
+
+        shift = np.zeros((self.n, y0.size))
+        shift[np.arange(self.nz), np.arange(self.nz)] = eps[:self.nz]
+        shift[np.arange(self.nz, self.n), 2 * self.nz + np.arange(self.nb)] = eps[self.nz:self.n]
+        ys = np.concatenate([y0 + shift, y0 - shift])
+        a = av(f0, ys)
+        grad = np.empty(u.size, dtype=complex)
+        grad[:self.n] = (a[:self.n] - a[self.n:]) @ np.conj(w) / (2.0 * eps[:self.n])
+        for j in range(self.n, u.size):
+            p_hi, p_lo = u[self.n:].copy(), u[self.n:].copy()
+            p_hi[j - self.n] += eps[j]
+            p_lo[j - self.n] -= eps[j]
+            d = av(self.frame(p_hi), y0[None])[0] - av(self.frame(p_lo), y0[None])[0]
+            grad[j] = np.conj(w) @ d / (2.0 * eps[j])
+        return grad * (np.linalg.norm(v) / np.linalg.norm(vs))
 
     def amplitude(self, u) -> float:
         """The largest whirl radius of the structure's nodes (m)."""

@@ -87,16 +87,20 @@ class _Augmented:
 
     def __init__(self, prob: MachineEquilibria, kind: str, u0: np.ndarray, frequency: float):
         self.prob, self.kind, self.n = prob, kind, prob.n
+        self.vec = None
         if kind == "fold":
             jx = prob.jacobian(u0)[:, :self.n]
             w, _, vt = np.linalg.svd(jx)
             self.b, self.c = w[:, -1], vt[-1]
         else:
-            self.ref = complex(0.0, frequency)
+            self.restart(frequency)
+
+    def restart(self, frequency: float) -> None:
+        """Track the pair crossing at ``i frequency`` afresh (no eigenvector yet)."""
+        self.ref, self.vec = complex(0.0, frequency), None
 
     def crossing(self, u) -> complex:
-        ev = self.prob.eigenvalues(u)
-        return complex(ev[np.argmin(np.abs(ev - self.ref))])
+        return self.prob.eigen_triplet(u, self.ref, self.vec)[0]
 
     def condition(self, u) -> float:
         if self.kind == "hopf":
@@ -108,10 +112,14 @@ class _Augmented:
         return float(np.linalg.solve(a, rhs)[-1])
 
     def jacobian(self, u) -> np.ndarray:
-        """Rows of F from :meth:`MachineEquilibria.jacobian`; the condition's row by central
-        differences (steps 1e-4 of each unknown's scale: the condition holds a difference Jacobian
-        or a difference linearization itself)."""
+        """Rows of F from :meth:`MachineEquilibria.jacobian`; the condition's row: for a Hopf
+        curve the real part of the crossing eigenvalue's derivative (:meth:`MachineEquilibria.
+        eigenvalue_gradient`), for a fold curve central differences (steps 1e-4 of each unknown's
+        scale: the condition holds a difference Jacobian itself)."""
         u = np.asarray(u, dtype=float)
+        if self.kind == "hopf":
+            _, v, w = self.prob.eigen_triplet(u, self.ref, self.vec)
+            return np.vstack([self.prob.jacobian(u), self.prob.eigenvalue_gradient(u, v, w).real])
         row = np.empty(u.size)
         for j in range(u.size):
             h = 1e-4 * (self.scale[j] if j < self.n else max(abs(u[j]), self.scale[j]))
@@ -128,10 +136,10 @@ class _Augmented:
         return np.concatenate([f, [self.condition(u)]])
 
     def follow(self, point) -> float:
-        """Move the Hopf reference to the accepted point's crossing eigenvalue (a 'test' that never
-        changes sign)."""
+        """Move the Hopf reference to the accepted point's crossing eigenvalue and its mode (a
+        'test' that never changes sign)."""
         if self.kind == "hopf":
-            self.ref = self.crossing(point.u)
+            self.ref, self.vec, _ = self.prob.eigen_triplet(point.u, self.ref, self.vec)
         return 1.0
 
 
@@ -167,10 +175,10 @@ def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: 
         if (direction < 0 and p2 <= lo) or (direction > 0 and p2 >= hi):
             continue
         st = settings if settings is not None else ContinuationSettings(
-            ds=0.02, ds_min=1e-6, ds_max=0.25, max_points=200, newton_tol=1e-8, bounds=(lo, hi))
+            ds=0.02, ds_min=1e-6, ds_max=0.25, max_points=200, newton_tol=1e-8, bounds=(lo, hi), chord=True)
         st = ContinuationSettings(**{**st.__dict__, "bounds": (lo, hi), "direction": direction})
         if point.type == "hopf":
-            system.ref = complex(0.0, point.frequency)
+            system.restart(point.frequency)
         curve = continue_curve(system.residual, u0, jacobian=system.jacobian, scale=scale, settings=st,
                                tests={"follow": system.follow})
         halves.append(curve.u if direction > 0 else curve.u[::-1])
@@ -181,7 +189,7 @@ def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: 
         k0 = int(np.argmin(np.abs(u[:, -1] - p2)))
         keep = np.ones(len(u), bool)
         for order in (range(k0, len(u)), range(k0, -1, -1)):  # follow the pair outwards
-            system.ref = complex(0.0, point.frequency)
+            system.restart(point.frequency)
             for k in order:
                 lam = system.crossing(u[k])
                 big = max(np.abs(prob.eigenvalues(u[k])).max(), 1.0)
@@ -191,7 +199,7 @@ def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: 
                     ends = [e if (order.step > 0) != (j == 0) else "bogdanov-takens" for j, e in enumerate(ends)]
                     break
                 freq[k] = abs(lam.imag)
-                system.ref = complex(0.0, freq[k])
+                system.ref, system.vec, _ = prob.eigen_triplet(u[k], system.ref, system.vec)
         u, freq = u[keep], freq[keep]
     return TwoParameterCurve(type=point.type, parameters=(point.parameter, parameter2), values=u[:, -2:],
                              states=np.array([prob.state(v[:prob.n]) for v in u]), frequency=freq,
