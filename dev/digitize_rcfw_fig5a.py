@@ -1,6 +1,6 @@
 """Read the stability boundaries of Fig. 5(a) of Rodrigues et al. (2008) from its vector graphics.
 
-Usage: ``python dev/digitize_rcfw_fig5a.py abbspecialissue.pdf`` (the authors' preprint of
+Usage: ``python dev/digitize_rcfw_fig5a.py abbspecialissue.pdf`` (panels (a) and (d)) (the authors' preprint of
 "Automatic two-plane balancing for rigid rotors", University of Bristol, hdl 1983/946; also in
 the public repository github.com/djr41/thesis). Needs ``pypdf`` and matplotlib (not rotorlab
 dependencies: this is a one-off helper, its output is ``FIG5A_BOUNDARIES`` in
@@ -23,6 +23,10 @@ import numpy as np
 PAGE = 13  # zero-based: the page holding Fig. 5
 FRAME = (109.3, 499.0, 604.9, 750.3)  # x0, x1, y0, y1 of panel (a) in points
 AXES = (6.0, 0.04)  # Omega and m at the frame's right and top edges
+# Panel (d), the enlargement 2 <= Omega <= 4.5, 0.002 <= m <= 0.007 (its tick labels; the ticks
+# 0.001 apart are 28.9 points apart, the frame 5 of them high): x0, x1, y0, y1 and the axes' ranges.
+FRAME_D = (109.5, 281.3, 228.6, 373.1)
+AXES_D = ((2.0, 4.5), (0.002, 0.007))
 
 
 def _fills(path: str):
@@ -76,16 +80,18 @@ def _fills(path: str):
     return fills
 
 
-def boundaries(path: str, masses=(0.005, 0.01, 0.015, 0.02, 0.025, 0.03)):
+def boundaries(path: str, masses=(0.005, 0.01, 0.015, 0.02, 0.025, 0.03), *, frame=FRAME,
+               axes=((0.0, AXES[0]), (0.0, AXES[1])), step=0.01):
     from matplotlib.path import Path
 
-    x0, x1, y0, y1 = FRAME
+    x0, x1, y0, y1 = frame
+    (oa, ob), (ma, mb) = axes
     fills = _fills(path)
-    oms = np.arange(0.0, AXES[0] + 1e-9, 0.01)
+    oms = np.arange(oa, ob + 1e-9, step)
     out = {}
     for m in masses:
-        pts = np.column_stack([x0 + (x1 - x0) * oms / AXES[0],
-                               np.full(oms.size, y0 + (y1 - y0) * m / AXES[1])])
+        pts = np.column_stack([x0 + (x1 - x0) * (oms - oa) / (ob - oa),
+                               np.full(oms.size, y0 + (y1 - y0) * (m - ma) / (mb - ma))])
         shade = np.zeros(oms.size, bool)
         for grey, subs in fills:
             inside = np.zeros(oms.size, bool)
@@ -94,11 +100,14 @@ def boundaries(path: str, masses=(0.005, 0.01, 0.015, 0.02, 0.025, 0.03)):
                     inside ^= Path(np.array(s)).contains_points(pts)
             shade[inside] = grey < 0.9
         edges = np.flatnonzero(np.diff(shade.astype(int)))
-        out[m] = [(round(float(oms[i]), 2), round(float(oms[i + 1]), 2), 1 if shade[i + 1] else -1)
+        out[m] = [(round(float(oms[i]), 3), round(float(oms[i + 1]), 3), 1 if shade[i + 1] else -1)
                   for i in edges]
     return out
 
 
 if __name__ == "__main__":
     for m, b in boundaries(sys.argv[1]).items():
-        print(m, b)
+        print("(a)", m, b)
+    masses_d = np.round(np.arange(0.0026, 0.00701, 0.0002), 5)
+    for m, b in boundaries(sys.argv[1], masses_d, frame=FRAME_D, axes=AXES_D, step=0.005).items():
+        print("(d)", m, b)

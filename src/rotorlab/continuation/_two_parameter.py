@@ -209,16 +209,38 @@ def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: 
 def two_parameter_curves(model, result: ContinuationResult, parameter2: str, start2: float, stop2: float, *,
                          settings: ContinuationSettings | None = None) -> tuple[TwoParameterCurve, ...]:
     """The fold and Hopf curves through every fold and Hopf point of ``result`` (mirror images, at
-    the same parameter value and type, once)."""
+    the same parameter value and type, once; a point that an earlier curve passes through is
+    not continued again)."""
     seen: list[tuple[str, float]] = []
-    out = []
+    out: list[TwoParameterCurve] = []
+    p2 = current_value(as_machine(model), parameter2)
     for b in result.branches:
         for sp in b.special_points:
             if sp.type not in ("fold", "hopf"):
                 continue
             if any(t == sp.type and abs(v - sp.value) <= 1e-7 * max(1.0, abs(v)) for t, v in seen):
                 continue
+            if any(c.type == sp.type and _passes_through(c, sp, p2) for c in out):
+                continue  # two Hopf points of one curve (it crosses the branch's line twice)
             seen.append((sp.type, sp.value))
             out.append(continue_special_point(model, sp, parameter2, start2, stop2, settings=settings,
                                               label=b.label))
     return tuple(out)
+
+
+def _passes_through(curve: TwoParameterCurve, point: SpecialPoint, p2: float) -> bool:
+    """Whether ``curve`` crosses the line ``parameter2 = p2`` at ``point`` (its parameter value
+    and, on a Hopf curve, its frequency): between two of the curve's points, within a quarter
+    of their distance of the linear interpolation (the curve bends little between points)."""
+    v, f = curve.values, curve.frequency
+    d = v[:, 1] - p2
+    for k in np.flatnonzero(d[:-1] * d[1:] <= 0.0):
+        if d[k] == d[k + 1]:
+            continue
+        t = d[k] / (d[k] - d[k + 1])
+        near = abs(v[k, 0] + t * (v[k + 1, 0] - v[k, 0]) - point.value) <= 0.25 * abs(v[k + 1, 0] - v[k, 0]) + 1e-9
+        if curve.type == "hopf":
+            near = near and abs(f[k] + t * (f[k + 1] - f[k]) - point.frequency) <= 0.25 * abs(f[k + 1] - f[k]) + 1e-6 * point.frequency
+        if near:
+            return True
+    return False
