@@ -149,7 +149,8 @@ def test_disc_rotor_has_no_stable_balanced_state(eps):
     Hopf or fold point where it would gain stability; so is the branch continued in the ball mass
     (its damping per unit mass fixed) from m = eps to 4 eps at the conical speed of the long rotor."""
     disc = long_rotor(eps, eps, jt=0.5, jp=0.9)
-    r = continue_equilibria(disc, "drive.speed", 0.25, 6.0, start_from="main 0")
+    r = continue_equilibria(disc, "drive.speed", 0.25, 6.0, start_from="main 0",
+                            settings=equilibrium_settings(0.25, 6.0, ds_max=0.01))
     (b,) = [b for b in r.branches if b.label == "main 0"]
     assert b.values[0] == 0.25 and b.values[-1] == 6.0
     assert not np.any(b.stable) and not any(s.changes_stability for s in b.special_points)

@@ -48,12 +48,14 @@ __all__ = ["continue_equilibria", "equilibrium_settings", "describe_branch"]
 def equilibrium_settings(start: float, stop: float, **kw) -> ContinuationSettings:
     """Stepping for a branch from ``start`` to ``stop`` (the arclength's parameter unit is the range).
 
-    Steps of at most 1 % of the range (in the scaled arclength): two Hopf points closer together
-    than a step leave the Hopf test's sign unchanged and are not seen, so a narrow stable window
-    (Rodrigues et al. 2008, Fig. 5(a) at m = 0.015: 0.012 rad/s wide) needs ``ds_max`` smaller.
+    Steps of at most 5 % of the range (in the scaled arclength, states included): two Hopf points
+    closer together than a step leave the Hopf test's sign unchanged and are not seen, so a
+    narrow stable window needs ``ds_max`` smaller (Rodrigues et al. 2008, Fig. 5(a): 0.012 rad/s
+    wide at m = 0.015, found with ``ds_max=0.0025`` over 1.5-6 rad/s,
+    tests/validation/test_continuation_rcfw.py).
     """
     lo, hi = min(start, stop), max(start, stop)
-    base = dict(ds=0.01, ds_min=1e-7, ds_max=0.01, max_points=1000, newton_tol=1e-11, locate_tol=1e-10,
+    base = dict(ds=0.01, ds_min=1e-7, ds_max=0.05, max_points=1000, newton_tol=1e-11, locate_tol=1e-10,
                 bounds=(lo, hi), direction=1 if stop > start else -1)
     base.update(kw)
     return ContinuationSettings(**base)
