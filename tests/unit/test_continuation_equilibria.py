@@ -120,3 +120,25 @@ def test_bad_parameter_and_no_frame_say_why():
         continue_equilibria(aniso, "drive.speed", 1.0, 2.0)
     with pytest.raises(ValueError, match="no balanced steady motion at ball_mass = 0.004"):
         continue_equilibria(m, "ball_mass", 0.004, 0.003)
+
+
+def test_balls_with_friction_continue_the_smooth_part_and_say_so():
+    """Issue 25: equilibria of the smooth part of a model with events. With Coulomb and rolling
+    friction on the balls (stick-slip: events) the steady motions are those of the machine
+    without it, balls resting on their races with no friction torque needed; the result says so
+    (refused before). The balanced branch and its pitchfork at U / (2 l) are those of the
+    smooth machine, to the bit."""
+    from dataclasses import replace
+
+    smooth = machine()
+    rough = replace(smooth, races=(BallRace(0, L, (Ball(MB, damping=0.01, coulomb=0.05, rolling=1e-3),) * 2),))
+    assert rough.has_friction and rough.why_no_rotating_frame() is not None
+    a = continue_equilibria(rough, "ball_mass", 0.02, 0.003, switch=False)
+    b = continue_equilibria(smooth, "ball_mass", 0.02, 0.003, switch=False)
+    np.testing.assert_array_equal(a.branches[0].values, b.branches[0].values)
+    np.testing.assert_array_equal(a.branches[0].stable, b.branches[0].stable)
+    (bp,) = a.branches[0].special_points
+    assert bp.type == "branch" and abs(bp.value - U / (2 * L)) < 1e-8 * U / (2 * L)
+    (note,) = a.notes
+    assert "friction is left out" in note and "smooth part" in note and "stick-slip" in note
+    assert a.to_dict()["notes"] == [note] and "notes" not in b.to_dict()

@@ -9,6 +9,7 @@ stability chart (``machine_steady``: the largest real part of the exact eigenval
 """
 
 import numpy as np
+import pytest
 from scipy.optimize import brentq
 
 from rotorlab.analyses._machine_steady import machine_steady
@@ -54,3 +55,25 @@ def test_hopf_curve_speed_by_ball_damping_matches_one_parameter_runs_and_the_cha
     crossing = brentq(lambda s: float(machine_steady(mk, [s]).max_real_eigenvalue[0]), 0.5 * w, 1.5 * w,
                       xtol=1e-13, rtol=1e-14)
     assert abs(crossing - w) < 1e-6 * w
+
+
+def test_speed_by_support_anisotropy_is_refused_saying_what_it_needs():
+    """Issue 25's speed x support anisotropy: a parameter that makes the supports anisotropic
+    (washer-horizontal's bearing cross-stiffness kxy; its gravity and cabinet left out so that the
+    rest has co-rotating equilibria) is refused before anything runs, saying why and what would
+    be needed; an isotropic one of the same machine (kxx sets both directions) is continued."""
+    from dataclasses import replace
+
+    from rotorlab.analyses import build_model
+    from rotorlab.continuation import MachineEquilibria
+    from rotorlab.io import load_case
+
+    m = replace(build_model(load_case("washer-horizontal").model), gravity=None, clearances=())
+    m = with_value(m, "drive.speed", 100.0)
+    with pytest.raises(ValueError) as err:
+        MachineEquilibria(m, ("drive.speed", "structure.bearings[0].kxy"))
+    text = str(err.value)
+    assert text.startswith("structure.bearings[0].kxy makes the supports anisotropic")
+    assert "no steady motion in the co-rotating frame" in text and "not implemented" in text
+    assert "forced periodic motions" in text
+    MachineEquilibria(m, ("drive.speed", "structure.bearings[0].kxx"))  # isotropic: accepted

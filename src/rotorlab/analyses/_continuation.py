@@ -64,8 +64,9 @@ def run_continuation_analysis(case_model, analysis, progress=None):
     with ``param2`` over the speed, today's grid chart (``chart_stable``, ``chart_exists`` over
     ``chart_value`` x ``chart_speed``: :func:`rotorlab.analyses.machine_steady`), and the JSON of
     the result in ``attrs["result"]``."""
-    from rotorlab.continuation import continue_equilibria, with_value
+    from rotorlab.continuation import continue_equilibria, smooth_part_note, with_value
 
+    from rotorlab.analyses._case import build_model
     from rotorlab.analyses._continuation_periodic import PERIODIC_STARTS, periodic_branches
 
     machine = continuation_machine(case_model, analysis)
@@ -84,6 +85,11 @@ def run_continuation_analysis(case_model, analysis, progress=None):
         orbits, started = periodic_branches(case_model, analysis, result, machine.basis)
         result = replace(result, branches=result.branches + tuple(orbits)) if result is not None else \
             ContinuationResult(tuple(orbits), units={analysis.param: "rad/s"})
+    note = smooth_part_note(build_model(case_model))  # ball friction: the smooth part was continued
+    if note and note not in result.notes:
+        from dataclasses import replace
+
+        result = replace(result, notes=result.notes + (note,))
     if progress is not None:
         progress(1, total)
     ds = result.to_dataset()

@@ -134,7 +134,7 @@ def periodic_branches(case_model, analysis, equilibria=None, equilibria_basis=No
         y0, said = _whirl_start(model, om)
         orbit = orbit_from_simulation(rot, y0, t_settle=T_SETTLE, t_window=T_WINDOW, params=at(om), angles=angles,
                                       segments=5, parameter=analysis.param, value=om)
-        return [continue_periodic(rot, orbit, at, parameter=analysis.param, label="whirl",
+        return [continue_periodic(rot, orbit, at, parameter=analysis.param, label="whirl", unit="rad/s",
                                   settings=_settings(analysis, om))], said
     hopfs: list[Any] = []
     for b in equilibria.branches:
@@ -151,7 +151,7 @@ def periodic_branches(case_model, analysis, equilibria=None, equilibria_basis=No
         orbit = orbit_from_hopf(rot, x0, s.value, at, parameter=analysis.param, amplitude=1e-3, segments=5,
                                 state_scale=scale)
         label = f"born at the Hopf point of {born}, {s.value * 30 / math.pi:.6g} rpm"
-        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label=label,
+        out.append(continue_periodic(rot, orbit, at, parameter=analysis.param, label=label, unit="rad/s",
                                      settings=_settings(analysis, s.value, HOPF_ORBITS),
                                      state_scale=np.r_[[1e-3] * 2, [0.1] * 2, [1.0] * (2 * nb)]))
     return out, ""  # each branch's label says where it was born

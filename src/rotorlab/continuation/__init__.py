@@ -30,6 +30,7 @@ from rotorlab.continuation._machine_problem import (
     current_value,
     format_value,
     parameter_unit,
+    smooth_part_note,
     starting_motions,
     with_value,
 )
@@ -51,6 +52,7 @@ __all__ = [
     "equilibrium_settings",
     "format_value",
     "parameter_unit",
+    "smooth_part_note",
     "starting_motions",
     "with_value",
     "SPECIAL_POINT_TYPES",

@@ -37,6 +37,7 @@ from rotorlab.continuation._machine_problem import (
     as_machine,
     format_value,
     parameter_unit,
+    smooth_part_note,
     starting_motions,
     with_value,
 )
@@ -184,8 +185,10 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
 
     Parameters
     ----------
-    model : rotorlab.models.Machine
-        Isotropic, constant speed (its co-rotating frame has equilibria).
+    model : rotorlab.models.Machine or JeffcottBalls
+        Isotropic, constant speed (its co-rotating frame has equilibria). Balls with friction:
+        the steady motions of the smooth part, friction left out, and ``notes`` says so
+        (:func:`rotorlab.continuation.smooth_part_note`).
     parameter : str
         ``drive.speed``, ``ball_mass``, ``ball_damping`` or a key path
         (:func:`rotorlab.continuation.with_value`), SI.
@@ -234,6 +237,7 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
     >>> [(s.type, round(s.value, 9)) for s in r.branches[0].special_points]
     [('branch', 0.005)]
     """
+    notes = tuple(n for n in (smooth_part_note(model),) if n)
     model = as_machine(model)
     start, stop = float(start), float(stop)
     if not (math.isfinite(start) and math.isfinite(stop)) or start == stop:
@@ -285,11 +289,11 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
                 curves.append((new, f"{_kind(prob, mid)} (from {label} at "
                                     f"{format_value(z.point.lam, unit)})"))
     branches = tuple(build.branch(c, lab) for c, lab in curves)
-    result = ContinuationResult(branches, units={parameter: unit})
+    result = ContinuationResult(branches, units={parameter: unit}, notes=notes)
     if parameter2 is None:
         return result
     from rotorlab.continuation._two_parameter import two_parameter_curves
 
     lines = two_parameter_curves(model, result, parameter2, *range2)
     return ContinuationResult(branches, units={parameter: unit, parameter2: parameter_unit(model, parameter2)},
-                              curves=lines)
+                              curves=lines, notes=notes)

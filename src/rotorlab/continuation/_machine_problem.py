@@ -24,7 +24,7 @@ import numpy as np
 
 from rotorlab._constants import RPM_PER_RAD_S
 
-__all__ = ["NAMED_PARAMETERS", "as_machine", "with_value", "current_value", "parameter_unit", "format_value", "MachineEquilibria",
+__all__ = ["NAMED_PARAMETERS", "as_machine", "smooth_part_note", "with_value", "current_value", "parameter_unit", "format_value", "MachineEquilibria",
            "starting_motions", "START_KINDS"]
 
 #: Parameters that set every ball at once (the stability chart's names): name -> (Ball field, unit,
@@ -123,20 +123,26 @@ def parameter_unit(model, name: str) -> str:
 
 
 def as_machine(model):
-    """``model`` as a :class:`rotorlab.models.Machine`: a Machine itself, or the planar machine a
-    :class:`rotorlab.models.JeffcottBalls` rotor is (one node, its translation modes only, one race
-    of its balls, the disc's unbalance ``M1 e``; the same right-hand side, tests/unit/test_machine.py).
+    """``model`` as a :class:`rotorlab.models.Machine` without ball friction: a Machine itself, or the
+    planar machine a :class:`rotorlab.models.JeffcottBalls` rotor is (one node, its translation
+    modes only, one race of its balls, the disc's unbalance ``M1 e``; the same right-hand side,
+    tests/unit/test_machine.py). Balls with Coulomb or rolling friction lose it: the smooth part
+    of the model (:func:`smooth_part_note` says so).
 
     Raises
     ------
     ValueError
-        Another model, balls of different radii or with friction (no co-rotating equilibria).
+        Another model, or balls of different radii.
     """
     from rotorlab.linear import LinearSystem
     from rotorlab.models import Ball, BallRace, JeffcottBalls, Machine, Unbalance
 
     if isinstance(model, Machine):
-        return model
+        if not model.has_friction:
+            return model
+        races = tuple(replace(r, balls=tuple(replace(b, coulomb=0.0, rolling=0.0) for b in r.balls))
+                      for r in model.races)
+        return replace(model, races=races)
     if not isinstance(model, JeffcottBalls):
         raise ValueError(f"continuation of steady motions needs a machine with balls or a jeffcott_balls "
                          f"rotor, got {type(model).__name__}")
@@ -144,9 +150,6 @@ def as_machine(model):
     radii = {b.radius for b in model.balls}
     if len(radii) != 1:
         raise ValueError("the balls run on races of different radii: build the machine with one race per radius")
-    if any(getattr(b, "friction", 0.0) > 0 for b in model.balls):
-        raise ValueError("the balls have friction (stick-slip): steady motions are not equilibria of a smooth "
-                         "system; simulate instead")
     radius = radii.pop()
     m1, c, d = r.disc_mass, r.stiffness, r.damping
     # the tilt of the single node carries nothing (n_modes = 2 keeps the translations: stiffer tilt)
@@ -155,6 +158,31 @@ def as_machine(model):
     balls = tuple(Ball(b.mass, inertia=b.inertia - b.mass * radius ** 2, damping=b.damping) for b in model.balls)
     return Machine(s, races=(BallRace(0, radius, balls),), unbalances=(Unbalance(0, m1 * r.eccentricity),),
                    drive=model.speed, n_modes=2)
+
+
+def smooth_part_note(model) -> str:
+    """What a continuation of ``model``'s steady motions computed when its balls have friction
+    (empty if they have none): the steady motions of its smooth part, ball friction left out.
+
+    In a steady motion of the co-rotating frame every ball rests on its race, so the stick-slip
+    law's only smooth branch there is sticking with the torque it needs: none, where the smooth
+    part is in equilibrium. Each equilibrium found is therefore also a steady motion of the model
+    with friction (its balls stuck, within any friction cone); its eigenvalues, and so the
+    stability labels, are those of the smooth part (a stuck ball resists small disturbances that
+    these eigenvalues let it follow; stick-slip is not smooth, and no periodic orbit of it is
+    continued).
+    """
+    from rotorlab.models import Machine
+
+    if isinstance(model, Machine):
+        rough = model.has_friction
+    else:
+        rough = any(getattr(b, "friction", 0.0) > 0 for b in getattr(model, "balls", ()))
+    if not rough:
+        return ""
+    return ("the balls' Coulomb and rolling friction is left out: these are the steady motions of the smooth "
+            "part of the model (each is also a steady motion with friction, its balls stuck with no friction "
+            "torque needed); eigenvalues and stability labels are the smooth part's, not those of stick-slip")
 
 
 def format_value(value: float, unit: str) -> str:
@@ -170,6 +198,31 @@ def format_value(value: float, unit: str) -> str:
     if unit == "rad":
         return f"{math.degrees(value):.4g} deg"
     return f"{value:.4g} {unit}"
+
+
+def _refuse_anisotropy(machine, name: str, setter) -> None:
+    """ValueError if changing ``name`` makes the supports anisotropic (speed x support anisotropy:
+    an anisotropic machine has no co-rotating equilibria to continue)."""
+    if name == "drive.speed":
+        return
+    value = current_value(machine, name)
+    for probe in (value * (1.0 + 1e-3), value + 1.0):  # relative, and absolute where it is 0
+        try:
+            other = setter(machine, probe)
+        except ValueError:
+            continue  # a value the parameter refuses: nothing to learn about isotropy
+        if not other.structure.is_isotropic:
+            break
+    else:
+        return
+    raise ValueError(
+        f"{name} makes the supports anisotropic (x and y differ): an anisotropic machine has no steady "
+        "motion in the co-rotating frame (its rotor whirls at twice the speed in it), so there are no "
+        "equilibria, folds or Hopf points to continue in it. What would be needed: the forced periodic "
+        "motions of the anisotropic machine (period one revolution) continued by shooting, with their "
+        "Floquet multipliers, and their stability boundaries continued in two parameters; not "
+        "implemented. What works today: one simulation per anisotropy (rotorlab run / basin with the "
+        "supports' kxx and kyy set), and the steady motions at the isotropic supports")
 
 
 class _Frame:
@@ -242,6 +295,8 @@ class MachineEquilibria:
             raise ValueError("the machine has no balls: its only steady motion is the unbalance response")
         self.names = tuple(names)
         self.setters = [_parse(machine, n)[0] for n in self.names]
+        for name, setter in zip(self.names, self.setters):
+            _refuse_anisotropy(machine, name, setter)
         self.units = {n: _parse(machine, n)[1] for n in self.names}
         self.base = machine
         self.nz, self.nb = machine.n_coordinates, machine.n_balls

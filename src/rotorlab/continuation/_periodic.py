@@ -21,6 +21,7 @@ import numpy as np
 
 from rotorlab.continuation import _floquet as fq
 from rotorlab.continuation._core import ContinuationSettings, CurvePoint, _Stepper, continue_curve, fold_test
+from rotorlab.continuation._machine_problem import format_value
 from rotorlab.continuation._result import SPECIAL_POINT_TYPES, Branch, SpecialPoint
 from rotorlab.continuation._shooting import BACKEND, Shooting, refuse_events, steps_per_period
 from rotorlab.integrate import SaveAt, StepControl, solve_ensemble
@@ -280,7 +281,7 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
                       parameter: str | None = None, settings: ContinuationSettings = ContinuationSettings(),
                       parameter_scale: float | None = None, state_scale: Any = None,
                       amplitude: Sequence[int] = (0, 1), trivial_tol: float = 1e-4,
-                      label: str = "periodic orbit") -> Branch:
+                      label: str = "periodic orbit", unit: str | None = None) -> Branch:
     """Continue a periodic orbit in a parameter by multiple shooting.
 
     Parameters
@@ -308,6 +309,10 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
         (unresolved), and ``extra["trivial_multiplier_error"]`` says so.
     label : str
         What the branch is, for people.
+    unit : str, optional
+        The parameter's SI unit: the special points' sentences then give its value as people
+        read it (rad/s as rpm, kg as g: :func:`rotorlab.continuation.format_value`); without
+        one, the plain number.
 
     Returns
     -------
@@ -362,6 +367,11 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
             continue  # a neutral saddle, or an unresolved zero: not a bifurcation
         if c.name == "branch" and c.index in folds:
             continue  # the multiplier +1 of a fold, reported as the fold
+        if c.name in ("fold-of-cycles", "branch") and c.index == 1 and orbit.tangent is not None:
+            # born at a Hopf point: the parameter moves as the amplitude squared and the radial
+            # multiplier is 1 + O(amplitude^2), so both tests are zero to round-off at the first
+            # orbit and change sign there by noise; the orbit's birth, not a bifurcation of it
+            continue
         x, period, lam = shoot.unpack(c.point.u)
         freq = math.nan
         if c.name == "torus":
@@ -371,7 +381,8 @@ def continue_periodic(model: Any, orbit: PeriodicOrbit, params_at: Callable[[flo
         change = _stability_change(stable, c.index)
         specials.append(SpecialPoint(
             type=c.name, parameter=parameter, value=lam, state=x[0].copy(), index=c.index, frequency=freq,
-            description=f"{label}: {_WORDS.get(c.name, SPECIAL_POINT_TYPES[c.name])}, at {parameter} = {lam:.10g} "
+            description=f"{label}: {_WORDS.get(c.name, SPECIAL_POINT_TYPES[c.name])}, at {parameter} = "
+                        f"{format_value(lam, unit) if unit else f'{lam:.10g}'} "
                         f"(period {period:.6g} s){change}" + ("" if c.converged else " (location not converged)")))
     return Branch(
         kind="periodic", parameter=parameter, values=np.array([i["value"] for i in infos]),

@@ -156,16 +156,20 @@ class ContinuationResult:
     """Every branch of one continuation run, with the model's units of the parameters, and the
     fold and Hopf curves in a second parameter (objects with ``type``, ``parameters``, ``values``
     (n, 2), ``frequency`` (n,), ``label`` and ``to_dict()``, e.g.
-    :class:`rotorlab.continuation.TwoParameterCurve`)."""
+    :class:`rotorlab.continuation.TwoParameterCurve`), and notes on what was computed (the
+    smooth part of a model with ball friction: JSON ``"notes"``)."""
 
     branches: tuple[Branch, ...]
     units: dict[str, str] = field(default_factory=dict)
     curves: tuple[Any, ...] = ()
+    notes: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         d = {"branches": [b.to_dict() for b in self.branches], "units": dict(self.units)}
         if self.curves:
             d["curves"] = [c.to_dict() for c in self.curves]
+        if self.notes:
+            d["notes"] = list(self.notes)
         return d
 
     def to_dataset(self):
@@ -202,7 +206,7 @@ class ContinuationResult:
                 "label": ("branch", [b.label for b in self.branches]),
                 "parameter": ("branch", [b.parameter for b in self.branches]),
             },
-            attrs={"analysis": "continuation",
+            attrs={"analysis": "continuation", "notes": json.dumps(list(self.notes)),
                    "special_points": json.dumps([[{**s.to_dict(), "index": s.index, "boundary": s.changes_stability,
                                                    "amplitude_m": _num(s.amplitude)}
                                                   for s in b.special_points] for b in self.branches])},

@@ -15,6 +15,7 @@ Example::
 
 from __future__ import annotations
 
+import math
 import re
 from typing import Annotated, Any, ClassVar, Literal
 
@@ -29,6 +30,7 @@ __all__ = ["ContinuationSpec", "continuation_dimension", "CONTINUATION_NAMES"]
 CONTINUATION_NAMES: tuple[tuple[str, str, str], ...] = (
     (r"drive\.speed", "angular_speed", "drive.speed"),
     (r"ball_mass", "mass", "ball_mass (every ball)"),
+    (r"ball_mass_scaled_damping", "mass", "ball_mass_scaled_damping (every ball, its damping per unit mass kept)"),
     (r"ball_damping", "torque_damping", "ball_damping (every ball)"),
     (r"races\[\d+\]\.balls\[\d+\]\.mass", "mass", "races[i].balls[j].mass"),
     (r"races\[\d+\]\.balls\[\d+\]\.damping", "torque_damping", "races[i].balls[j].damping"),
@@ -40,6 +42,10 @@ CONTINUATION_NAMES: tuple[tuple[str, str, str], ...] = (
 
 #: Any other key path of the model's named parameters (its values then plain SI numbers).
 _KEY_PATH = re.compile(r"[a-z_][a-z0-9_]*(\[\d+\])?(\.[a-z_][a-z0-9_]*(\[\d+\])?)*")
+
+#: How a range is said for people, by dimension: (unit, factor from SI).
+_PEOPLE = {"angular_speed": ("rpm", 30.0 / math.pi), "mass": ("g", 1e3), "length": ("mm", 1e3),
+           "angle": ("deg", 180.0 / math.pi)}
 
 _STARTS = re.compile(r"balanced|side|all|hopf|simulation|main[+-]|main \d+|side [01]+")
 
@@ -176,8 +182,17 @@ class ContinuationSpec(AbstractAnalysisSpec):
         """Return a one-line description."""
         what = f"the whirl orbits from {self.start_from}" if self.start_from in ("hopf", "simulation") else \
             f"the {self.start_from} steady motions"
-        text = f"continuation of {what} in {self.param} from {self.range[0]:.6g} " \
-               f"to {self.range[1]:.6g} (SI)"
+        text = f"continuation of {what} in {self.param} {_people(self.param, *self.range)}"
         if self.param2 is not None:
-            text += f"; fold and Hopf curves in {self.param2} ({self.range2[0]:.6g} to {self.range2[1]:.6g})"
+            text += f"; fold and Hopf curves in {self.param2} ({_people(self.param2, *self.range2)})"
         return text
+
+
+def _people(name: str, a: float, b: float) -> str:
+    """``from A to B`` in the unit people read for the parameter's dimension (rpm, g, mm, deg), else SI.
+
+    >>> _people("drive.speed", 52.35987755982988, 314.1592653589793)
+    'from 500 to 3000 rpm'
+    """
+    unit, k = _PEOPLE.get(continuation_dimension(name) or "", ("(SI)", 1.0))
+    return f"from {a * k:.6g} to {b * k:.6g} {unit}"
