@@ -113,6 +113,12 @@ def test_bautin_fold_of_cycles_located():
     r2 = branch.amplitude**2
     assert np.all(branch.stable == (r2 > 0.5))
     assert np.allclose(branch.values + r2 - r2**2, 0.0, atol=1e-7)  # mu = r^4 - r^2
+    assert "at mu = -0.24999999" in fold.description  # no unit: the plain number
+    # with the parameter's unit the sentence is in people's units (rad/s read as rpm)
+    said = continue_periodic(model, start, at, parameter="mu", state_scale=1.0, unit="rad/s",
+                             settings=ContinuationSettings(ds=0.02, ds_max=0.1, max_points=80, bounds=(-1.0, 0.3)))
+    (fold2,) = said.special_points
+    assert fold2.value == fold.value and f"at mu = {-0.25 * 30 / math.pi:.4g} rpm (period" in fold2.description
 
 
 def _mathieu_monodromy(delta, eps, c):
