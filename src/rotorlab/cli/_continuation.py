@@ -69,6 +69,7 @@ def continue_command(
     sets: SetOpt = None,
     param: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--param", metavar="NAME=START:STOP", help="The continued parameter and its range (drive.speed, ball_mass, "
+        "ball_mass_scaled_damping, "
         "ball_damping, races[i].balls[j].mass, unbalances[i].magnitude ...; SI or with a unit: "
         "drive.speed=1000rpm:3000rpm).")] = None,
     param2: Annotated[Optional[str], typer.Option(  # noqa: UP007
