@@ -127,3 +127,24 @@ def test_from_hopf_starts_an_orbit_at_the_hopf_point_with_its_period():
     assert first["period_s"] == pytest.approx(2 * math.pi / h["frequency_rad_s"], rel=1e-5)
     assert first["amplitude_m"] < 1e-5 < max(p["amplitude_m"] for p in orbit["points"])
     assert orbit["label"].startswith("born at the Hopf point of main")
+
+
+def test_orbits_born_at_hopf_points_have_no_bifurcation_at_their_birth(monkeypatch):
+    """zhakash-k2 from 800 to 3000 rpm, the first 6 orbits of each Hopf point's branch: at the
+    first step away from a Hopf point the parameter moves as the amplitude squared and a second
+    multiplier is 1 + O(amplitude^2), so the fold and branch tests are zero to round-off there.
+    Before, side 01's orbits reported a fold of cycles at 1077.3 rpm and a branch point at
+    1468.8 rpm, each at its Hopf point's speed to 2e-10: the orbits' birth, not a bifurcation."""
+    import rotorlab.analyses._continuation_periodic as cp
+
+    monkeypatch.setattr(cp, "HOPF_ORBITS", 6)
+    res = runner.invoke(app, ["continue", "zhakash-k2", "--param", "drive.speed=800rpm:3000rpm", "--from", "hopf",
+                              "--json"])
+    assert res.exit_code == 0, res.output
+    doc = json.loads(res.stdout[res.stdout.index("{"):])
+    hopf = sorted({round(s["drive.speed"], 6) for b in doc["branches"] if b["kind"] == "equilibrium"
+                   for s in b["special_points"] if s["type"] == "hopf"})
+    orbits = [b for b in doc["branches"] if b["kind"] == "periodic"]
+    assert len(hopf) == 3 and len(orbits) == 3  # main+ at 1371 rpm, side 01 at 1077 and 1469 rpm
+    for b in orbits:
+        assert len(b["points"]) == 6 and b["special_points"] == [], b["special_points"]
