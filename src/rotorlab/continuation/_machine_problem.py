@@ -216,13 +216,15 @@ def _refuse_anisotropy(machine, name: str, setter) -> None:
     else:
         return
     raise ValueError(
-        f"{name} makes the supports anisotropic (x and y differ): an anisotropic machine has no steady "
-        "motion in the co-rotating frame (its rotor whirls at twice the speed in it), so there are no "
-        "equilibria, folds or Hopf points to continue in it. What would be needed: the forced periodic "
-        "motions of the anisotropic machine (period one revolution) continued by shooting, with their "
-        "Floquet multipliers, and their stability boundaries continued in two parameters; not "
-        "implemented. What works today: one simulation per anisotropy (rotorlab run / basin with the "
-        "supports' kxx and kyy set), and the steady motions at the isotropic supports")
+        f"{name} makes the supports anisotropic (x and y differ): the machine's equations in the co-rotating "
+        "frame then depend on time (the supports turn against it, twice per revolution), so its steady motions "
+        "are periodic there and their stability is a Floquet problem (even the balanced state, rotor at rest, "
+        "has a periodic linearization); there are no equilibria, folds or Hopf points to continue. What would be "
+        "needed: the forced periodic motions (period one revolution) solved by shooting with their Floquet "
+        "multipliers, continued in the anisotropy at a fixed speed (the forcing period fixed), and their "
+        "stability boundaries continued in two parameters; not implemented. What works today: simulations "
+        "per anisotropy (rotorlab run or basin with the supports' stiffnesses set), and the steady motions at "
+        "isotropic supports")
 
 
 class _Frame:
