@@ -7,11 +7,32 @@ the other's package.
 
 from __future__ import annotations
 
+import contextlib
+import contextvars
 import os
 import threading
+from collections.abc import Iterator
 from pathlib import Path
 
-__all__ = ["BUILD_LOCK", "cache_dir"]
+__all__ = ["BUILD_LOCK", "cache_dir", "compiling_for", "compile_label"]
+
+_FOR: contextvars.ContextVar[str | None] = contextvars.ContextVar("rotorlab_compiling_for", default=None)
+
+
+def compiling_for() -> str | None:
+    """What a compile started now is for, as people name it (``case 'pico21-balancer', analysis
+    'vibration-one-race'``), or None outside :func:`compile_label`."""
+    return _FOR.get()
+
+
+@contextlib.contextmanager
+def compile_label(text: str) -> Iterator[None]:
+    """Name what the compiles started in this block are for (the compile notices show it)."""
+    token = _FOR.set(text)
+    try:
+        yield
+    finally:
+        _FOR.reset(token)
 
 # Generating and importing a copy is done by one thread at a time (threads of one process, e.g.
 # the thread workers of rotorlab.sweep's local Dask cluster, may ask for the same driver at once):

@@ -281,11 +281,14 @@ _LOADED: dict[str, Any] = {}
 
 
 def _deps_hash(source: str) -> str:
+    import llvmlite
     import numba
+    import numpy
 
     from rotorlab._kernels import _vmath, speed
 
-    h = hashlib.sha256(numba.__version__.encode())
+    # the versions that make a compiled binary (the drivers link this module's cached kernels)
+    h = hashlib.sha256(f"{numba.__version__} {numpy.__version__} {llvmlite.__version__}".encode())
     h.update(sys.version.encode())
     h.update(source.encode())
     from rotorlab._kernels import contact
@@ -324,6 +327,9 @@ def _import(lay: Layout, source: str, digest: str, directory: Path | None):
         os.replace(tmp, path)
     spec = importlib.util.spec_from_file_location(name, path)
     module = importlib.util.module_from_spec(spec)
+    # its name carries the hash of every source it depends on (_deps_hash): the drivers may link
+    # its numba-cached kernels as they are (rotorlab.integrate._core._own), one compile per model
+    module.KEYED_BY_SOURCES = True
     sys.modules[name] = module
     spec.loader.exec_module(module)
     return module

@@ -15,6 +15,7 @@ import json
 from collections.abc import Callable
 from typing import TYPE_CHECKING, Any
 
+from rotorlab._compile_cache import compile_label
 from rotorlab.analyses._registry import ANALYSIS_TYPES, MODEL_TYPES, analysis_entry
 
 if TYPE_CHECKING:
@@ -149,7 +150,8 @@ def run_case(case: Case,
             def report(done: int, total: int, name: str = analysis.name) -> None:
                 progress(name, done, total)
 
-        ds = run_analysis(case.model, analysis, progress=report)
+        with compile_label(f"case '{case.name}', analysis '{analysis.name}'"):
+            ds = run_analysis(case.model, analysis, progress=report)
         ds.attrs["case"] = case.name
         results[analysis.name] = ds
     return results

@@ -49,7 +49,7 @@ import types
 from pathlib import Path
 from typing import Any
 
-from rotorlab._compile_cache import BUILD_LOCK, cache_dir
+from rotorlab._compile_cache import BUILD_LOCK, cache_dir, compiling_for
 
 __all__ = ["build", "dependencies", "source_digest", "cache_dir", "announce_compile"]
 
@@ -308,24 +308,32 @@ def _cached(
     mod_name = f"_rotorlab_gen_{stem}"
     if mod_name in sys.modules:
         return vars(sys.modules[mod_name])
+    announced = None
     if names:  # a sibling without kernels is compiled as part of the template that imports it
-        lanes = f"{all_consts['LANES']}-lane integrator" if "LANES" in all_consts else "integrator"
-        announce_compile(directory, stem, f"{lanes} for {mod.rsplit('.', 1)[-1]}")
+        lanes = f"{all_consts['LANES']}-lane integrator" if "LANES" in all_consts else "scalar integrator"
+        announced = announce_compile(directory, stem, f"{lanes} for {compiling_for() or 'this model'}")
     spec = importlib.util.spec_from_file_location(mod_name, path)
     assert spec is not None and spec.loader is not None
     module = importlib.util.module_from_spec(spec)
     sys.modules[mod_name] = module
     spec.loader.exec_module(module)
+    if announced:  # rotorlab.integrate._drivers says when its compile is done
+        module._ANNOUNCED = announced
     return vars(module)
 
 
-def announce_compile(directory: Path, stem: str, what: str) -> None:
+def announce_compile(directory: Path, stem: str, what: str) -> str | None:
     """Log (logger ``rotorlab.compile``, INFO) that ``stem`` has no numba cache yet: the first
-    call compiles it (tens of seconds). The command line shows this on stderr."""
-    if not any((directory / "__pycache__").glob(f"{stem}.*.nbi")):
-        import logging
+    call compiles it (tens of seconds). The command line shows this on stderr.
 
-        logging.getLogger("rotorlab.compile").info("compiling the %s (first run only, ~30 s) ...", what)
+    Returns ``what`` if it was announced (the caller then logs the elapsed time when the compile
+    is done, :func:`rotorlab.integrate._drivers.compiled`), else None."""
+    if any((directory / "__pycache__").glob(f"{stem}.*.nbi")):
+        return None
+    import logging
+
+    logging.getLogger("rotorlab.compile").info("compiling the %s (first run only) ...", what)
+    return what
 
 
 def _drop_numba_cache(directory: Path, stem: str) -> None:

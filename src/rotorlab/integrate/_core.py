@@ -29,14 +29,16 @@ switching to a sustained-contact mode (a discrete state).
 """
 
 import math
+import sys
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from rotorlab._kernels._vmath import fma, inv_fifth_root
 from rotorlab.models._base import no_events as events  # @kernel events
 from rotorlab.models._base import no_reset as reset  # @kernel reset
 from rotorlab.models._base import no_rhs as rhs  # @kernel rhs
+from rotorlab.integrate._lane_intrinsics import fetch_add as _fetch_add
 from rotorlab.integrate._dp5 import _all_finite, _crosses, _dense, _rms_scaled, _save_until
 from rotorlab.integrate._tableau import (  # the step-size factor err^(-1/5): _vmath.inv_fifth_root
     A21, A31, A32, A41, A42, A43, A51, A52, A53, A54, A61, A62, A63, A64, A65,
@@ -70,12 +72,19 @@ N_STATS = 4
 
 
 def _own(kernel):
-    """The kernel compiled afresh from its Python source as part of this module's code.
+    """The kernel as this module's code calls it: its own dispatcher if its module is keyed by
+    its sources, else compiled afresh from its Python source.
 
     A generated copy of this module is keyed on the sources of everything the kernels depend on
     (:mod:`rotorlab.integrate._codegen`); linking the kernel's own cached binary instead would
-    bring back whatever numba cached for it, which only watches the kernel's own file.
+    bring back whatever numba cached for it, which only watches the kernel's own file. A kernel
+    whose module says ``KEYED_BY_SOURCES = True`` (the machine's generated kernels,
+    :mod:`rotorlab._kernels.machine_codegen`: the module's name changes with every source it
+    depends on) is linked as it is: compiled once per model and cached, it serves the scalar
+    driver, the lane driver's scalar evaluations and the Python callers alike.
     """
+    if getattr(sys.modules.get(kernel.py_func.__module__), "KEYED_BY_SOURCES", False) is True:
+        return kernel
     opts = {k: v for k, v in kernel.targetoptions.items() if k != "nopython"}
     opts["cache"] = False
     return njit(**opts)(kernel.py_func)
@@ -279,8 +288,15 @@ def _resolve_cut(
         return NONFINITE, te, i_save, t_last_reset, resets_without_progress, 0
     if flag != 0:
         return EVENT_STOP, te, i_save, t_last_reset, resets_without_progress, 0
-    rhs(te, y, p, k1)
-    events(te, y, p, g_old)
+    # the kernels see contiguous copies (ybuf, ytmp are free now): the lane driver passes
+    # strided lane views as y and k1, and a kernel called with them would be compiled a second
+    # time for that array type (seconds for a large generated kernel)
+    for i in range(n):
+        ybuf[i] = y[i]
+    rhs(te, ybuf, p, ytmp)
+    for i in range(n):
+        k1[i] = ytmp[i]
+    events(te, ybuf, p, g_old)
     return SUCCESS, te, i_save, t_last_reset, resets_without_progress, 1
 
 
@@ -519,30 +535,27 @@ def integrate_one(
     return status, t
 
 
-@njit(cache=True, nogil=True, parallel=True)
-def integrate_ensemble(inputs, settings, event_table, outputs, n_threads):
-    """Integrate ``outputs.STATUS.shape[0]`` trajectories in parallel (see :func:`integrate_one`).
+@njit(cache=True, nogil=True)
+def integrate_worker(counter, inputs, settings, event_table, outputs):
+    """Integrate trajectories taken from ``counter`` until none is left (see :func:`integrate_one`).
 
-    The arguments are the groups of :mod:`rotorlab.integrate._driver_args` (``n_threads`` is
-    unused: the threads are numba's). Each trajectory writes only its own rows of the outputs, so
-    results are bit-identical whatever the number of threads. Inputs whose first dimension is 1
-    are shared by all trajectories.
+    The arguments are the groups of :mod:`rotorlab.integrate._driver_args`; ``counter`` (one
+    int64) is the next trajectory to take, shared by the threads that run this function at once
+    (:func:`rotorlab.integrate._drivers.driver`). Each trajectory writes only its own rows of the
+    outputs, so results are bit-identical whatever the number of threads. Inputs whose first
+    dimension is 1 are shared by all trajectories.
     """
     N = outputs.STATUS.shape[0]
-    for i in prange(N):
-        _one_of_many(i, inputs, settings, event_table, outputs)
-
-
-@njit(cache=True, nogil=True)
-def integrate_serial(inputs, settings, event_table, outputs, n_threads):
-    """Same as :func:`integrate_ensemble` on the calling thread."""
-    for i in range(outputs.STATUS.shape[0]):
+    while True:
+        i = _fetch_add(counter, 1)
+        if i >= N:
+            return
         _one_of_many(i, inputs, settings, event_table, outputs)
 
 
 @njit(cache=True, nogil=True)
 def _one_of_many(i, inputs, settings, ev, out):
-    i = np.int64(i)  # the prange index may arrive unsigned; mixing it with int64 gives float64
+    i = np.int64(i)  # an unsigned index mixed with int64 gives float64
     iy = i if inputs.Y0.shape[0] > 1 else np.int64(0)
     ip = i if inputs.P.shape[0] > 1 else np.int64(0)
     it1 = i if inputs.T1.shape[0] > 1 else np.int64(0)

@@ -13,7 +13,12 @@ of :mod:`rotorlab.integrate._driver_args`.
 
 from __future__ import annotations
 
+import logging
+import threading
+import time
+
 import numpy as np
+from numba import typeof
 
 from rotorlab.integrate._codegen import build
 
@@ -62,12 +67,66 @@ def driver(kernels, lanes, serial):
         :func:`check_lanes`).
     serial : bool
         Run on the calling thread.
+
+    Returns
+    -------
+    callable
+        ``run(inputs, settings, event_table, outputs, n_threads)``: the copy's worker run on
+        ``n_threads`` threads at once (the calling thread and ``n_threads - 1`` Python threads;
+        the compiled code releases the GIL), all taking trajectories from one shared counter.
+        Threads of Python rather than a numba parallel region: the copy has one compiled entry
+        point instead of a parallel one and a serial one, and no parfor lowering (seconds per
+        copy; ``bench/README.md``, issue 24), and any threading layer can run it from several
+        threads at once.
     """
     if lanes is None:
         ns = build("rotorlab.integrate._core", _roles(kernels))
-        return ns["integrate_serial" if serial else "integrate_ensemble"]
+        return _Threaded(ns, "integrate_worker", 1, serial)
     ns = build("rotorlab.integrate._lanes", _roles(kernels), _lane_consts(kernels, lanes))
-    return ns["integrate_lanes_serial" if serial else "integrate_lanes"]
+    return _Threaded(ns, "integrate_lanes", int(lanes), serial)
+
+
+class _Threaded:
+    """A copy's worker run on several threads that share one trajectory counter (see :func:`driver`)."""
+
+    def __init__(self, ns, name, per_thread, serial):
+        self.ns, self.worker, self.per_thread, self.serial = ns, ns[name], per_thread, serial
+
+    def __call__(self, inputs, settings, event_table, outputs, n_threads):
+        args = (np.zeros(1, dtype=np.int64), inputs, settings, event_table, outputs)
+        compiled(self.ns, self.worker, args)
+        units = -(-outputs.STATUS.shape[0] // self.per_thread)
+        n = 1 if self.serial else max(1, min(int(n_threads), units))
+        errors = []
+
+        def work():
+            try:
+                self.worker(*args)
+            except BaseException as exc:  # noqa: BLE001 - re-raised on the calling thread
+                errors.append(exc)
+
+        threads = [threading.Thread(target=work, daemon=True) for _ in range(n - 1)]
+        for t in threads:
+            t.start()
+        work()
+        for t in threads:
+            t.join()
+        if errors:
+            raise errors[0]
+
+
+def compiled(ns, worker, args):
+    """Compile (or load from numba's cache) ``worker`` of the copy ``ns`` for ``args`` before the
+    threads start; if the copy announced a compile (:func:`rotorlab.integrate._codegen.
+    announce_compile`), say when it is done and how long it took."""
+    sig = tuple(typeof(a) for a in args)
+    if sig in worker.overloads:
+        return
+    t0 = time.perf_counter()
+    worker.compile(sig)
+    what = ns.pop("_ANNOUNCED", None)
+    if what is not None:
+        logging.getLogger("rotorlab.compile").info("compiled the %s in %.0f s", what, time.perf_counter() - t0)
 
 
 def _lane_consts(kernels, lanes):
@@ -96,8 +155,6 @@ def is_vectorised(kernels, lanes=None):
         one lane at a time).
     """
     import re
-
-    from numba import typeof
 
     from rotorlab.integrate._codegen import _in_memory
 

@@ -65,7 +65,7 @@ from __future__ import annotations
 import math
 
 import numpy as np
-from numba import njit, prange
+from numba import njit
 
 from rotorlab._kernels._vmath import fma, inv_fifth_root
 from rotorlab.integrate._lane_intrinsics import fetch_add as _fetch_add
@@ -185,8 +185,15 @@ def _probe(W, nl):
 
 
 @njit(cache=True, nogil=True, error_model="numpy")  # no ZeroDivisionError branch in the loops
-def _worker(counter, inputs, settings, event_table, outputs):
-    """Integrate trajectories taken from ``counter`` until none is left (one thread)."""
+def integrate_lanes(counter, inputs, settings, event_table, outputs):
+    """Integrate trajectories taken from ``counter`` until none is left, ``LANES`` at a time.
+
+    The arguments are the groups of :mod:`rotorlab.integrate._driver_args`; ``inputs.atol`` must
+    have ``N_STATE`` entries. ``counter`` (one int64) is the next trajectory to take, shared by the
+    threads that run this function at once (:func:`rotorlab.integrate._drivers.driver`). Each
+    trajectory writes only its own rows of the outputs, with the same numbers whatever the thread
+    that integrated it.
+    """
     Y0, P, T1, TS, atol = inputs
     t0, rtol, n_cont, first_step, max_step, max_steps = settings
     n_ev, ev_dir, ev_act = event_table
@@ -504,26 +511,3 @@ def _worker(counter, inputs, settings, event_table, outputs):
             k1 = W[_K1 + k]
             W[_Y + k] = yn if a else y
             W[_K1 + k] = k7 if a else k1
-
-
-@njit(cache=True, nogil=True, parallel=True)
-def integrate_lanes(inputs, settings, event_table, outputs, n_threads):
-    """Integrate ``outputs.STATUS.shape[0]`` trajectories, ``LANES`` at a time on each of ``n_threads``.
-
-    The arguments are the groups of :mod:`rotorlab.integrate._driver_args`. ``inputs.atol`` must have ``N_STATE`` entries; ``n_threads`` is the number of worker
-    threads (numba's current number of threads at most: pass ``numba.get_num_threads()``, which
-    cannot be called here without making the function uncacheable). Each trajectory writes only
-    its own rows of the outputs, with the same numbers whatever the thread that integrated it.
-    """
-    N = outputs.STATUS.shape[0]
-    n_workers = max(1, min(n_threads, (N + LANES - 1) // LANES))
-    counter = np.zeros(1, dtype=np.int64)
-    for _ in prange(n_workers):
-        _worker(counter, inputs, settings, event_table, outputs)
-
-
-@njit(cache=True, nogil=True)
-def integrate_lanes_serial(inputs, settings, event_table, outputs, n_threads):
-    """Same as :func:`integrate_lanes` on the calling thread (``n_threads`` is ignored)."""
-    counter = np.zeros(1, dtype=np.int64)
-    _worker(counter, inputs, settings, event_table, outputs)
