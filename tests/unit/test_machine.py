@@ -326,13 +326,26 @@ def test_kernel_vectorises_in_the_lane_driver():
     assert is_vectorised(rigid_two_plane().kernels, lanes=8)
 
 
-def test_lanes_give_the_scalar_numbers():
+def test_lanes_give_the_scalar_numbers_from_one_compiled_kernel():
+    """Same bits on both drivers and any number of threads; both drivers and the Python callers
+    call the generated kernel module's own compiled ``rhs`` (one compile per model, cached with
+    the module: issue 24), not copies compiled again for each driver."""
+    from rotorlab.integrate import _codegen, _drivers
+
     mac = rigid_two_plane()
     rng = np.random.default_rng(0)
     y0 = np.array([mac.initial_state(a) for a in rng.uniform(0, 2 * np.pi, (11, 4))])
     a = solve_ensemble(mac, y0, (0.0, 5.0), threads=1, lanes=None)  # the scalar reference
     b = solve_ensemble(mac, y0, (0.0, 5.0), threads=1, lanes=8)
+    c = solve_ensemble(mac, y0, (0.0, 5.0), threads=2, lanes=8)
     np.testing.assert_array_equal(a.y_final, b.y_final)
+    np.testing.assert_array_equal(b.y_final, c.y_final)
+    assert mac.rhs(0.0, y0[0]).shape == (mac.n_state,)
+    k = mac.kernels
+    core = _codegen.build("rotorlab.integrate._core", _drivers._roles(k), {"EVENTS": 0})
+    lanes = _codegen.build("rotorlab.integrate._lanes", _drivers._roles(k), _drivers._lane_consts(k, 8))
+    assert core["rhs"] is k.rhs and lanes["_rhs_once"] is k.rhs
+    assert len(k.rhs.signatures) == 1  # one specialisation: every caller passes contiguous arrays
 
 
 def test_modal_reduction_converges_and_reports_its_change():

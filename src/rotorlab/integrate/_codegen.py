@@ -286,7 +286,9 @@ def _cached(
     text = _render(template, names, consts, siblings)
     deps = dependencies([template, __name__] + [m for m, _ in names.values()])
     digest = source_digest(text, deps)
-    tag = template.rsplit(".", 1)[-1].lstrip("_") + "".join(f"{k[0].lower()}{v}" for k, v in sorted(all_consts.items()))
+    tag = template.rsplit(".", 1)[-1].lstrip("_")
+    if all_consts:  # core_e1, lanes_e0i0l8n20: the template, then its constants
+        tag += "_" + "".join(f"{k[0].lower()}{v}" for k, v in sorted(all_consts.items()))
     if names:
         mod, fn = names.get("rhs", next(iter(names.values())))
         # The name is that of the whole kernel set, not of its rhs alone: models that share an

@@ -48,6 +48,10 @@ from rotorlab.integrate._tableau import (  # the step-size factor err^(-1/5): _v
     MAX_FACTOR, MIN_FACTOR, SAFETY,
 )  # fmt: skip
 
+EVENTS = 1  # @const EVENTS
+"""0: the model has no event functions, and this copy compiles no event handling (set per
+generated copy from ``Kernels.event_specs``; numba drops a branch on a constant global)."""
+
 # status codes (mirrored by rotorlab.integrate.Status)
 SUCCESS = 0
 EVENT_STOP = 1
@@ -410,7 +414,7 @@ def integrate_one(
     nfev += 1
     if not (_all_finite(y) and _all_finite(k1)):
         status = NONFINITE
-    if n_ev > 0:
+    if EVENTS and n_ev > 0:
         events(t, y, p, g_old)
 
     if first_step > 0.0:
@@ -499,7 +503,7 @@ def integrate_one(
 
         # ---- events in (t, tn] -------------------------------------------------------------
         k_cut = -1
-        if n_ev > 0:
+        if EVENTS and n_ev > 0:
             events(tn, ynew, p, g_new)
             s_cut, k_cut, nrec, n_found = _events_in_step(
                 n_ev, ev_dir, ev_act, p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
@@ -507,24 +511,24 @@ def integrate_one(
             )  # fmt: skip
             n_events_total += n_found
 
-        if k_cut < 0:
-            # ---- plain accepted step: save, advance ---------------------------------------
-            i_save = _save_until(tn, ynew, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, ybuf)
-            t = tn
-            for i in range(n):
-                y[i] = ynew[i]
-                k1[i] = k7[i]
-            if n_ev > 0:
-                for k in range(n_ev):
-                    g_old[k] = g_new[k]
+        if EVENTS and k_cut >= 0:
+            # ---- truncated at a reset/stop event ------------------------------------------
+            status, t, i_save, t_last_reset, resets_without_progress, n_rhs = _resolve_cut(
+                k_cut, s_cut, ev_act[k_cut], p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
+                ts, i_save, ys_out, ybuf, ytmp, g_old, t_last_reset, resets_without_progress,
+            )  # fmt: skip
+            nfev += n_rhs
             continue
 
-        # ---- truncated at a reset/stop event ----------------------------------------------
-        status, t, i_save, t_last_reset, resets_without_progress, n_rhs = _resolve_cut(
-            k_cut, s_cut, ev_act[k_cut], p, t, h, tn, y, ynew, k1, k3, k4, k5, k6, k7,
-            ts, i_save, ys_out, ybuf, ytmp, g_old, t_last_reset, resets_without_progress,
-        )  # fmt: skip
-        nfev += n_rhs
+        # ---- plain accepted step: save, advance -----------------------------------------------
+        i_save = _save_until(tn, ynew, t, h, y, k1, k3, k4, k5, k6, k7, ts, i_save, ys_out, ybuf)
+        t = tn
+        for i in range(n):
+            y[i] = ynew[i]
+            k1[i] = k7[i]
+        if EVENTS and n_ev > 0:
+            for k in range(n_ev):
+                g_old[k] = g_new[k]
 
     for i in range(n):
         y_final[i] = y[i]

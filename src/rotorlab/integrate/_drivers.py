@@ -80,7 +80,7 @@ def driver(kernels, lanes, serial):
         threads at once.
     """
     if lanes is None:
-        ns = build("rotorlab.integrate._core", _roles(kernels))
+        ns = build("rotorlab.integrate._core", _roles(kernels), {"EVENTS": _has_events(kernels)})
         return _Threaded(ns, "integrate_worker", 1, serial)
     ns = build("rotorlab.integrate._lanes", _roles(kernels), _lane_consts(kernels, lanes))
     return _Threaded(ns, "integrate_lanes", int(lanes), serial)
@@ -131,7 +131,13 @@ def compiled(ns, worker, args):
 
 def _lane_consts(kernels, lanes):
     """The compile-time constants of the lane driver's copy for these kernels."""
-    return {"LANES": int(lanes), "N_STATE": kernels.n_state, "INLINE_RHS": int(bool(kernels.inline_lanes))}
+    return {"LANES": int(lanes), "N_STATE": kernels.n_state, "INLINE_RHS": int(bool(kernels.inline_lanes)),
+            "EVENTS": _has_events(kernels)}
+
+
+def _has_events(kernels):
+    """1 if the model has event functions (the copy then compiles the event handling), else 0."""
+    return int(len(kernels.event_specs) > 0)
 
 
 def is_vectorised(kernels, lanes=None):

@@ -126,6 +126,10 @@ _initial_step = _EV["_initial_step"]
 del _name
 
 
+EVENTS = 1  # @const EVENTS
+"""0: the model has no event functions, and this copy compiles no event handling (as
+:data:`rotorlab.integrate._core.EVENTS`)."""
+
 INLINE_RHS = 0  # @const INLINE_RHS
 """1: the loop over lanes that calls the kernel is inlined into the worker (set per generated copy
 from ``Kernels.inline_lanes``, see :mod:`rotorlab.integrate._drivers`)."""
@@ -281,7 +285,7 @@ def integrate_lanes(counter, inputs, settings, event_table, outputs):
                 i_save[lane] = s
                 _rhs_once(t0, ybuf, P[ip], fbuf)
                 nfev = 1.0
-                if has_ev:
+                if EVENTS and has_ev:
                     _events_at(t0, ybuf, P[ip], g_old[lane * ne : (lane + 1) * ne])
                     for k in range(n_ev):
                         EVC[j, k] = 0
@@ -427,7 +431,7 @@ def integrate_lanes(counter, inputs, settings, event_table, outputs):
             W[_new + lane] = 1.0 if take else new_flag
             W[_M + lane] = 1.0 if take else 0.0
         # ---- events of the accepted steps, one lane at a time (the others wait this step) ---
-        if has_ev:
+        if EVENTS and has_ev:
             _events_lanes(W, _tn, _YN, g_end, nl, ne)
             for lane in range(L):
                 if W[_M + lane] == 0.0:
