@@ -25,7 +25,16 @@ standard library and installed third-party packages are left out, the versions o
 NumPy and llvmlite are hashed instead), and of the Python, numba and NumPy versions. Editing e.g.
 ``rotorlab/_kernels/speed.py`` therefore gives a new file, which numba compiles afresh; the copy
 re-compiles the model's kernels from their Python source (``py_func``) rather than linking their
-own cached binaries, whose numba cache only watches their own file.
+own cached binaries, whose numba cache only watches their own file. A kernel whose module says
+``KEYED_BY_SOURCES = True`` (the machine's generated kernel modules, named by a hash of every
+source they depend on) is linked as it is: a model's kernel is then compiled once, cached with
+its module, and called by both drivers and by Python (:func:`rotorlab.integrate._core._own`).
+The lane driver still compiles the kernel inlined into its loop over lanes (that is what
+vectorises).
+
+Each copy has one compiled entry point, its worker (``integrate_worker``, ``integrate_lanes``),
+run on several threads by :func:`rotorlab.integrate._drivers.driver`; a copy for a model without
+event functions (``EVENTS = 0``) compiles no event handling.
 
 Before importing a cached copy its bytes are compared with the text generated now; a copy that
 differs (edited, truncated, corrupted) is rewritten and its numba cache dropped. Copies go only to
