@@ -1,6 +1,7 @@
 """The model protocol's named parameters (:mod:`rotorlab.models._protocol`) against the case schema.
 
-For every built-in ``machine`` and ``jeffcott_balls`` case: the names are the ``[model]`` key
+For every built-in ``machine``, ``jeffcott_balls``, ``toroidal_ball``, ``impact_rotor`` and
+``rub_rotor`` case: the names are the ``[model]`` key
 paths and give back the values the case converted to SI; their units and bounds are the schema's;
 ``pack`` of the current values is the model's own vector; ``with_parameters`` at a key equals the
 model built from the case document edited at that key, bit for bit (or both refuse the value);
@@ -19,7 +20,8 @@ from rotorlab.io._fields import plain_data
 from rotorlab.io._schema import MODEL_SPECS
 
 CASES = [name for name in builtin_cases()
-         if load_case(name).model.type in ("machine", "jeffcott_balls", "toroidal_ball", "impact_rotor")]
+         if load_case(name).model.type in ("machine", "jeffcott_balls", "toroidal_ball", "impact_rotor",
+                                            "rub_rotor")]
 
 
 def _edited(case, key, value):
@@ -35,7 +37,7 @@ def _other_values(par):
 
 def test_the_built_in_cases_cover_both_models():
     kinds = {load_case(n).model.type for n in CASES}
-    assert kinds == {"machine", "jeffcott_balls", "toroidal_ball", "impact_rotor"} and len(CASES) >= 9
+    assert kinds == {"machine", "jeffcott_balls", "toroidal_ball", "impact_rotor", "rub_rotor"} and len(CASES) >= 10
 
 
 @pytest.mark.parametrize("name", CASES)

@@ -30,6 +30,8 @@ from rotorlab.contact._theory import RubRotor
 from rotorlab.models._base import EventSpec, Kernels
 from rotorlab.models._checks import check_number as _num
 from rotorlab.models._machine_clearance import pressed_contact_mode
+from rotorlab.models._parameters import rub_slots
+from rotorlab.models._protocol import ParametrisedMixin
 
 __all__ = ["JeffcottRub"]
 
@@ -51,8 +53,13 @@ MODES = {0: "free", 1: "sliding (positive slip)", -1: "sliding (negative slip)",
 
 
 @dataclass(frozen=True, slots=True)
-class JeffcottRub:
+class JeffcottRub(ParametrisedMixin):
     """A Jeffcott rotor at constant spin in a circular clearance with a rigid or elastic stator.
+
+    Its named parameters (:attr:`parameters`, :meth:`with_parameters`, :meth:`pack`) are the
+    ``rub_rotor`` table's keys: ``mass``, ``stiffness``, ``damping``, ``eccentricity``,
+    ``clearance``, ``stator_stiffness`` and ``stator_damping`` (elastic stator only),
+    ``friction``, ``rotor_radius``, ``restitution``, ``rest_speed``, ``spin_speed``.
 
     Parameters
     ----------
@@ -86,6 +93,8 @@ class JeffcottRub:
     >>> m = JeffcottRub(RubRotor(1.0, 1.0, 1.0, stator_stiffness=10.0), spin_speed=1.5)
     >>> m.to_array()[[4, 5, 6, 14]].tolist()
     [1.5, 1.0, 10.0, 0.0]
+    >>> m.with_parameters(clearance=0.8).rotor.clearance, float(m.pack({"spin_speed": 2.0})[4])
+    (0.8, 2.0)
     """
 
     rotor: RubRotor
@@ -113,6 +122,9 @@ class JeffcottRub:
     @property
     def kernels(self) -> Kernels:
         return _KERNELS
+
+    def _parameter_slots(self):
+        return rub_slots(self)
 
     @property
     def state_names(self) -> tuple[str, ...]:

@@ -1,5 +1,5 @@
-"""The named parameters of the machine, ``jeffcott_balls``, the toroidal ball and the impact rotor
-(:mod:`rotorlab.models._protocol`).
+"""The named parameters of the machine, ``jeffcott_balls``, the toroidal ball, the impact rotor and
+the rub rotor (:mod:`rotorlab.models._protocol`).
 
 Each function lists a model's numbers as :class:`Slot` objects: the name is the key path of the
 model's ``[model]`` table (balls as the case expands ``count``: one index per ball), the bounds
@@ -16,7 +16,7 @@ from typing import Any
 from rotorlab.models._protocol import Parameter, Slot
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
 
-__all__ = ["machine_slots", "jeffcott_slots", "toroidal_slots", "impact_slots"]
+__all__ = ["machine_slots", "jeffcott_slots", "toroidal_slots", "impact_slots", "rub_slots"]
 
 _GT0 = (0.0, None, None, None)
 _GE0 = (None, 0.0, None, None)
@@ -245,3 +245,28 @@ def impact_slots(m) -> list[Slot]:
 
         out.append(_slot(prefix + key, unit, value, bounds, set_))
     return out
+
+
+# -------------------------------------------------------------------------------------- rub_rotor
+#: The rotor's numbers of a ``rub_rotor`` table (:class:`rotorlab.contact.RubRotor`): (key, unit,
+#: bounds); ``stator_stiffness`` and ``stator_damping`` only with an elastic stator (a rigid one
+#: has neither: the case refuses a stator damping without a stator stiffness).
+_RUB_ROTOR_FIELDS = (("mass", "kg", _GT0), ("stiffness", "N/m", _GT0), ("damping", "N*s/m", _GE0),
+                     ("eccentricity", "m", _GE0), ("clearance", "m", _GT0))
+_RUB_STATOR_FIELDS = (("stator_stiffness", "N/m", _GT0), ("stator_damping", "N*s/m", _GE0))
+_RUB_CONTACT_FIELDS = (("friction", "1", _GE0), ("rotor_radius", "m", _GT0))
+#: The model's own numbers (:class:`rotorlab.contact.JeffcottRub`).
+_RUB_MODEL_FIELDS = (("restitution", "1", (None, 0.0, None, 1.0)), ("rest_speed", "m/s", _GT0),
+                     ("spin_speed", "rad/s", _GE0))
+
+
+def rub_slots(m) -> list[Slot]:
+    """The named parameters of a :class:`rotorlab.contact.JeffcottRub` (the ``rub_rotor``
+    table's keys: ``mass`` ... ``clearance``, the stator's, ``friction``, ``rotor_radius``,
+    ``restitution``, ``rest_speed``, ``spin_speed``)."""
+    fields = _RUB_ROTOR_FIELDS + (() if m.rotor.rigid_stator else _RUB_STATOR_FIELDS) + _RUB_CONTACT_FIELDS
+    out = [_slot(key, unit, getattr(m.rotor, key), bounds,
+                 lambda mm, v, key=key: replace(mm, rotor=replace(mm.rotor, **{key: v})))
+           for key, unit, bounds in fields]
+    return out + [_slot(key, unit, getattr(m, key), bounds, lambda mm, v, key=key: replace(mm, **{key: v}))
+                  for key, unit, bounds in _RUB_MODEL_FIELDS]
