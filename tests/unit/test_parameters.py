@@ -9,6 +9,7 @@ structural names are refused by ``pack``. No kernel is compiled here.
 """
 
 import math
+import re
 
 import numpy as np
 import pytest
@@ -178,3 +179,48 @@ def test_sweep_points_are_the_edited_case_s_bit_for_bit(name, races, coords):
         angles = list(mapper.base_angles)
         angles[0] = grid["psi_1"][i]
         np.testing.assert_array_equal(Y0[i], ref.initial_state(angles, ball_rates=np.zeros(len(angles))))
+
+
+def _rub_machine():
+    """rub-jeffcott's rotor (10 kg on 1e6 N/m, 6 kg mm, 1 mm gap, 1e7 N/m stator) as a machine."""
+    from rotorlab.linear import LinearSystem
+    from rotorlab.models import Clearance, ConstantSpeed, ElasticStator, Machine, Unbalance
+
+    s = LinearSystem(M=np.diag([10.0, 10.0, 0.1, 0.1]), C=np.diag([316.227766, 316.227766, 0.0, 0.0]),
+                     G=np.zeros((4, 4)), K=np.diag([1e6, 1e6, 1e4, 1e4]))
+    cl = Clearance(0, 1e-3, ElasticStator(1e7), friction=0.02, rotor_radius=0.05)
+    return Machine(s, unbalances=(Unbalance(0, 6e-3),), drive=ConstantSpeed(474.341649), clearances=(cl,))
+
+
+@pytest.mark.parametrize("which", ["rub_rotor", "machine"])
+def test_a_rub_map_sets_its_points_through_the_named_parameters_bit_for_bit(which):
+    """A rub map's points (every coordinate at once) are packed by ``model.pack`` of the named
+    parameters: the same vectors as the packed entries the map used to overwrite by index
+    (``rub_parameters``), for the rub rotor and for a machine with a clearance."""
+    from rotorlab.contact import RubRegimes
+
+    model = build_model(load_case("rub-jeffcott").model) if which == "rub_rotor" else _rub_machine()
+    regimes = RubRegimes(model, t_end=1.0, window=0.1)
+    coords = {k: np.linspace(0.3, 0.9, 5) * (1.0 if k == "restitution" else model.to_array()[i] * 2.0)
+              for k, (i, _) in model.rub_parameters.items()}
+    old = np.tile(model.to_array(), (5, 1))
+    for k, v in coords.items():
+        old[:, model.rub_parameters[k][0]] = v
+    np.testing.assert_array_equal(regimes.point_parameters(coords), old)
+    key = regimes.parameter_keys()["clearance"]
+    assert key == ("clearance" if which == "rub_rotor" else "clearances[0].gap")
+    with pytest.raises(ValueError, match=rf"^{re.escape(key)} = -0.001: must be > 0 m$"):
+        regimes.point_parameters({"clearance": np.array([1e-3, -1e-3])})
+
+
+def test_a_rigid_stator_has_no_stator_parameters():
+    """A rub rotor against a rigid stator (no ``stator_stiffness``) has neither stator key: the
+    case refuses a stator damping without a stator stiffness, and there is no stiffness to vary."""
+    case = load_case("rub-jeffcott")
+    doc = {"name": "rigid", "model": plain_data(case.model.model_dump(mode="python"))}
+    del doc["model"]["stator_stiffness"]
+    model = build_model(validate_case(doc).model)
+    assert model.rotor.rigid_stator and "stator_damping" not in model.parameters
+    assert "stator_stiffness" not in model.parameters and len(model.parameters) == 10
+    edited = build_model(validate_case(doc, overrides={"model.restitution": 0.7}).model)
+    np.testing.assert_array_equal(model.with_parameters(restitution=0.7).to_array(), edited.to_array())

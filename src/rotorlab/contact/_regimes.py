@@ -16,7 +16,8 @@ feature             meaning
 
 Any model with a clearance provides the samples these features are computed from
 (:class:`ContactSamples`, through its ``contact_samples(ts, ys, params)``) and the parameters a map
-may vary (``rub_parameters``: name -> (index in the packed parameters, unit)):
+may vary (``rub_parameters``: name -> (index in the packed parameters, unit); a map sets them
+through the model's named parameters, :meth:`RubRegimes.point_parameters`):
 :class:`rotorlab.contact.JeffcottRub` and the composed :class:`rotorlab.models.Machine` with a
 :class:`~rotorlab.models.Clearance`. Nothing here branches on the model's type.
 
@@ -192,6 +193,14 @@ def classify_rub(model: Any, y0, t_end: float, window: float, n_samples: int = 4
     return rub_features(model, ts, sol.ys)
 
 
+#: The key path a rub-map coordinate varies on a model whose named parameters do not have the
+#: coordinate's own name (a :class:`rotorlab.models.Machine`: its first clearance, its first
+#: unbalance, its constant speed).
+RUB_KEYS = {"clearance": "clearances[0].gap", "restitution": "clearances[0].restitution",
+            "friction": "clearances[0].friction", "stator_stiffness": "clearances[0].stator.stiffness",
+            "spin_speed": "drive.speed", "unbalance": "unbalances[0].magnitude"}
+
+
 @dataclass(frozen=True, slots=True)
 class RubRegimes:
     """Per-point analysis of a sweep: simulate the rub model and classify its last window.
@@ -237,6 +246,7 @@ class RubRegimes:
         if int(self.n_samples) < 2:
             raise ValueError(f"{o}.n_samples must be >= 2, got {self.n_samples!r}")
         self.model.gap_state(self.position, self.velocity)  # validates the start
+        self.parameter_keys()  # every coordinate is a named parameter of the model
 
     @property
     def coordinate_units(self) -> Mapping[str, str]:
@@ -257,11 +267,7 @@ class RubRegimes:
         from rotorlab.integrate import SaveAt, StepControl, solve_ensemble
 
         n = len(next(iter(coords.values())))
-        base = self.model.to_array()
-        params = np.tile(base, (n, 1))
-        for name, values in coords.items():
-            idx, _ = self.model.rub_parameters[name]
-            params[:, idx] = np.asarray(values, dtype=float)
+        params = self.point_parameters(coords)
         # a start pressed into the stator slides along its slip, which depends on the point's spin
         # speed and clearance: its contact mode is set per point, as the model's own start would
         base_y0 = self.model.gap_state(self.position, self.velocity)
@@ -286,6 +292,29 @@ class RubRegimes:
         res["regime"] = ChunkVar((), regime, {"units": "1", "flag_meanings": self.result_attrs()["regime_codes"]})
         res["status"] = ChunkVar((), np.asarray(ens.status, dtype=np.int8), {"units": "1"})
         return res
+
+    def parameter_keys(self) -> dict[str, str]:
+        """The named parameter (:attr:`model.parameters`) each coordinate of a map varies: the
+        coordinate's own name where the model has it (a ``JeffcottRub``: ``clearance``,
+        ``spin_speed`` ...), else the key path of :data:`RUB_KEYS` (a machine)."""
+        space = self.model.parameters
+        out = {}
+        for name in self.model.rub_parameters:
+            key = name if name in space else RUB_KEYS.get(name)
+            if key not in space:
+                raise ValueError(f"{type(self.model).__name__} has no named parameter for the rub-map "
+                                 f"coordinate {name!r} (tried {name!r} and {RUB_KEYS.get(name)!r})")
+            out[name] = key
+        return out
+
+    def point_parameters(self, coords: Mapping[str, np.ndarray]) -> np.ndarray:
+        """The packed parameters of every point, shape (n, P): the base model's with the
+        coordinates set through its named parameters (:meth:`model.pack`, each value checked
+        against the parameter's range)."""
+        keys = self.parameter_keys()
+        names = list(coords)
+        columns = np.stack([np.asarray(coords[k], dtype=float) for k in names], axis=1)
+        return np.array([self.model.pack({keys[k]: float(v) for k, v in zip(names, row)}) for row in columns])
 
     def with_model(self, model: Any) -> RubRegimes:
         """The same analysis on another model."""
