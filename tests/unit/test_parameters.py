@@ -224,3 +224,86 @@ def test_a_rigid_stator_has_no_stator_parameters():
     assert "stator_stiffness" not in model.parameters and len(model.parameters) == 10
     edited = build_model(validate_case(doc, overrides={"model.restitution": 0.7}).model)
     np.testing.assert_array_equal(model.with_parameters(restitution=0.7).to_array(), edited.to_array())
+
+
+def _old_balancer_variant(model, frame, values):
+    """How ``BalancerRegimes`` made a point's model before the named parameters (the reference):
+    rotor fields replaced, every ball rebuilt keeping J / (m l^2), a new ConstantSpeed."""
+    from dataclasses import replace
+
+    from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls
+
+    rotor = replace(model.rotor, **{k: v for k, v in values.items()
+                                    if k in ("disc_mass", "eccentricity", "stiffness", "damping")})
+    kw = {k[5:]: v for k, v in values.items() if k.startswith("ball_")}
+    balls = model.balls
+    if kw:
+        balls = tuple(BallParams(kw.get("mass", b.mass), kw.get("radius", b.radius),
+                                 inertia=b.inertia / (b.mass * b.radius**2) * kw.get("mass", b.mass)
+                                 * kw.get("radius", b.radius)**2,
+                                 damping=kw.get("damping", b.damping), friction=kw.get("friction", b.friction))
+                      for b in model.balls)
+    speed = ConstantSpeed(values["spin_speed"]) if "spin_speed" in values else model.speed
+    return JeffcottBalls(rotor, balls, speed=speed, frame=frame)
+
+
+def test_balancer_sweep_aliases_are_named_parameters_bit_for_bit():
+    """``ball_mass``, ``ball_radius``, ``ball_damping``, ``spin_speed`` and ``disc_mass`` of a
+    ``jeffcott_balls`` sweep resolve to named parameters (``balls[i].mass`` ..., ``speed.speed``)
+    and go through ``with_parameters``: every point's packed parameters and start equal those
+    the mapper made before, bit for bit; ``model.<key path>`` names the same numbers."""
+    from rotorlab.analyses._sweep import build_sweep
+    from rotorlab.io import SweepSpec
+
+    case = load_case("autobalancer")
+    axes = {"ball_mass": (0.01, 0.03, 3), "ball_radius": (0.04, 0.06, 2), "ball_damping": (0.0, 1e-3, 2),
+            "spin_speed": (100.0, 200.0, 2), "disc_mass": (1.0, 2.0, 2)}
+    mapper = build_sweep(case.model, SweepSpec(name="s", speed_ratio=2.0, t_end=1.0), axes=axes).analysis.mapper
+    rng = np.random.default_rng(0)
+    coords = {k: rng.choice(np.linspace(*v), 8) for k, v in axes.items()}
+    coords["psi_1"] = rng.uniform(0.0, 6.0, 8)
+    model, Y0, P = mapper.starts(coords)
+    for i in range(8):
+        ref = _old_balancer_variant(mapper.model, mapper.frame, {k: float(coords[k][i]) for k in axes})
+        np.testing.assert_array_equal(P[i], ref.to_array())
+        yr = np.zeros(ref.n_state)
+        yr[4:6] = coords["psi_1"][i], mapper.base_angles[1]
+        np.testing.assert_array_equal(Y0[i], ref.with_frame("rotating").to_frame(0.0, yr[None], ref.frame)[0])
+    assert mapper.coordinate_parameter("ball_mass").bounds == mapper.model.parameters["balls[0].mass"].bounds
+    # ball_mass = every ball's mass, and its inertia at the same J / (m l^2)
+    b = mapper.model.balls[0]
+    keyed = {"model.speed.speed": coords["spin_speed"], "psi_1": coords["psi_1"]}
+    for j in range(2):
+        keyed[f"model.balls[{j}].mass"] = coords["ball_mass"]
+        keyed[f"model.balls[{j}].inertia"] = b.inertia / (b.mass * b.radius**2) * coords["ball_mass"] * b.radius**2
+    _, Y0k, Pk = mapper.starts(keyed)
+    _, Y0a, Pa = mapper.starts({k: coords[k] for k in ("ball_mass", "spin_speed", "psi_1")})
+    np.testing.assert_array_equal(Pk, Pa)
+    np.testing.assert_array_equal(Y0k, Y0a)
+    with pytest.raises(ValueError, match=r"model\.speed\.speed varies speed\.speed, which another coordinate"):
+        mapper.starts({"spin_speed": coords["spin_speed"], "model.speed.speed": coords["spin_speed"]})
+
+
+def test_torus_sweep_coordinates_are_named_parameters_bit_for_bit():
+    """A toroidal ball's parameter coordinates (``offset``, ``spin_speed`` ...) are its named
+    parameters (``with_parameters``), also as ``model.<key path>``: the same packed parameters as
+    the model's fields replaced directly (the mapper's former path)."""
+    from dataclasses import replace
+
+    from rotorlab.analyses._sweep import build_sweep
+    from rotorlab.io import SweepSpec
+
+    case = load_case("strautmanis-torus")
+    spec = SweepSpec(name="s", param={"model.offset": [0.0, 1e-3, 2]}, ic={"psi": [0.0, 6.0, 3]}, t_end=1.0)
+    sweep = build_sweep(case.model, spec)
+    mapper = sweep.analysis.mapper
+    assert sweep.dims == ("model.offset", "psi")
+    rng = np.random.default_rng(1)
+    coords = {"spin_speed": rng.choice([50.0, 60.0], 6), "model.offset": rng.choice([0.0, 1e-3], 6),
+              "psi": rng.uniform(0.0, 6.0, 6)}
+    _, Y0, P = mapper.starts(coords)
+    for i in range(6):
+        ref = replace(mapper.model, spin_speed=coords["spin_speed"][i], offset=coords["model.offset"][i])
+        np.testing.assert_array_equal(P[i], ref.to_array())
+        np.testing.assert_array_equal(Y0[i], ref.initial_state(coords["psi"][i], 0.0, 0.0, 0.0))
+    assert mapper.coordinate_parameter("model.offset").allowed == ">= 0 m"

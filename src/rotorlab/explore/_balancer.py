@@ -25,9 +25,10 @@ from rotorlab._kernels import jeffcott_balls as _jk
 from rotorlab.explore._outcome import (BALANCED_FRACTION, SETTLE_RATE, SIDE_TOLERANCE, reference_amplitude,
                                       wrap_angle)
 from rotorlab.explore._settle import NOT_SETTLED, settle_estimate, slowest_decay_rate
-from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
+from rotorlab.explore._mapper import KEY_PREFIX, Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import StepControl
 from rotorlab.models import BallParams, ConstantSpeed, JeffcottBalls, Parameter, fixed_to_rotating
+
 
 __all__ = ["BalancerRegimes", "balancer_labels"]
 
@@ -37,12 +38,23 @@ _BALL_UNITS = {"ball_mass": "kg", "ball_radius": "m", "ball_damping": "N m s/rad
 _ROTOR_STATE = {"rotor_u": "m", "rotor_v": "m"}
 
 
-def _vary_ball(ball: BallParams, kw: Mapping[str, float]) -> BallParams:
-    """Copy of ``ball`` with fields from ``kw``; a new mass or radius keeps J / (m l^2)."""
-    mass, radius = kw.get("mass", ball.mass), kw.get("radius", ball.radius)
-    ratio = ball.inertia / (ball.mass * ball.radius**2)
-    return BallParams(mass, radius, inertia=ratio * mass * radius**2,
-                      damping=kw.get("damping", ball.damping), friction=kw.get("friction", ball.friction))
+#: The named parameter (:attr:`JeffcottBalls.parameters`) a coordinate that is not a key path
+#: stands for: the speed, the rotor's fields (their own names); ``ball_<field>`` stands for that
+#: field of every ball (:func:`_ball_keys`).
+_ALIASES = {"spin_speed": "speed.speed", **{k: k for k in _ROTOR_UNITS}}
+
+
+def _ball_keys(balls, kw: Mapping[str, float]) -> dict[str, float]:
+    """The named parameters of ``ball_<field>`` values ``kw`` (field -> value): that field of every
+    ball; a new mass or radius keeps each ball's J / (m l^2) (its ``inertia`` set to match)."""
+    out = {}
+    for i, ball in enumerate(balls):
+        out.update({f"balls[{i}].{k}": v for k, v in kw.items()})
+        if "mass" in kw or "radius" in kw:
+            mass, radius = kw.get("mass", ball.mass), kw.get("radius", ball.radius)
+            ratio = ball.inertia / (ball.mass * ball.radius**2)
+            out[f"balls[{i}].inertia"] = ratio * mass * radius**2
+    return out
 
 
 def _distance(amplitude, reference, max_rate, omega) -> np.ndarray:
@@ -158,7 +170,8 @@ class BalancerRegimes:
     @property
     def coordinate_units(self) -> Mapping[str, str]:
         units = ball_coordinate_units(self.model.n_balls)
-        return {**units, **_ROTOR_STATE, "spin_speed": "rad/s", **_ROTOR_UNITS, **_BALL_UNITS}
+        keys = {KEY_PREFIX + k: u for k, u in self.model.parameters.units.items()}
+        return {**units, **_ROTOR_STATE, "spin_speed": "rad/s", **_ROTOR_UNITS, **_BALL_UNITS, **keys}
 
     @property
     def window(self) -> float:
@@ -173,22 +186,36 @@ class BalancerRegimes:
 
     def coordinate_parameter(self, name: str) -> Parameter | None:
         """The :class:`~rotorlab.models.Parameter` whose range a coordinate's values must keep
-        (None for a start angle or rate): the rotor's, the first ball's (``ball_<field>``, every
-        ball takes the value) or the speed (> 0)."""
+        (None for a start angle or rate): ``model.<key path>``'s, the speed's or the rotor's, the
+        first ball's (``ball_<field>``, every ball takes the value)."""
         space = self.model.parameters
-        key = f"balls[0].{name[5:]}" if name in _BALL_UNITS else name
-        if key in space:
-            return replace(space[key], name=name)
-        if name == "spin_speed":
-            return Parameter(name, "rad/s", float(self.model.speed.speed), (0.0, None, None, None))
-        return None
+        key = f"balls[0].{name[5:]}" if name in _BALL_UNITS else self._key(name)
+        return replace(space[key], name=name) if key in space else None
+
+    @staticmethod
+    def _key(name: str) -> str | None:
+        """The named parameter a coordinate other than ``ball_<field>`` varies (None: a state)."""
+        return name[len(KEY_PREFIX):] if name.startswith(KEY_PREFIX) else _ALIASES.get(name)
+
+    def _named(self, values: Mapping[str, float]) -> dict[str, float]:
+        """The named parameters of a point's coordinates (aliases resolved)."""
+        out = _ball_keys(self.model.balls, {k[5:]: v for k, v in values.items() if k in _BALL_UNITS})
+        for name, v in values.items():
+            key = self._key(name)
+            if key is None:
+                continue
+            if key in out:
+                raise ValueError(f"{name} varies {key}, which another coordinate of the point varies too")
+            out[key] = v
+        return out
 
     def _variant(self, values: Mapping[str, float]) -> JeffcottBalls:
-        rotor = replace(self.model.rotor, **{k: v for k, v in values.items() if k in _ROTOR_UNITS})
-        ball_kw = {k[5:]: v for k, v in values.items() if k in _BALL_UNITS}
-        balls = tuple(_vary_ball(b, ball_kw) for b in self.model.balls) if ball_kw else self.model.balls
-        speed = ConstantSpeed(values["spin_speed"]) if "spin_speed" in values else self.model.speed
-        return JeffcottBalls(rotor, balls, speed=speed, frame=self.frame)
+        """The base model in the mapper's frame with a point's coordinates set (its named
+        parameters, :meth:`JeffcottBalls.with_parameters`)."""
+        try:
+            return self.model.with_frame(self.frame).with_parameters(**self._named(values))
+        except KeyError as exc:
+            raise ValueError(exc.args[0]) from None
 
     def balanced_decay_rate(self) -> float | None:
         """``-max Re(lambda)`` (1/s) of the base model's balanced state (the main motion, seed 003
@@ -211,12 +238,10 @@ class BalancerRegimes:
         """The value a start takes for coordinate ``name`` when not given (SI): the base ball
         angle, rest, the base model's speed or rotor field, the field shared by all balls (None
         if the balls differ in it); None for any other name."""
-        if name == "spin_speed":
-            return float(self.model.speed.speed)
+        if self._key(name) in self.model.parameters:
+            return self.model.parameters[self._key(name)].value
         if name in _ROTOR_STATE:
             return 0.0
-        if name in _ROTOR_UNITS:
-            return float(getattr(self.model.rotor, name))
         if name in _BALL_UNITS:
             values = {float(getattr(b, name[5:])) for b in self.model.balls}
             return values.pop() if len(values) == 1 else None
@@ -230,7 +255,8 @@ class BalancerRegimes:
         rates = np.stack([np.broadcast_to(coords.get(f"dpsi_{i + 1}", 0.0), (n_pts,))
                           for i in range(nb)], axis=1) if nb else np.empty((n_pts, 0))  # fmt: skip
         rotor = [np.broadcast_to(coords.get(k, 0.0), (n_pts,)) for k in _ROTOR_STATE]
-        params = [k for k in (*("spin_speed",), *_ROTOR_UNITS, *_BALL_UNITS) if k in coords]
+        order = (*_ALIASES, *_BALL_UNITS)  # the aliases first, in this order (the chunk's model: the first row's)
+        params = [k for k in order if k in coords] + [k for k in coords if k.startswith(KEY_PREFIX)]
         if params:
             keys = np.stack([coords[k] for k in params], axis=1)
             uniq, inverse = np.unique(keys, axis=0, return_inverse=True)

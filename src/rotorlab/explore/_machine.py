@@ -22,7 +22,7 @@ import numpy as np
 
 from rotorlab.explore._outcome import BALANCED_FRACTION, machine_outcome, wrap_machine_angle
 from rotorlab.explore._settle import NOT_SETTLED, settle_estimate, slowest_decay_rate
-from rotorlab.explore._mapper import Feature, ball_coordinate_units, ball_start_value, window_save_times
+from rotorlab.explore._mapper import KEY_PREFIX, Feature, ball_coordinate_units, ball_start_value, window_save_times
 from rotorlab.integrate import StepControl
 from rotorlab.models import ConstantSpeed, Machine, Parameter
 
@@ -34,8 +34,6 @@ _PARAMS = {"spin_speed": "rad/s", "ball_mass": "kg", "ball_damping": "N m s/rad"
 #: Ranges of the coordinates of :data:`_PARAMS` (gt, ge, lt, le), those of a ball's keys.
 _PARAM_BOUNDS = {"spin_speed": (0.0, None, None, None), "ball_mass": (0.0, None, None, None),
                  "ball_damping": (None, 0.0, None, None)}
-#: Prefix of a coordinate that names a parameter of the source machine (``model.<key path>``).
-KEY_PREFIX = "model."
 
 
 @dataclass(frozen=True)

@@ -77,6 +77,11 @@ class AbstractMapper(Protocol):
     def group(self, features: Mapping[str, np.ndarray]) -> np.ndarray: ...
 
 
+#: Prefix of a coordinate that names a parameter of the mapper's model by its case-file key path
+#: (``model.<key path>``, :attr:`rotorlab.models.AbstractParametrisedModel.parameters`).
+KEY_PREFIX = "model."
+
+
 def ball_coordinate_units(n_balls: int) -> dict[str, str]:
     """Start coordinates of ``n_balls`` balls: angles ``psi_i`` (rad) and rates ``dpsi_i`` (rad/s)."""
     units = {f"psi_{i}": "rad" for i in range(1, n_balls + 1)}

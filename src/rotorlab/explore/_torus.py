@@ -28,7 +28,7 @@ from dataclasses import dataclass, field, replace
 
 import numpy as np
 
-from rotorlab.explore._mapper import Feature
+from rotorlab.explore._mapper import KEY_PREFIX, Feature
 from rotorlab.integrate import StepControl
 from rotorlab.models._protocol import Parameter
 from rotorlab.models._toroidal_ball import ToroidalBall
@@ -120,7 +120,8 @@ class TorusRegimes:
 
     @property
     def coordinate_units(self) -> Mapping[str, str]:
-        return {**_STATE_UNITS, **_PARAM_UNITS}
+        keys = {KEY_PREFIX + k: u for k, u in self.model.parameters.units.items()}
+        return {**_STATE_UNITS, **_PARAM_UNITS, **keys}
 
     @property
     def window(self) -> float:
@@ -139,15 +140,26 @@ class TorusRegimes:
         entry or the base model's parameter; None for any other name."""
         if name in _STATE_UNITS:
             return self.base_state[list(_STATE_UNITS).index(name)]
-        return float(getattr(self.model, name)) if name in _PARAM_UNITS else None
+        par = self.coordinate_parameter(name)
+        return None if par is None else par.value
+
+    @staticmethod
+    def _key(name: str) -> str | None:
+        """The named parameter a coordinate varies: ``model.<key path>``'s or the parameter of the
+        coordinate's own name (an alias of ``model.<name>``); None for a state entry."""
+        return name[len(KEY_PREFIX):] if name.startswith(KEY_PREFIX) else (name if name in _PARAM_UNITS else None)
 
     def coordinate_parameter(self, name: str) -> Parameter | None:
         """The model's :class:`~rotorlab.models.Parameter` a coordinate varies (None for a state)."""
-        return self.model.parameters[name] if name in _PARAM_UNITS else None
+        key = self._key(name)
+        return replace(self.model.parameters[key], name=name) if key in self.model.parameters else None
 
     def starts(self, coords: Mapping[str, np.ndarray]):
         n = max((v.size for v in coords.values()), default=1)
-        params = [k for k in _PARAM_UNITS if k in coords]
+        params = [k for k in _PARAM_UNITS if k in coords] + [k for k in coords if k.startswith(KEY_PREFIX)]
+        named = [self._key(k) for k in params]
+        if len(set(named)) < len(named):
+            raise ValueError(f"{', '.join(params)}: two coordinates vary the same parameter")
         state = [np.broadcast_to(coords.get(k, b), (n,)) for k, b in zip(_STATE_UNITS, self.base_state)]
         Y0 = np.empty((n, 7))
         P = np.empty((n, self.model.to_array().size))
@@ -158,7 +170,7 @@ class TorusRegimes:
         else:
             uniq, inverse = np.empty((1, 0)), np.zeros(n, dtype=np.int64)
         for j, row in enumerate(uniq):
-            model = replace(self.model, **dict(zip(params, (float(v) for v in row))))
+            model = self.model.with_parameters(**dict(zip(named, (float(v) for v in row))))
             sel = inverse == j
             Y0[sel] = model.initial_state(*(s[sel] for s in state))
             P[sel] = model.to_array()

@@ -163,6 +163,7 @@ class ToroidalBallSpec(AbstractModelSpec):
     rolling_friction: quantity("length", ge=0) = Field(0.0, description="rolling friction k (m)")
     gravity: quantity("acceleration", ge=0) = Field(9.81, description="gravity g (m/s^2)")
     form: _choice("rolling", "paper") = Field("rolling", description="rolling or paper")
+    sweeps_keys: ClassVar[bool] = True  # basins and sweeps vary model.<key path> (its named parameters)
 
     @model_validator(mode="after")
     def _check_sizes(self) -> ToroidalBallSpec:

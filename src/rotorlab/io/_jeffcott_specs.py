@@ -272,6 +272,7 @@ class JeffcottBallsSpec(AbstractModelSpec):
     )
     speed: _SpeedProfile | None = Field(None, description="spin-speed profile")
     balls: tuple[Ball, ...] = Field((), description="balancing balls")
+    sweeps_keys: ClassVar[bool] = True  # basins and sweeps vary model.<key path> (its named parameters)
 
     @field_validator("balls", mode="after")
     @classmethod

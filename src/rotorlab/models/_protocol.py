@@ -176,11 +176,27 @@ class ParameterSpace:
         return self._slot(name).parameter.check(value)
 
     def apply(self, values: Mapping[str, Any]) -> Any:
-        """The model with ``values`` set (each checked); the model itself for no values."""
+        """The model with ``values`` set (each checked against its range); the model itself for
+        no values.
+
+        The values are set together, as a case edited at all those keys at once: a check that
+        ties several numbers (a ball's ``inertia >= mass radius^2``) holds for the result, not
+        for each step; a value the model refuses at one step is set again after the others, and
+        the first refusal is raised only when no value can be set any more.
+        """
         model = self._model
-        for name, value in values.items():
-            slot = self._slot(name)
-            model = slot.set(model, slot.parameter.check(value))
+        pending = [(slot, slot.parameter.check(value)) for slot, value in
+                   ((self._slot(name), value) for name, value in values.items())]
+        while pending:
+            refused = []
+            for slot, value in pending:
+                try:
+                    model = slot.set(model, value)
+                except ValueError as exc:
+                    refused.append((slot, value, exc))
+            if len(refused) == len(pending):
+                raise refused[0][2]
+            pending = [(slot, value) for slot, value, _ in refused]
         return model
 
     def _named(self, values: Mapping[str, Any] | Iterable[float]) -> dict[str, Any]:
