@@ -92,9 +92,11 @@ class BalancerRegimes:
     Parameters
     ----------
     model : JeffcottBalls
-        Base model (any frame) at a constant speed; coordinates replace its speed
-        (``spin_speed``), rotor fields or the fields of all balls (``ball_*``; a new ball mass
-        or radius keeps the ratio J / (m l^2)).
+        Base model (any frame) at a constant speed; coordinates set its named parameters
+        (:attr:`JeffcottBalls.parameters`, through ``with_parameters``): ``model.<key path>``
+        (``model.balls[1].mass``), or the aliases ``spin_speed`` (``speed.speed``), the rotor
+        fields, and ``ball_<field>`` (that field of every ball; a new ball mass or radius keeps
+        the ratio J / (m l^2)).
     t_end : float
         Simulated time (s), > 0.
     n_horizons : int

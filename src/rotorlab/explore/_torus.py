@@ -63,7 +63,8 @@ class TorusRegimes:
     Parameters
     ----------
     model : ToroidalBall
-        Base model; parameters given as coordinates replace its fields.
+        Base model; parameter coordinates set its named parameters (``with_parameters``): its
+        fields by name (``offset``) or as ``model.<key path>`` (``model.offset``).
     t_end : float
         Simulated time (s), > 0; the last horizon.
     n_horizons : int

@@ -103,7 +103,8 @@ def _bound_kw(name: str) -> dict[str, float]:
 
 
 #: Prefix of a coordinate that is a key path of the case's ``[model]`` table: a model whose spec
-#: sets ``sweeps_keys`` (a machine) varies any number of its model this way in basins and sweeps,
+#: sets ``sweeps_keys`` (a machine, ``jeffcott_balls``, a toroidal ball) varies any number of its
+#: model this way in basins and sweeps,
 #: e.g. ``model.unbalances[0].magnitude`` or ``model.structure.bearings[0].kxx``.
 KEY_PREFIX = "model."
 
