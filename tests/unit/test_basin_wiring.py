@@ -28,6 +28,7 @@ from rotorlab.io import (
     load_case,
     parse_case,
 )
+from rotorlab.io._sweep_specs import sweep_coordinates
 from rotorlab.io._units import DIMENSIONS
 
 runner = CliRunner()
@@ -55,9 +56,16 @@ def test_coordinate_tables_match_the_mappers():
     tm = basin_mapper(torus.model, torus.analysis("basin-k1e-5"))
     bm = basin_mapper(auto.model, auto.analysis("basin"))
     assert isinstance(tm, TorusRegimes) and isinstance(bm, BalancerRegimes)
-    assert set(coordinate_dimensions(torus.model)) == set(tm.coordinate_units) == set(TORUS_COORDINATES)
-    assert set(coordinate_dimensions(auto.model)) == set(bm.coordinate_units)
-    assert set(BALANCER_COORDINATES) < set(bm.coordinate_units)
+    named = {m: {k for k in m.coordinate_units if not k.startswith("model.")} for m in (tm, bm)}
+    assert set(coordinate_dimensions(torus.model)) == named[tm] == set(TORUS_COORDINATES)
+    assert set(coordinate_dimensions(auto.model)) == named[bm]
+    assert set(BALANCER_COORDINATES) < named[bm]
+    # every number of the [model] table as model.<key path>: the spec takes it too (sweeps_keys)
+    for mapper, model in ((tm, torus.model), (bm, auto.model)):
+        keys = set(mapper.coordinate_units) - named[mapper]
+        assert keys == {f"model.{n}" for n in mapper.model.parameters.names} and len(keys) >= 7
+        known = sweep_coordinates(model, "param")
+        assert all(k in known for k in keys) and "model.balls[9].mass" not in known
     # the io dimensions give the mapper's units
     for mapper, model in ((tm, torus.model), (bm, auto.model)):
         for name, dim in coordinate_dimensions(model).items():
