@@ -307,3 +307,18 @@ def test_torus_sweep_coordinates_are_named_parameters_bit_for_bit():
         np.testing.assert_array_equal(P[i], ref.to_array())
         np.testing.assert_array_equal(Y0[i], ref.initial_state(coords["psi"][i], 0.0, 0.0, 0.0))
     assert mapper.coordinate_parameter("model.offset").allowed == ">= 0 m"
+
+
+def test_with_parameters_sets_its_values_together():
+    """A check that ties several numbers (a ball's ``inertia >= mass radius^2``) holds for the
+    result, as for a case edited at all those keys at once: a larger radius with the inertia it
+    needs is taken in either order; a radius alone that breaks the check is still refused."""
+    model = build_model(load_case("autobalancer").model)
+    b = model.balls[0]
+    inertia = b.mass * 0.06**2
+    for values in ({"balls[0].radius": 0.06, "balls[0].inertia": inertia},
+                   {"balls[0].inertia": inertia, "balls[0].radius": 0.06}):
+        got = model.with_parameters(**values)
+        assert (got.balls[0].radius, got.balls[0].inertia) == (0.06, inertia)
+    with pytest.raises(ValueError, match=r"inertia must be >= mass \* radius\*\*2"):
+        model.with_parameters(**{"balls[0].radius": 0.06})
