@@ -5,7 +5,8 @@ a restitution above 1) used to create its Zarr store and fail on its first chunk
 ``--resume`` could never finish it. The range is now checked against the model's named
 parameters (:class:`rotorlab.models.ParameterSpace`, the same limits as the case file's keys)
 before anything is written: exit code 2, the option, the value and the allowed range, no store.
-No entry integrates anything.
+Each end of a range also passes the model's own checks (a ball inside its tube), again before
+the store. No entry integrates anything.
 """
 
 from __future__ import annotations
@@ -48,6 +49,9 @@ RANGES = [
     ("torus-key-path-offset-negative", ["strautmanis-torus", "--param", "model.offset=-1e-3:1e-3:2",
                                         "--ic", "psi=0:1:2"],
      ["--param", "model.offset = -0.001", "must be >= 0 m"]),
+    ("torus-ball-radius-beyond-the-tube", ["strautmanis-torus", "--param", "model.ball_radius=0.01:0.02:2",
+                                           "--ic", "psi=0:1:2"],
+     ["--param = model.ball_radius=0.01:0.02:2", "ball_radius must be < tube_radius (0.015 m), got 0.02"]),
     ("torus-rolling-friction-negative", ["strautmanis-torus", "--param", "rolling_friction=-1e-4:1e-4:2",
                                          "--ic", "psi=0:1:2"],
      ["--param", "rolling_friction = -0.0001", "must be >= 0 m"]),

@@ -26,8 +26,15 @@ CASES = [name for name in builtin_cases()
 
 
 def _edited(case, key, value):
-    doc = {"name": "edited", "model": plain_data(case.model.model_dump(mode="python"))}
-    return build_model(validate_case(doc, overrides={f"model.{key}": value}).model)
+    """The model of the case edited at ``key``: its ``[model]`` table as validated (balls'
+    ``count`` expanded), with a ``jeffcott_balls`` ball's inertia left out where the case wrote
+    none (a point mass: the spec fills ``mass * radius**2`` again from the edited numbers)."""
+    model = plain_data(case.model.model_dump(mode="python"))
+    if case.model.type == "jeffcott_balls":
+        for ball in model["balls"]:
+            if ball["inertia"] == ball["mass"] * ball["radius"] ** 2:
+                ball["inertia"] = None
+    return build_model(validate_case({"name": "edited", "model": model}, overrides={f"model.{key}": value}).model)
 
 
 def _other_values(par):
@@ -312,13 +319,35 @@ def test_torus_sweep_coordinates_are_named_parameters_bit_for_bit():
 def test_with_parameters_sets_its_values_together():
     """A check that ties several numbers (a ball's ``inertia >= mass radius^2``) holds for the
     result, as for a case edited at all those keys at once: a larger radius with the inertia it
-    needs is taken in either order; a radius alone that breaks the check is still refused."""
-    model = build_model(load_case("autobalancer").model)
-    b = model.balls[0]
-    inertia = b.mass * 0.06**2
+    needs is taken in either order; a radius alone that breaks the check is still refused. A
+    point-mass ball (the case wrote no inertia) stays one: its inertia follows ``m l^2``."""
+    point = build_model(load_case("autobalancer").model)
+    b = point.balls[0]
+    assert b.inertia == b.mass * b.radius**2
+    assert point.with_parameters(**{"balls[0].radius": 0.06}).balls[0].inertia == b.mass * 0.06**2
+    model = point.with_parameters(**{"balls[0].inertia": 1.2 * b.inertia})  # a ball with its own inertia
+    inertia = 1.2 * b.mass * 0.06**2
     for values in ({"balls[0].radius": 0.06, "balls[0].inertia": inertia},
                    {"balls[0].inertia": inertia, "balls[0].radius": 0.06}):
         got = model.with_parameters(**values)
         assert (got.balls[0].radius, got.balls[0].inertia) == (0.06, inertia)
     with pytest.raises(ValueError, match=r"inertia must be >= mass \* radius\*\*2"):
         model.with_parameters(**{"balls[0].radius": 0.06})
+
+
+def test_a_key_path_ball_mass_sweep_keeps_a_point_mass_ball_one():
+    """autobalancer's balls are point masses (no inertia written): a sweep over
+    ``model.balls[0].mass`` up to 40 g (above the 30 g whose m l^2 the inertia had) packs
+    ``inertia = m l^2`` of each point, as the case edited at that key; it used to fail every
+    point (inertia below m l^2) after the store existed."""
+    from rotorlab.analyses._sweep import build_sweep
+    from rotorlab.io import SweepSpec
+
+    case = load_case("autobalancer")
+    axes = {"model.balls[0].mass": (0.02, 0.04, 2)}
+    mapper = build_sweep(case.model, SweepSpec(name="s", speed_ratio=2.0, t_end=1.0), axes=axes).analysis.mapper
+    _, _, P = mapper.starts({"model.balls[0].mass": np.array([0.02, 0.04])})
+    for i, m in enumerate((0.02, 0.04)):
+        np.testing.assert_array_equal(P[i], _edited(case, "balls[0].mass", m).with_frame(mapper.frame)
+                                      .with_speed(mapper.model.speed).to_array())
+        assert P[i, 14] == m * 0.05**2  # balls[0]: mass, radius, inertia at 12, 13, 14

@@ -45,6 +45,8 @@ __all__ = ["sweep_command", "parse_axis"]
 def _check_ranges(mapper: Any, options: Any, axes: dict[str, tuple]) -> None:
     """Refuse, before any store exists, a range that leaves a parameter's allowed values (a
     negative mass would fail every chunk of the store, and no --resume could finish it)."""
+    import numpy as np
+
     find = getattr(mapper, "coordinate_parameter", None)
     for option, texts in options:
         for text in texts or ():
@@ -54,6 +56,11 @@ def _check_ranges(mapper: Any, options: Any, axes: dict[str, tuple]) -> None:
             if bad:
                 raise BadInput(f"{option} = {text}: {name} = {bad[0]:g} is outside its allowed range: "
                                f"must be {par.allowed}")
+            if par is not None:  # each end also passes the model's own checks (a ball inside its tube)
+                try:
+                    mapper.starts({name: np.asarray(axes[name][:2], dtype=float)})
+                except ValueError as exc:
+                    raise BadInput(f"{option} = {text}: {exc}") from None
 
 def parse_axis(option: str, text: str, kind: str, sample: bool,
                dimensions: dict[str, str] | None = None) -> tuple[str, tuple]:  # fmt: skip

@@ -194,8 +194,20 @@ def jeffcott_slots(m) -> list[Slot]:
         for key, unit, bounds in (("mass", "kg", _GT0), ("radius", "m", _GT0), ("inertia", "kg*m^2", _GE0),
                                   ("damping", "N*m*s/rad", _GE0), ("friction", "1", _GE0)):
             out.append(_slot(f"balls[{i}].{key}", unit, getattr(b, key), bounds,
-                             lambda mm, v, i=i, key=key: _item_setter("balls", i)(mm, key, v)))
+                             lambda mm, v, i=i, key=key: _set_ball(mm, i, key, v)))
     return out + _profile_slots("speed", m.speed, "speed")
+
+
+def _set_ball(m, i: int, key: str, v: float):
+    """``balls[i].<key>`` set; a point-mass ball (``inertia == mass * radius**2``: the case wrote
+    no inertia) stays one when its mass or radius changes, as the case edited at that key would
+    fill it (the spec's ``mass * radius**2``)."""
+    b = m.balls[i]
+    kw = {key: v}
+    if key in ("mass", "radius") and b.inertia == b.mass * b.radius**2:
+        mass, radius = (v, b.radius) if key == "mass" else (b.mass, v)
+        kw["inertia"] = mass * radius**2
+    return replace(m, balls=_set_item(m.balls, i, **kw))
 
 
 # ----------------------------------------------------------------------------------- toroidal_ball
