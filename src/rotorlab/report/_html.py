@@ -32,6 +32,7 @@ th,td{border:1px solid #d0d0d0;padding:.25em .6em;text-align:left;vertical-align
 th{background:#f0f0f0}td.num{text-align:right;font-variant-numeric:tabular-nums}
 pre{background:#f7f7f7;border:1px solid #ddd;padding:.8em;overflow-x:auto;font-size:.85em}
 figure{margin:1em 0}figure img{max-width:100%;border:1px solid #eee}
+.rl-plotly{max-width:100%;overflow-x:auto}
 figcaption{font-size:.85em;color:#555}.muted{color:#666;font-size:.9em}
 .finding{border:1px solid #b8c7d9;background:#f4f8fc;border-radius:4px;padding:.3em 1em;margin:.6em 0}
 .finding h3{margin:.4em 0 .2em}.finding ul{margin:.2em 0 .5em;padding-left:1.4em}
@@ -156,15 +157,42 @@ def _anchor(name: str) -> str:
     return "analysis-" + re.sub(r"[^A-Za-z0-9_.-]", "-", name)
 
 
-def _figure(key: str, png: bytes) -> str:
+def _figure(key: str, png: bytes, interactive: Mapping[str, Any] | None = None) -> str:
+    """A figure: the PNG inline, or its interactive Plotly twin (data as JSON, drawn on load)."""
+    if interactive is not None:
+        data = json.dumps(interactive, separators=(",", ":")).replace("</", "<\\/")
+        return (f'<figure class="interactive" data-stem="{_e(key)}"><div class="rl-plotly"></div>'
+                f'<script type="application/json" class="rl-plotly-data">{data}</script>'
+                f'<figcaption>{_e(key)}: interactive (drag to zoom, double-click to reset, click a legend '
+                f'entry to hide it); for papers: <a href="{_e(key)}.png">{_e(key)}.png</a></figcaption></figure>')
     data = base64.b64encode(png).decode("ascii")
     return (f'<figure><img alt="{_e(key)}" src="data:image/png;base64,{data}">'
             f"<figcaption>{_e(key)}.png</figcaption></figure>")  # fmt: skip
 
 
+# Draws every interactive figure once plotly.js (inlined above it) is loaded.
+_DRAW = """<script>
+document.querySelectorAll("figure.interactive").forEach(function (f) {
+  var spec = JSON.parse(f.querySelector(".rl-plotly-data").textContent);
+  Plotly.newPlot(f.querySelector(".rl-plotly"), spec.data, spec.layout,
+                 {displaylogo: false, responsive: true});
+});
+</script>"""
+
+
+def _plotly_parts(interactive: Mapping[str, Mapping[str, Any]]) -> list[str]:
+    """plotly.js (once) and the script that draws the interactive figures, if there are any."""
+    if not any(interactive.values()):
+        return []
+    from rotorlab.plot import plotly_script
+
+    return [f"<script>{plotly_script()}</script>", _DRAW]
+
+
 def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapping[str, bytes]],
                   summary_tables: Mapping[str, Sequence[Mapping[str, Any]]],
-                  files: Sequence[str], case_text: str) -> str:  # fmt: skip
+                  files: Sequence[str], case_text: str, *,
+                  interactive: Mapping[str, Mapping[str, Any]] | None = None) -> str:  # fmt: skip
     """Return the HTML text of the report (see :func:`rotorlab.report.write_report`).
 
     The page opens with the findings of every analysis (the verdict in words and the key numbers
@@ -187,12 +215,17 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapp
         Names of the files written next to the report (linked relatively).
     case_text : str
         The case file text to show.
+    interactive : mapping of str to mapping of str to dict, optional
+        Plotly twins (:func:`rotorlab.plot.to_plotly`) by analysis name, then by file stem: shown
+        in place of the PNG of the same stem (which the page links to); plotly.js is inlined
+        once, so the page works offline.
 
     Returns
     -------
     str
     """
     now = _dt.datetime.now(_dt.timezone.utc).strftime("%Y-%m-%d %H:%M:%S UTC")
+    interactive = interactive or {}
     ran = [a for a in case.analyses if a.name in results]
     parts = [
         "<!DOCTYPE html>",
@@ -218,7 +251,8 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapp
         name = analysis.name
         ds = results.get(name)
         parts.append(f'<h2 id="{_e(_anchor(name))}">Analysis: {_e(name)} ({_e(analysis.type)})</h2>')
-        parts += [_figure(key, png) for key, png in pngs.get(name, {}).items()]
+        twins = interactive.get(name, {})
+        parts += [_figure(key, png, twins.get(key)) for key, png in pngs.get(name, {}).items()]
         if ds is not None:
             parts.append(presentation_of(analysis.type, case.model.type).section(ds, summary_tables.get(name, [])))
         parts += ["<h3>Parameters</h3>", _table(("key", "value", "unit", "also"),
@@ -249,6 +283,7 @@ def render_report(case: Any, results: Mapping[str, Any], pngs: Mapping[str, Mapp
         f"<pre>{_e(case_text)}</pre>",
         "<h2>Software</h2>",
         _table(("package", "version"), versions().items()),
+        *_plotly_parts(interactive),
         "</body></html>",
     ]
     return "\n".join(p for p in parts if p) + "\n"

@@ -22,7 +22,8 @@ For implementers
      for ``-v``.
 
 3. Optionally ``notes(results) -> str``: one report section after all analyses (shown when the
-   case has an analysis of the family), e.g. the seeds' typos.
+   case has an analysis of the family), e.g. the seeds' typos; and ``interactive=True`` when its
+   figures are explored rather than read (the report then shows them as Plotly figures).
 4. ``register_presentation(Presentation("my-family", ...))`` and give your
    :class:`rotorlab.analyses.AnalysisType` ``family="my-family"``.
 """
@@ -73,6 +74,10 @@ class Presentation:
         The same, printed with ``-v`` only.
     notes : callable, optional
         ``notes(results) -> str``: one report section after the analyses.
+    interactive : bool
+        Its figures are explored rather than read (Campbell and bifurcation diagrams, basin maps,
+        sweep results): the report shows each as an interactive Plotly figure
+        (:func:`rotorlab.plot.to_plotly`), the PNG is still written.
     """
 
     family: str
@@ -82,6 +87,7 @@ class Presentation:
     console: Callable[[Mapping[str, Any], Mapping[str, Rows]], list[Any]] = no_tables
     console_detail: Callable[[Mapping[str, Any], Mapping[str, Rows]], list[Any]] = no_tables
     notes: Callable[[Mapping[str, Any]], str] | None = None
+    interactive: bool = False
 
 
 #: Presentations by family, in the order ``rotorlab run`` prints them.
@@ -152,15 +158,15 @@ for _entry in (
                  lazy("rotorlab.report._steady:steady_section"), steady_findings,
                  lazy("rotorlab.cli._steady:steady_tables"), notes=_steady_notes),
     Presentation("basin", lazy("rotorlab.plot:basin_figures"), _basin_section, basin_findings,
-                 lazy("rotorlab.cli._basin:basin_tables"), notes=_basin_notes),
+                 lazy("rotorlab.cli._basin:basin_tables"), notes=_basin_notes, interactive=True),
     Presentation("basin-stability", lazy("rotorlab.plot._basin_stability:basin_stability_figures"),
                  lazy("rotorlab.report._basin_stability:basin_stability_section"),
                  lazy("rotorlab.report._basin_stability:basin_stability_findings"),
-                 lazy("rotorlab.report._basin_stability:basin_stability_tables")),
+                 lazy("rotorlab.report._basin_stability:basin_stability_tables"), interactive=True),
     Presentation("impacts", lazy("rotorlab.plot:impact_figures"), _impact_section, impact_findings,
                  lazy("rotorlab.cli._impacts:impact_tables"), notes=_impact_notes),
     Presentation("linear", lazy("rotorlab.plot:linear_figures"), _linear_section, linear_findings,
-                 lazy("rotorlab.cli._linear:linear_tables")),
+                 lazy("rotorlab.cli._linear:linear_tables"), interactive=True),
     Presentation("machine", lazy("rotorlab.report._machine:machine_figures"),
                  lazy("rotorlab.report._machine:machine_section"),
                  lazy("rotorlab.report._machine:machine_findings"),
@@ -168,11 +174,12 @@ for _entry in (
     Presentation("rub", lazy("rotorlab.plot._rub:rub_figures"), lazy("rotorlab.report._rub:rub_section"),
                  lazy("rotorlab.report._rub:rub_findings"), lazy("rotorlab.cli._rub:rub_tables")),
     Presentation("rub-map", lazy("rotorlab.plot._rub:rub_map_figures"), lazy("rotorlab.report._rub:rub_map_section"),
-                 lazy("rotorlab.report._rub:rub_map_findings"), lazy("rotorlab.report._rub:rub_map_tables")),
+                 lazy("rotorlab.report._rub:rub_map_findings"), lazy("rotorlab.report._rub:rub_map_tables"),
+                 interactive=True),
     Presentation("continuation", lazy("rotorlab.plot._continuation:continuation_figures"),
                  lazy("rotorlab.report._continuation:continuation_section"),
                  lazy("rotorlab.report._continuation:continuation_findings"),
-                 lazy("rotorlab.cli._continuation:continuation_tables")),
+                 lazy("rotorlab.cli._continuation:continuation_tables"), interactive=True),
     Presentation("knock", lazy("rotorlab.report._knock:knock_figures"), lazy("rotorlab.report._knock:knock_section"),
                  lazy("rotorlab.report._knock:knock_findings"), lazy("rotorlab.report._knock:knock_tables")),
     *(Presentation(f"{kind}-margin", lazy(f"rotorlab.plot._margins:{kind}_margin_figures"),

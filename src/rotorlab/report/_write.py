@@ -83,6 +83,16 @@ def _png(fig: Figure, dpi: int) -> bytes:
     return buf.getvalue()
 
 
+def _interactive(case: Case, figures: Mapping[str, Mapping[str, Figure]]) -> dict[str, dict[str, Any]]:
+    """The Plotly twins of the figures of the analyses whose family is explored (``interactive``)."""
+    from rotorlab.plot import to_plotly
+    from rotorlab.report._presentations import presentation_of
+
+    kinds = {a.name: a.type for a in case.analyses}
+    return {name: {stem: to_plotly(fig) for stem, fig in by_stem.items()} for name, by_stem in figures.items()
+            if name in kinds and presentation_of(kinds[name], case.model.type).interactive}
+
+
 def write_report(
     out_dir: str | os.PathLike[str],
     case: Case,
@@ -110,7 +120,8 @@ def write_report(
         By analysis name; each is saved as ``<name>.nc`` (:func:`rotorlab.io.save_netcdf`).
     figures : mapping of str to mapping of str to matplotlib.figure.Figure
         By analysis name, then by file stem (what the presentation's ``figures(ds, name)``
-        returns); each is saved as ``<stem>.png`` and embedded in that analysis' section.
+        returns); each is saved as ``<stem>.png`` and embedded in that analysis' section (as an
+        interactive Plotly figure where the analysis' presentation is ``interactive``).
     summary_tables : mapping of str to list of dict
         By analysis name, rows of :func:`rotorlab.analyses.summarize`.
     dpi : int
@@ -156,7 +167,8 @@ def write_report(
                 pngs.setdefault(name, {})[key] = _png(fig, dpi)
                 (staging / f"{key}.png").write_bytes(pngs[name][key])
         text = case.text or dump_case(case)
-        page = render_report(case, results, pngs, summary_tables, names[:-1], text)
+        page = render_report(case, results, pngs, summary_tables, names[:-1], text,
+                             interactive=_interactive(case, figures))
         writing = target / REPORT_NAME
         (staging / REPORT_NAME).write_text(page, encoding="utf-8")
         writing = target / MANIFEST_NAME
