@@ -37,6 +37,7 @@ from rotorlab.analyses._machine_common import (  # noqa: F401  (re-exported: the
     _per_station,
     _variant,
     _wrap,
+    add_figure_variables,
     check_saved_states,
     clearance_violation,
     flag_unstable,
@@ -81,8 +82,10 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
         amplitude is taken (its maximum).
     n_save : int, optional
         Also keep ``n_save`` equally spaced states over [0, t_end] as the time history
-        ``displacement`` (ic, time, station): each node's distance from the axis (m), what the
-        report plots. A history that would not fit in this machine's memory is refused up
+        ``displacement`` (ic, time, station): each node's distance from the axis (m); under
+        gravity also ``displacement_from_rest`` (each node's distance from where it rests, what
+        the report plots), with a clearance ``clearance_distance`` (ic, time) and ``attrs["gap"]``
+        (:func:`~rotorlab.analyses._machine_common.add_figure_variables`). A history that would not fit in this machine's memory is refused up
         front (:func:`check_saved_states`, :class:`rotorlab._memory.TooLarge`).
 
     Returns
@@ -170,9 +173,9 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     )
     if hist is not None:
         ds = ds.assign_coords(time=("time", hist, {"units": "s"}))
-        ds["displacement"] = (("ic", "time", "station"),
-                              machine.station_amplitudes(ys_all[:, np.searchsorted(ts_all, hist)]),
-                              {"units": "m"})
+        saved = ys_all[:, np.searchsorted(ts_all, hist)]
+        ds["displacement"] = (("ic", "time", "station"), machine.station_amplitudes(saved), {"units": "m"})
+        ds = add_figure_variables(ds, machine, saved, ("ic", "time"))
     return ds
 
 

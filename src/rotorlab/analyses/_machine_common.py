@@ -18,7 +18,7 @@ from rotorlab.models._machine_physics import locked_structure, structure_critica
 __all__ = ["BELOW_CRITICAL", "NO_STEADY_STATUS", "CLEARANCE_STATUS", "NON_SYNCHRONOUS_RATE",
            "UNSTABLE_GROWTH", "clearance_violation", "check_saved_states", "structure_instability",
            "flag_unstable", "status_detail", "locked_structure", "structure_critical_speeds",
-           "unbalance_amplitudes", "orbit_amplitude", "machine_model", "machine_quantities"]
+           "unbalance_amplitudes", "orbit_amplitude", "machine_model", "machine_quantities", "figure_variables", "add_figure_variables"]
 
 #: Status of a steady analysis on a machine without co-rotating equilibria.
 NO_STEADY_STATUS = 3
@@ -306,4 +306,52 @@ def _annotate(ds, case_model, analysis):
     ds.attrs["n_races"] = len(case_model.races) if races is None else len(races)
     ds.attrs["name"] = analysis.name
     ds.attrs["analysis"] = analysis.type
+    return ds
+
+
+def figure_variables(machine, ys) -> dict[str, Any]:
+    """What the figures of a time history need beyond each node's distance from the axis.
+
+    Parameters
+    ----------
+    machine : rotorlab.models.Machine
+    ys : ndarray, shape (..., n_time, n_state)
+        Saved fixed-frame states.
+
+    Returns
+    -------
+    dict
+        ``"from_rest"``: each node's distance from its rest position under gravity (m, shape
+        (..., n_time, n_nodes)), where gravity moves the structure at rest (else absent: the
+        distance from the axis is that distance); ``"clearance_distance"`` (m, shape
+        (..., n_time)): the clearance station's distance from the stator's centre, with
+        ``"gap"`` (m) and ``"clearance_station"``, where the machine has a clearance.
+    """
+    out: dict[str, Any] = {}
+    try:
+        zs, _ = machine._rest_position()
+    except ValueError:  # supports that do not hold the structure: no rest position
+        zs = None
+    if zs is not None and np.any(zs):
+        rest = machine.basis @ zs
+        q = machine.displacements(ys)
+        out["from_rest"] = np.hypot(q[..., 0::4] - rest[0::4], q[..., 1::4] - rest[1::4])
+    if machine.clearances:
+        c = machine.clearances[0]
+        w = machine.gap_vector(ys)
+        out.update(clearance_distance=np.hypot(w[..., 0], w[..., 1]), gap=float(c.gap),
+                   clearance_station=str(machine.structure.node_label[c.node]))
+    return out
+
+
+def add_figure_variables(ds, machine, ys, dims: tuple[str, ...]):
+    """``ds`` with ``displacement_from_rest`` (``dims`` + station) and ``clearance_distance``
+    (``dims``, with ``attrs`` ``gap`` and ``clearance_station``) of the saved states ``ys``
+    (:func:`figure_variables`), where the machine has them."""
+    extra = figure_variables(machine, ys)
+    if "from_rest" in extra:
+        ds["displacement_from_rest"] = ((*dims, "station"), extra["from_rest"], {"units": "m"})
+    if "gap" in extra:
+        ds["clearance_distance"] = (dims, extra["clearance_distance"], {"units": "m"})
+        ds.attrs.update(gap=extra["gap"], clearance_station=extra["clearance_station"])
     return ds

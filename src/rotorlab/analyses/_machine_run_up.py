@@ -26,6 +26,7 @@ from rotorlab.analyses._machine_common import (
     _per_station,
     _variant,
     _wrap,
+    add_figure_variables,
     check_saved_states,
     flag_unstable,
     orbit_amplitude,
@@ -114,7 +115,10 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
     -------
     xarray.Dataset
         Over ``time``: ``speed`` (rad/s), ``amplitude`` (time, station) radial displacement of
-        each node (m), ``ball_angle`` (time, ball) relative to the rotor (rad). Attributes:
+        each node (m), ``ball_angle`` (time, ball) relative to the rotor (rad); under gravity
+        ``displacement_from_rest`` (time, station), with a clearance ``clearance_distance``
+        (time) and ``attrs`` ``gap``, ``clearance_station``
+        (:func:`~rotorlab.analyses._machine_common.add_figure_variables`). Attributes:
         ``critical_speeds`` (rad/s, forward 1x, balls locked), ``final_speed``,
         ``passed`` and ``captured_at`` (:func:`run_up_verdict`), ``residual_amplitude`` per
         station (vibration amplitude about the mean position over the last 10 % of the run, m);
@@ -157,7 +161,8 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
                "final_speed": final, "passed": passed, "captured_at": captured,
                "status": int(status[0]), "status_detail": notes[0]},
     )
-    return ds
+    return add_figure_variables(ds, machine, sol.ys, ("time",))
+
 
 
 def _motor_top(machine) -> float:

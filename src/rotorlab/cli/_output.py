@@ -13,6 +13,7 @@ import errno
 import json
 import logging
 import math
+import os
 import sys
 import traceback
 from collections.abc import Iterator, Mapping, Sequence
@@ -161,6 +162,9 @@ def _clean_console_class() -> Any:
             def render_str(self, text: str, **kwargs: Any) -> Any:
                 return super().render_str(clean_text(text, None, lines=True), **kwargs)
 
+            def print(self, *objects: Any, **kwargs: Any) -> None:
+                super().print(*(compact(o) for o in objects), **kwargs)
+
         _CleanConsole = CleanConsole
     return _CleanConsole
 
@@ -168,12 +172,40 @@ def _clean_console_class() -> Any:
 _CleanConsole: Any = None
 
 
+#: Width of the printed tables when stdout is not a terminal (a file, a pipe, a CI log).
+TABLE_WIDTH = 100
+
+
+def compact(table: Any) -> Any:
+    """Make a rich table compact (``table`` itself; anything else is returned as it is).
+
+    No vertical rules and one space between columns; a column is never narrower than the
+    longest word of its cells, so that a word is wrapped onto the next line as a whole and
+    never cut ("balanc..."), while the headers wrap at their spaces.
+    """
+    from rich import box
+    from rich.table import Table
+
+    if not isinstance(table, Table):
+        return table
+    table.box = box.SIMPLE_HEAD
+    table.padding = (0, 1)
+    table.pad_edge = False
+    table.collapse_padding = True
+    for col in table.columns:
+        words = [len(w) for cell in col._cells for w in str(getattr(cell, "plain", cell)).split()]
+        col.min_width = max(col.min_width or 0, max(words, default=1))
+        col.overflow = "fold"
+    return table
+
+
 def stdout() -> Any:
-    """Return a rich console on the current ``sys.stdout`` (120 columns when not a terminal);
-    every string it prints is cleaned of escape sequences (:func:`clean_text`)."""
+    """Return a rich console on the current ``sys.stdout`` (:data:`TABLE_WIDTH` columns when not a
+    terminal, unless ``COLUMNS`` says otherwise); every string it prints is cleaned of escape sequences (:func:`clean_text`) and
+    every table is made :func:`compact`."""
     console = _clean_console_class()(file=sys.stdout, highlight=False, soft_wrap=True)
-    if not console.is_terminal:
-        console.width = max(console.width, 120)
+    if not console.is_terminal and not os.environ.get("COLUMNS", "").isdigit():
+        console.width = TABLE_WIDTH
     return console
 
 

@@ -79,7 +79,8 @@ def _legend(ax: Axes) -> None:
 
 
 def _time_axis(ax: Axes, t_end: float) -> None:
-    """Stretch the start of a long run: linear near 0, logarithmic beyond ``t_end / 40``.
+    """Stretch the start of a long run: linear near 0, logarithmic beyond ``t_end / 40`` (the
+    axis label says so).
 
     The transient of a start-up lasts a fraction of a second and the settled motion the rest:
     on a linear axis of 20 s the transient is squeezed into the first pixels.
@@ -91,7 +92,7 @@ def _time_axis(ax: Axes, t_end: float) -> None:
     ax.set_xticks(ticks, [f"{v:g}" for v in ticks])
     ax.minorticks_off()
     ax.set_xlim(0.0, t_end)
-    ax.set_xlabel("time (s)")  # the ticks show the stretch
+    ax.set_xlabel(f"time (s): linear up to {width:.2g} s, logarithmic beyond")
 
 
 def speed_label(ds: xarray.Dataset, k: int) -> str:

@@ -98,7 +98,8 @@ def parameter_rows(spec: Any, prefix: str = "") -> list[tuple[str, str, str, str
     Returns
     -------
     list of (key path, SI value, SI unit, the value in other units)
-        Speeds are also given in rpm and Hz, angles in degrees.
+        Speeds are also given in rpm and Hz, angles in degrees; a dimensionless value has no
+        unit (not SI's "1").
 
     Examples
     --------
@@ -124,13 +125,18 @@ def parameter_rows(spec: Any, prefix: str = "") -> list[tuple[str, str, str, str
                 rows += parameter_rows(item, f"{key}[{i}]")
         else:
             unit = field_unit(info)
-            rows.append((key, _fmt(value), unit, _other_units(value, unit)))
+            rows.append((key, _fmt(value), _shown_unit(unit), _other_units(value, unit)))
     return rows
+
+
+def _shown_unit(unit: str) -> str:
+    """The unit as shown to people: none for a dimensionless value (SI's "1")."""
+    return "" if unit == "1" else unit
 
 
 def _quantity_row(q: Mapping[str, Any]) -> tuple[str, str, str, str]:
     also = _other_units(q["value"], q["unit"])
-    return q["quantity"], q["sign"] + _fmt(q["value"]), q["unit"], q["sign"] + also if also else ""
+    return q["quantity"], q["sign"] + _fmt(q["value"]), _shown_unit(q["unit"]), q["sign"] + also if also else ""
 
 
 def _quantity_rows(results: Mapping[str, Any]) -> list[tuple[str, str, str, str]]:

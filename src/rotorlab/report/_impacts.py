@@ -36,7 +36,7 @@ def _runaway_rows(s: dict[str, Any]) -> list[list[Any]]:
     eta = "-" if s["energy_ratio_before_runaway"] is None else f"{s['energy_ratio_before_runaway']:.4g}"
     return [
         ["runaway to the backward whirl from", f"{s['runaway_start_s']:.6g}", "s"],
-        ["eta before the runaway", eta, "1"],
+        ["eta before the runaway", eta, ""],
         ["impacts before the runaway", s["impacts_before_runaway"], ""],
         ["impacts in the runaway", s["impacts_runaway"], ""],
         ["energy against friction in the runaway", f"{s['energy_friction_runaway_J']:.4g}", "J"],
@@ -58,7 +58,7 @@ def _run_html(ds: xarray.Dataset) -> str:
         ["energy against friction at the housing", f"{s['energy_friction_J']:.4g}", "J"],
         ["work of the stones on the vibration", f"{s['work_stones_J']:.4g}", "J"],
         ["vibration energy gained (fixed frame)", f"{s['energy_vibration_J']:.4g}", "J"],
-        ["eta (seed 001, Fig. 5)", eta, "1"],
+        ["eta (seed 001, Fig. 5)", eta, ""],
         *_runaway_rows(s),
         ["largest approach speed", f"{s['max_approach_speed_m_s']:.4g}", "m/s"],
         ["largest penetration (should be 0)", f"{s['max_penetration_m']:.3g}", "m"],

@@ -14,6 +14,8 @@ from rotorlab import _people as people
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 from rotorlab.report._findings import Findings
 
+from rotorlab.plot._machine import machine_figures  # noqa: F401  (the figures live in rotorlab.plot)
+
 __all__ = ["machine_section", "machine_findings", "machine_figures", "machine_rows_table"]
 
 Rows = Sequence[Mapping[str, Any]]
@@ -23,8 +25,12 @@ def _g(v, digits: int = 4) -> str:
     return "-" if v is None else f"{v:.{digits}g}"
 
 
+#: A distance below this (m) is round-off of zero: shown as 0 (a balanced state's whirl).
+_ZERO = 1e-9
+
+
 def _mm(v) -> str:
-    return "-" if v is None else f"{v * 1e3:.4g}"
+    return "-" if v is None else "0" if abs(v) < _ZERO else f"{v * 1e3:.4g}"
 
 
 def _races(angles) -> str:
@@ -34,18 +40,26 @@ def _races(angles) -> str:
     return "; ".join(f"{k}: {', '.join(people.angle_deg(a) for a in v)}" for k, v in angles.items())
 
 
+def _stations(ds: Any, rows: Rows, key: str, *also: str) -> list[str]:
+    """The stations a table shows: the named ones (or the one vibrating most: :func:`shown_stations`)
+    where any row's ``key`` (or ``also``) is above round-off; no column of zeros."""
+    from rotorlab.plot._machine import shown_stations
+
+    names = next((list(r[key]) for r in rows if r.get(key)), [])
+    if not names:
+        return []
+
+    def size(s: str) -> float:
+        return max((abs(v) for r in rows for k in (key, *also) for v in [(r.get(k) or {}).get(s)]
+                    if v is not None), default=0.0)
+
+    sizes = [size(s) for s in names]
+    picked = [names[k] for k in shown_stations(ds, sizes)] if "station" in ds.coords else names
+    return [s for s in picked if size(s) >= _ZERO]
 
 
-
-def _stations(rows: Rows, key: str) -> list[str]:
-    for r in rows:
-        if r.get(key):
-            return list(r[key])
-    return []
-
-
-def _steady(rows: Rows):
-    stations = _stations(rows, "amplitude")
+def _steady(ds: Any, rows: Rows):
+    stations = _stations(ds, rows, "amplitude")
     header = ("motion", "kind", "ball angles", "exact", "seed 003 (Hamilton)", "seed 002 (averaged)",
               "max Re(lambda) (1/s)", *(f"whirl at {s} (mm)" for s in stations))
     body = [(r.get("label", str(r["motion"])), r["kind"] if r["exists"] else "absent", _races(r["ball_angles_deg"]),
@@ -54,8 +68,8 @@ def _steady(rows: Rows):
     return header, body
 
 
-def _chart(rows: Rows):
-    stations = _stations(rows, "amplitude")
+def _chart(ds: Any, rows: Rows):
+    stations = _stations(ds, rows, "amplitude")
     param = [k for k in (rows[0] if rows else {}) if k in ("ball_mass", "ball_damping")]
     header = (*param, "speed (rpm)", "steady motion", "stable", "max Re(lambda) (1/s)", "ball angles",
               *(f"whirl at {s} (mm)" for s in stations))
@@ -66,21 +80,27 @@ def _chart(rows: Rows):
     return header, body
 
 
-def _simulate(rows: Rows):
-    stations = _stations(rows, "amplitude")
+def _outcome_of(r: Mapping[str, Any]) -> str:
+    """The outcome, with "(failed)" where the run failed and its outcome does not say so."""
+    failed = r.get("status", 0) != 0 and "fail" not in str(r["outcome"])
+    return f"{r['outcome']} (failed)" if failed else str(r["outcome"])
+
+
+def _simulate(ds: Any, rows: Rows):
+    stations = _stations(ds, rows, "amplitude", "reference_amplitude")
     header = ("start", "initial ball angles", "final speed (rpm)", "final ball angles",
-              *(f"vibration at {s} (mm)" for s in stations), "outcome", "status")
+              *(f"vibration at {s} (mm)" for s in stations), "outcome")
     body = [(str(r["ic"]), _races(r["initial_ball_angles_deg"]), _g(r["final_speed_rpm"], 6),
-             _races(r["final_ball_angles_deg"]), *(_mm(r["amplitude"][s]) for s in stations), r["outcome"],
-             str(r["status"])) for r in rows]
+             _races(r["final_ball_angles_deg"]), *(_mm(r["amplitude"][s]) for s in stations), _outcome_of(r))
+            for r in rows]
     if rows:
         body.append(("without balancing", "", "", "", *(_mm(rows[0]["reference_amplitude"][s]) for s in stations),
-                     "", ""))
+                     ""))
     return header, body
 
 
-def _run_up(rows: Rows):
-    stations = _stations(rows, "residual_amplitude")
+def _run_up(ds: Any, rows: Rows):
+    stations = _stations(ds, rows, "residual_amplitude", "reference_amplitude")
     header = ("start", "final speed (rpm)", "undamped forward critical speeds (rpm)", "passed",
               "captured at (rpm)",
               *(f"residual vibration at {s} (mm)" for s in stations),
@@ -88,7 +108,7 @@ def _run_up(rows: Rows):
     body = [(str(r["ic"]), _g(r["final_speed_rpm"], 6), ", ".join(_g(w * _RPM, 5) for w in r["critical_speeds"]),
              str(r["passed"]), _g(None if r["captured_at"] is None else r["captured_at"] * _RPM, 5),
              *(_mm(r["residual_amplitude"][s]) for s in stations),
-             *(_mm(r["reference_amplitude"][s]) for s in stations), r["outcome"]) for r in rows]
+             *(_mm(r["reference_amplitude"][s]) for s in stations), _outcome_of(r)) for r in rows]
     if rows and "passing_torque" in rows[0]:  # passing_torque = true
         header = (*header, "smallest passing torque with balls (N*m)", "without balls (N*m)")
         body = [(*b, _g(r["passing_torque"]), _g(r["passing_torque_without_balls"])) for b, r in zip(body, rows)]
@@ -100,7 +120,7 @@ _TABLES = {"steady": _steady, "stability-chart": _chart, "simulate": _simulate, 
 
 def machine_rows_table(ds: Any, rows: Rows):
     """``(header, body)`` of a machine result's table."""
-    return _TABLES[ds.attrs["analysis"]](rows)
+    return _TABLES[ds.attrs["analysis"]](ds, rows)
 
 
 def machine_section(ds: Any, rows: Rows) -> str:
@@ -295,114 +315,3 @@ _FINDINGS = {"steady": _steady_findings, "stability-chart": _chart_findings, "si
 def machine_findings(ds: Any, rows: Rows) -> Findings:
     """The verdict of a machine result in words."""
     return _FINDINGS[ds.attrs["analysis"]](ds, rows)
-
-
-def _simulate_figure(ds: Any, name: str, plt) -> Any:
-    """Each station's distance from the axis over time (log scale), one colour per start and one
-    line style per station, and dotted the same without balancing (the locked unbalance response,
-    as in the table); starts ending with the largest vibration are drawn first."""
-    n_ic, stations = ds.sizes["ic"], list(ds.station.values)
-    fig, ax = plt.subplots(figsize=(6.5, 3.6))
-    t = np.asarray(ds.time.values, dtype=float)
-    disp = np.asarray(ds.displacement.values, dtype=float) * 1e3
-    order = np.argsort(-np.asarray(ds.amplitude.values, dtype=float).max(axis=1), kind="stable")
-    styles = ("-", "--", ":", "-.")
-    legend = n_ic * len(stations) <= 12
-    for rank, i in enumerate(order):
-        for k, s in enumerate(stations):
-            ax.plot(t, disp[i, :, k], color=f"C{i % 10}", lw=0.8, ls=styles[k % 4],
-                    zorder=2 + rank, label=f"{s}, start {i}: {ds.outcome.values[i]}" if legend else None)
-    for k, s in enumerate(stations):
-        ref = float(ds.reference_amplitude.values[k]) * 1e3
-        if ref > 0:
-            ax.axhline(ref, color="k", lw=0.8, ls=styles[k % 4], alpha=0.6,
-                       label=f"{s}, without balancing" if legend else None)
-    ax.set_yscale("log")
-    # from the smallest distance after the start at rest (0) up: seven decades at most
-    later = disp[:, 1:, :]
-    top = max(float(later.max(initial=0.0)), float(ds.reference_amplitude.max()) * 1e3)
-    low = float(later[later > 0].min(initial=top))
-    if top > 0:
-        ax.set_ylim(max(0.5 * low, 1e-7 * top), 2.0 * top)
-    ax.set_xlabel("time (s)")
-    ax.set_ylabel("distance from the axis (mm)")
-    ax.set_title(f"{name}: vibration (black: without balancing)", fontsize=10)
-    ax.grid(alpha=0.3)
-    if legend:
-        ax.legend(fontsize="x-small", loc="upper left", bbox_to_anchor=(1.01, 1.0))
-    fig.tight_layout()
-    return fig
-
-
-def _stability_figures(ds: Any, name: str, plt: Any) -> dict[str, Any]:
-    """A stability chart: stable region over speed x parameter, or max Re(lambda) over speed."""
-    if not bool(ds.exists.any()):
-        return {}
-    if "parameter" in ds.dims:
-        fig, ax = plt.subplots(figsize=(6, 3.5))
-        st = np.where(ds.exists.values, ds.stable.values.astype(float), np.nan)
-        ax.pcolormesh(ds.speed.values * _RPM, ds.parameter.values, st, shading="nearest", cmap="RdYlGn",
-                      vmin=0, vmax=1)
-        ax.set_xlabel("spin speed (rpm)")
-        ax.set_ylabel(f"{ds.attrs['parameter']} ({ds.parameter.attrs.get('units', '')})")
-        ax.set_title(f"{name}: balanced state stable (green)")
-        fig.tight_layout()
-        return {f"{name}-stability": fig}
-    if ds.sizes["speed"] > 1:
-        fig, ax = plt.subplots(figsize=(6, 3.5))
-        ax.plot(ds.speed.values * _RPM, ds.max_real_eigenvalue.values, ".-")
-        ax.axhline(0.0, color="k", lw=0.8)
-        ax.set_xlabel("spin speed (rpm)")
-        ax.set_ylabel("max Re(lambda) (1/s)")
-        ax.set_title(f"{name}: balanced state stable below the line")
-        fig.tight_layout()
-        return {f"{name}-stability": fig}
-    return {}
-
-
-def _simulate_figures(ds: Any, name: str, plt: Any) -> dict[str, Any]:
-    """A simulation with its time history: vibration over time."""
-    return {f"{name}-vibration": _simulate_figure(ds, name, plt)} if "displacement" in ds else {}
-
-
-def _run_up_figures(ds: Any, name: str, plt: Any) -> dict[str, Any]:
-    """A run-up: speed and vibration over time, per start."""
-    fig, (a1, a2) = plt.subplots(2, 1, figsize=(6, 5), sharex=True)
-    # the start that ends with the largest vibration is drawn first, so that a balanced
-    # start's thin band is not hidden under an unbalanced one's (same colour per start)
-    residual = np.asarray(ds.residual_amplitude.values, dtype=float).reshape(ds.sizes["ic"], -1)
-    order = np.argsort(-residual.max(axis=1), kind="stable")
-    for rank, i in enumerate(order):
-        colour = f"C{i % 10}"
-        a1.plot(ds.time.values, ds.speed.values[i] * _RPM, color=colour, label=f"start {i}")
-        for k, s in enumerate(ds.station.values):
-            a2.plot(ds.time.values, ds.amplitude.sel(station=s).values[i] * 1e3, color=colour,
-                    ls=("-", "--", ":", "-.")[k % 4], zorder=2 + rank,
-                    label=f"{s}, start {i}: {ds.outcome.values[i]}")
-    for w in ds.attrs["critical_speeds"]:
-        a1.axhline(w * _RPM, color="r", lw=0.6, ls="--")
-    a1.set_ylabel("speed (rpm)")
-    a2.set_ylabel("radial displacement (mm)")
-    a2.set_xlabel("time (s)")
-    a2.legend(fontsize="small")
-    fig.tight_layout()
-    return {f"{name}-run-up": fig}
-
-
-# The machine presentation's figures, by the analysis that made the Dataset (ds.attrs["analysis"]);
-# an analysis without an entry has no figure.
-_FIGURES = {"stability-chart": _stability_figures, "simulate": _simulate_figures, "run-up": _run_up_figures}
-
-
-def machine_figures(ds: Any, name: str) -> dict[str, Any]:
-    """Stability over speed (steady), vibration over time (simulate with its time history) or
-    speed and vibration over time (run-up); none otherwise."""
-    draw = _FIGURES.get(ds.attrs["analysis"])
-    if draw is None:
-        return {}
-    import matplotlib
-
-    matplotlib.use("Agg")
-    import matplotlib.pyplot as plt
-
-    return draw(ds, name, plt)

@@ -167,7 +167,7 @@ for _entry in (
                  lazy("rotorlab.cli._impacts:impact_tables"), notes=_impact_notes),
     Presentation("linear", lazy("rotorlab.plot:linear_figures"), _linear_section, linear_findings,
                  lazy("rotorlab.cli._linear:linear_tables"), interactive=True),
-    Presentation("machine", lazy("rotorlab.report._machine:machine_figures"),
+    Presentation("machine", lazy("rotorlab.plot._machine:machine_figures"),
                  lazy("rotorlab.report._machine:machine_section"),
                  lazy("rotorlab.report._machine:machine_findings"),
                  lazy("rotorlab.cli._machine:machine_tables")),
