@@ -36,7 +36,10 @@ extensions = [
     "rotorlab_docs",
 ]
 exclude_patterns = ["_build", "jupyter_execute", ".jupyter_cache"]
-html_theme = "alabaster"
+# Furo: a content column wide enough for the code cells, which scroll rather than being cut off.
+html_theme = "furo"
+html_static_path = ["_static"]
+html_css_files = ["rotorlab.css"]  # code cells of up to 100 characters fit the column
 smartquotes = False  # keys and values are quoted as in the files
 html_title = f"rotorlab {release}"
 

@@ -21,6 +21,7 @@ import os
 import shutil
 import tempfile
 
+import pytest
 from hypothesis import settings
 
 _RUN_CACHE = "_ROTORLAB_TEST_RUN_CACHE"  # set by the process that made the folder (the controller)
@@ -86,3 +87,62 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
         + (": OVER BUDGET, this run fails; the copies: " + ", ".join(copies) if over else ""),
         red=over,
     )
+
+
+# A real browser for the pages people open (the HTML report, the documentation site): Chromium of
+# the Debian package ``chromium`` (CI installs it, .ci/run), driven headless by playwright (never
+# ``playwright install``: no browser is downloaded). A page may load nothing from the network: the
+# report is one file that must work offline; every request that is not a file is refused and
+# listed, and the page's errors are collected.
+CHROMIUM = "/usr/bin/chromium"
+CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
+                 "--disable-component-update", "--disable-sync"]
+
+
+class BrowserPage:
+    """A page opened in headless Chromium: ``page`` (playwright), ``errors`` (page errors and
+    console errors) and ``requests`` (every request that was not a local file, refused)."""
+
+    def __init__(self, browser):
+        self.page = browser.new_page(viewport={"width": 1280, "height": 900})
+        self.errors, self.requests = [], []
+        self.page.on("pageerror", lambda exc: self.errors.append(str(exc)))
+        self.page.on("console", lambda msg: self.errors.append(msg.text) if msg.type == "error" else None)
+
+        def route(r):
+            if r.request.url.startswith("file://"):
+                r.continue_()
+            else:
+                self.requests.append(r.request.url)
+                r.abort()
+
+        self.page.route("**/*", route)
+
+    def open(self, path):
+        """Open a local file and wait until it is loaded (scripts run, images decoded)."""
+        import pathlib
+
+        self.page.goto(pathlib.Path(path).resolve().as_uri(), wait_until="load")
+        return self.page
+
+
+@pytest.fixture(scope="session")
+def chromium():
+    """A headless Chromium (session-wide); fails, naming the Debian package, where it is missing."""
+    if not os.path.exists(CHROMIUM):
+        pytest.fail(f"{CHROMIUM} is missing: install the Debian package chromium (apt-get install chromium); "
+                    "the report and the docs are checked in a real browser")
+    from playwright.sync_api import sync_playwright
+
+    with sync_playwright() as pw:
+        browser = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        yield browser
+        browser.close()
+
+
+@pytest.fixture
+def browser_page(chromium):
+    """A fresh page of :func:`chromium` (a :class:`BrowserPage`), closed afterwards."""
+    page = BrowserPage(chromium)
+    yield page
+    page.page.close()

@@ -128,3 +128,48 @@ def test_api_pages_list_inherited_methods(site):
     for cls in ("ConstantSpeed", "LinearRamp", "HillRunUp"):
         for member in ("spin_angle", "spin_speed", "spin_acceleration", "revolution_times"):
             assert f'id="rotorlab.models.{cls}.{member}"' in page, f"{cls}.{member}"
+
+
+def test_api_models_page_opens_with_the_user_classes(site):
+    # The rotorlab.models page shows the models users build (the machine and its parts first)
+    # before the interfaces for implementers of a new model (issue 29: it opened with kernel
+    # internals).
+    page = (site / "api" / "models.html").read_text(encoding="utf-8")
+    where = {name: page.index(f'id="rotorlab.models.{name}"') for name in
+             ("Machine", "BallRace", "JeffcottBalls", "AbstractModel", "Kernels", "EventSpec")}
+    assert max(where["Machine"], where["BallRace"], where["JeffcottBalls"]) < min(
+        where["AbstractModel"], where["Kernels"], where["EventSpec"])
+    assert where["Machine"] == min(where.values())
+
+
+# what the landing page asks, each answered by one figure (docs/index.md)
+QUESTIONS = ("1. At which speeds does my machine resonate?",
+             "2. Will its automatic balancer balance it, and from which start-ups?",
+             "3. Will the drum strike the cabinet while it runs up?")
+
+_SECTIONS = """() => [...document.querySelectorAll('article section h3')].map(h => {
+  const imgs = [...h.closest('section').querySelectorAll('img')];
+  return [h.textContent.replace(/[#¶]$/, '').trim(), imgs.map(i => [i.naturalWidth, i.getBoundingClientRect().right])];
+})"""
+
+# code cells (their input; outputs may scroll) whose text is wider than their box
+_CUT_CODE = """() => [...document.querySelectorAll('div.highlight pre')].filter(e => !e.closest('.cell_output'))
+  .filter(e => e.scrollWidth > e.clientWidth + 1).map(e => e.textContent.split('\\n')[0])"""
+
+
+def test_landing_page_and_code_cells_in_a_browser(site, browser_page):
+    # Headless Chromium opens the site as a reader does: the landing page asks the three
+    # questions rotorlab answers, each with its figure (drawn by the executed page, decoded,
+    # inside the page); the theme (Furo, docs/_static/rotorlab.css) shows every code cell whole,
+    # without scrolling, at 1280 px (alabaster cut them off at the right edge).
+    page = browser_page.open(site / "index.html")
+    assert browser_page.errors == [] and browser_page.requests == []
+    sections = dict(page.evaluate(_SECTIONS))
+    width = page.evaluate("document.documentElement.clientWidth")
+    for question in QUESTIONS:
+        (figure,) = sections[question]  # one figure each
+        assert figure[0] > 300 and figure[1] <= width, (question, figure, width)
+    assert page.evaluate(_CUT_CODE) == []
+    for tutorial in sorted((site / "tutorials").glob("*.html")):
+        browser_page.open(tutorial)
+        assert page.evaluate(_CUT_CODE) == [], tutorial.name

@@ -17,7 +17,7 @@ from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _sett
 from rotorlab.cli._output import BadInput, emit_json, exit_if_failed, handled, info, progress_bar, stdout
 from rotorlab.cli._steady import _check_plot, parse_range
 from rotorlab.cli._options import MAX_SEED, count_option
-from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt
+from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt, YesOpt
 
 
 def _names(known: Any) -> str:
@@ -159,6 +159,7 @@ def basin_command(
                                          "missing chunks.")] = False,  # fmt: skip
     scheduler: SchedulerOpt = None,
     workers: WorkersOpt = None,
+    yes: YesOpt = False,
     json_out: JsonOpt = False,
 ) -> None:
     """Map starts to regimes: basin map, basin fractions against the simulated time, settling times.
@@ -200,7 +201,8 @@ def basin_command(
         with progress_bar(settings, {spec.name: n}) as update:
             ds = run_into_store(lambda: run_basin_analysis(
                 loaded.model, spec, chunk_size=chunk, progress=lambda done, total: update(spec.name, done, total),
-                store=store, resume=resume, executor=executor), store, "--store")  # fmt: skip
+                store=store, resume=resume, executor=executor), store, "--store", yes=yes, settings=settings,
+                what="starts")  # fmt: skip
         ds.attrs["case"] = loaded.name
         from rotorlab.analyses._basin import basin_rows
         from rotorlab.plot import basin_figure

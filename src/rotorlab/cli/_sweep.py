@@ -25,6 +25,7 @@ from rotorlab.cli._sweep_common import (
     ChunkOpt,
     SchedulerOpt,
     WorkersOpt,
+    YesOpt,
     check_store_path,
     executor_from_options,
     regime_fractions,
@@ -170,6 +171,7 @@ def sweep_command(
         "'stability' (existence and stability of every steady motion; --param over speed_rpm, speed_ratio or "
         "spin_speed and ball_mass, ball_damping, eccentricity, support_damping).")] = "regimes",
     sets: SetOpt = None,
+    yes: YesOpt = False,
     json_out: JsonOpt = False,
 ) -> None:
     """Run the regimes (or, with --per-point stability, the steady-motion stability) of a rotor with
@@ -197,7 +199,7 @@ def sweep_command(
                     raise BadInput(f"{option}: not with --per-point stability (steady motions have no initial "
                                    "conditions, simulated time or case sweep analysis)")  # fmt: skip
             _stability_sweep(settings, case, sets, out, param or [], sample, seed, speed_rpm, speed_ratio, resume,
-                             executor, chunk, json_out)  # fmt: skip
+                             executor, chunk, json_out, yes)  # fmt: skip
             return
         axes: dict[str, tuple] = {}
         for option, texts, kind in (("--param", param, "param"), ("--ic", ic, "ic")):
@@ -270,7 +272,7 @@ def sweep_command(
         shape = " x ".join(str(s) for s in sweep.shape)
         info(settings, f"Sweeping {loaded.name}: {sweep.n_points} points ({' x '.join(sweep.dims)} = {shape}), "
              f"{sweep.analysis.mapper.t_end:.6g} s each, {where}, into {out} ...", json_mode=json_out)  # fmt: skip
-        ds, p, seconds = run_with_bar(settings, loaded.name, sweep, out, resume, size, executor)
+        ds, p, seconds = run_with_bar(settings, loaded.name, sweep, out, resume, size, executor, yes)
         fractions, n = regime_fractions(ds)
         _report(settings, json_out, loaded, out, sweep, where, p, seconds,
                 {"fractions": fractions, "n": n, "t_end": float(ds.attrs["t_end"])},
@@ -280,7 +282,7 @@ def sweep_command(
 
 def _stability_sweep(settings: Any, case: str, sets: list[str] | None, out: Path, texts: list[str], sample: int | None, seed: int | None,
                      speed_rpm: float | None, speed_ratio: float | None, resume: bool, executor: Any,
-                     chunk: int | None, json_out: bool) -> None:  # fmt: skip
+                     chunk: int | None, json_out: bool, yes: bool = False) -> None:  # fmt: skip
     from rotorlab.analyses._sweep import SPEED_AXES, STABILITY_AXES, STABILITY_CHUNK, stability_summary, stability_sweep
 
     axes: dict[str, tuple] = {}
@@ -332,7 +334,7 @@ def _stability_sweep(settings: Any, case: str, sets: list[str] | None, out: Path
     shape = " x ".join(str(s) for s in sweep.shape)
     info(settings, f"Sweeping the steady motions of {loaded.name}: {sweep.n_points} points "
          f"({' x '.join(sweep.dims)} = {shape}), {where}, into {out} ...", json_mode=json_out)  # fmt: skip
-    ds, p, seconds = run_with_bar(settings, loaded.name, sweep, out, resume, size, executor)
+    ds, p, seconds = run_with_bar(settings, loaded.name, sweep, out, resume, size, executor, yes)
     summary = stability_summary(ds.stack(point=list(sweep.dims)))
     _report(settings, json_out, loaded, out, sweep, where, p, seconds,
             {"per_point": "stability", "fixed": fixed, "stability": summary}, [stability_line(summary)])

@@ -17,7 +17,7 @@ import typer
 from rotorlab.cli._options import MAX_CHUNK, MAX_WORKERS, count_option
 from rotorlab.cli._output import BadInput, clean_text, say, stderr
 
-__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "scheduler_is_safe", "check_store_path", "executor_from_options", "run_into_store",
+__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "YesOpt", "LONG_RUN_S", "scheduler_is_safe", "check_store_path", "executor_from_options", "run_into_store",
            "SweepBar", "run_with_bar", "stability_line", "regime_fractions"]
 
 # options shared by the commands that run on the sweep engine (sweep, basin)
@@ -27,6 +27,13 @@ WorkersOpt = Annotated[Optional[int], count_option(  # noqa: UP007
     "--workers", high=MAX_WORKERS, what="threads of a local Dask cluster", metavar="N",
     help="Run the chunks on a local Dask cluster of N workers (threads of this command).")]
 
+
+
+#: Above this estimated time (s) a sweep asks for --yes before it starts (rotorlab.sweep.long_run_guard).
+LONG_RUN_S = 600.0
+
+YesOpt = Annotated[bool, typer.Option(
+    "--yes", "-y", help=f"Run even when the estimate (timed on a pilot) exceeds {LONG_RUN_S / 60:g} min.")]
 
 
 def ChunkOpt(what: str) -> Any:  # noqa: N802 - an option type, named like the others
@@ -89,14 +96,31 @@ def scheduler_is_safe(address: str) -> bool:
         return False
 
 
-def run_into_store(run: Callable[[], Any], store: Path | None, option: str = "--out") -> Any:
+def run_into_store(run: Callable[[], Any], store: Path | None, option: str = "--out", *,
+                   yes: bool = True, settings: Any = None, what: str = "points") -> Any:
     """Return ``run()``, a sweep into ``store``: store and executor errors become BadInput (an
-    unreachable scheduler leaves no store behind), and Ctrl-C says what is kept and exits 130."""
-    from rotorlab.sweep import ExecutorError, SweepStoreError, store_info
+    unreachable scheduler leaves no store behind), and Ctrl-C says what is kept and exits 130.
+
+    A large sweep is first estimated on a pilot (:func:`rotorlab.sweep.long_run_guard`): the
+    estimate is printed (unless quiet), and one above :data:`LONG_RUN_S` without ``yes`` (the
+    ``--yes`` option) stops before anything is written (BadInput, exit code 2).
+    """
+    from rotorlab.sweep import ExecutorError, LongRunDeclined, SweepStoreError, long_run_guard, store_info
+
+    def decide(estimate: Any) -> bool:
+        if estimate.seconds > LONG_RUN_S and not yes:
+            return False
+        if settings is None or not settings.quiet:
+            say(estimate.describe(what))
+        return True
 
     existed = store is not None and store.exists()
     try:
-        return run()
+        with long_run_guard(decide):
+            return run()
+    except LongRunDeclined as exc:
+        raise BadInput(f"{exc.estimate.describe(what)}: longer than {LONG_RUN_S / 60:g} min. Give --yes to run it, "
+                       "or fewer points, a shorter --t-end, or more workers (--workers, --scheduler)") from None
     except SweepStoreError as exc:
         raise BadInput(f"{option} = {store}: {exc}") from None
     except ExecutorError as exc:
@@ -167,8 +191,9 @@ class SweepBar:
 
 
 def run_with_bar(settings: Any, title: str, sweep: Any, out: Path, resume: bool, size: int | None,
-                  executor: Any) -> tuple[Any, Any, float]:  # fmt: skip
-    """Run ``sweep`` into ``out`` under a progress bar: the Dataset, the last progress, seconds."""
+                  executor: Any, yes: bool = True) -> tuple[Any, Any, float]:  # fmt: skip
+    """Run ``sweep`` into ``out`` under a progress bar: the Dataset, the last progress, seconds
+    (a long sweep without ``yes`` is refused first, :func:`run_into_store`)."""
     from rotorlab.sweep import run_sweep
 
     started = time.perf_counter()
@@ -180,7 +205,8 @@ def run_with_bar(settings: Any, title: str, sweep: Any, out: Path, resume: bool,
             bar(p)
 
         ds = run_into_store(lambda: run_sweep(sweep, store=out, resume=resume, chunk_size=size,
-                                              executor=executor, progress=progress), out)  # fmt: skip
+                                              executor=executor, progress=progress), out,
+                            yes=yes, settings=settings)  # fmt: skip
     return ds, last[-1], time.perf_counter() - started
 
 

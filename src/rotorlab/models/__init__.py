@@ -31,14 +31,16 @@ from rotorlab.models._protocol import AbstractParametrisedModel, Parameter, Para
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp, speed_from_array
 from rotorlab.models._toroidal_ball import ToroidalBall, WorkingPoint, strautmanis_torus
 
-__all__ = ["AbstractModel", "EventSpec", "Kernels", "no_events", "no_reset"]
+# In the order the API page shows them (autodoc follows __all__): the models users build first,
+# the interfaces for implementers of a new model last.
+__all__ = ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor",
+           "Clearance", "ElasticStator"]
 __all__ += ["JeffcottBalls", "RotorParams", "BallParams", "Linearization", "fixed_to_rotating",
             "rotating_to_fixed", "ConstantSpeed", "LinearRamp", "HillRunUp", "speed_from_array"]
 __all__ += ["ToroidalBall", "WorkingPoint", "strautmanis_torus"]
-__all__ += ["BENCHMARK", "BenchmarkProblem"]
 __all__ += ["ImpactRotor", "CentrifugeRotor", "Housing", "StoneFeed", "StonePush", "StoneSequence",
             "krasnov_crusher", "stone_push"]
-__all__ += ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor",
-            "Clearance", "ElasticStator"]
 __all__ += ["TunedMassAbsorber", "absorber_response"]
-__all__ += ["AbstractParametrisedModel", "Parameter", "ParameterSpace"]
+__all__ += ["BENCHMARK", "BenchmarkProblem"]
+__all__ += ["AbstractModel", "EventSpec", "Kernels", "no_events", "no_reset", "AbstractParametrisedModel",
+            "Parameter", "ParameterSpace"]

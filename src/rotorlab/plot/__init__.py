@@ -10,6 +10,7 @@ from rotorlab.plot._continuation import bifurcation_figure, continuation_figures
 from rotorlab.plot._campbell import WHIRL_STYLES, campbell_figure
 from rotorlab.plot._impacts import impact_figures, impact_sweep_figure, p_trajectory_figure
 from rotorlab.plot._linear import linear_figures, mode_shapes_figure, unbalance_response_figure
+from rotorlab.plot._machine import machine_figures, shown_stations
 from rotorlab.plot._plotly import plotly_script, to_plotly
 from rotorlab.plot._stability import run_up_figure, stability_chart_figure, verify_figure
 from rotorlab.plot._simulate import (
@@ -40,6 +41,7 @@ __all__ = [
     "p_trajectory_figure",
     "plotly_script",
     "linear_figures",
+    "machine_figures",
     "mode_shapes_figure",
     "orbit_figure",
     "restoring_force_figure",
@@ -47,6 +49,7 @@ __all__ = [
     "simulation_figures",
     "speed_label",
     "stability_chart_figure",
+    "shown_stations",
     "sweep_figures",
     "to_plotly",
     "two_parameter_figure",

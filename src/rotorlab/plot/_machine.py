@@ -71,7 +71,7 @@ def _vibration(ds: Any) -> tuple[np.ndarray, str]:
     return np.asarray(ds[name].values, float), "distance from the axis (mm)"
 
 
-def _gap(ax: Any, ds: Any, stations: list[str], k_of: dict[str, int], disp: np.ndarray) -> float:
+def _gap(ax: Any, ds: Any, k_of: dict[str, int], disp: np.ndarray) -> float:
     """Draw the gap (and the clearance station's distance from the stator's centre where the
     centre is not its rest position); return the gap in mm (0 without a clearance)."""
     gap = ds.attrs.get("gap")
@@ -115,9 +115,10 @@ def simulate_figure_machine(ds: Any, name: str, plt: Any) -> Any:
         if ref > 0:
             ax.axhline(ref, color="k", lw=0.8, ls=_STYLES[j % 4], alpha=0.6,
                        label="without balancing" + ("" if one else f" at {labels[k]}"))
-    gap = _gap(ax, ds, [labels[k] for k in shown], {labels[k]: k for k in shown}, disp)
+    gap = _gap(ax, ds, {labels[k]: k for k in shown}, disp)
     ax.set_yscale("log")
-    later = disp[:, 1:, shown]  # from the smallest distance after the start (at rest: 0) up, 7 decades at most
+    # (mm) from the smallest distance after the start (at rest: 0) up, seven decades at most
+    later = disp[:, 1:, shown] * 1e3
     top = max(float(later.max(initial=0.0)), float(ds.reference_amplitude.values[shown].max()) * 1e3, gap)
     low = float(later[later > 0].min(initial=top))
     if top > 0:
@@ -163,7 +164,7 @@ def run_up_figure_machine(ds: Any, name: str, plt: Any) -> Any:
             a2.plot(t, disp[i, :, k] * 1e3, color=colour, ls=_STYLES[j % 4], zorder=2 + rank, lw=0.8,
                     label=f"{labels[k]}, start {i}: {outcome[i]}")
     _critical_lines(a1, ds.attrs.get("critical_speeds", []))
-    _gap(a2, ds, [labels[k] for k in shown], {labels[k]: k for k in shown}, disp)
+    _gap(a2, ds, {labels[k]: k for k in shown}, disp)
     a1.set_ylabel("speed (rpm)")
     a1.set_title(f"{name}: speed and vibration over the run-up", fontsize=10)
     a2.set_ylabel(ylabel)

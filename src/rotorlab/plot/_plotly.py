@@ -181,8 +181,12 @@ def _texts(ax: Any, axis: dict[str, str]) -> list[dict]:
             continue
         xy = getattr(t, "xy", None)
         coords = getattr(t, "xycoords", None)
-        if xy is not None and coords == "data":
-            x, y, xref, yref = xy[0], xy[1], axis["xaxis"], axis["yaxis"]
+        refs = {"data": ("xaxis", ""), "axes fraction": ("xaxis", " domain")}
+        pair = coords if isinstance(coords, tuple) else (coords, coords)
+        if xy is not None and all(isinstance(c, str) and c in refs for c in pair):
+            x, y = xy
+            xref = axis["xaxis"] + refs[pair[0]][1]
+            yref = axis["yaxis"] + refs[pair[1]][1]
         elif t.get_transform() == ax.transAxes:
             (x, y), xref, yref = t.get_position(), f"{axis['xaxis']} domain", f"{axis['yaxis']} domain"
         elif t.get_transform() == ax.transData:
@@ -306,6 +310,11 @@ def to_plotly(fig: Figure) -> dict[str, Any]:
             notes.append({"text": f"<b>{title}</b>".replace("\n", "<br>"), "xref": f"{axis['xaxis']} domain",
                           "yref": f"{axis['yaxis']} domain", "x": 0.5, "y": 1.0, "yanchor": "bottom",
                           "xanchor": "center", "showarrow": False, "font": {"size": 12}})
+    legends = [a.get_legend() for a in axes if a.get_legend() is not None]
+    if legends:  # where the (first) matplotlib legend is: inside the axes or beside them
+        box = legends[0].get_window_extent().transformed(fig.transFigure.inverted())
+        layout["legend"].update(x=float(box.x0), y=float(box.y1), xanchor="left", yanchor="top",
+                                bgcolor="rgba(255,255,255,0.8)")
     seen = set()
     for trace in data:  # one legend entry per label
         if trace.get("showlegend"):

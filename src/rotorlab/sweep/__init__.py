@@ -12,6 +12,7 @@ and resumed.
 """
 
 from rotorlab.sweep._axes import GridAxis, ListAxis, Points, Sample
+from rotorlab.sweep._eta import PILOT_ABOVE, Estimate, LongRunDeclined, human_duration, long_run_guard
 from rotorlab.sweep._executors import DaskExecutor, ExecutorError, InProcess, LocalProcesses
 from rotorlab.sweep._run import SweepProgress, run_sweep
 from rotorlab.sweep._spec import DEFAULT_CHUNK, AbstractPointAnalysis, ChunkVar, Sweep, compute_chunk, describe_value
@@ -22,11 +23,14 @@ __all__ = [
     "ChunkVar",
     "DEFAULT_CHUNK",
     "DaskExecutor",
+    "Estimate",
     "ExecutorError",
     "GridAxis",
     "InProcess",
     "ListAxis",
     "LocalProcesses",
+    "LongRunDeclined",
+    "PILOT_ABOVE",
     "Points",
     "Sample",
     "Sweep",
@@ -34,6 +38,8 @@ __all__ = [
     "SweepStoreError",
     "compute_chunk",
     "describe_value",
+    "human_duration",
+    "long_run_guard",
     "open_sweep",
     "run_sweep",
     "store_info",

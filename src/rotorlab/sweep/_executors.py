@@ -37,6 +37,39 @@ def _check_count(owner: str, name: str, value: Any) -> None:
         raise ValueError(f"{owner}.{name} must be an integer >= 1 or None, got {value!r}")
 
 
+#: The chunk thread of :class:`InProcess` still running (abandoned by an interrupt), if any.
+_chunk_thread: list[Any] = []
+
+#: How often the waiting thread wakes up to let signal handlers run (s).
+_WAKE = 0.05
+
+
+def _interruptible(fn: Callable, *args: Any) -> Any:
+    """``fn(*args)`` in a daemon thread, waited for in :data:`_WAKE` steps (signals act between
+    them). A chunk abandoned by an earlier interrupt is waited for first: two parallel regions
+    at once would abort numba's default threading layer."""
+    import threading
+
+    while _chunk_thread and _chunk_thread[0].is_alive():
+        _chunk_thread[0].join(_WAKE)
+    box: dict[str, Any] = {}
+
+    def target() -> None:
+        try:
+            box["value"] = fn(*args)
+        except BaseException as exc:  # noqa: BLE001 - handed to the waiting thread
+            box["error"] = exc
+
+    thread = threading.Thread(target=target, name="rotorlab-chunk", daemon=True)
+    _chunk_thread[:] = [thread]
+    thread.start()
+    while thread.is_alive():
+        thread.join(_WAKE)
+    if "error" in box:
+        raise box["error"]
+    return box["value"]
+
+
 @dataclass(frozen=True, slots=True)
 class InProcess:
     """Run the chunks one after the other in this process (the integrator uses its threads).
@@ -53,9 +86,16 @@ class InProcess:
         _check_count("InProcess", "threads", self.threads)
 
     def imap(self, fn: Callable, analysis: Any, tasks: Iterable[Task]) -> Iterator[Any]:
-        """Yield ``fn(analysis, k, coords, threads)`` for every task ``(k, coords)``."""
+        """Yield ``fn(analysis, k, coords, threads)`` for every task ``(k, coords)``.
+
+        Each chunk runs in a worker thread while this thread waits in short steps, so that a
+        signal (Ctrl-C, SIGTERM) acts within a fraction of a second: Python runs signal
+        handlers in the main thread only, and a chunk is one compiled call of many seconds that
+        would hold it. An interrupted chunk is abandoned (its thread finishes in the background
+        and its result is dropped); the chunks finished before it are kept.
+        """
         for k, coords in tasks:
-            yield fn(analysis, k, coords, self.threads)
+            yield _interruptible(fn, analysis, k, coords, self.threads)
 
     def describe(self) -> str:
         return "in-process"

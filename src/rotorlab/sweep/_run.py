@@ -85,6 +85,10 @@ def run_sweep(
     ------
     SweepStoreError
         The store exists without ``resume``, or cannot be resumed (another sweep, damaged).
+    LongRunDeclined
+        Run inside :func:`rotorlab.sweep.long_run_guard`, the sweep had
+        :data:`~rotorlab.sweep.PILOT_ABOVE` points or more, and the guard declined its
+        estimate (timed on a pilot before anything is written).
     KeyboardInterrupt
         Re-raised after the running tasks are cancelled; every finished chunk is in the store.
 
@@ -99,10 +103,15 @@ def run_sweep(
     >>> ds.outcome.dims, ds.outcome.sizes["psi"]
     (('psi',), 3)
     """
+    from rotorlab.sweep._eta import check_long_run
     from rotorlab.sweep._executors import InProcess
 
     if not isinstance(sweep, Sweep):
         raise TypeError(f"sweep must be a Sweep, got {type(sweep).__name__}")
+    threads = getattr(executor, "threads", None)
+    fresh = store is not None and not isinstance(store, MemorySink) and not resume and only is None
+    if fresh:  # a new store: asked before it is created (a declined sweep writes nothing)
+        check_long_run(sweep, sweep.n_points, threads)
     if isinstance(store, MemorySink):  # chunks kept in memory between runs of this sweep
         if store.sweep is not sweep or (chunk_size is not None and chunk_size != store.chunk_size):
             raise ValueError("a MemorySink store continues only the sweep (and chunk size) it was made for")
@@ -126,6 +135,12 @@ def run_sweep(
     total = sum(ranges[k][1] - ranges[k][0] for k in considered)
     done = total - sum(ranges[k][1] - ranges[k][0] for k in todo)
     skipped = len(considered) - len(todo)
+    if not fresh:  # in memory, resumed, or some chunks only: asked for the points left to compute
+        try:
+            check_long_run(sweep, total - done, threads)
+        except BaseException:
+            sink.close()
+            raise
     coords = sweep.coordinates()
 
     def tasks():
