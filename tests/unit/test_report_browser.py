@@ -66,7 +66,7 @@ def test_machine_report_in_a_browser(report, browser_page):
     # one interactive figure (the Campbell diagram); the machine's figures are images
     assert page.locator("figure.interactive").count() == 1
     stems = page.eval_on_selector_all("figure img", "els => els.map(e => e.alt)")
-    assert sorted(stems) == ["start-up-vibration", "stability-stability"]
+    assert sorted(stems) == ["stability-stability", "start-up-vibration"]
 
     # the Campbell diagram: its axes, its legend, and the critical speeds of the result
     fig = page.evaluate(_CAMPBELL)
@@ -79,6 +79,7 @@ def test_machine_report_in_a_browser(report, browser_page):
 
     # interactive: the pointer on the first critical speed shows its value; a legend click hides it
     graph = page.locator('figure.interactive[data-stem="campbell_campbell"] .js-plotly-plot')
+    graph.scroll_into_view_if_needed()
     x, y = page.evaluate("""() => {
       const g = document.querySelector('figure.interactive .js-plotly-plot');
       const t = g.data.find(t => t.name === 'critical speed'), L = g._fullLayout;
@@ -86,13 +87,14 @@ def test_machine_report_in_a_browser(report, browser_page):
       return [r.left + L.xaxis.l2p(t.x[0]), r.top + L.yaxis.l2p(t.y[0])];
     }""")
     page.mouse.move(x, y)
-    page.wait_for_selector(".hoverlayer .hovertext", timeout=5_000)
-    hover = page.inner_text(".hoverlayer")
+    page.wait_for_function("(document.querySelector('.hoverlayer') || {}).textContent?.includes('critical speed')",
+                           timeout=5_000)
+    hover = page.eval_on_selector(".hoverlayer", "e => e.textContent")
     assert f"{min(on_1x):.1f}"[:4] in hover.replace(",", ""), hover
     graph.locator(".legend .traces", has_text="critical speed").click()
-    hidden = page.evaluate("""() => document.querySelector('figure.interactive .js-plotly-plot')
-                              .data.find(t => t.name === 'critical speed').visible""")
-    assert hidden == "legendonly"
+    page.wait_for_function("""() => document.querySelector('figure.interactive .js-plotly-plot')
+                              .data.find(t => t.name === 'critical speed').visible === 'legendonly'""",
+                           timeout=5_000)  # a legend click acts after plotly's double-click delay
 
     # every figure is decoded and fits in the page (no horizontal scrolling)
     sizes = page.eval_on_selector_all(
