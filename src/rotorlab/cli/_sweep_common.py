@@ -17,7 +17,8 @@ import typer
 from rotorlab.cli._options import MAX_CHUNK, MAX_WORKERS, count_option
 from rotorlab.cli._output import BadInput, clean_text, say, stderr
 
-__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "YesOpt", "LONG_RUN_S", "scheduler_is_safe", "check_store_path", "executor_from_options", "run_into_store",
+__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "YesOpt", "LONG_RUN_S", "scheduler_is_safe", "check_store_path",
+           "executor_from_options", "run_into_store",
            "SweepBar", "run_with_bar", "stability_line", "regime_fractions"]
 
 # options shared by the commands that run on the sweep engine (sweep, basin)

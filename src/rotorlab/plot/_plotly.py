@@ -193,7 +193,8 @@ def _texts(ax: Any, axis: dict[str, str]) -> list[dict]:
             (x, y), xref, yref = t.get_position(), axis["xaxis"], axis["yaxis"]
         else:
             continue
-        out.append({"x": float(x), "y": float(y), "xref": xref, "yref": yref, "text": t.get_text().replace("\n", "<br>"),
+        text = t.get_text().replace("\n", "<br>")
+        out.append({"x": float(x), "y": float(y), "xref": xref, "yref": yref, "text": text,
                     "showarrow": False, "font": {"size": 10, "color": _rgba(t.get_color())},
                     "textangle": -float(t.get_rotation()),
                     "xanchor": {"center": "center", "right": "right"}.get(t.get_ha(), "left"),
@@ -215,7 +216,7 @@ def _legend_entries(ax: Any, axis: dict[str, str], named: set[str]) -> tuple[lis
         label = text.get_text()
         if isinstance(handle, Patch):
             color = _rgba(handle.get_facecolor())
-            names[color] = label.split(" (")[0]
+            names[color] = label.rsplit(" (", 1)[0] if label.endswith("%)") else label
             marker = {"symbol": "square", "size": 12, "color": color}
             traces.append({"type": "scatter", "x": [None], "y": [None], "mode": "markers", "name": label,
                            "marker": marker, "showlegend": True, **axis})

@@ -1,7 +1,9 @@
 """The output folder of a run: one self-contained HTML report plus NetCDF results and PNGs.
 
 The report has no network dependencies: CSS is inline and figures are embedded as base64
-``data:`` URIs, so the single ``report.html`` can be mailed or archived on its own. How each
+``data:`` URIs, or, for the figures people explore (Campbell and bifurcation diagrams, basin maps,
+sweeps), as interactive Plotly twins with plotly.js inlined once, so the single ``report.html``
+can be mailed or archived on its own. How each
 analysis family is shown (figures, section, findings, console tables) is registered in
 :data:`PRESENTATIONS` (see :mod:`rotorlab.report._presentations`).
 """
