@@ -249,7 +249,11 @@ def test_run_command_runs_sweep_analyses(tmp_path):
         assert saved["count"].values[-1].tolist() == counts.tolist()
     html = (tmp_path / "out" / "report.html").read_text()
     assert "Analysis: k-map (sweep)" in html and "Regimes of a grid of 18 starts over rolling_friction × psi" in html
-    assert "Regimes of 9 random points (seed 4) over psi × dpsi" in html and html.count("<img") == 3
+    assert "Regimes of 9 random points (seed 4) over psi × dpsi" in html
+    # sweep results are explored: each figure is an interactive twin, its PNG linked
+    assert html.count('<figure class="interactive"') == 3 and "<img" not in html
+    for stem in ("k-map_basin", "k-map_fractions", "random_fractions"):
+        assert f'data-stem="{stem}"' in html and f'<a href="{stem}.png">' in html
 
 
 # --------------------------------------------------------------------------- stability chart on the engine
