@@ -99,7 +99,7 @@ def test_machine_tables_keep_named_stations_drop_zero_columns_and_the_raw_status
              "outcome": "balanced" if i == 0 else "failed", "status": 0 if i == 0 else -3} for i in range(2)]
     header, body = machine_rows_table(_start_ups(), rows)
     # the named stations that vibrate (bearing A stays at 0 in every row: no column of zeros)
-    assert header == ("start", "initial ball angles (deg)", "final speed (rpm)", "final ball angles (deg)",
+    assert header == ("start", "initial ball angles", "final speed (rpm)", "final ball angles",
                       "vibration at disc (mm)", "vibration at bearing B (mm)", "outcome")
     assert [b[-1] for b in body] == ["balanced", "failed", ""]
     assert body[-1][4:6] == ("0.2", "0.2")  # without balancing, mm

@@ -4,7 +4,8 @@ The case is the README's "Put a balancer on your own rotor" (a disc on soft moun
 two-ball balancer: stability over speed and two start-ups) with a Campbell diagram added, run by
 ``rotorlab run``. Headless Chromium (the Debian package; ``tests/conftest.py``) opens the single
 ``report.html`` with every network request refused and checks what a reader relies on: the
-interactive Campbell diagram is drawn by the inlined plotly.js (no network), its legend names
+verdict opens the page; the interactive Campbell diagram is drawn by the inlined plotly.js (no
+network), its legend names
 what is drawn, the value under the pointer is shown, a click on a legend entry hides its curve;
 the machine's figures load, fit the page, and say in their legends what they draw.
 """
@@ -63,6 +64,10 @@ def test_machine_report_in_a_browser(report, browser_page):
                            timeout=20_000)
     assert browser_page.requests == [], "the report fetched from the network"
     assert browser_page.errors == [], browser_page.errors
+    # the verdict opens the page (report/_verdict.py), above every figure
+    verdict = page.locator("section#verdict")
+    assert verdict.is_visible() and page.locator("section#verdict .verdict-line").count() >= 1
+    assert verdict.bounding_box()["y"] < page.locator("figure").first.bounding_box()["y"]
     # one interactive figure (the Campbell diagram); the machine's figures are images
     assert page.locator("figure.interactive").count() == 1
     stems = page.eval_on_selector_all("figure img", "els => els.map(e => e.alt)")

@@ -17,7 +17,7 @@ from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _sett
 from rotorlab._limits import MAX_STARTS
 from rotorlab.cli._options import MAX_SEED, count_option
 from rotorlab.cli._output import BadInput, handled, info, progress_bar
-from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt
+from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt, YesOpt
 
 __all__ = ["basin_stability_command"]
 
@@ -131,6 +131,7 @@ def basin_stability_command(
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--plot", metavar="FILE", help="Save the fractions against the parameter (PNG, PDF or SVG).")] = None,
     sets: SetOpt = None,
+    yes: YesOpt = False,
     json_out: JsonOpt = False,
 ) -> None:
     """Basin stability over a parameter: P(balanced), P(each other motion) and P(not settled) from
@@ -186,7 +187,8 @@ def basin_stability_command(
         with progress_bar(settings, {spec.name: most}) as update:
             ds = run_into_store(lambda: run_basin_stability_analysis(
                 loaded.model, spec, progress=lambda done, total: update(spec.name, done, total), store=store,
-                resume=resume, executor=executor), store, "--store")  # fmt: skip
+                resume=resume, executor=executor), store, "--store", yes=yes, settings=settings,
+                what="starts")  # fmt: skip
         ds.attrs["case"] = loaded.name
         from rotorlab.cli._basin import write_and_report
         from rotorlab.plot._basin_stability import basin_stability_figure

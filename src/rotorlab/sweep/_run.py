@@ -135,9 +135,11 @@ def run_sweep(
     total = sum(ranges[k][1] - ranges[k][0] for k in considered)
     done = total - sum(ranges[k][1] - ranges[k][0] for k in todo)
     skipped = len(considered) - len(todo)
-    if not fresh:  # in memory, resumed, or some chunks only: asked for the points left to compute
+    if not fresh:  # in memory, resumed, or some chunks only (a round of an adaptive sweep, asked once
+        # for all its missing points: the most it may compute): asked for the points left
+        left = total - done if only is None else sum(ranges[k][1] - ranges[k][0] for k in missing)
         try:
-            check_long_run(sweep, total - done, threads)
+            check_long_run(sweep, left, threads)
         except BaseException:
             sink.close()
             raise
