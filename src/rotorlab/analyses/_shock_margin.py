@@ -96,7 +96,7 @@ def _meeting_distance(angles: np.ndarray) -> float:
     return 0.5 * min(gaps)
 
 
-def linear_impulse(lin, angles, directions) -> tuple[np.ndarray, float, np.ndarray]:
+def linear_impulse(lin, angles, directions, unit=None, psi=None) -> tuple[np.ndarray, float, np.ndarray]:
     """The linearised-basin impulse ``I_lin(beta)`` (N s) of the module docstring.
 
     Parameters
@@ -107,6 +107,11 @@ def linear_impulse(lin, angles, directions) -> tuple[np.ndarray, float, np.ndarr
         Balanced ball angles (rad).
     directions : array_like, shape (k,)
         beta (rad, co-rotating frame, from the unbalance).
+    unit : array_like, shape (2, n_lin), optional
+        The jump of ``lin``'s state per N s along beta = 0 and 90 deg; default ``jeffcott_balls``'
+        ``M^-1 e`` on ``(u', v', psi_i')`` (state order u, v, u', v', psi_i, psi_i').
+    psi : slice, optional
+        The ball angles in ``lin``'s state (default ``jeffcott_balls``': 4 .. 4 + n).
 
     Returns
     -------
@@ -114,33 +119,35 @@ def linear_impulse(lin, angles, directions) -> tuple[np.ndarray, float, np.ndarr
         ``r / g(beta)`` (N s).
     r : float
         Distance to the side motion where two balls meet (rad).
-    kick : ndarray, shape (k, 2 + n)
-        ``M^-1 e_beta``: the jump of ``(u', v', psi_i')`` per N s (m/s, rad/s per N s).
+    kick : ndarray, shape (k, n_lin)
+        The jump of ``lin``'s state per N s along each beta.
     """
     angles = np.asarray(angles, dtype=float)
     beta = np.asarray(directions, dtype=float)
     n = angles.size
-    k = 2 + n
-    minv = np.linalg.inv(lin.M)
+    if unit is None:
+        dq = np.linalg.solve(lin.M, np.vstack([np.eye(2), np.zeros((n, 2))])).T
+        unit = np.zeros((2, lin.A.shape[0]))
+        unit[:, 2:4], unit[:, 4 + n :] = dq[:, :2], dq[:, 2:]
+        psi = slice(4, 4 + n)
+    from rotorlab.explore._settle import slowest_decay_rate
+
     lam, vec = np.linalg.eig(lin.A)
-    decay = -float(lam.real.max())
+    decay = slowest_decay_rate(lam)  # neutral modes (a family of balanced states) left out
     fast = float(np.abs(lam).max())
     t_end = min(12.0 / decay, 4000.0 * 2.0 * math.pi / fast)
     ts = np.linspace(0.0, t_end, int(min(200_000, max(2000, 40.0 * t_end * fast / (2.0 * math.pi)))))
     inv = np.linalg.inv(vec)
     rows = []
-    for unit in (np.eye(k)[0], np.eye(k)[1]):
-        dq = minv @ unit
-        x0 = np.zeros(2 * k)  # the model's state order: u, v, u', v', psi_i, psi_i'
-        x0[2:4], x0[4 + n :] = dq[:2], dq[2:]
+    for x0 in np.asarray(unit, dtype=float):
         coef = inv @ x0
-        psi = (vec[4 : 4 + n, :][None, :, :] * np.exp(np.outer(ts, lam))[:, None, :]) @ coef
-        rows.append(psi.real)  # (t, n)
+        resp = (vec[psi, :][None, :, :] * np.exp(np.outer(ts, lam))[:, None, :]) @ coef
+        rows.append(resp.real)  # (t, n)
     cu, su = np.cos(beta), np.sin(beta)
     resp = cu[:, None, None] * rows[0][None] + su[:, None, None] * rows[1][None]  # (k, t, n)
     g = np.abs(resp).max(axis=(1, 2))
     r = _meeting_distance(angles)
-    kick = (minv[:, :2] @ np.vstack([cu, su])).T
+    kick = np.outer(cu, unit[0]) + np.outer(su, unit[1])
     return r / g, r, kick
 
 
@@ -172,8 +179,11 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
 
     Parameters
     ----------
-    model : JeffcottBalls
-        Without Coulomb friction (its balanced state is an isolated equilibrium).
+    model : JeffcottBalls or Machine
+        Without Coulomb friction (its balanced state is an isolated equilibrium); a machine also
+        isotropic, without gravity across the axis (:meth:`Machine.why_no_rotating_frame`), the
+        knock and the load shift at the station of its first unbalance (the per-type pieces:
+        :mod:`rotorlab.analyses._shock_subjects`).
     speeds : array_like, shape (n_s,)
         Spin speeds (rad/s), > 0.
     directions : int
@@ -205,39 +215,31 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
     """
     import xarray as xr
 
-    from rotorlab.explore._settle import default_horizon, slowest_decay_rate
-    from rotorlab.models import ConstantSpeed
+    from rotorlab.analyses._shock_subjects import shock_subject
+    from rotorlab.explore._settle import default_horizon
 
-    if model.n_balls == 0 or model.has_friction:
-        raise ValueError("shock_margin needs balls without Coulomb friction (friction = 0)")
+    subject = shock_subject(model)
     speeds = np.atleast_1d(np.asarray(speeds, dtype=float))
     if speeds.ndim != 1 or speeds.size == 0 or not np.all(np.isfinite(speeds) & (speeds > 0)):
         raise ValueError(f"speeds must be one or more finite numbers > 0 (rad/s), got {speeds!r}")
     if isinstance(directions, bool) or int(directions) != directions or directions < 1:
         raise ValueError(f"directions must be an integer >= 1, got {directions!r}")
     beta = np.linspace(0.0, 2.0 * math.pi, int(directions), endpoint=False)
-    ns, nd, n = speeds.size, beta.size, model.n_balls
-    rot = model.with_frame("rotating").with_speed(ConstantSpeed(float(speeds[0])))
-    moments = np.array([b.static_moment for b in model.balls])
-    shift = np.tile(load_shift_bound(model.imbalance, moments, beta), (ns, 1))
+    ns, nd = speeds.size, beta.size
+    shift = np.tile(subject.load_shift_bound(beta), (ns, 1))
     bound = np.full((ns, nd), np.nan)
     stable = np.zeros(ns, dtype=np.int64)
     decay, horizon, dist = np.full(ns, np.nan), np.full(ns, np.nan), np.full(ns, np.nan)
-    start = np.full((ns, rot.n_state), np.nan)
-    kicks = np.full((ns, nd, 2 + n), np.nan)
+    states: list = [None] * ns
+    kicks = np.full((ns, nd, subject.sim.n_state), np.nan)
     for i, om in enumerate(speeds):
-        angles = balanced_angles(rot, float(om))
-        if angles is None:
+        bal = subject.balanced(float(om))
+        if bal is None:
             continue
-        y_eq = rot.initial_state(angles)
-        lin = rot.linearize(y_eq, float(om))
-        rate = slowest_decay_rate(lin.eigenvalues)
-        if rate is None:
-            continue
-        stable[i], decay[i] = 1, rate
-        horizon[i] = default_horizon(rate, float(om), 20.0)[0]
-        bound[i], dist[i], kicks[i] = linear_impulse(lin, angles, beta)
-        start[i] = y_eq
+        stable[i], decay[i], states[i] = 1, bal.rate, bal
+        horizon[i] = default_horizon(bal.rate, float(om), 20.0)[0]
+        bound[i], dist[i], _ = linear_impulse(bal.lin, bal.angles, beta, bal.unit, bal.psi)
+        kicks[i] = np.outer(np.cos(beta), bal.kick[0]) + np.outer(np.sin(beta), bal.kick[1])
     shift = np.where(stable[:, None] == 1, shift, np.nan)
     simulated = np.full((ns, nd), np.nan)
     searched = np.full((ns, nd), np.nan)
@@ -245,9 +247,9 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
     below = np.full((ns, nd), -1, dtype=np.int64)
     above = np.full((ns, nd), -1, dtype=np.int64)
     if simulate and stable.any():
-        ctx = _Lanes(rot, speeds, stable, start, horizon, rtol, atol, threads)
+        ctx = _Lanes(subject, speeds, stable, states, horizon, rtol, atol, threads)
         simulated, searched, after = ctx.bisect_impulse(bound, kicks, dist, progress)
-        below, above = ctx.check_shift(shift, beta, moments)
+        below, above = ctx.check_shift(shift, beta)
     worst_i = np.where(stable == 1, np.argmin(np.where(np.isfinite(bound), bound, np.inf), axis=1), -1)
     has_sim = np.any(np.isfinite(simulated), axis=1)
     worst_sim = np.where(has_sim, np.argmin(np.where(np.isfinite(simulated), simulated, np.inf), axis=1), worst_i)
@@ -284,8 +286,8 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
         },
         coords={"speed": ("speed", speeds, {"units": "rad/s"}),
                 "direction": ("direction", beta, {"units": "rad"})},
-        attrs={"critical_speed": float(model.critical_speed), "imbalance": float(model.imbalance),
-               "capacity": float(moments.sum()), "simulated": int(bool(simulate)), "bisections": BISECTIONS,
+        attrs={"critical_speed": float(subject.critical_speed), "imbalance": float(subject.imbalance),
+               "capacity": float(subject.capacity), "station": subject.station, "simulated": int(bool(simulate)), "bisections": BISECTIONS,
                "bracket": BRACKET, "shift_check": SHIFT_CHECK},
     )  # fmt: skip
     return ds
@@ -294,55 +296,47 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
 class _Lanes:
     """The simulations of :func:`shock_margin`: every (speed, direction) one lane of one ensemble."""
 
-    def __init__(self, rot, speeds, stable, start, horizon, rtol, atol, threads):
+    def __init__(self, subject, speeds, stable, states, horizon, rtol, atol, threads):
         from rotorlab.integrate import StepControl
 
-        self.rot, self.speeds, self.threads = rot, speeds, threads
+        self.subject, self.speeds, self.threads = subject, speeds, threads
         self.rows = np.flatnonzero(stable == 1)
-        self.start, self.horizon = start, horizon
+        self.states, self.horizon = states, horizon
         self.control = StepControl(rtol=rtol, atol=atol)
 
     def _solve(self, y0, params, t_end):
         from rotorlab.integrate import SaveAt, solve_ensemble
 
-        return solve_ensemble(self.rot, y0, (0.0, t_end), params=params, save_at=SaveAt(ts=[float(t_end.max())]),
-                              control=self.control, threads=self.threads)  # fmt: skip
-
-    def _params(self, i, **extra):
-        return self.rot.pack({"speed.speed": float(self.speeds[i]), **extra})
+        sol = solve_ensemble(self.subject.sim, y0, (0.0, t_end), params=params,
+                             save_at=SaveAt(ts=[float(t_end.max())]), control=self.control, threads=self.threads)
+        return np.asarray(sol.y_final), np.asarray(sol.status)
 
     def bisect_impulse(self, bound, kicks, dist, progress):
         """Bisect the impulse magnitude of every stable (speed, direction) at once; also where the
-        smallest fatal knock found left the balls (:func:`rotorlab.explore._outcome.classify`)."""
-        from rotorlab.explore._outcome import classify, reference_amplitude
-
+        smallest fatal knock found left the balls (the subject's label: balanced again, a side
+        motion, non-synchronous, ...)."""
         ns, nd = bound.shape
-        n = self.rot.n_balls
+        sub = self.subject
         lanes = [(i, j) for i in self.rows for j in range(nd) if np.isfinite(bound[i, j])]
         idx = tuple(np.array(v) for v in zip(*lanes))
-        params = np.array([self._params(i) for i, _ in lanes])
+        params = np.array([sub.params(float(self.speeds[i])) for i, _ in lanes])
         t_end = np.array([self.horizon[i] for i, _ in lanes])
-        angles = np.array([self.start[i, 4 : 4 + n] for i, _ in lanes])
+        angles = np.array([self.states[i].angles for i, _ in lanes])
         r = np.array([dist[i] for i, _ in lanes])
         lo = np.zeros(len(lanes))
         hi = BRACKET * bound[idx]
         total = BISECTIONS + 1
-
         om = np.array([self.speeds[i] for i, _ in lanes])
-        rotor = self.rot.rotor
-        ref = reference_amplitude(rotor.imbalance, rotor.stiffness, self.rot.total_mass, rotor.damping, om)
+        ref = sub.reference([sub.unbalance(0.0)] * len(lanes), om)
 
         def fatal(mag):
-            y0 = np.array([self.start[i] for i, _ in lanes])
-            dq = kicks[idx] * mag[:, None]
-            y0[:, 2:4] += dq[:, :2]
-            y0[:, 4 + n : 4 + 2 * n] += dq[:, 2:]
-            sol = self._solve(y0, params, t_end)
-            yf, status = np.asarray(sol.y_final), np.asarray(sol.status)
-            back = (status >= 0) & (np.abs(yf[:, 4 : 4 + n] - angles).max(axis=1) < 0.5 * r)
-            where = [classify(int(st), "", float(np.hypot(y[0], y[1])), float(rf), y[4 : 4 + n],
-                              float(np.abs(y[4 + n : 4 + 2 * n]).max()), float(w))
-                     for st, y, rf, w in zip(status, yf, ref, om)]  # fmt: skip
+            y0 = np.array([self.states[i].y for i, _ in lanes]) + kicks[idx] * mag[:, None]
+            yf, status = self._solve(y0, params, t_end)
+            psi, amp, rate = sub.ends(yf, t_end, om)
+            moved = np.abs(psi - angles).max(axis=1)  # a ball gone round a turn is not back
+            back = (status >= 0) & (moved < 0.5 * r)
+            where = [sub.label(int(st), float(a), float(rf), p, float(w), float(o))
+                     for st, a, rf, p, w, o in zip(status, amp, ref, psi, rate, om)]  # fmt: skip
             return ~back, status < 0, np.array(where, dtype=object)
 
         top, failed, outcome = fatal(hi)
@@ -364,48 +358,41 @@ class _Lanes:
         after[idx] = np.where(top & ~failed, outcome, "")
         return simulated, searched, after.astype(str)
 
-    def check_shift(self, shift, beta, moments):
+    def check_shift(self, shift, beta):
         """Simulate every (speed, direction) with the unbalance shifted by (1 -+ SHIFT_CHECK) S(beta)."""
-        from rotorlab.explore._outcome import SETTLE_RATE, reference_amplitude
+        from rotorlab.explore._outcome import SETTLE_RATE
 
         ns, nd = shift.shape
-        n = self.rot.n_balls
-        rotor = self.rot.rotor
+        sub = self.subject
         lanes = [(i, j) for i in self.rows for j in range(nd) if np.isfinite(shift[i, j])]
+        om = np.array([self.speeds[i] for i, _ in lanes])
         out = []
         for factor in (1.0 - SHIFT_CHECK, 1.0 + SHIFT_CHECK):
-            new = np.array([rotor.imbalance + factor * shift[i, j] * np.exp(1j * beta[j]) for i, j in lanes])
-            y0 = np.array([self.start[i] for i, _ in lanes])
-            y0[:, 4 : 4 + n] -= np.angle(new)[:, None]  # angles from the new unbalance direction
-            params = np.array([self._params(i, eccentricity=abs(u) / rotor.disc_mass) for (i, _), u in zip(lanes, new)])
-            t_end = np.array([self._shift_horizon(i, abs(u), moments) for (i, _), u in zip(lanes, new)])
-            sol = self._solve(y0, params, t_end)
-            yf = np.asarray(sol.y_final)
-            om = np.array([self.speeds[i] for i, _ in lanes])
-            ref = reference_amplitude(np.abs(new), rotor.stiffness, self.rot.total_mass, rotor.damping, om)
-            amp = np.hypot(yf[:, 0], yf[:, 1])
-            settled = np.abs(yf[:, 4 + n : 4 + 2 * n]).max(axis=1) <= SETTLE_RATE * om
+            new = [sub.unbalance(factor * shift[i, j] * np.exp(1j * beta[j])) for i, j in lanes]
+            y0 = np.array([sub.shift_start(self.states[i].y, u) for (i, _), u in zip(lanes, new)])
+            params = np.array([sub.params(float(self.speeds[i]), u) for (i, _), u in zip(lanes, new)])
+            t_end = np.array([self._shift_horizon(i, u) for (i, _), u in zip(lanes, new)])
+            yf, status = self._solve(y0, params, t_end)
+            ref = sub.reference(new, om)
+            _, amp, rate = sub.ends(yf, t_end, om)
+            settled = rate <= SETTLE_RATE * om
             label = np.where(amp <= SHIFT_BALANCED * ref, 1, np.where(settled, 0, -1))
-            label = np.where(np.asarray(sol.status) >= 0, label, -1)
+            label = np.where(status >= 0, label, -1)
             grid = np.full((ns, nd), -1, dtype=np.int64)
             for (i, j), v in zip(lanes, label):
                 grid[i, j] = v
             out.append(grid)
         return out[0], out[1]
 
-    def _shift_horizon(self, i, new_imbalance, moments):
+    def _shift_horizon(self, i, unbalance):
         """Ten time constants of the new balanced state (capped as the basins do), else the old horizon."""
-        from dataclasses import replace
-
-        from rotorlab.explore._settle import default_horizon, slowest_decay_rate
+        from rotorlab.explore._settle import default_horizon
 
         om = float(self.speeds[i])
-        shifted = replace(self.rot, rotor=replace(self.rot.rotor, eccentricity=new_imbalance / self.rot.rotor.disc_mass))
-        angles = balanced_angles(shifted, om)
-        if angles is None:
+        bal = self.subject.balanced(om, unbalance)
+        if bal is None:
             return float(self.horizon[i])
-        rate = slowest_decay_rate(shifted.linearize(shifted.initial_state(angles), om).eigenvalues)
-        return max(float(self.horizon[i]), default_horizon(rate, om, float(self.horizon[i]))[0])
+        return max(float(self.horizon[i]), default_horizon(bal.rate, om, float(self.horizon[i]))[0])
 
 
 # --------------------------------------------------------------------------- case-file entry
@@ -418,10 +405,10 @@ def shock_margin_task_size(case_model: Any, analysis: Any) -> int:
 
 def run_shock_margin_analysis(case_model: Any, analysis: Any, progress: Callable[[int, int], None] | None = None):
     """Run a case's ``shock-margin`` analysis (speeds from the spec, else the model's speed)."""
-    from rotorlab.analyses._builders import jeffcott_balls_model
+    from rotorlab.analyses._case import build_model
 
-    model = jeffcott_balls_model(case_model)
-    speeds = analysis.speed_values(case_model, model.critical_speed)
+    model = build_model(case_model)
+    speeds = analysis.speed_values(case_model)
     ds = shock_margin(model, speeds, directions=analysis.directions, simulate=analysis.simulate,
                       rtol=analysis.rtol, atol=analysis.atol, progress=progress)  # fmt: skip
     ds.attrs["name"] = analysis.name
