@@ -18,7 +18,7 @@ Lateral impulse (a knock), N s
     linearisation ``x' = A x`` about the balanced state (:attr:`Linearization.A`) to the unit
     impulse, ``x0 = (0, M^-1 e_beta)``; it is linear in ``(cos beta, sin beta)``, so two
     responses give every direction. The nearest place where balancing fails is the side motion
-    where two neighbouring balls meet: from the balanced state it is ``r = min_{i<j}
+    where two neighbouring balls of one race meet: from the balanced state it is ``r = min_{i<j}
     |wrap(psi_i* - psi_j*)| / 2`` away in every ball angle (the max-norm distance to the
     invariant plane psi_i = psi_j; for two equal balls r = gamma = arccos(eta / 2), seed 002
     eq. (16), the balls meeting on the light side at psi = pi). The impulse whose linear
@@ -86,17 +86,16 @@ def balanced_angles(model, spin_speed: float) -> np.ndarray | None:
     return None
 
 
-def _meeting_distance(angles: np.ndarray) -> float:
-    """r: half the smallest angular gap between two balls (pi for one ball), rad."""
+def _meeting_distance(angles: np.ndarray, races=None) -> float:
+    """r: half the smallest angular gap between two balls of one race (pi for a ball alone in its race), rad."""
     n = angles.size
-    if n < 2:
-        return math.pi
+    races = np.zeros(n, dtype=int) if races is None else np.asarray(races)
     gaps = [abs(float(np.pi - np.mod(np.pi - (angles[i] - angles[j]), 2 * np.pi))) for i in range(n)
-            for j in range(i + 1, n)]  # fmt: skip
-    return 0.5 * min(gaps)
+            for j in range(i + 1, n) if races[i] == races[j]]  # fmt: skip
+    return 0.5 * min(gaps) if gaps else math.pi
 
 
-def linear_impulse(lin, angles, directions, unit=None, psi=None) -> tuple[np.ndarray, float, np.ndarray]:
+def linear_impulse(lin, angles, directions, unit=None, psi=None, races=None) -> tuple[np.ndarray, float, np.ndarray]:
     """The linearised-basin impulse ``I_lin(beta)`` (N s) of the module docstring.
 
     Parameters
@@ -112,6 +111,8 @@ def linear_impulse(lin, angles, directions, unit=None, psi=None) -> tuple[np.nda
         ``M^-1 e`` on ``(u', v', psi_i')`` (state order u, v, u', v', psi_i, psi_i').
     psi : slice, optional
         The ball angles in ``lin``'s state (default ``jeffcott_balls``': 4 .. 4 + n).
+    races : array_like of int, shape (n,), optional
+        The race of each ball (balls of different races never meet); default one race.
 
     Returns
     -------
@@ -146,7 +147,7 @@ def linear_impulse(lin, angles, directions, unit=None, psi=None) -> tuple[np.nda
     cu, su = np.cos(beta), np.sin(beta)
     resp = cu[:, None, None] * rows[0][None] + su[:, None, None] * rows[1][None]  # (k, t, n)
     g = np.abs(resp).max(axis=(1, 2))
-    r = _meeting_distance(angles)
+    r = _meeting_distance(angles, races)
     kick = np.outer(cu, unit[0]) + np.outer(su, unit[1])
     return r / g, r, kick
 
@@ -238,7 +239,7 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
             continue
         stable[i], decay[i], states[i] = 1, bal.rate, bal
         horizon[i] = default_horizon(bal.rate, float(om), 20.0)[0]
-        bound[i], dist[i], _ = linear_impulse(bal.lin, bal.angles, beta, bal.unit, bal.psi)
+        bound[i], dist[i], _ = linear_impulse(bal.lin, bal.angles, beta, bal.unit, bal.psi, subject.races)
         kicks[i] = np.outer(np.cos(beta), bal.kick[0]) + np.outer(np.sin(beta), bal.kick[1])
     shift = np.where(stable[:, None] == 1, shift, np.nan)
     simulated = np.full((ns, nd), np.nan)
@@ -450,5 +451,6 @@ def shock_margin_rows(ds) -> list[dict[str, Any]]:
             "shift_checked": int(np.sum(finite & (below == 1) & (above == 0))),
             "shift_directions": int(np.sum(finite)),
             "horizon": _num(ds.horizon.values[i]),
+            "station": str(ds.attrs.get("station", "the disc centre")),
         })  # fmt: skip
     return rows

@@ -87,7 +87,8 @@ class JeffcottSubject:
         self.moments = np.array([b.static_moment for b in model.balls])
         self.capacity = float(self.moments.sum())
         self.critical_speed = float(model.critical_speed)
-        self.station = "disc centre"
+        self.station = "the disc centre"
+        self.races = np.zeros(self.n_balls, dtype=int)
 
     def balanced(self, om: float, unbalance: complex | None = None) -> Balanced | None:
         from rotorlab.analyses._shock_margin import balanced_angles
@@ -177,6 +178,7 @@ class MachineSubject:
         self.B = probe.station_matrix(u0.node, u0.axial_offset)
         self.station = f"node {probe.structure.node_label[u0.node]}"
         self._nz = probe.n_coordinates
+        self.races = probe._ball_arrays[4]
         n_u = len(probe._point_unbalances)
         planar = len(probe.races) == 1 and all(np.allclose(B, probe._stations[0]) for B in probe._stations[1 : 1 + n_u])
         self.moments = np.array([b.mass * probe.races[0].radius for b in probe.races[0].balls]) if planar else None

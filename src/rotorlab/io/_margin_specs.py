@@ -70,9 +70,9 @@ class ShockMarginSpec(_Speeds):
     over speed and direction."""
 
     type: Literal["shock-margin"] = "shock-margin"
-    model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls",)
-    wrong_model_message: ClassVar[str] = ('needs a rotor with balls ([model] type "jeffcott_balls"), but the '
-                                          'case\'s model is "{kind}"')
+    model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls", "machine")
+    wrong_model_message: ClassVar[str] = ('needs a rotor with balls ([model] type "jeffcott_balls" or "machine"), '
+                                          'but the case\'s model is "{kind}"')
     directions: integer(ge=1, le=720) = Field(24, description="directions of the knock and the load shift over a turn")
     simulate: flag() = Field(True, description="bisect the impulse and check the load shift by simulation")
     rtol: quantity("dimensionless", gt=0, lt=1) = Field(1e-7, description="relative tolerance")
@@ -82,13 +82,7 @@ class ShockMarginSpec(_Speeds):
         issues = super().case_issues(model)
         if issues:
             return issues
-        if not model.balls:
-            return [Issue(("type",), "needs balls on the rotor ([[model.balls]])", self.type)]
-        if any(b.friction > 0 for b in model.balls):
-            return [Issue(("type",), "needs balls without Coulomb friction (the balanced state is then an "
-                                     "isolated equilibrium): set the balls' friction to 0 or use friction-margin",
-                          self.type)]  # fmt: skip
-        return []
+        return _SHOCK_CHECKS[model.type](model)
 
     def describe(self, model: AbstractModelSpec) -> str:
         n = len(self.speed_values(model))
@@ -114,6 +108,39 @@ class FrictionMarginSpec(_Speeds):
 
     def describe(self, model: AbstractModelSpec) -> str:
         return f"friction margin: band and worst residual at {len(self.speed_values(model))} speed(s)"
+
+
+def _rotor_shock_issues(model: AbstractModelSpec) -> list[Issue]:
+    """``jeffcott_balls``: balls, without Coulomb friction."""
+    if not model.balls:
+        return [Issue(("type",), "needs balls on the rotor ([[model.balls]])", "shock-margin")]
+    if any(b.friction > 0 for b in model.balls):
+        return [Issue(("type",), "needs balls without Coulomb friction (the balanced state is then an "
+                                 "isolated equilibrium): set the balls' friction to 0 or use friction-margin",
+                      "shock-margin")]  # fmt: skip
+    return []
+
+
+def _machine_shock_issues(model: AbstractModelSpec) -> list[Issue]:
+    """``machine``: balls, an unbalance (the knock and the load shift act at the first one's station) and a
+    balanced state that is an equilibrium of the co-rotating frame (:meth:`Machine.why_no_rotating_frame`)."""
+    from rotorlab.io._build import build_machine
+    from rotorlab.models import ConstantSpeed
+
+    if not model.balls:
+        return [Issue(("type",), "needs balls on the machine ([[model.races]] with balls)", "shock-margin")]
+    if not model.unbalances:
+        return [Issue(("type",), "needs an unbalance ([[model.unbalances]]): the knock and the load shift act at "
+                                 "the first one's station", "shock-margin")]  # fmt: skip
+    why = build_machine(model).with_drive(ConstantSpeed(1.0)).why_no_rotating_frame()
+    if why is not None:
+        return [Issue(("type",), f"needs the machine's balanced state as a steady equilibrium, but {why}",
+                      "shock-margin")]
+    return []
+
+
+#: What ``shock-margin`` needs of each model type it runs on (:attr:`ShockMarginSpec.model_types`).
+_SHOCK_CHECKS = {"jeffcott_balls": _rotor_shock_issues, "machine": _machine_shock_issues}
 
 
 def _friction_issues(model: AbstractModelSpec) -> list[Issue]:

@@ -37,7 +37,8 @@ def _shock_sentence(r: Mapping[str, Any]) -> str:
     end = r.get("fatal_outcome")
     where = "" if not end else (" (they balance again, in another arrangement, after passing unbalanced ones)"
                                 if end == "balanced" else f" (they end in: {end})")
-    return (f"At {rpm} {knock} at {_g(r['worst_impulse_direction_deg'], '.0f', '°')} from the unbalance throws "
+    on = f" on the rotor at {r['station']}" if r.get("station") else ""
+    return (f"At {rpm} {knock}{on} at {_g(r['worst_impulse_direction_deg'], '.0f', '°')} from the unbalance throws "
             f"the balls out of balance{where}; a load shift of {_g(r['min_load_shift'], '.4g', ' g mm', 1e6)} at "
             f"{_g(r['worst_shift_direction_deg'], '.0f', '°')} leaves the balls unable to balance "
             f"(confirmed by simulation just below and above it in {_shift_check(r)} directions).")
