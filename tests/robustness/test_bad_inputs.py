@@ -421,6 +421,9 @@ MARGINS = [
     ("sm-friction-balls", ["shock-margin", FILE], ("autobalancer", 'damping = "2e-3 N*m*s"',
                                                    'damping = "2e-3 N*m*s"\nfriction = 0.01'),
      ["shock-margin.type", "without Coulomb friction"]),
+    ("sm-machine-gravity", ["shock-margin", "washer-horizontal", "--speed-rpm", "1000"], None,
+     ["shock-margin.type", "gravity acts across the axis"]),
+    ("sm-machine-ramp", ["shock-margin", "washer-horizontal"], None, ["shock-margin.speed", "not constant"]),
     ("sm-out-is-folder", ["shock-margin", "autobalancer", "--out", "{d}/plain"], None, ["--out", "folder"]),
     ("sm-case-directions", ["validate", FILE], ("autobalancer", "n_horizons = 10",
                                                 'n_horizons = 10\n\n[[analysis]]\ntype = "shock-margin"\n'

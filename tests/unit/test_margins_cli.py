@@ -71,3 +71,14 @@ def test_shock_margin_through_run_and_the_report(tmp_path):
     page = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
     assert "Weakest: At 2400 rpm a knock of" in page and "1500 g mm" in page
     assert "The balanced state is not stable at 960 rpm: no margin there." in page
+
+
+def test_shock_margin_command_on_a_machine():
+    # the same command on a two-plane machine: the load shift its races can no longer cancel
+    # (0.01 kg m along the unbalance, Rodrigues et al. 2008 eq. (21)), the knock at the unbalance's node
+    result = runner.invoke(app, ["shock-margin", "rcfw-two-plane", "--directions", "2", "--no-simulate", "--json"])
+    assert result.exit_code == 0, result.output
+    (r,) = json.loads(result.stdout)["rows"]
+    assert r["stable"] and r["station"] == "node rotor"
+    assert r["min_load_shift"] == pytest.approx(0.01, rel=1e-6) and r["worst_shift_direction_deg"] == 0.0
+    assert r["min_impulse_linear"] > 0.0 and r["min_impulse_simulated"] is None
