@@ -22,6 +22,15 @@ def _g(v: float | None, fmt: str = ".3g", unit: str = "", scale: float = 1.0) ->
     return "–" if v is None else f"{v * scale:{fmt}}{unit}"
 
 
+def _gmm(v: float | None, unit: str = " g mm") -> str:
+    """A load shift (kg m) in g mm, four significant digits, never in exponent form (10000, not 1e+04).
+
+    >>> _gmm(0.01), _gmm(2.598076e-3), _gmm(None)
+    ('10000 g mm', '2598 g mm', '–')
+    """
+    return "–" if v is None else f"{float(f'{v * 1e6:.4g}'):.12g}{unit}"
+
+
 def _shift_check(r: Mapping[str, Any]) -> str:
     return f"{r['shift_checked']} of {r['shift_directions']}"
 
@@ -39,7 +48,7 @@ def _shock_sentence(r: Mapping[str, Any]) -> str:
                                 if end == "balanced" else f" (they end in: {end})")
     on = f" on the rotor at {r['station']}" if r.get("station") else ""
     return (f"At {rpm} {knock}{on} at {_g(r['worst_impulse_direction_deg'], '.0f', '°')} from the unbalance throws "
-            f"the balls out of balance{where}; a load shift of {_g(r['min_load_shift'], '.4g', ' g mm', 1e6)} at "
+            f"the balls out of balance{where}; a load shift of {_gmm(r['min_load_shift'])} at "
             f"{_g(r['worst_shift_direction_deg'], '.0f', '°')} leaves the balls unable to balance "
             f"(confirmed by simulation just below and above it in {_shift_check(r)} directions).")
 
@@ -51,7 +60,7 @@ def shock_margin_section(ds: xarray.Dataset, rows: Rows) -> str:
     head = "".join(f"<p>{_shock_sentence(r)}</p>" for r in rows)
     body = [[f"{r['speed_rpm']:.0f}", "yes" if r["stable"] else "no", _g(r["min_impulse_linear"]),
              _g(r["min_impulse_simulated"]), _g(r["worst_impulse_direction_deg"], ".0f"),
-             _g(r["min_load_shift"], ".4g", "", 1e6), _g(r["worst_shift_direction_deg"], ".0f"), _shift_check(r),
+             _gmm(r["min_load_shift"], ""), _g(r["worst_shift_direction_deg"], ".0f"), _shift_check(r),
              _g(r["horizon"])] for r in rows]  # fmt: skip
     return head + table(["speed (rpm)", "balanced state stable", "impulse, linearised (N s)",
                          "impulse, simulated (N s)", "worst knock direction (deg)", "load shift (g mm)",
@@ -72,7 +81,7 @@ def shock_margin_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
     bad = [f"{r['speed_rpm']:.0f}" for r in rows if not r["stable"]]
     tail = f" The balanced state is not stable at {', '.join(bad)} rpm: no margin there." if bad else ""
     numbers = tuple(f"{r['speed_rpm']:.0f} rpm: impulse {_g(key(r), unit=' N s')}, load shift "
-                    f"{_g(r['min_load_shift'], '.4g', ' g mm', 1e6)}" for r in ok)  # fmt: skip
+                    f"{_gmm(r['min_load_shift'])}" for r in ok)  # fmt: skip
     return Findings("Weakest: " + _shock_sentence(weakest) + tail, numbers)
 
 
@@ -88,7 +97,7 @@ def shock_margin_tables(results: Mapping[str, Any], rows: Mapping[str, Rows]) ->
             t.add_column(col, justify="right")
         for r in rows[name]:
             t.add_row(f"{r['speed_rpm']:.0f}", _g(r["min_impulse_linear"]), _g(r["min_impulse_simulated"]),
-                      _g(r["worst_impulse_direction_deg"], ".0f"), _g(r["min_load_shift"], ".4g", "", 1e6),
+                      _g(r["worst_impulse_direction_deg"], ".0f"), _gmm(r["min_load_shift"], ""),
                       _g(r["worst_shift_direction_deg"], ".0f"), _shift_check(r))  # fmt: skip
         out.append(t)
     return out
