@@ -68,12 +68,12 @@ def _component(stuck: np.ndarray, seed: tuple[int, ...]) -> np.ndarray:
     return labels == lab if lab > 0 else np.zeros_like(stuck)
 
 
-def _band_on_grid(model, om, centre, half, grid):
+def _band_on_grid(terms, om, centre, half, grid):
     """Stuck component around ``centre`` on a grid of +-``half`` (rad) per ball: (offsets, mask, |w|)."""
     n = centre.size
     axis = np.linspace(-1.0, 1.0, grid) * half[:, None]  # (n, grid)
     mesh = np.stack(np.meshgrid(*axis, indexing="ij"), axis=-1)  # (grid, ..., n)
-    w, margin = _ball_terms(model, om, centre + mesh)
+    w, margin = terms(om, centre + mesh)
     stuck = np.all(margin <= 0.0, axis=-1)
     return mesh, _component(stuck, (grid // 2,) * n), np.abs(w), stuck
 
@@ -102,23 +102,34 @@ def jeffcott_band(model, speeds, *, grid: int = 241, simulate: bool = True, thre
     from rotorlab.analyses._shock_margin import balanced_angles
     from rotorlab.models import ConstantSpeed
 
-    n = model.n_balls
+    rot = model.with_frame("rotating")
+    return stuck_band(
+        model.n_balls, speeds, grid=grid, simulate=simulate,
+        terms=lambda om, psi: _ball_terms(model, om, psi),
+        centre=lambda om: balanced_angles(rot.with_speed(ConstantSpeed(om)), om),
+        check=lambda om, centre, offset, beyond: _check_jeffcott(rot, om, centre, offset, beyond, threads))
+
+
+def stuck_band(n: int, speeds, *, grid: int, simulate: bool, terms, centre, check) -> dict[str, Any]:
+    """The band of ``n`` balls stuck around their balanced angles, per speed (what :func:`jeffcott_band`
+    returns): ``terms(om, psi) -> (w, margin)`` (complex deflection or residual, and per ball the
+    holding torque minus what friction can give, <= 0 where it sticks), ``centre(om)`` the balanced
+    angles (or None), ``check(om, centre, offset, beyond) -> (inside, outside)`` the simulated check."""
     ns = len(speeds)
     low, high, worst_at = (np.full((ns, n), np.nan) for _ in range(3))
     worst = np.full(ns, np.nan)
     inside, outside = np.full(ns, -1, dtype=np.int64), np.full(ns, -1, dtype=np.int64)
-    rot = model.with_frame("rotating")
     for i, om in enumerate(speeds):
-        centre = balanced_angles(rot.with_speed(ConstantSpeed(float(om))), float(om))
-        if centre is None:
+        mid = centre(float(om))
+        if mid is None:
             continue
-        mesh, mask, amp, stuck = _band_on_grid(model, om, centre, np.full(n, math.pi), grid)
+        mesh, mask, amp, stuck = _band_on_grid(terms, om, mid, np.full(n, math.pi), grid)
         if not mask.any():
             continue
         span = np.array([np.abs(mesh[..., k][mask]).max() for k in range(n)])
         step = 2.0 * math.pi / (grid - 1)
         if np.all(span < math.pi - step):  # refine over the band's extent
-            mesh, mask, amp, stuck = _band_on_grid(model, om, centre, np.minimum(span + 2.0 * step, math.pi), grid)
+            mesh, mask, amp, stuck = _band_on_grid(terms, om, mid, np.minimum(span + 2.0 * step, math.pi), grid)
         low[i] = [mesh[..., k][mask].min() for k in range(n)]
         high[i] = [mesh[..., k][mask].max() for k in range(n)]
         j = np.unravel_index(np.argmax(np.where(mask, amp, -1.0)), mask.shape)
@@ -126,7 +137,7 @@ def jeffcott_band(model, speeds, *, grid: int = 241, simulate: bool = True, thre
         worst_at[i] = mesh[j]
         beyond = _outside_neighbour(mesh, stuck, j)
         if simulate:
-            inside[i], outside[i] = _check_jeffcott(rot, float(om), centre, worst_at[i], beyond, threads)
+            inside[i], outside[i] = check(float(om), mid, worst_at[i], beyond)
     return {"band_low": low, "band_high": high, "worst_residual": worst, "worst_angles": worst_at,
             "check_inside": inside, "check_outside": outside,
             "coordinates": [f"psi_{k + 1}" for k in range(n)], "residual": "rotor deflection",
@@ -203,6 +214,15 @@ def _check_torus(model, wp, psi_edge, threads):
 FRICTION_BANDS: Registry[Callable[..., dict[str, Any]]] = Registry("friction band of a model type")
 FRICTION_BANDS.register("jeffcott_balls", jeffcott_band)
 FRICTION_BANDS.register("toroidal_ball", torus_band)
+
+
+def _machine_band(model, speeds, **kw):
+    from rotorlab.analyses._friction_machine import machine_band
+
+    return machine_band(model, speeds, **kw)
+
+
+FRICTION_BANDS.register("machine", _machine_band)
 
 
 def friction_margin(model_type: str, model, speeds, *, grid: int = 241, simulate: bool = True,

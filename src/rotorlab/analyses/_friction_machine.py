@@ -1,0 +1,134 @@
+r"""The friction band of a ``machine`` whose balls have Coulomb or rolling friction (``friction-margin``).
+
+The machine's law (:mod:`rotorlab._kernels.machine_friction`): ball b sticks while the race's
+holding torque stays within ``kap_b N_b``, ``kap_b = coulomb l_b + rolling_b`` (m). With every ball
+stuck at psi_b the balls ride with the rotor as point masses, and at a constant speed the
+structure stands still in the co-rotating frame at the locked response
+
+    (K + i Omega (C + Omega G) - Omega^2 M0) Z = Omega^2 (sum_u U_u e^{i beta_u} B_u^T + sum_b m_b l_b e^{i psi_b} B_r^T) (1, -i)
+
+(M0 the structure with the balls' masses at their races, B a station's lateral displacement; the
+complex station deflection in the co-rotating frame is ``w_r = (B_r Z)_x``). The station turns
+with the rotor, its acceleration ``-Omega^2 w_r``, so ball b needs the holding torque
+``D_b = m_b l_b Omega^2 Im(w_r e^{-i psi_b})`` and is pressed with ``N_b = m_b Omega^2 (l_b +
+Re(w_r e^{-i psi_b}))``: it sticks while ``|Im(w_r e^{-i psi_b})| <= (kap_b / l_b) (l_b +
+Re(w_r e^{-i psi_b}))`` - for one race on a planar rotor the condition of ``jeffcott_balls``
+(kap = f l). The band is searched as for that rotor (:func:`rotorlab.analyses._friction_margin.stuck_band`)
+around the balanced angles of the machine without friction; the residual is the largest node
+deflection ``max |X|`` (m). Needs an isotropic structure, no gravity across the axis, races that
+do not tilt (a tilting race adds the ball's gyroscopic terms), at most two balls.
+
+The simulated check releases the balls stuck (mode 0) at the worst point just inside and at the
+next grid point outside, the structure on its locked response, and follows them for
+``CHECK_REVOLUTIONS`` revolutions in the fixed frame.
+"""
+
+from __future__ import annotations
+
+import math
+from dataclasses import replace
+
+import numpy as np
+
+__all__ = ["machine_band", "MachineStick"]
+
+
+class MachineStick:
+    """The stuck-ball terms of a machine at one speed (module docstring), vectorised over ball angles."""
+
+    def __init__(self, machine, om: float):
+        nz = machine.n_coordinates
+        red = machine.reduced
+        D = red["K"] + 1j * om * (red["C"] + om * red["G"]) - om * om * machine._m0()
+        st = machine._stations
+        proj = np.array([1.0, -1j])
+        fu = np.zeros(nz, dtype=complex)
+        for u, (_, _, me, beta) in enumerate(machine._point_unbalances):
+            fu += me * np.exp(1j * beta) * (st[len(machine.races) + u].T @ proj)
+        m, l, J, c, race = machine._ball_arrays
+        fb = np.array([m[b] * l[b] * (st[race[b]].T @ proj) for b in range(m.size)]).reshape(m.size, nz)
+        zu = np.linalg.solve(D, om * om * fu)
+        zb = np.linalg.solve(D, om * om * fb.T).T  # (n_b, nz)
+        # station x-deflection of each ball's race: constant + sum_b e^{i psi_b} per-ball part
+        self.wu = np.array([(st[race[b]] @ zu)[0] for b in range(m.size)])
+        self.wb = np.array([[(st[race[a]] @ zb[b])[0] for b in range(m.size)] for a in range(m.size)])
+        xs = machine.basis[0::4, :]
+        self.xu, self.xb = xs @ zu, zb @ xs.T  # node x-deflections (n_nodes,), (n_b, n_nodes)
+        self.zu, self.zb = zu, zb
+        self.l = l
+        self.kap = np.array([b.coulomb * r.radius + b.rolling for r in machine.races for b in r.balls])
+
+    def terms(self, psi):
+        """``(largest node deflection (m), holding-torque margin per ball)`` at stuck angles psi (..., n_b)."""
+        e = np.exp(1j * np.asarray(psi, dtype=float))
+        w = self.wu + e @ self.wb.T  # (..., n_b): the race deflection seen by each ball
+        x = self.xu + e @ self.xb  # (..., n_nodes)
+        rel = w * np.conj(e)
+        margin = np.abs(rel.imag) - self.kap / self.l * (self.l + rel.real)
+        return np.abs(x).max(axis=-1), margin
+
+    def coordinates(self, psi) -> np.ndarray:
+        """The structure's co-rotating coordinates z_r (real) with the balls stuck at psi."""
+        return (self.zu + np.exp(1j * np.asarray(psi, dtype=float)) @ self.zb).real
+
+
+def _frictionless(machine):
+    races = tuple(replace(r, balls=tuple(replace(b, coulomb=0.0, rolling=0.0) for b in r.balls))
+                  for r in machine.races)
+    return replace(machine, races=races)
+
+
+def machine_band(machine, speeds, *, grid: int = 241, simulate: bool = True, threads: int | None = None):
+    """Friction band and worst residual deflection of a machine with one or two balls (module docstring)."""
+    from rotorlab.analyses._friction_margin import stuck_band
+    from rotorlab.models import ConstantSpeed
+
+    smooth = _frictionless(machine).with_drive(ConstantSpeed(1.0))
+    why = smooth.why_no_rotating_frame()
+    if why is not None or machine.layout.tilt or not 1 <= machine.n_balls <= 2:
+        raise ValueError("friction_margin of a machine needs one or two balls on races that do not tilt and a "
+                         f"balanced state of the machine without friction: {why or 'a race tilts or too many balls'}")
+    cache: dict[float, MachineStick] = {}
+
+    def stick(om):
+        if om not in cache:
+            cache[om] = MachineStick(machine.with_drive(ConstantSpeed(om)), om)
+        return cache[om]
+
+    def terms(om, psi):
+        amp, margin = stick(float(om)).terms(psi)
+        return amp, margin
+
+    return stuck_band(
+        machine.n_balls, speeds, grid=grid, simulate=simulate, terms=terms,
+        centre=lambda om: smooth.with_drive(ConstantSpeed(om)).balanced_angles(),
+        check=lambda om, centre, offset, beyond: _check(machine, stick(om), om, centre, offset, beyond, threads))
+
+
+def _check(machine, stick, om, centre, offset, beyond, threads):
+    """Release the balls stuck at (1 - CHECK_STEP) times the worst ``offset`` (must stay) and at ``beyond``
+    (must move), the structure on its locked response; 1 agrees, 0 not, -1 failed."""
+    from rotorlab.analyses._friction_margin import CHECK_REVOLUTIONS, CHECK_STEP
+    from rotorlab.integrate import SaveAt, StepControl, solve_ensemble
+    from rotorlab.models import ConstantSpeed
+
+    m = machine.with_drive(ConstantSpeed(om))
+    lay = m.layout
+    nz, nb = lay.n_z, lay.n_balls
+    outside = (1.0 + CHECK_STEP) * offset if beyond is None else beyond
+    starts = []
+    for psi in (centre + (1.0 - CHECK_STEP) * offset, centre + outside):
+        y = np.zeros(lay.n_state)
+        z = stick.coordinates(psi)
+        y[:nz] = z
+        y[nz:2 * nz] = m._rot_pairs(z, om)  # standing still in the co-rotating frame
+        y[lay.i_phi:lay.i_phi + nb] = psi
+        y[lay.i_w:lay.i_w + nb] = om
+        starts.append(m.initial_modes(0.0, y))  # the kernel's own stick test: stuck inside, slipping outside
+    t_end = CHECK_REVOLUTIONS * 2.0 * math.pi / om
+    sol = solve_ensemble(m, np.array(starts), (0.0, t_end), save_at=SaveAt(ts=[t_end]),
+                         control=StepControl(rtol=1e-9, atol=1e-12), threads=threads)  # fmt: skip
+    ok = np.asarray(sol.status) >= 0
+    yf = np.asarray(sol.y_final)
+    moved = np.abs(yf[:, lay.i_phi:lay.i_phi + nb] - om * t_end - np.array(starts)[:, lay.i_phi:lay.i_phi + nb]).max(axis=1)
+    return (int(moved[0] < 1e-9) if ok[0] else -1), (int(moved[1] > 1e-6) if ok[1] else -1)
