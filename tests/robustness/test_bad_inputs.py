@@ -433,6 +433,9 @@ MARGINS = [
     ("fm-torus-no-friction", ["friction-margin", FILE], ("strautmanis-torus", 'rolling_friction = "1e-5 m"',
                                                          'rolling_friction = "0 m"'),
      ["rolling_friction", "> 0"]),
+    ("fm-machine-four-balls", ["friction-margin", "rcfw-two-plane"], None, ["friction-margin.type", "one or two balls", "4"]),
+    ("fm-machine-no-friction", ["friction-margin", "washer-horizontal", "--speed-rpm", "1000"], None,
+     ["friction-margin.type", "coulomb or rolling > 0"]),
     ("fm-small-grid", ["friction-margin", "strautmanis-torus", "--grid", "5"], None, ["--grid", "5"]),
     ("fm-nan-ratio", ["friction-margin", "strautmanis-torus", "--speed-ratio", "nan"], None, ["--speed-ratio"]),
 ]

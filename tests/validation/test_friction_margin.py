@@ -99,3 +99,60 @@ def test_worst_residual_is_the_simulated_deflection(rotor):
     assert amp == pytest.approx(abs(rot.locked_response(psi, om)), rel=1e-9)
     assert amp == pytest.approx(float(ds.worst_residual[0]), rel=0.05)
     assert amp > 1e-4  # a residual deflection of the order of f l (0.5 mm) and more, not a balanced rotor
+
+
+# --------------------------------------------------------------------------- the same on a machine
+
+
+def _planar_machine(rotor, coulomb: float):
+    """The autobalancer as a planar machine (its right-hand side, tests/unit/test_machine.py) with Coulomb
+    friction on both balls."""
+    from rotorlab.continuation import as_machine
+
+    m = as_machine(rotor)
+    race = m.races[0]
+    return replace(m, races=(replace(race, balls=tuple(replace(b, coulomb=coulomb) for b in race.balls)),))
+
+
+def test_machine_stick_condition_is_the_kernels(rotor):
+    # the closed-form stuck-ball margin of a machine against the machine kernel's own stick test
+    # (Machine.initial_modes: a ball at rest relative to its race sticks iff the race can hold it),
+    # the structure on the locked response; and the locked response is jeffcott_balls' at the same angles
+    from rotorlab.analyses._friction_machine import MachineStick
+    from rotorlab.analyses._friction_margin import _ball_terms
+
+    om = 2.0 * rotor.critical_speed
+    m = _planar_machine(rotor, 0.05).with_drive(ConstantSpeed(om))
+    jb = replace(rotor, balls=tuple(replace(b, friction=0.05) for b in rotor.balls))
+    stick = MachineStick(m, om)
+    lay = m.layout
+    rng = np.random.default_rng(5)
+    agree = []
+    for psi in rng.uniform(-math.pi, math.pi, (12, 2)):
+        amp, margin = stick.terms(psi)
+        w, jmargin = _ball_terms(jb, om, psi)
+        assert amp == pytest.approx(abs(w), rel=1e-9)
+        np.testing.assert_allclose(margin, jmargin, atol=1e-12)
+        y = np.zeros(lay.n_state)
+        y[:2] = stick.coordinates(psi)
+        y[2:4] = om * np.array([-y[1], y[0]])
+        y[lay.i_phi : lay.i_phi + 2] = psi
+        y[lay.i_w : lay.i_w + 2] = om
+        modes = m.initial_modes(0.0, y)[lay.i_modes : lay.i_modes + 2]
+        if np.all(margin < -1e-9) or np.any(margin > 1e-9):  # clear of the stick boundary
+            agree.append(bool(np.all(modes == 0.0)) == bool(np.all(margin < 0.0)))
+    assert len(agree) >= 8 and all(agree)
+
+
+def test_machine_band_is_the_rotor_s(rotor):
+    # friction 0.01 at 2 p and 3 p: the planar machine's band (its balls in the mirror arrangement
+    # Machine.balanced_angles finds) and worst residual are the rotor's; checked by simulation
+    om = [2.0 * rotor.critical_speed, 3.0 * rotor.critical_speed]
+    jb = replace(rotor, balls=tuple(replace(b, friction=0.01) for b in rotor.balls))
+    a = friction_margin("jeffcott_balls", jb, om, grid=61, simulate=False)
+    b = friction_margin("machine", _planar_machine(rotor, 0.01), om, grid=61, simulate=True)
+    np.testing.assert_allclose(b.worst_residual.values, a.worst_residual.values, rtol=1e-9)
+    np.testing.assert_allclose(b.band_low.values, a.band_low.values[:, ::-1], atol=1e-12)
+    np.testing.assert_allclose(b.band_high.values, a.band_high.values[:, ::-1], atol=1e-12)
+    assert 1.0e-3 < float(b.worst_residual[0]) < 1.5e-3  # m: 1.21 mm at 2 p
+    assert b.check_inside.values.tolist() == [1, 1] and b.check_outside.values.tolist() == [1, 1]

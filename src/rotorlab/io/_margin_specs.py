@@ -94,9 +94,9 @@ class FrictionMarginSpec(_Speeds):
     """Band of ball positions held by friction and the worst residual vibration over it, over speed."""
 
     type: Literal["friction-margin"] = "friction-margin"
-    model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls", "toroidal_ball")
-    wrong_model_message: ClassVar[str] = ('needs a balancer with ball friction ([model] type "jeffcott_balls" or '
-                                          '"toroidal_ball"), but the case\'s model is "{kind}"')
+    model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls", "toroidal_ball", "machine")
+    wrong_model_message: ClassVar[str] = ('needs a balancer with ball friction ([model] type "jeffcott_balls", '
+                                          '"toroidal_ball" or "machine"), but the case\'s model is "{kind}"')
     grid: integer(ge=21, le=2001) = Field(241, description="grid points per ball angle over the band search")
     simulate: flag() = Field(True, description="check the band's worst point by simulation")
 
@@ -104,7 +104,7 @@ class FrictionMarginSpec(_Speeds):
         issues = super().case_issues(model)
         if issues:
             return issues
-        return _friction_issues(model)
+        return _FRICTION_CHECKS[model.type](model)
 
     def describe(self, model: AbstractModelSpec) -> str:
         return f"friction margin: band and worst residual at {len(self.speed_values(model))} speed(s)"
@@ -143,20 +143,53 @@ def _machine_shock_issues(model: AbstractModelSpec) -> list[Issue]:
 _SHOCK_CHECKS = {"jeffcott_balls": _rotor_shock_issues, "machine": _machine_shock_issues}
 
 
-def _friction_issues(model: AbstractModelSpec) -> list[Issue]:
-    """No friction, no band: a rotor's balls need Coulomb friction, a torus ball rolling friction."""
-    balls = getattr(model, "balls", None)
-    if balls is not None:
-        if not balls:
-            return [Issue(("type",), "needs balls on the rotor ([[model.balls]])", "friction-margin")]
-        if len(balls) > 2:
-            return [Issue(("type",), f"maps the band of one or two balls, the model has {len(balls)}",
-                          "friction-margin")]
-        if not any(b.friction > 0 for b in balls):
-            return [Issue(("type",), "needs Coulomb friction on the balls (model.balls[i].friction > 0): "
-                                     "without it the band is a point", "friction-margin")]
-        return []
-    if getattr(model, "rolling_friction", 0.0) <= 0:
+def _rotor_friction_issues(model: AbstractModelSpec) -> list[Issue]:
+    """No friction, no band: a rotor's one or two balls need Coulomb friction."""
+    if not model.balls:
+        return [Issue(("type",), "needs balls on the rotor ([[model.balls]])", "friction-margin")]
+    if len(model.balls) > 2:
+        return [Issue(("type",), f"maps the band of one or two balls, the model has {len(model.balls)}",
+                      "friction-margin")]
+    if not any(b.friction > 0 for b in model.balls):
+        return [Issue(("type",), "needs Coulomb friction on the balls (model.balls[i].friction > 0): "
+                                 "without it the band is a point", "friction-margin")]
+    return []
+
+
+def _torus_friction_issues(model: AbstractModelSpec) -> list[Issue]:
+    """A torus ball needs rolling friction."""
+    if model.rolling_friction <= 0:
         return [Issue(("type",), "needs rolling friction (model.rolling_friction > 0): without it the band is a point",
                       "friction-margin")]
     return []
+
+
+def _machine_friction_issues(model: AbstractModelSpec) -> list[Issue]:
+    """A machine: one or two balls with Coulomb or rolling friction on races that do not tilt, and without
+    friction a balanced state in the co-rotating frame (isotropic, no gravity across the axis)."""
+    from dataclasses import replace
+
+    from rotorlab.io._build import build_machine
+    from rotorlab.models import ConstantSpeed
+
+    balls = model.balls
+    if not 1 <= len(balls) <= 2:
+        return [Issue(("type",), f"maps the band of one or two balls, the machine has {len(balls)}", "friction-margin")]
+    if not any(b.coulomb > 0 or b.rolling > 0 for b in balls):
+        return [Issue(("type",), "needs friction on the balls (model.races[i].balls[j].coulomb or rolling > 0): "
+                                 "without it the band is a point", "friction-margin")]  # fmt: skip
+    m = build_machine(model).with_drive(ConstantSpeed(1.0))
+    smooth = replace(m, races=tuple(replace(r, balls=tuple(replace(b, coulomb=0.0, rolling=0.0) for b in r.balls))
+                                    for r in m.races))  # fmt: skip
+    why = smooth.why_no_rotating_frame()
+    if why is None and m.layout.tilt:
+        why = "a race tilts with its node (the band assumes races that only translate)"
+    if why is not None:
+        return [Issue(("type",), f"needs the machine's balanced state without friction as a steady equilibrium, "
+                                 f"but {why}", "friction-margin")]  # fmt: skip
+    return []
+
+
+#: What ``friction-margin`` needs of each model type it runs on (:attr:`FrictionMarginSpec.model_types`).
+_FRICTION_CHECKS = {"jeffcott_balls": _rotor_friction_issues, "toroidal_ball": _torus_friction_issues,
+                    "machine": _machine_friction_issues}
