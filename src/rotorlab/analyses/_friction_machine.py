@@ -5,7 +5,8 @@ holding torque stays within ``kap_b N_b``, ``kap_b = coulomb l_b + rolling_b`` (
 stuck at psi_b the balls ride with the rotor as point masses, and at a constant speed the
 structure stands still in the co-rotating frame at the locked response
 
-    (K + i Omega (C + Omega G) - Omega^2 M0) Z = Omega^2 (sum_u U_u e^{i beta_u} B_u^T + sum_b m_b l_b e^{i psi_b} B_r^T) (1, -i)
+    (K + i Omega (C + Omega G) - Omega^2 M0) Z
+        = Omega^2 (sum_u U_u e^{i beta_u} B_u^T + sum_b m_b l_b e^{i psi_b} B_r^T) (1, -i)
 
 (M0 the structure with the balls' masses at their races, B a station's lateral displacement; the
 complex station deflection in the co-rotating frame is ``w_r = (B_r Z)_x``). The station turns
@@ -130,5 +131,6 @@ def _check(machine, stick, om, centre, offset, beyond, threads):
                          control=StepControl(rtol=1e-9, atol=1e-12), threads=threads)  # fmt: skip
     ok = np.asarray(sol.status) >= 0
     yf = np.asarray(sol.y_final)
-    moved = np.abs(yf[:, lay.i_phi:lay.i_phi + nb] - om * t_end - np.array(starts)[:, lay.i_phi:lay.i_phi + nb]).max(axis=1)
+    balls = slice(lay.i_phi, lay.i_phi + nb)
+    moved = np.abs(yf[:, balls] - om * t_end - np.array(starts)[:, balls]).max(axis=1)
     return (int(moved[0] < 1e-9) if ok[0] else -1), (int(moved[1] > 1e-6) if ok[1] else -1)

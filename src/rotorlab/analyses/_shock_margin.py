@@ -47,6 +47,11 @@ Step change of unbalance (a load shift), kg m
 Every simulation starts from the balanced state and runs, on the lane driver, for the horizon the
 balanced state's slowest eigenvalue gives (:func:`rotorlab.explore.default_horizon`). The impulse
 threshold is bisected for all speeds and directions at once (each lane one of them).
+
+A ``machine`` with balls is measured the same way (the knock and the load shift at its first
+unbalance's station; its load-shift bound in closed form where one race and the unbalances share a
+plane, else searched): the pieces that differ between model types are registered in
+:mod:`rotorlab.analyses._shock_subjects`.
 """
 
 from __future__ import annotations
@@ -288,7 +293,8 @@ def shock_margin(model, speeds, *, directions: int = 24, simulate: bool = True, 
         coords={"speed": ("speed", speeds, {"units": "rad/s"}),
                 "direction": ("direction", beta, {"units": "rad"})},
         attrs={"critical_speed": float(subject.critical_speed), "imbalance": float(subject.imbalance),
-               "capacity": float(subject.capacity), "station": subject.station, "simulated": int(bool(simulate)), "bisections": BISECTIONS,
+               "capacity": float(subject.capacity), "station": subject.station,
+               "simulated": int(bool(simulate)), "bisections": BISECTIONS,
                "bracket": BRACKET, "shift_check": SHIFT_CHECK},
     )  # fmt: skip
     return ds
