@@ -230,7 +230,7 @@ class _LeftRange(Exception):
     """The boundary curve left the speed range (raised from ``on_point``)."""
 
 
-def floquet_boundary(model, start: float, stop: float, start2: float, stop2: float, *, grid: int = 25,
+def floquet_boundary(model, start: float, stop: float, start2: float, stop2: float, *, grid: int = 65,
                      steps: int = 48, settings=None) -> tuple:
     """The stability boundaries of the balanced state in (speed, support anisotropy).
 
@@ -369,3 +369,11 @@ def anisotropy_curves(model, result, parameter: str, start: float, stop: float, 
             "anisotropic supports is a Floquet problem (period pi/Omega in the co-rotating frame); the other "
             "steady motions are not continued in the anisotropy")
     return curves, boundary_findings(model, curves, start, stop, start2, stop2), note
+
+
+def anisotropy_chart(model, speeds, values) -> tuple[np.ndarray, np.ndarray]:
+    """The grid chart under the curves: ``(stable, exists)``, shape (values, speeds), of the balanced
+    state (its largest Floquet exponent < 0; it exists everywhere the isotropic machine's does)."""
+    bf = BalancedFloquet(model, steps=16)
+    stable = np.array([[bf.exponent(float(w), float(a)) < 0.0 for w in speeds] for a in values])
+    return stable, np.ones_like(stable)

@@ -38,6 +38,7 @@ CONTINUATION_NAMES: tuple[tuple[str, str, str], ...] = (
     (r"races\[\d+\]\.(radius|axial_offset)", "length", "races[i].radius"),
     (r"unbalances\[\d+\]\.magnitude", "unbalance", "unbalances[i].magnitude"),
     (r"unbalances\[\d+\]\.phase", "angle", "unbalances[i].phase"),
+    (r"support_anisotropy", "dimensionless", "support_anisotropy ((k_yy - k_xx) / (k_xx + k_yy), against drive.speed)"),
 )
 
 #: Any other key path of the model's named parameters (its values then plain SI numbers).
