@@ -72,6 +72,8 @@ def test_linearization_monodromy_and_the_isotropic_hopf_point():
     np.testing.assert_allclose(np.abs(bf.state[4:6]), math.acos(-0.01 / (2 * 0.02)), atol=1e-9)
     om, a = 1.7, 0.3
     a0, ac, as_ = bf.system(om, a)
+    for x, y in zip(bf.direct(om, a), (a0, ac, as_)):  # the speed polynomial against a direct evaluation
+        np.testing.assert_allclose(x, y, atol=1e-10)
     assert np.abs(ac).max() > 0.05  # the turning supports do enter
     ma = with_anisotropy(with_value(m, "drive.speed", om), a)
     assert ma.structure.K[0, 0] == pytest.approx(0.7) and ma.structure.K[1, 1] == pytest.approx(1.3)

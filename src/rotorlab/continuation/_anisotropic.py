@@ -185,9 +185,41 @@ class BalancedFloquet:
         self.state[:2 * machine.n_coordinates] = 0.0  # exactly at rest on the axis
         self.state[2 * machine.n_coordinates + machine.n_balls:] = 0.0
         self._cache: dict[tuple[float, float], tuple] = {}
+        self._poly = self._fit()
+
+    def _fit(self):
+        """``A0 = P0 + Omega P1 + Omega^2 P2 + a B0``, ``Ac = a Bc``, ``As = a Bs`` (the speed enters the
+        co-rotating linearization about the balanced state through Coriolis, centrifugal and gyroscopic
+        terms only; the anisotropy through the turning stiffness, linear in ``a`` and independent of the
+        speed) from direct evaluations at three speeds, checked at a fourth speed and anisotropy; None
+        (direct evaluation each time) where the check fails by more than 1e-9 of the entries."""
+        s = abs(float(self.base.drive.speed)) or 1.0
+        ws = np.array([0.5 * s, s, 2.0 * s])
+        iso = np.array([self.direct(w, 0.0)[0] for w in ws])
+        p = np.linalg.solve(np.vander(ws, 3, increasing=True), iso.reshape(3, -1)).reshape(iso.shape)
+        b = [(x - y) / 0.5 for x, y in zip(self.direct(s, 0.5), (iso[1], 0.0, 0.0))]
+        fit = (p, b)
+        w, a = 1.37 * s, -0.3
+        ref = self.direct(w, a)
+        big = max(np.abs(ref[0]).max(), 1e-300)
+        if max(np.abs(x - y).max() for x, y in zip(self._from_fit(fit, w, a), ref)) > 1e-9 * big:
+            return None
+        return fit
+
+    @staticmethod
+    def _from_fit(fit, speed: float, a: float):
+        p, (b0, bc, bs) = fit
+        return p[0] + speed * p[1] + speed * speed * p[2] + a * b0, a * bc, a * bs
 
     def system(self, speed: float, a: float):
         """``(A0, Ac, As)`` of the co-rotating linearization at ``speed`` (rad/s) and anisotropy ``a``."""
+        if self._poly is not None:
+            return self._from_fit(self._poly, float(speed), float(a))
+        return self.direct(speed, a)
+
+    def direct(self, speed: float, a: float):
+        """:meth:`system` by central differences of the machine's right-hand side at ``theta = 0,
+        pi/4, pi/2`` (the machine built at ``speed`` and ``a``)."""
         from rotorlab.models import ConstantSpeed
 
         m = with_anisotropy(self.base.with_drive(ConstantSpeed(float(speed))), a)
