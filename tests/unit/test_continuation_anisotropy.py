@@ -24,7 +24,6 @@ from rotorlab.continuation import (
     BalancedFloquet,
     MachineEquilibria,
     continue_equilibria,
-    floquet_boundary,
     with_anisotropy,
     with_value,
 )

@@ -62,9 +62,10 @@ def continuation_machine(case_model, analysis):
 def run_continuation_analysis(case_model, analysis, progress=None):
     """Run one ``continuation`` entry; the Dataset of :meth:`ContinuationResult.to_dataset` plus,
     with ``param2`` over the speed, today's grid chart (``chart_stable``, ``chart_exists`` over
-    ``chart_value`` x ``chart_speed``: :func:`rotorlab.analyses.machine_steady`), and the JSON of
+    ``chart_value`` x ``chart_speed``: :func:`rotorlab.analyses.machine_steady`; for support_anisotropy
+    the balanced state's Floquet exponent), and the JSON of
     the result in ``attrs["result"]``."""
-    from rotorlab.continuation import continue_equilibria, smooth_part_note, with_value
+    from rotorlab.continuation import continue_equilibria, smooth_part_note
 
     from rotorlab.analyses._case import build_model
     from rotorlab.analyses._continuation_periodic import PERIODIC_STARTS, periodic_branches

@@ -276,7 +276,8 @@ def floquet_boundary(model, start: float, stop: float, start2: float, stop2: flo
     tuple of TwoParameterCurve
         ``type == "floquet-boundary"``, ``parameters == ("drive.speed", "support_anisotropy")``,
         ``crossing``: ``"+1"``, ``"-1"`` or ``"complex"`` per point, ``frequency``: the critical
-        multiplier's angle over the period (rad/s; 0 or ``Omega`` for a real one).
+        multiplier's angle over the period, ``|arg mu| Omega / pi`` (rad/s, in ``[0, Omega]``: the
+        co-rotating frequency modulo ``2 Omega``, up to sign; 0 or ``Omega`` for a real multiplier).
     """
     from scipy.optimize import brentq
 
