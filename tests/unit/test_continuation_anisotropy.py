@@ -18,7 +18,6 @@ import pytest
 from scipy.integrate import solve_ivp
 from typer.testing import CliRunner
 
-from rotorlab.analyses import run_analysis, summarize
 from rotorlab.cli import app
 from rotorlab.continuation import (
     BalancedFloquet,
@@ -27,9 +26,9 @@ from rotorlab.continuation import (
     with_anisotropy,
     with_value,
 )
-from rotorlab.io import parse_case
 from rotorlab.report import PRESENTATIONS
 from test_continuation_equilibria import machine
+from test_continuation_interfaces import run_planar_speed_curves
 from test_machine_common import PLANAR
 
 
@@ -134,19 +133,7 @@ def test_other_steady_motions_in_anisotropy_are_refused_saying_what_works():
 
 
 def test_case_file_and_cli_draw_the_boundary_over_the_floquet_chart(tmp_path):
-    text = PLANAR + """
-[[analysis]]
-type = "continuation"
-name = "aniso"
-param = "drive.speed"
-range = ["0.5 rad/s", "3 rad/s"]
-param2 = "support_anisotropy"
-range2 = ["0", "0.5"]
-"""
-    case = parse_case(text)
-    spec = [a for a in case.analyses if a.type == "continuation"][0]
-    ds = run_analysis(case.model, spec)
-    rows = summarize(ds)
+    ds, rows = run_planar_speed_curves("aniso", 0.5, "support_anisotropy", ("0", "0.5"))
     assert str(ds.curve_type.values[0]) == "floquet-boundary" and ds.chart_stable.shape == (13, 41)
     assert bool(ds.chart_stable.values[0, -1]) and not bool(ds.chart_stable.values[0, 0])
     verdict = PRESENTATIONS["continuation"].findings(ds, rows).verdict
