@@ -147,3 +147,10 @@ def test_case_file_and_cli_draw_the_boundary_over_the_floquet_chart(tmp_path):
     doc = json.loads(res.stdout)
     assert doc["curves"][0]["type"] == "floquet-boundary" and doc["findings"]
     assert (tmp_path / "a-curves.png").stat().st_size > 10_000
+    bad = tmp_path / "bad.png"
+    for extra, said in ((["drive.speed=0.5:3", "--param2", "support_anisotropy=0:1.2"],
+                         "--param2 = [0.0, 1.2]: stop: support_anisotropy = 1.2 must lie strictly between -1 and 1"),
+                        (["ball_mass=0.01:0.02", "--speed-rpm", "20", "--param2", "support_anisotropy=0:0.2"],
+                         "--param2: is continued against drive.speed only")):
+        res = CliRunner().invoke(app, ["continue", str(path), "--param", *extra, "--plot", str(bad)])
+        assert res.exit_code == 2 and said in res.output and "Traceback" not in res.output and not bad.exists()
