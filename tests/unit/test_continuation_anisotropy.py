@@ -6,7 +6,8 @@ the largest real part of the co-rotating eigenvalues and the boundary passes thr
 isotropic Hopf point (continue_equilibria). The co-rotating linearization is checked against an
 independent chain rule through the fixed-frame right-hand side ``Machine.rhs`` of the machine with
 ``k_xx = k (1 - a)``, ``k_yy = k (1 + a)`` (``x_r' = T^-1 (J_fixed T - T') x_r``, T the frame map at
-angle Omega t), and the monodromy against SciPy's DOP853 (rtol 1e-13) of that linear periodic system.
+angle Omega t), and the monodromy against SciPy's DOP853 (rtol 1e-13) of that linear periodic system; near a
+boundary point the full nonlinear machine's whirl grows or decays at the Floquet exponent.
 Swapping x and y maps ``a`` to ``-a`` (a quarter turn of the frame): the boundary is symmetric.
 """
 
@@ -23,6 +24,7 @@ from rotorlab.continuation import (
     BalancedFloquet,
     MachineEquilibria,
     continue_equilibria,
+    floquet_boundary,
     with_anisotropy,
     with_value,
 )
@@ -118,6 +120,30 @@ def test_boundary_meets_the_isotropic_hopf_point_and_a_parametric_tongue():
                                          f"{w * 30 / math.pi:.4g} rpm")
     assert "lost through a complex pair of multipliers (Neimark-Sacker" in doc["findings"][2]
     assert doc["findings"][3] == "at 11.46 rpm the balanced state is unstable already at support anisotropy 0"
+
+
+def test_full_nonlinear_machine_decays_inside_and_grows_outside_a_boundary_point():
+    """The anisotropic machine's own fixed-frame equations (Machine.rhs, nonlinear, SciPy DOP853),
+    started near the balanced state 10 % below and above the boundary speed at a = 0.45: the
+    rotor's whirl radius grows and decays at the largest Floquet exponent (envelope over 450 s)."""
+    m = machine(0.5)
+    (main, *_) = floquet_boundary(m, 0.6, 3.0, 0.0, 0.5)
+    k = int(np.argmin(np.abs(main.values[:, 1] - 0.45)))
+    w_b, a = main.values[k]
+    bf = BalancedFloquet(m)
+    for w in (0.9 * w_b, 1.1 * w_b):
+        ma = with_anisotropy(with_value(m, "drive.speed", w), a)
+        lay = ma.layout
+        y0 = np.zeros(lay.n_state)
+        y0[0] = 1e-5
+        y0[lay.i_phi:lay.i_phi + 2] = bf.state[4:6] + [1e-3, 0.0]
+        y0[lay.i_w:lay.i_w + 2] = w
+        sol = solve_ivp(ma.rhs, (0.0, 600.0), y0, method="DOP853", rtol=1e-10, atol=1e-13, dense_output=True)
+        ts = np.linspace(0.0, 600.0, 6001)
+        r = np.hypot(*sol.sol(ts)[:2])
+        rate = math.log(r[ts > 550].max() / r[(ts > 100) & (ts < 150)].max()) / 450.0
+        g = bf.exponent(w, a)
+        assert abs(g) > 4e-3 and rate * g > 0 and abs(rate - g) < 0.05 * abs(g)
 
 
 def test_other_steady_motions_in_anisotropy_are_refused_saying_what_works():
