@@ -120,6 +120,9 @@ def test_boundary_meets_the_isotropic_hopf_point_and_a_parametric_tongue():
                                          f"{w * 30 / math.pi:.4g} rpm")
     assert "lost through a complex pair of multipliers (Neimark-Sacker" in doc["findings"][2]
     assert doc["findings"][3] == "at 11.46 rpm the balanced state is unstable already at support anisotropy 0"
+    assert doc["findings"][4] == (f"a stability boundary of the balanced state runs from {hopf.value * 30 / math.pi:.4g} "
+                                  f"rpm at support anisotropy 0 to {main.values[-1, 0] * 30 / math.pi:.4g} rpm at 0.5")
+    assert len(doc["findings"]) == 6
 
 
 def test_full_nonlinear_machine_decays_inside_and_grows_outside_a_boundary_point():

@@ -353,7 +353,8 @@ _CROSSING_WORDS = {"+1": "a real multiplier through +1",
 def boundary_findings(model, curves, start: float, stop: float, start2: float, stop2: float) -> tuple[str, ...]:
     """Sentences for people: up to which anisotropy the balanced state is stable at the top speed of
     the range and 1/4, 1/2, 3/4 of the way down (read off the boundary ``curves`` where they cross
-    those speeds); the speeds where it is unstable already at the range's anisotropy nearest 0."""
+    those speeds); the speeds where it is unstable already at the range's anisotropy nearest 0; and
+    where each boundary curve begins and ends."""
     from rotorlab._constants import RPM_PER_RAD_S
 
     bf = BalancedFloquet(model, steps=24)
@@ -387,6 +388,10 @@ def boundary_findings(model, curves, start: float, stop: float, start2: float, s
                    f"lost through {_CROSSING_WORDS[kind]}")
     if unstable:
         out.append(f"at {', '.join(unstable)} the balanced state is unstable already at support anisotropy {a0:.3g}")
+    for c in curves:
+        (w1, a1), (w2, a2) = c.values[0], c.values[-1]
+        out.append(f"a stability boundary of the balanced state runs from {w1 * RPM_PER_RAD_S:.4g} rpm at support "
+                   f"anisotropy {a1:.3g} to {w2 * RPM_PER_RAD_S:.4g} rpm at {a2:.3g}")
     return tuple(out)
 
 
