@@ -63,20 +63,26 @@ def test_cli_continue_json_plot_out_and_the_pitchfork_of_zhakash_k2(tmp_path):
     assert bad.exit_code == 2 and "--param = ball_mas=1:2" in bad.output and "ball_mass" in bad.output
 
 
-def test_case_file_continuation_with_curves_over_the_chart_and_its_presentation():
-    text = PLANAR + """
+def run_planar_speed_curves(name, low, param2, range2):
+    """Run a ``continuation`` analysis of the PLANAR case over ``drive.speed`` from ``low`` to 3 rad/s
+    with a second parameter; its Dataset and summary rows."""
+    text = PLANAR + f"""
 [[analysis]]
 type = "continuation"
-name = "cont"
+name = "{name}"
 param = "drive.speed"
-range = ["0.6 rad/s", "3 rad/s"]
-param2 = "ball_damping"
-range2 = ["0.02 N*m*s/rad", "0.08 N*m*s/rad"]
+range = ["{low} rad/s", "3 rad/s"]
+param2 = "{param2}"
+range2 = {json.dumps(list(range2))}
 """
     case = parse_case(text)
     spec = [a for a in case.analyses if a.type == "continuation"][0]
     ds = run_analysis(case.model, spec)
-    rows = summarize(ds)
+    return ds, summarize(ds)
+
+
+def test_case_file_continuation_with_curves_over_the_chart_and_its_presentation():
+    ds, rows = run_planar_speed_curves("cont", 0.6, "ball_damping", ("0.02 N*m*s/rad", "0.08 N*m*s/rad"))
     hopf = [r for r in rows if r["type"] == "hopf"]
     assert hopf and hopf[0]["description"].startswith("balancing becomes stable above")
     assert "curve_value" in ds and "chart_stable" in ds and ds.chart_stable.shape == (13, 41)

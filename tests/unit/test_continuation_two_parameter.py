@@ -60,8 +60,10 @@ def test_hopf_curve_speed_by_ball_damping_matches_one_parameter_runs_and_the_cha
 def test_speed_by_support_anisotropy_is_refused_saying_what_it_needs():
     """Issue 25's speed x support anisotropy: a parameter that makes the supports anisotropic
     (washer-horizontal's bearing cross-stiffness kxy; its gravity and cabinet left out so that the
-    rest has co-rotating equilibria) is refused before anything runs, saying why and what would
-    be needed; an isotropic one of the same machine (kxx sets both directions) is continued."""
+    rest has co-rotating equilibria) is refused before anything runs, saying why, what works (the
+    balanced state's boundary in speed x support_anisotropy, test_continuation_anisotropy.py) and
+    what is not implemented; an isotropic one of the same machine (kxx sets both directions) is
+    continued."""
     from dataclasses import replace
 
     from rotorlab.analyses import build_model
@@ -74,6 +76,6 @@ def test_speed_by_support_anisotropy_is_refused_saying_what_it_needs():
         MachineEquilibria(m, ("drive.speed", "structure.bearings[0].kxy"))
     text = str(err.value)
     assert text.startswith("structure.bearings[0].kxy makes the supports anisotropic")
-    assert "Floquet problem" in text and "not implemented" in text
-    assert "forced periodic motions" in text
+    assert "Floquet problem" in text and "Not implemented: the other steady motions" in text
+    assert "forced periodic motions" in text and "--param2 support_anisotropy=A:B" in text
     MachineEquilibria(m, ("drive.speed", "structure.bearings[0].kxx"))  # isotropic: accepted

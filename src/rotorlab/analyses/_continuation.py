@@ -62,9 +62,10 @@ def continuation_machine(case_model, analysis):
 def run_continuation_analysis(case_model, analysis, progress=None):
     """Run one ``continuation`` entry; the Dataset of :meth:`ContinuationResult.to_dataset` plus,
     with ``param2`` over the speed, today's grid chart (``chart_stable``, ``chart_exists`` over
-    ``chart_value`` x ``chart_speed``: :func:`rotorlab.analyses.machine_steady`), and the JSON of
+    ``chart_value`` x ``chart_speed``: :func:`rotorlab.analyses.machine_steady`; for support_anisotropy
+    the balanced state's Floquet exponent), and the JSON of
     the result in ``attrs["result"]``."""
-    from rotorlab.continuation import continue_equilibria, smooth_part_note, with_value
+    from rotorlab.continuation import continue_equilibria, smooth_part_note
 
     from rotorlab.analyses._case import build_model
     from rotorlab.analyses._continuation_periodic import PERIODIC_STARTS, periodic_branches
@@ -94,15 +95,9 @@ def run_continuation_analysis(case_model, analysis, progress=None):
         progress(1, total)
     ds = result.to_dataset()
     if analysis.param2 is not None and analysis.param == "drive.speed":
-        from rotorlab.analyses._machine_steady import machine_steady
-
         speeds = np.linspace(*sorted(analysis.range), CHART_SPEEDS)
         values = np.linspace(*sorted(analysis.range2), CHART_VALUES)
-        stable = np.zeros((values.size, speeds.size), bool)
-        exists = np.zeros_like(stable)
-        for k, v in enumerate(values):
-            chart = machine_steady(with_value(machine, analysis.param2, float(v)), speeds)
-            stable[k], exists[k] = chart.stable.values, chart.exists.values
+        stable, exists = _CHARTS.get(analysis.param2, _steady_chart)(machine, analysis.param2, speeds, values)
         ds["chart_stable"] = (("chart_value", "chart_speed"), stable, {"units": "1"})
         ds["chart_exists"] = (("chart_value", "chart_speed"), exists, {"units": "1"})
         ds = ds.assign_coords(chart_value=("chart_value", values, {"units": result.units[analysis.param2]}),
@@ -112,6 +107,29 @@ def run_continuation_analysis(case_model, analysis, progress=None):
     ds.attrs.update(name=analysis.name, parameter=analysis.param, start_from=analysis.start_from,
                     result=json.dumps({**result.to_dict(), **({"periodic_start": started} if started else {})}))
     return ds
+
+
+def _steady_chart(machine, param2, speeds, values):
+    """Today's grid chart (:func:`rotorlab.analyses.machine_steady`): (stable, exists) per value x speed."""
+    from rotorlab.analyses._machine_steady import machine_steady
+    from rotorlab.continuation import with_value
+
+    stable = np.zeros((values.size, speeds.size), bool)
+    exists = np.zeros_like(stable)
+    for k, v in enumerate(values):
+        chart = machine_steady(with_value(machine, param2, float(v)), speeds)
+        stable[k], exists[k] = chart.stable.values, chart.exists.values
+    return stable, exists
+
+
+def _anisotropy_chart(machine, param2, speeds, values):
+    from rotorlab.continuation._anisotropic import anisotropy_chart
+
+    return anisotropy_chart(machine, speeds, values)
+
+
+#: Grid charts under the curves that are not today's steady-motion chart: param2 -> function.
+_CHARTS = {"support_anisotropy": _anisotropy_chart}
 
 
 def continuation_rows(ds) -> list[dict[str, Any]]:

@@ -73,7 +73,8 @@ def continue_command(
         "ball_damping, races[i].balls[j].mass, unbalances[i].magnitude ...; SI or with a unit: "
         "drive.speed=1000rpm:3000rpm).")] = None,
     param2: Annotated[Optional[str], typer.Option(  # noqa: UP007
-        "--param2", metavar="NAME=A:B", help="Continue the fold and Hopf points found in a second parameter.")] = None,
+        "--param2", metavar="NAME=A:B", help="Continue the fold and Hopf points found in a second parameter; support_anisotropy=A:B "
+        "((k_yy - k_xx) / (k_xx + k_yy)) against drive.speed: the balanced state's Floquet stability boundary.")] = None,
     start_from: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--from", metavar="K", help="Starting motions: balanced, side, all or a motion's label (side 01); hopf or "
         "simulation: whirl orbits (periodic branches) from the Hopf points or from a simulation at the range's "

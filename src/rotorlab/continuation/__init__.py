@@ -7,9 +7,12 @@ its co-rotating frame, periodic orbits by shooting) are built on it. Periodic or
 :func:`find_periodic_orbit` (one orbit by multiple shooting on the compiled integrator, Floquet
 multipliers with the trivial one checked), :func:`continue_periodic` (a branch, with folds of
 cycles, period doublings and torus points), starts :func:`orbit_from_hopf` and
-:func:`orbit_from_simulation`; models with events are refused with a message saying why.
+:func:`orbit_from_simulation`; models with events are refused with a message saying why. On anisotropic supports the balanced
+state's stability is a Floquet problem: :func:`floquet_boundary` continues its boundary in speed x
+``support_anisotropy``.
 """
 
+from rotorlab.continuation._anisotropic import ANISOTROPY, BalancedFloquet, floquet_boundary, with_anisotropy
 from rotorlab.continuation._core import (
     ContinuationSettings,
     Crossing,
@@ -40,6 +43,10 @@ from rotorlab.continuation._starts import orbit_from_hopf, orbit_from_simulation
 from rotorlab.continuation._two_parameter import TwoParameterCurve, continue_special_point, two_parameter_curves
 
 __all__ = [
+    "ANISOTROPY",
+    "BalancedFloquet",
+    "floquet_boundary",
+    "with_anisotropy",
     "NAMED_PARAMETERS",
     "START_KINDS",
     "MachineEquilibria",

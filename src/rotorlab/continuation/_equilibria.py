@@ -24,6 +24,7 @@ from collections.abc import Sequence
 
 import numpy as np
 
+from rotorlab.continuation._anisotropic import ANISOTROPY, anisotropy_curves
 from rotorlab.continuation._core import (
     ContinuationSettings,
     Curve,
@@ -208,6 +209,8 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
         A second parameter and its ``(start, stop)``: every fold and Hopf point found is
         continued in it (:func:`rotorlab.continuation.two_parameter_curves`), into
         ``ContinuationResult.curves``. The model's value of ``parameter2`` must lie in the range.
+        ``support_anisotropy`` against ``drive.speed``: the balanced state's Floquet stability
+        boundaries instead (:func:`rotorlab.continuation.floquet_boundary`), with findings.
 
     Returns
     -------
@@ -292,8 +295,19 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
     result = ContinuationResult(branches, units={parameter: unit}, notes=notes)
     if parameter2 is None:
         return result
+    second = _SECOND_PARAMETER.get(parameter2, _fold_and_hopf_curves)
+    lines, findings, note = second(model, result, parameter, start, stop, parameter2, *range2)
+    return ContinuationResult(branches, units={parameter: unit, parameter2: parameter_unit(model, parameter2)},
+                              curves=lines, notes=notes + ((note,) if note else ()), findings=findings)
+
+
+def _fold_and_hopf_curves(model, result, parameter, start, stop, parameter2, start2, stop2):
+    """The fold and Hopf curves through the points of ``result`` (no findings, no note)."""
     from rotorlab.continuation._two_parameter import two_parameter_curves
 
-    lines = two_parameter_curves(model, result, parameter2, *range2)
-    return ContinuationResult(branches, units={parameter: unit, parameter2: parameter_unit(model, parameter2)},
-                              curves=lines, notes=notes)
+    return two_parameter_curves(model, result, parameter2, start2, stop2), (), ""
+
+
+#: Second parameters whose curves are not fold and Hopf curves of the equilibria: name ->
+#: ``f(model, result, parameter, start, stop, parameter2, start2, stop2) -> (curves, findings, note)``.
+_SECOND_PARAMETER = {ANISOTROPY: anisotropy_curves}

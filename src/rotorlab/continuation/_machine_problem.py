@@ -23,6 +23,7 @@ from dataclasses import replace
 import numpy as np
 
 from rotorlab._constants import RPM_PER_RAD_S
+from rotorlab.continuation._anisotropic import ANISOTROPY, with_anisotropy
 
 __all__ = ["NAMED_PARAMETERS", "as_machine", "smooth_part_note", "with_value", "current_value", "parameter_unit", "format_value", "MachineEquilibria",
            "starting_motions", "START_KINDS"]
@@ -43,6 +44,8 @@ def _parse(model, name: str):
 
     if name == "drive.speed":  # a constant speed replaces any drive (steady motions need one)
         return (lambda m, v: m.with_drive(ConstantSpeed(v))), "rad/s"
+    if name == ANISOTROPY:  # (k_yy - k_xx) / (k_xx + k_yy) from the isotropic machine
+        return with_anisotropy, "1"
     if name in NAMED_PARAMETERS:
         key, unit, scaled = NAMED_PARAMETERS[name]
 
@@ -72,7 +75,9 @@ def _parse(model, name: str):
 def with_value(model, name: str, value: float):
     """Return ``model`` (a :class:`rotorlab.models.Machine`) with parameter ``name`` = ``value`` (SI).
 
-    Names: ``drive.speed`` (rad/s; a constant speed replaces any drive), ``ball_mass`` /
+    Names: ``drive.speed`` (rad/s; a constant speed replaces any drive), ``support_anisotropy``
+    (``(k_yy - k_xx) / (k_xx + k_yy)`` at a fixed mean, from an isotropic machine:
+    :func:`rotorlab.continuation.with_anisotropy`), ``ball_mass`` /
     ``ball_damping`` (every ball, the stability chart's names), ``ball_mass_scaled_damping``
     (every ball's mass, its damping scaled in proportion: damping per unit mass fixed), and every named parameter of the
     model (:attr:`Machine.parameters`: the case file's key paths ``races[i].balls[j].mass``,
@@ -107,6 +112,8 @@ def current_value(model, name: str) -> float:
     _parse(model, name)  # known name, indices in range
     if name == "drive.speed":
         return float(model.drive.speed)
+    if name == ANISOTROPY:
+        return 0.0  # measured from the isotropic machine (with_anisotropy refuses any other)
     if name in NAMED_PARAMETERS:
         key = NAMED_PARAMETERS[name][0]
         vals = {float(getattr(b, key)) for r in model.races for b in r.balls}
@@ -201,30 +208,33 @@ def format_value(value: float, unit: str) -> str:
 
 
 def _refuse_anisotropy(machine, name: str, setter) -> None:
-    """ValueError if changing ``name`` makes the supports anisotropic (speed x support anisotropy:
-    an anisotropic machine has no co-rotating equilibria to continue)."""
+    """ValueError if changing ``name`` makes the supports anisotropic: an anisotropic machine has no
+    co-rotating equilibria to continue (only the balanced state's stability, in speed x
+    ``support_anisotropy``: :func:`rotorlab.continuation.floquet_boundary`)."""
     if name == "drive.speed":
         return
-    value = current_value(machine, name)
-    for probe in (value * (1.0 + 1e-3), value + 1.0):  # relative, and absolute where it is 0
-        try:
-            other = setter(machine, probe)
-        except ValueError:
-            continue  # a value the parameter refuses: nothing to learn about isotropy
-        if not other.structure.is_isotropic:
-            break
-    else:
-        return
+    if name != ANISOTROPY:
+        value = current_value(machine, name)
+        for probe in (value * (1.0 + 1e-3), value + 1.0):  # relative, and absolute where it is 0
+            try:
+                other = setter(machine, probe)
+            except ValueError:
+                continue  # a value the parameter refuses: nothing to learn about isotropy
+            if not other.structure.is_isotropic:
+                break
+        else:
+            return
     raise ValueError(
         f"{name} makes the supports anisotropic (x and y differ): the machine's equations in the co-rotating "
         "frame then depend on time (the supports turn against it, twice per revolution), so its steady motions "
-        "are periodic there and their stability is a Floquet problem (even the balanced state, rotor at rest, "
-        "has a periodic linearization); there are no equilibria, folds or Hopf points to continue. What would be "
-        "needed: the forced periodic motions (period one revolution) solved by shooting with their Floquet "
-        "multipliers, continued in the anisotropy at a fixed speed (the forcing period fixed), and their "
-        "stability boundaries continued in two parameters; not implemented. What works today: simulations "
-        "per anisotropy (rotorlab run or basin with the supports' stiffnesses set), and the steady motions at "
-        "isotropic supports")
+        "are periodic there and their stability is a Floquet problem. The balanced state (rotor at rest on the "
+        "axis) persists whatever the anisotropy: its stability boundary in speed x support_anisotropy "
+        "((k_yy - k_xx) / (k_xx + k_yy) at a fixed mean) is continued by `rotorlab continue CASE --param "
+        "drive.speed=A:B --param2 support_anisotropy=A:B` (rotorlab.continuation.floquet_boundary). Not "
+        "implemented: the other steady motions (side motions, the forced periodic motions with the rotor "
+        "off-centre, solved by shooting with their Floquet multipliers), folds or Hopf points continued in "
+        "an anisotropy, and anisotropy set through one bearing's stiffness; simulate those instead (rotorlab "
+        "run or basin with the supports' stiffnesses set)")
 
 
 class _Frame:

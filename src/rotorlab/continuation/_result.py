@@ -157,12 +157,14 @@ class ContinuationResult:
     fold and Hopf curves in a second parameter (objects with ``type``, ``parameters``, ``values``
     (n, 2), ``frequency`` (n,), ``label`` and ``to_dict()``, e.g.
     :class:`rotorlab.continuation.TwoParameterCurve`), and notes on what was computed (the
-    smooth part of a model with ball friction: JSON ``"notes"``)."""
+    smooth part of a model with ball friction: JSON ``"notes"``), and findings the curves settle
+    for people (JSON ``"findings"``: "balancing is stable for support anisotropy below ...")."""
 
     branches: tuple[Branch, ...]
     units: dict[str, str] = field(default_factory=dict)
     curves: tuple[Any, ...] = ()
     notes: tuple[str, ...] = ()
+    findings: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         d = {"branches": [b.to_dict() for b in self.branches], "units": dict(self.units)}
@@ -170,6 +172,8 @@ class ContinuationResult:
             d["curves"] = [c.to_dict() for c in self.curves]
         if self.notes:
             d["notes"] = list(self.notes)
+        if self.findings:
+            d["findings"] = list(self.findings)
         return d
 
     def to_dataset(self):

@@ -54,6 +54,10 @@ class TwoParameterCurve:
     boundary : bool
         Whether the point it was continued from changes the branch's stability (a stability
         boundary; a Hopf point of a pair crossing on an already unstable branch is not).
+    crossing : tuple of str
+        On a ``"floquet-boundary"`` (the balanced state on anisotropic supports,
+        :func:`rotorlab.continuation.floquet_boundary`): where the critical Floquet multiplier
+        leaves the unit circle at each point, ``"+1"``, ``"-1"`` or ``"complex"``; else empty.
     """
 
     type: str
@@ -64,14 +68,17 @@ class TwoParameterCurve:
     label: str = ""
     end: str = ""
     boundary: bool = True
+    crossing: tuple[str, ...] = ()
 
     def to_dict(self) -> dict[str, Any]:
         p1, p2 = self.parameters
         pts = []
         for k in range(len(self.values)):
             pt = {p1: _num(self.values[k, 0]), p2: _num(self.values[k, 1])}
-            if self.type == "hopf":
+            if self.type != "fold":
                 pt["frequency_rad_s"] = _num(self.frequency[k])
+            if self.crossing:
+                pt["crossing"] = self.crossing[k]
             pts.append(pt)
         return {"type": self.type, "parameters": [p1, p2], "label": self.label, "end": self.end,
                 "stability_boundary": self.boundary, "points": pts}

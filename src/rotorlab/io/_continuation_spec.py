@@ -38,6 +38,7 @@ CONTINUATION_NAMES: tuple[tuple[str, str, str], ...] = (
     (r"races\[\d+\]\.(radius|axial_offset)", "length", "races[i].radius"),
     (r"unbalances\[\d+\]\.magnitude", "unbalance", "unbalances[i].magnitude"),
     (r"unbalances\[\d+\]\.phase", "angle", "unbalances[i].phase"),
+    (r"support_anisotropy", "dimensionless", "support_anisotropy ((k_yy - k_xx) / (k_xx + k_yy), against drive.speed)"),
 )
 
 #: Any other key path of the model's named parameters (its values then plain SI numbers).
@@ -105,7 +106,18 @@ def _read_range(value: Any, name: str | None) -> tuple[float, float] | None:
             raise _error(f"{what}: {detail.get('detail', str(exc))}") from None
     if ends[0] == ends[1]:
         raise _error(f"start and stop must differ, got {ends[0]:g} twice")
+    lo, hi = _OPEN_RANGES.get(name, (-math.inf, math.inf))
+    for what, v in zip(("start", "stop"), ends):
+        if not lo < v < hi:
+            raise _error(f"{what}: {name} = {v:g} must lie strictly between {lo:g} and {hi:g}")
     return ends[0], ends[1]
+
+
+#: Parameters whose values lie in an open interval (the relative stiffness difference of the supports).
+_OPEN_RANGES = {"support_anisotropy": (-1.0, 1.0)}
+
+#: Parameters taken only as ``param2`` against ``drive.speed``, and what their curves are.
+_SECOND_ONLY = {"support_anisotropy": "the balanced state's Floquet stability boundary"}
 
 
 class ContinuationSpec(AbstractAnalysisSpec):
@@ -176,6 +188,12 @@ class ContinuationSpec(AbstractAnalysisSpec):
             issues.append(Issue(("speed",), "is the continued parameter: give its range only", self.speed))
         if self.param2 is not None and self.param2 == self.param:
             issues.append(Issue(("param2",), "must differ from param", self.param2))
+        if self.param in _SECOND_ONLY:
+            issues.append(Issue(("param",), f"is continued as param2 against drive.speed only ({_SECOND_ONLY[self.param]})",
+                                self.param))
+        if self.param2 in _SECOND_ONLY and self.param != "drive.speed":
+            issues.append(Issue(("param2",), f"is continued against drive.speed only ({_SECOND_ONLY[self.param2]}), "
+                                f"not against {self.param}", self.param2))
         return issues
 
     def describe(self, model: AbstractModelSpec) -> str:
@@ -184,7 +202,8 @@ class ContinuationSpec(AbstractAnalysisSpec):
             f"the {self.start_from} steady motions"
         text = f"continuation of {what} in {self.param} {_people(self.param, *self.range)}"
         if self.param2 is not None:
-            text += f"; fold and Hopf curves in {self.param2} ({_people(self.param2, *self.range2)})"
+            curves = _SECOND_ONLY.get(self.param2, "fold and Hopf curves")
+            text += f"; {curves} in {self.param2} ({_people(self.param2, *self.range2)})"
         return text
 
 

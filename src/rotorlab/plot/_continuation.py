@@ -157,6 +157,11 @@ def bifurcation_figure(ds: xarray.Dataset) -> Figure:
     return fig
 
 
+#: How each curve type is drawn: legend name, colour, line style.
+_CURVE_STYLES = {"hopf": ("Hopf curve", "k", "-"), "fold": ("fold curve", "tab:blue", "--"),
+                 "floquet-boundary": ("Floquet stability boundary of the balanced state", "tab:purple", "-")}
+
+
 def two_parameter_figure(ds: xarray.Dataset) -> Figure:
     """Draw the fold and Hopf curves over today's grid stability chart.
 
@@ -170,7 +175,8 @@ def two_parameter_figure(ds: xarray.Dataset) -> Figure:
     -------
     matplotlib.figure.Figure
         Grid cells: the steady motion of the chart stable (green), unstable (red), none (white);
-        Hopf curves solid black, fold curves dashed blue, with their branch's label; thin grey
+        Hopf curves solid black, fold curves dashed blue, the balanced state's Floquet stability
+        boundaries on anisotropic supports solid purple, with their branch's label; thin grey
         where the point does not change the branch's stability.
     """
     from matplotlib.figure import Figure
@@ -191,16 +197,17 @@ def two_parameter_figure(ds: xarray.Dataset) -> Figure:
         edge = bool(ds.curve_boundary.values[c]) if "curve_boundary" in ds.coords else True
         v = ds.curve_value.values[c]
         keep = np.isfinite(v[:, 0])
-        label = f"{'Hopf' if kind == 'hopf' else 'fold'} curve ({ds.curve_label.values[c]})" + \
-            ("" if edge else ", no stability change")
-        color = ("k" if kind == "hopf" else "tab:blue") if edge else "0.45"
-        ax.plot(v[keep, 0] * f1, v[keep, 1] * f2, color=color, ls="-" if kind == "hopf" else "--",
+        name, color, ls = _CURVE_STYLES.get(kind, (kind, "k", "-"))
+        label = f"{name} ({ds.curve_label.values[c]})" + ("" if edge else ", no stability change")
+        ax.plot(v[keep, 0] * f1, v[keep, 1] * f2, color=color if edge else "0.45", ls=ls,
                 lw=1.8 if edge else 0.9, label=label if label not in seen else None)
         seen.add(label)
     ax.set_xlabel(f"{p1} ({s1})")
     ax.set_ylabel(f"{p2} ({s2})")
-    ax.set_title("stability chart as curves: grid = today's chart (green: the steady motion is stable),\n"
-                 "lines = continued Hopf and fold points", fontsize=9)
+    floquet = "floquet-boundary" in {str(k) for k in ds.curve_type.values}
+    ax.set_title("stability chart as curves: grid = " + ("the balanced state's Floquet chart (green: stable),\n"
+                 "lines = its continued stability boundaries" if floquet else "today's chart (green: the steady "
+                 "motion is stable),\nlines = continued Hopf and fold points"), fontsize=9)
     ax.legend(fontsize=7, loc="upper left", bbox_to_anchor=(1.01, 1.0))
     return fig
 

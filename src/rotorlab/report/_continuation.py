@@ -76,8 +76,15 @@ def continuation_section(ds: Any, rows: Rows) -> str:
 
 
 def continuation_findings(ds: Any, rows: Rows) -> Findings:
-    """The sentences of the special points that change stability first, then the others."""
+    """The sentences of the special points that change stability first, then the others; the
+    curves' own findings (speed x support anisotropy: up to which anisotropy balancing is stable)
+    first where there are any."""
     pts = _points(rows)
+    curve_findings = json.loads(ds.attrs.get("result", "{}")).get("findings", [])
+    if curve_findings:
+        said = [f[0].upper() + f[1:] + "." for f in curve_findings]
+        return Findings(said[0], tuple(said[1:]) + tuple(f"{r['type']} ({r['branch']}): {r['description']}"
+                                                         for r in pts[:6]))
     orbits = _orbit_sentences(rows)
     if orbits:
         return Findings(orbits[0], tuple(orbits[1:]) + tuple(f"{r['type']} ({r['branch']}): {r['description']}"
