@@ -49,6 +49,8 @@ from rotorlab.analyses._machine_common import (  # noqa: F401  (re-exported: the
     structure_critical_speeds,
     unbalance_amplitudes,
 )
+from rotorlab.explore._outcome import BALANCED_FRACTION
+from rotorlab.explore._settle import NOT_SETTLED, settle_estimate
 from rotorlab.analyses._machine_steady import jeffcott_limit, machine_motions, machine_steady  # noqa: F401
 
 __all__ = ["machine_simulate", "machine_steady", "machine_motions", "locked_structure",
@@ -58,6 +60,9 @@ __all__ = ["machine_simulate", "machine_steady", "machine_motions", "locked_stru
 
 #: Samples per revolution in the final window of a simulation.
 _SAMPLES_PER_REV = 32
+#: The settle estimate of a simulation compares its final window with the windows ending this
+#: fraction of the run and twice it earlier.
+SETTLE_STEP = 0.1
 
 
 def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float = 1e-8,
@@ -100,8 +105,10 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
         vibration at most :data:`~rotorlab.analyses.BALANCED_FRACTION` of the largest vibration
         without balancing, above the first critical speed), "below critical speed" (the same at or
         below it, :data:`BELOW_CRITICAL`), "non-synchronous" (balls still moving relative to the rotor faster
-        than :data:`NON_SYNCHRONOUS_RATE` times its speed), "not balanced", "no balancer" or
-        "failed"; ``status`` (ic): the integrator's (:class:`rotorlab.integrate.Status`; its
+        than :data:`NON_SYNCHRONOUS_RATE` times its speed), "not settled" (its vibration still
+        falling towards balance at the end, :func:`_settle_estimate`), "not balanced" (settled
+        elsewhere), "no balancer" or "failed"; ``settle_estimate`` (ic): the estimated time to
+        balance of a start not settled (s, NaN for the others); ``status`` (ic): the integrator's (:class:`rotorlab.integrate.Status`; its
         sanity monitor fails a run beyond the structure's validity,
         :meth:`~rotorlab.models.Machine.impossible_states`), or ``UNSTABLE`` where the structure is
         unstable at the final speed (:func:`flag_unstable`); ``attrs["status_detail"]``: why the
@@ -129,13 +136,14 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     window = min(t_end, window_revolutions * 2 * np.pi / max(abs(om_end), 1e-12))
     n_window = int(max(16, min(2000, window_revolutions * _SAMPLES_PER_REV)))
     ts = np.linspace(t_end - window, t_end, n_window)
-    ts_all, hist = ts, None
+    earlier = _earlier_windows(ts, t_end)
+    ts_all, hist = np.union1d(ts, earlier.ravel()), None
     if n_save is not None:
         if isinstance(n_save, bool) or int(n_save) != n_save or n_save < 2:
             raise ValueError(f"n_save must be an integer >= 2, got {n_save!r}")
         check_saved_states(machine, n_save, len(ang))  # refused up front, as a run-up's
         hist = np.linspace(0.0, t_end, int(n_save))
-        ts_all = np.union1d(hist, ts)
+        ts_all = np.union1d(hist, ts_all)
     sol = solve_ensemble(machine, y0, (0.0, t_end), save_at=SaveAt(ts=ts_all),
                          control=StepControl(rtol=rtol, atol=atol), threads=threads,
                          progress=progress)
@@ -155,6 +163,10 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
     status, notes = flag_unstable(machine, sol.status, om, sol.notes)
     outcome = [_outcome(int(st), a, ref, r, w, lay.n_balls, first)
                for st, a, r, w in zip(status, amp, max_rate, om)]
+    settle = _settle_estimate(machine, ys_all, ts_all, earlier, amp, ref, t_end)
+    for i, text in enumerate(outcome):  # still converging towards balance: not settled, not "not balanced"
+        if text not in ("balanced", "failed", "no balancer") and status[i] >= 0 and np.isfinite(settle[i]):
+            outcome[i] = NOT_SETTLED
     labels = list(machine.structure.node_label)
     ds = xr.Dataset(
         {
@@ -164,6 +176,8 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
             "final_speed": (("ic",), om, {"units": "rad/s"}),
             "initial_ball_angle": (("ic", "ball"), ang, {"units": "rad"}),
             "max_final_rate": (("ic",), max_rate, {"units": "rad/s"}),
+            "settle_estimate": (("ic",), settle, {"units": "s", "long_name": "estimated time to balance of a start "
+                                                                            "not settled (NaN: not converging)"}),
             "outcome": (("ic",), np.asarray(outcome, dtype=str)),
             "status": (("ic",), status),
         },
@@ -177,6 +191,28 @@ def machine_simulate(machine, initial_ball_angles, *, t_end: float, rtol: float 
         ds["displacement"] = (("ic", "time", "station"), machine.station_amplitudes(saved), {"units": "m"})
         ds = add_figure_variables(ds, machine, saved, ("ic", "time"))
     return ds
+
+
+def _earlier_windows(ts: np.ndarray, t_end: float) -> np.ndarray:
+    """The final window's save times shifted back by 20 % and 10 % of the run (shape (2, n)), or
+    an empty array when the run is too short for them to start after t = 0."""
+    shifts = np.array([[-2.0 * SETTLE_STEP * t_end], [-SETTLE_STEP * t_end]])
+    return ts[None, :] + shifts if ts[0] + shifts[0, 0] >= 0.0 else np.empty((0, ts.size))
+
+
+def _settle_estimate(machine, ys_all, ts_all, earlier, amp, ref, t_end) -> np.ndarray:
+    """Estimated time to balance (s) of each start whose vibration still falls towards
+    :data:`~rotorlab.analyses.BALANCED_FRACTION` of the locked unbalance response, NaN for the
+    others: :func:`rotorlab.explore._settle.settle_estimate` on the vibration amplitude (largest
+    over the stations) in the final window and the windows ending 10 % and 20 % of the run
+    earlier."""
+    n = amp.shape[0]
+    if earlier.shape[0] == 0 or n == 0:
+        return np.full(n, np.nan)
+    worst = [orbit_amplitude(machine, ys_all[:, np.searchsorted(ts_all, w)]).max(axis=1) for w in earlier]
+    worst = np.stack([*worst, amp.max(axis=1)], axis=1)
+    horizons = t_end * np.array([1.0 - 2.0 * SETTLE_STEP, 1.0 - SETTLE_STEP, 1.0])
+    return settle_estimate(worst, np.full(n, BALANCED_FRACTION * float(np.max(ref))), horizons)[:, -1]
 
 
 def _run_simulate(case_model, analysis, progress=None):
@@ -205,6 +241,7 @@ def _simulate_rows(ds) -> list[dict[str, Any]]:
             "reference_amplitude": _per_station(ds, ds.reference_amplitude.values),
             "outcome": str(ds.outcome.values[i]),
             "status": int(ds.status.values[i]),
+            "settle_estimate_s": _num(ds.settle_estimate.values[i]) if "settle_estimate" in ds else None,
         })
     return rows
 
