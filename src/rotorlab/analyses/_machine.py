@@ -49,9 +49,9 @@ from rotorlab.analyses._machine_common import (  # noqa: F401  (re-exported: the
     structure_critical_speeds,
     unbalance_amplitudes,
 )
+from rotorlab.analyses._machine_steady import jeffcott_limit, machine_motions, machine_steady  # noqa: F401
 from rotorlab.explore._outcome import BALANCED_FRACTION
 from rotorlab.explore._settle import NOT_SETTLED, settle_estimate
-from rotorlab.analyses._machine_steady import jeffcott_limit, machine_motions, machine_steady  # noqa: F401
 
 __all__ = ["machine_simulate", "machine_steady", "machine_motions", "locked_structure",
            "orbit_amplitude", "machine_model", "machine_quantities", "machine_analysis_types",

@@ -34,6 +34,9 @@ from rotorlab.analyses._machine_common import (
     structure_critical_speeds,
     unbalance_amplitudes,
 )
+from rotorlab.analyses._run_up_verdicts import PEAK_BAND, critical_peaks, ramp_end_settle, run_up_ensemble
+from rotorlab.explore._outcome import BALANCED_FRACTION
+from rotorlab.explore._settle import NOT_SETTLED
 
 __all__ = ["machine_run_up", "run_up_verdict", "passing_torque", "PassingTorque", "NO_PASSING_TORQUE"]
 
@@ -122,6 +125,11 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
         ``critical_speeds`` (rad/s, forward 1x, balls locked), ``final_speed``,
         ``passed`` and ``captured_at`` (:func:`run_up_verdict`), ``residual_amplitude`` per
         station (vibration amplitude about the mean position over the last 10 % of the run, m);
+        ``critical_peak`` (critical): the transient peak at each critical speed passed (m, NaN
+        for those not passed, :func:`~rotorlab.analyses._run_up_verdicts.critical_peaks`);
+        ``settle_estimate``: with balls, the estimated time to balance (s) where the vibration
+        still falls towards balance at the end, else NaN
+        (:func:`~rotorlab.analyses._run_up_verdicts.ramp_end_settle`);
         ``status``: the integrator's (its sanity monitor fails a run beyond the structure's
         validity, :meth:`~rotorlab.models.Machine.impossible_states`), or ``UNSTABLE`` where the
         structure is unstable at the final speed (:func:`~rotorlab.analyses._machine_common.flag_unstable`),
@@ -146,6 +154,8 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
     crit = _critical_speeds(machine)
     passed, captured = run_up_verdict(machine, ts, spin[:, 1], crit)
     status, notes = flag_unstable(machine, [int(sol.status)], [final], [sol.note])
+    threshold = BALANCED_FRACTION * float(np.max(unbalance_amplitudes(machine, final))) if machine.n_balls else 0.0
+    settle = ramp_end_settle(machine, ts, sol.ys, threshold) if machine.n_balls and status[0] >= 0 else math.nan
     tail = ts >= 0.9 * ts[-1]
     ds = xr.Dataset(
         {
@@ -154,12 +164,13 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
             "ball_angle": (("time", "ball"), rel, {"units": "rad"}),
             "residual_amplitude": (("station",), orbit_amplitude(machine, sol.ys[tail]),
                                    {"units": "m"}),
+            "critical_peak": (("critical",), critical_peaks(spin[:, 1], amp, crit, passed), {"units": "m"}),
         },
         coords={"time": ("time", ts, {"units": "s"}), "station": list(machine.structure.node_label),
                 **_ball_coords(machine)},
         attrs={"analysis": "run-up", "model": "machine", "critical_speeds": crit,
                "final_speed": final, "passed": passed, "captured_at": captured,
-               "status": int(status[0]), "status_detail": notes[0]},
+               "settle_estimate": settle, "status": int(status[0]), "status_detail": notes[0]},
     )
     return add_figure_variables(ds, machine, sol.ys, ("time",))
 
@@ -426,8 +437,6 @@ def _passing_torques(machine, starts, *, t_end, rel_tol=1e-3, initial_speed=0.0,
 
 
 def _run_run_up(case_model, analysis, progress=None):
-    import xarray as xr
-
     from rotorlab.analyses._builders import speed_profile
 
     m = _variant(case_model, analysis)
@@ -436,12 +445,29 @@ def _run_run_up(case_model, analysis, progress=None):
     starts = analysis.initial_ball_angles or (None,)
     start_speed = getattr(case_model.drive, "initial_speed", 0.0) if analysis.speed is None else 0.0
     total = _run_up_task_size(case_model, analysis)
+    ds = run_up_starts(m, starts, t_end=analysis.t_end, n_save=analysis.n_save, rtol=analysis.rtol,
+                       atol=analysis.atol, initial_speed=start_speed, progress=progress, total=total)
+    if getattr(analysis, "passing_torque", False):
+        _add_passing_torque(ds, m, starts, analysis, start_speed)
+        if progress is not None:
+            progress(total, total)
+    return _annotate(ds, case_model, analysis)
+
+
+def run_up_starts(m, starts, *, t_end: float, n_save: int = 2000, rtol: float = 1e-8, atol: float = 1e-10,
+                  initial_speed: float = 0.0, progress=None, total: int | None = None):
+    """:func:`machine_run_up` from each ball start (a sequence of angle lists, or ``(None,)`` for
+    the machine's own), concatenated over ``ic``, with each run's ``outcome``
+    (:func:`_run_up_outcome`) and ``reference_amplitude`` (the locked unbalance response at its
+    final speed)."""
+    import xarray as xr
+
     parts, details = [], []
     for k, angles in enumerate(starts):
-        one = machine_run_up(m, t_end=analysis.t_end, n_save=analysis.n_save,
+        one = machine_run_up(m, t_end=t_end, n_save=n_save,
                              ball_angles=None if angles is None or m.n_balls == 0 else list(angles),
-                             rtol=analysis.rtol, atol=analysis.atol, initial_speed=start_speed)
-        for key in ("final_speed", "passed", "captured_at", "status"):
+                             rtol=rtol, atol=atol, initial_speed=initial_speed)
+        for key in ("final_speed", "passed", "captured_at", "status", "settle_estimate"):
             one[key] = ((), one.attrs.pop(key))
         details.append(one.attrs.pop("status_detail"))
         ref = unbalance_amplitudes(m, float(one["final_speed"]))
@@ -449,17 +475,15 @@ def _run_run_up(case_model, analysis, progress=None):
         one["outcome"] = ((), _run_up_outcome(m, one, ref))
         parts.append(one)
         if progress is not None:
-            progress(k + 1, total)
+            progress(k + 1, total or len(starts))
     ds = xr.concat(parts, dim="ic", combine_attrs="override")
     ds = ds.assign_coords(ic=np.arange(len(starts)))
     ds.attrs["status_detail"] = status_detail(details)
     ds["final_speed"].attrs["units"] = "rad/s"
     ds["captured_at"].attrs["units"] = "rad/s"
-    if getattr(analysis, "passing_torque", False):
-        _add_passing_torque(ds, m, starts, analysis, start_speed)
-        if progress is not None:
-            progress(total, total)
-    return _annotate(ds, case_model, analysis)
+    ds["settle_estimate"].attrs["units"] = "s"
+    ds.attrs["peak_band"] = PEAK_BAND
+    return ds
 
 
 def _add_passing_torque(ds, machine, starts, analysis, start_speed) -> None:
@@ -499,10 +523,16 @@ def _run_up_outcome(machine, ds, reference) -> str:
     """Where a run-up ended: "failed", "no balancer", "captured" (below a critical speed),
     "balanced" (residual vibration at most BALANCED_FRACTION of the locked unbalance response at
     the final speed, above the first critical speed; at or below it "below critical speed": a
-    machine that did not spin up is never balanced), "non-synchronous" (balls still circling the
-    rotor over the last 10 %) or "not balanced"."""
-    from rotorlab.explore._outcome import BALANCED_FRACTION
+    machine that did not spin up is never balanced), "not settled" (its vibration still falling
+    towards balance at the end, :func:`~rotorlab.analyses._run_up_verdicts.ramp_end_settle`),
+    "non-synchronous" (balls still circling the rotor over the last 10 %) or "not balanced"."""
+    text = _ended(machine, ds, reference)
+    if text in ("not balanced", "non-synchronous") and np.isfinite(float(ds["settle_estimate"])):
+        return NOT_SETTLED  # still converging towards balance at the ramp's end
+    return text
 
+
+def _ended(machine, ds, reference) -> str:
     if int(ds["status"]) < 0:
         return "failed"
     if machine.n_balls == 0:
@@ -524,6 +554,8 @@ def _run_up_task_size(case_model, analysis) -> int:
 def _run_up_rows(ds) -> list[dict[str, Any]]:
     crit = [_num(w) for w in np.ravel(ds.attrs["critical_speeds"])]
     has_passing = "passing_torque" in ds
+    ensemble = (run_up_ensemble([str(o) for o in ds.outcome.values], ds.critical_peak.values,
+                                ds.attrs["critical_speeds"]) if "critical_peak" in ds else None)
     rows = []
     for i in range(ds.sizes["ic"]):
         r = ds.isel(ic=i)
@@ -531,7 +563,10 @@ def _run_up_rows(ds) -> list[dict[str, Any]]:
                "critical_speeds": crit, "passed": int(r.passed), "captured_at": _num(r.captured_at),
                "residual_amplitude": _per_station(ds, r.residual_amplitude.values),
                "reference_amplitude": _per_station(ds, r.reference_amplitude.values),
-               "outcome": str(r.outcome.values), "status": int(r.status)}
+               "outcome": str(r.outcome.values), "status": int(r.status),
+               "settle_estimate_s": _num(r.settle_estimate) if "settle_estimate" in r else None,
+               "critical_peaks": ([_num(v) for v in r.critical_peak.values] if "critical_peak" in r else None),
+               "ensemble": ensemble}
         if has_passing:
             row.update({
                 "passing_torque": _num(r.passing_torque), "passing_torque_lower": _num(r.passing_torque_lower),

@@ -89,13 +89,13 @@ def _outcome_of(r: Mapping[str, Any]) -> str:
 def _simulate(ds: Any, rows: Rows):
     stations = _stations(ds, rows, "amplitude", "reference_amplitude")
     header = ("start", "initial ball angles", "final speed (rpm)", "final ball angles",
-              *(f"vibration at {s} (mm)" for s in stations), "outcome")
+              *(f"vibration at {s} (mm)" for s in stations), "outcome", "settles by (s)")
     body = [(str(r["ic"]), _races(r["initial_ball_angles_deg"]), _g(r["final_speed_rpm"], 6),
-             _races(r["final_ball_angles_deg"]), *(_mm(r["amplitude"][s]) for s in stations), _outcome_of(r))
-            for r in rows]
+             _races(r["final_ball_angles_deg"]), *(_mm(r["amplitude"][s]) for s in stations), _outcome_of(r),
+             _g(r.get("settle_estimate_s"))) for r in rows]
     if rows:
         body.append(("without balancing", "", "", "", *(_mm(rows[0]["reference_amplitude"][s]) for s in stations),
-                     ""))
+                     "", ""))
     return header, body
 
 
@@ -104,11 +104,13 @@ def _run_up(ds: Any, rows: Rows):
     header = ("start", "final speed (rpm)", "undamped forward critical speeds (rpm)", "passed",
               "captured at (rpm)",
               *(f"residual vibration at {s} (mm)" for s in stations),
-              *(f"without balancing at {s} (mm)" for s in stations), "outcome")
+              *(f"without balancing at {s} (mm)" for s in stations), "outcome", "settles by (s)",
+              "transient peak at each critical speed passed (mm)")
     body = [(str(r["ic"]), _g(r["final_speed_rpm"], 6), ", ".join(_g(w * _RPM, 5) for w in r["critical_speeds"]),
              str(r["passed"]), _g(None if r["captured_at"] is None else r["captured_at"] * _RPM, 5),
              *(_mm(r["residual_amplitude"][s]) for s in stations),
-             *(_mm(r["reference_amplitude"][s]) for s in stations), _outcome_of(r)) for r in rows]
+             *(_mm(r["reference_amplitude"][s]) for s in stations), _outcome_of(r), _g(r.get("settle_estimate_s")),
+             ", ".join(_mm(v) for v in r.get("critical_peaks") or [] if v is not None) or "-") for r in rows]
     if rows and "passing_torque" in rows[0]:  # passing_torque = true
         header = (*header, "smallest passing torque with balls (N*m)", "without balls (N*m)")
         body = [(*b, _g(r["passing_torque"]), _g(r["passing_torque_without_balls"])) for b, r in zip(body, rows)]
@@ -226,18 +228,56 @@ def _simulate_findings(ds, rows):
                    f"{', '.join(map(str, good))}); " + "; ".join(f"{k} from start(s) {', '.join(map(str, v))}"
                                                                   for k, v in by.items() if k != "balanced") + ".")
     else:
-        verdict = ("The balancer does not balance from any start: " + "; ".join(
+        verdict = ("No start has balanced by the end: " + "; ".join(
             f"{k} from start(s) {', '.join(map(str, v))}" for k, v in by.items()) +
             f" (vibration up to {people.relative_to(worst, 'the unbalance response')}).")
+    verdict += _not_settled_text(rows, float(ds.attrs.get("t_end", np.nan)))
     return Findings(verdict, (f"largest vibration / unbalance response {people.relative(worst)}",
                               *(f"start {r['ic']}: {r['outcome']}" + (f", final ball angles "
                                 f"{_races(r['final_ball_angles_deg'])}" if r["outcome"] != "no balancer" else "")
                                 for r in rows)))
 
 
+def _not_settled_text(rows, t_end: float) -> str:
+    """" N of M ... are not settled at the end ..., and the horizon that would do" (or "")."""
+    from rotorlab.analyses._verdict import MARGIN, round_up_horizon
+
+    late = [r for r in rows if r["outcome"] == "not settled"]
+    if not late:
+        return ""
+    by = max((r["settle_estimate_s"] for r in late if r.get("settle_estimate_s") is not None), default=None)
+    when = f", estimated to balance by {by:.3g} s" if by is not None else ""
+    need = f" A simulated time of {round_up_horizon(MARGIN * by):g} s would do." if by is not None else ""
+    return (f" {len(late)} of {len(rows)} runs are not settled at {t_end:.3g} s (still converging towards balance"
+            f"{when}): too short for their verdict.{need}")
+
+
+def _ensemble_text(rows) -> tuple[str, tuple[str, ...]]:
+    """The share of run-ups balanced at the ramp's end with its Wilson interval, and the median
+    transient peak at each critical speed passed with its order-statistic interval."""
+    ens = rows[0].get("ensemble") if rows else None
+    if not ens or not ens["runs"]:
+        return "", ()
+    pct = f"{ens['confidence']:.0%}".replace("%", " %")
+    head = ""
+    if ens["balanced_share"] is not None and any(r["outcome"] != "no balancer" for r in rows):
+        head = (f"Balanced at the end of the ramp: {ens['balanced']} of {ens['runs']} run-ups "
+                f"({100 * ens['balanced_share']:.3g} %, Wilson {pct} interval {100 * ens['balanced_share_low']:.3g}-"
+                f"{100 * ens['balanced_share_high']:.3g} %). ")
+    numbers = []
+    for c in ens["critical_peaks"]:
+        if c["median"] is None:
+            continue
+        numbers.append(f"transient peak at the critical speed {c['speed'] * _RPM:.4g} rpm: median {_mm(c['median'])} mm "
+                       f"over the {c['runs_passed']} run-ups that passed it, order-statistic interval "
+                       f"{_mm(c['low'])}-{_mm(c['high'])} mm (covers the median with probability {c['coverage']:.3g})")
+    return head, tuple(numbers)
+
+
 def _run_up_findings(ds, rows):
     parts, numbers = [], []
     verdicts = {"balanced": "the balancer balances", "not balanced": "the balancer does not balance",
+                "not settled": "not settled (the balls still converging towards balance)",
                 "non-synchronous": "the balls keep circling (non-synchronous), not balanced",
                 "no balancer": "no balancer", "captured": "not balanced", "failed": "failed",
                 "below critical speed": "not above its first critical speed, where a balancer cannot balance"}
@@ -257,7 +297,9 @@ def _run_up_findings(ds, rows):
         head = (f"The balancer balances from {'every start' if len(good) == len(rows) else 'no start' if not good else 'start(s) ' + ', '.join(map(str, good))} "
                 f"({len(good)} of {len(rows)}). ")
     tail = _passing_torque_text(ds, rows)
-    return Findings(head + "; ".join(parts) + ".", ((tail,) if tail else ()) + tuple(numbers))
+    share, peaks = _ensemble_text(rows)
+    late = _not_settled_text(rows, float(ds.time.values[-1])) if "time" in ds.coords else ""
+    return Findings(share + head + "; ".join(parts) + "." + late, ((tail,) if tail else ()) + peaks + tuple(numbers))
 
 
 def _passing_torque_text(ds, rows) -> str:
