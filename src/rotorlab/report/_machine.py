@@ -231,7 +231,7 @@ def _simulate_findings(ds, rows):
         verdict = ("No start has balanced by the end: " + "; ".join(
             f"{k} from start(s) {', '.join(map(str, v))}" for k, v in by.items()) +
             f" (vibration up to {people.relative_to(worst, 'the unbalance response')}).")
-    verdict += _not_settled_text(rows, float(ds.attrs.get("t_end", np.nan)))
+    verdict += _not_settled_text(rows, float(ds.attrs.get("t_end", np.nan)) if ds is not None else np.nan)
     return Findings(verdict, (f"largest vibration / unbalance response {people.relative(worst)}",
                               *(f"start {r['ic']}: {r['outcome']}" + (f", final ball angles "
                                 f"{_races(r['final_ball_angles_deg'])}" if r["outcome"] != "no balancer" else "")
@@ -248,7 +248,8 @@ def _not_settled_text(rows, t_end: float) -> str:
     by = max((r["settle_estimate_s"] for r in late if r.get("settle_estimate_s") is not None), default=None)
     when = f", estimated to balance by {by:.3g} s" if by is not None else ""
     need = f" A simulated time of {round_up_horizon(MARGIN * by):g} s would do." if by is not None else ""
-    return (f" {len(late)} of {len(rows)} runs are not settled at {t_end:.3g} s (still converging towards balance"
+    at = f"at {t_end:.3g} s" if np.isfinite(t_end) else "at the end"
+    return (f" {len(late)} of {len(rows)} runs are not settled {at} (still converging towards balance"
             f"{when}): too short for their verdict.{need}")
 
 
@@ -261,9 +262,11 @@ def _ensemble_text(rows) -> tuple[str, tuple[str, ...]]:
     pct = f"{ens['confidence']:.0%}".replace("%", " %")
     head = ""
     if ens["balanced_share"] is not None and any(r["outcome"] != "no balancer" for r in rows):
-        head = (f"Balanced at the end of the ramp: {ens['balanced']} of {ens['runs']} run-ups "
+        failed = sum(r["outcome"] == "failed" for r in rows)
+        head = (f"Balanced at the end of the ramp: {ens['balanced']} of {ens['runs']} run-ups"
+                + (" that did not fail" if failed else "") + " "
                 f"({100 * ens['balanced_share']:.3g} %, Wilson {pct} interval {100 * ens['balanced_share_low']:.3g}-"
-                f"{100 * ens['balanced_share_high']:.3g} %). ")
+                f"{100 * ens['balanced_share_high']:.3g} %)" + (f"; {failed} failed. " if failed else ". "))
     numbers = []
     for c in ens["critical_peaks"]:
         if c["median"] is None:
@@ -299,7 +302,7 @@ def _run_up_findings(ds, rows):
     tail = _passing_torque_text(ds, rows)
     share, peaks = _ensemble_text(rows)
     late = _not_settled_text(rows, float(ds.time.values[-1])) if "time" in ds.coords else ""
-    return Findings(share + head + "; ".join(parts) + "." + late, ((tail,) if tail else ()) + peaks + tuple(numbers))
+    return Findings(head + share + "; ".join(parts) + "." + late, ((tail,) if tail else ()) + tuple(numbers) + peaks)
 
 
 def _passing_torque_text(ds, rows) -> str:
