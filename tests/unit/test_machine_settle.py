@@ -69,3 +69,68 @@ def test_a_machine_basin_too_short_says_not_settled_and_the_horizon_that_would_d
     longer = map_starts(MachineRegimes(MACHINE, t_end=verdict["horizon_needed_s"], n_horizons=10),
                         {"psi_1": np.array(START[:1]), "psi_2": np.array(START[1:])})
     assert labels[int(longer["label"].isel(horizon=-1).values[0])] == "balanced"
+
+
+SWEEP_CASE = """
+schema_version = 1
+name = "planar-machine-sweep"
+
+[model]
+type = "machine"
+n_modes = 2
+
+[model.structure]
+type = "multibody"
+
+[[model.structure.bodies]]
+name = "disc"
+position = "0 m"
+mass = "1 kg"
+diametral_inertia = "0.3 kg*m^2"
+polar_inertia = "0 kg*m^2"
+spinning = false
+
+[model.structure.elastic]
+stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]
+damping = [["0.02 N*s/m", "0 N*s/rad"], ["0 N*s/rad", "0 N*m*s/rad"]]
+
+[[model.races]]
+at = "disc"
+radius = "1 m"
+balls = [{ mass = "0.02 kg", damping = "0.01 N*m*s/rad", count = 2 }]
+
+[[model.unbalances]]
+at = "disc"
+magnitude = "0.01 kg*m"
+
+[model.drive]
+profile = "constant"
+speed = "2 rad/s"
+
+[[analysis]]
+type = "sweep"
+name = "s"
+ic = { psi_1 = ["0.3 rad", "0.3 rad", 1], psi_2 = ["2 rad", "2 rad", 1] }
+t_end = "600 s"
+n_horizons = 10
+"""
+
+
+def test_a_machine_sweep_too_short_is_judged_against_the_slowest_mode_and_names_the_horizon():
+    """The same machine as a case file: its sweep's verdict tests the horizon against the
+    balanced state's slowest mode (600 s are 3.1 time constants of 193 s) and asks for 10 of
+    them, 2000 s rounded up, beyond 1.25 times the start's estimated settle time."""
+    from rotorlab.analyses import run_analysis, summarize
+    from rotorlab.io import parse_case
+    from rotorlab.report._findings import basin_findings
+
+    case = parse_case(SWEEP_CASE)
+    ds = run_analysis(case.model, case.analysis("s"))
+    np.testing.assert_allclose(ds.attrs["slowest_decay_rate"], _slowest(), rtol=1e-9)
+    found = basin_findings(ds, summarize(ds))
+    assert found.verdict.startswith("no verdict yet (horizon too short)")
+    sentence = basin_verdict(ds)["sentence"]
+    assert "1 of 1 starts are not settled" in sentence and "A horizon of 2000 s would do." in sentence
+    assert round_up_horizon(10.0 / _slowest()) == 2000.0
+    assert sentence in found.numbers
+    assert any("3.1 time constants of the balanced state's slowest mode, 193 s" in n for n in found.numbers)

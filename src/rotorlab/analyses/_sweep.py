@@ -25,7 +25,8 @@ def sweep_task_size(case_model: Any, spec: Any) -> int:
 
 
 def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None = None,
-                sample: int | None = None, seed: int | None = None, t_end: float | None = None) -> Any:  # fmt: skip
+                sample: int | None = None, seed: int | None = None, t_end: float | None = None,
+                explain: dict[str, Any] | None = None) -> Any:  # fmt: skip
     """Build the sweep of a case's ``sweep`` analysis, optionally with other points.
 
     Parameters
@@ -40,6 +41,9 @@ def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None 
         Instead of the spec's: draw ``sample`` random points with ``seed``.
     t_end : float, optional
         Simulated time (s) instead of the spec's.
+    explain : dict, optional
+        Filled as :func:`~rotorlab.analyses._basin.basin_mapper` fills it: ``horizon_rule`` and,
+        for a balancer, the base point's ``slowest_decay_rate`` (1/s).
 
     Returns
     -------
@@ -71,7 +75,7 @@ def build_sweep(case_model: Any, spec: Any, *, axes: Mapping[str, tuple] | None 
     omega = spec.spin_speed(case_model)
     duration = t_end if t_end is not None else (
         spec.t_end if spec.t_end is not None else spec.revolutions * 2.0 * math.pi / omega)  # fmt: skip
-    analysis = MapperAnalysis(basin_mapper(case_model, spec, t_end=duration))
+    analysis = MapperAnalysis(basin_mapper(case_model, spec, t_end=duration, explain=explain))
     chosen = dict(axes) if axes is not None else {**spec.param, **spec.ic}
     # the unit each varied angle was written in, for display (figures draw it in that unit)
     units = {k: v for k, v in getattr(spec, "input_units", {}).items() if k in chosen}
@@ -105,7 +109,10 @@ def run_sweep_analysis(case_model: Any, spec: Any, progress: Callable[[int, int]
         The sweep's Dataset (:func:`rotorlab.sweep.run_sweep`; dims: one per swept quantity,
         or ``sample``, then ``horizon``) plus ``fraction`` and ``count`` (horizon, regime) of
         :func:`rotorlab.explore.basin_fractions`; attrs ``analysis = "sweep"``, ``name``,
-        ``mode`` (``"grid"`` or ``"sample"``, with ``seed``).
+        ``mode`` (``"grid"`` or ``"sample"``, with ``seed``) and for a balancer with a stable
+        balanced state at the base point its ``slowest_decay_rate`` (1/s) and ``horizon_rule``
+        (the horizon in its time constants), which the verdict
+        (:func:`rotorlab.analyses._verdict.basin_verdict`) tests the horizon against.
 
     Examples
     --------
@@ -123,7 +130,8 @@ def run_sweep_analysis(case_model: Any, spec: Any, progress: Callable[[int, int]
         if progress is not None:
             progress(p.done, p.total)
 
-    sweep = build_sweep(case_model, spec)
+    explain: dict[str, Any] = {}
+    sweep = build_sweep(case_model, spec, explain=explain)
     ds = run_sweep(sweep, chunk_size=spec.chunk, progress=report)
     fr = basin_fractions(ds)
     ds = ds.assign(fraction=fr["fraction"], count=fr["count"])
@@ -133,6 +141,9 @@ def run_sweep_analysis(case_model: Any, spec: Any, progress: Callable[[int, int]
                     mode="grid" if sweep.axes else "sample")  # fmt: skip
     if sweep.sample is not None:
         ds.attrs["seed"] = sweep.sample.seed
+    if not math.isnan(explain.get("slowest_decay_rate", math.nan)):  # the verdict's time-constant test
+        ds.attrs["slowest_decay_rate"] = float(explain["slowest_decay_rate"])
+        ds.attrs["horizon_rule"] = str(explain["horizon_rule"]) + " at the sweep's base point"
     return ds
 
 
