@@ -72,3 +72,27 @@ def test_bad_knock_arguments_are_refused(washer):
         machine_knock(replace(washer, clearances=()), t_end=1.0, ball_damping=[0.1])
     with pytest.raises(ValueError, match="needs balls"):
         machine_knock(replace(washer, races=()), t_end=1.0, ball_damping=[0.1])
+
+
+def test_knock_run_ups_say_where_they_end_and_a_longer_run_up_settles_the_unsettled(washer):
+    """Each knock run-up is labelled where it ends: at 4 s the tub is still spinning up (41 rad/s,
+    its motor's no-load speed is far above), so no run is judged, every one is *not settled* and
+    the findings say the run-up is too short; a run-up of 40 s (an independent re-simulation of the
+    same seeded starts) ends balanced from every start at 0.05 N m s/rad, the share 4 of 4 with
+    SciPy's Wilson interval."""
+    from rotorlab.report._knock import knock_findings
+
+    wide = replace(washer, clearances=(replace(washer.clearances[0], gap=0.1),))
+    kw = dict(ball_damping=[0.005, 0.05], starts=4, seed=3)
+    short = machine_knock(wide, t_end=4.0, **kw)
+    assert np.all(short.outcome.values == "not settled")  # the ramp goes on: no verdict yet
+    assert short.attrs["final_speed"] == pytest.approx(41.05, rel=1e-3)
+    numbers = knock_findings(short, knock_rows(short)).numbers
+    assert any("were still spinning up at 4 s: too short for their verdict" in n for n in numbers)
+    long = machine_knock(wide, t_end=40.0, **kw)
+    assert np.all(long.outcome.values[1] == "balanced")
+    row = knock_rows(long)[1]
+    assert row["outcomes"] == {"balanced": 4} and row["balanced_share"] == 1.0
+    lo, hi = binomtest(4, 4).proportion_ci(0.95, method="wilson")
+    assert (row["balanced_low"], row["balanced_high"]) == pytest.approx((lo, hi), abs=1e-12)
+    assert np.all(long.impacts.values == 0)  # the wide clearance is never struck

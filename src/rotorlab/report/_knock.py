@@ -119,7 +119,29 @@ def knock_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
     """The verdict and, per damping, the probability and the largest impulse."""
     numbers = tuple(f"ball damping {r['ball_damping']:.3g} N m s/rad: contact in {_pct(r['contact_probability'])} "
                     f"of runs, largest impulse {_imp(r['largest_impulse'])}" for r in rows)  # fmt: skip
-    return Findings(_verdict(ds, rows), numbers)
+    return Findings(_verdict(ds, rows), numbers + tuple(_ends(ds, r) for r in rows if "outcomes" in r))
+
+
+def _ends(ds: xarray.Dataset, r: Mapping[str, Any]) -> str:
+    """Where the run-ups of one damping ended: balanced (share, Wilson interval), the other
+    outcomes, and the run-up that would settle those not settled."""
+    from rotorlab.analyses._verdict import MARGIN, round_up_horizon
+
+    n = sum(k for o, k in r["outcomes"].items() if o != "failed")
+    text = (f"ball damping {r['ball_damping']:.3g} N m s/rad: balanced at the end in {r['outcomes'].get('balanced', 0)} "
+            f"of {n} run-ups")
+    if r["balanced_share"] is not None:
+        text += f" ({_pct(r['balanced_share'])}, Wilson 95 % interval {_pct(r['balanced_low'])} to {_pct(r['balanced_high'])})"
+    others = [f"{k} {o}" for o, k in r["outcomes"].items() if o not in ("balanced", "failed")]
+    text += ("; " + ", ".join(others)) if others else ""
+    if r["not_settled"] and r["settle_by_s"] is not None:
+        text += (f"; the {r['not_settled']} not settled (still converging towards balance) are estimated to balance by "
+                 f"{r['settle_by_s']:.3g} s: {float(ds.attrs['t_end']):.3g} s is too short for their verdict, "
+                 f"{round_up_horizon(MARGIN * r['settle_by_s']):g} s would do")
+    elif r["not_settled"]:
+        text += (f"; the {r['not_settled']} not settled were still spinning up at {float(ds.attrs['t_end']):.3g} s: "
+                 "too short for their verdict, a longer run-up is needed")
+    return text
 
 
 def knock_tables(results: Mapping[str, Any], rows: Mapping[str, Rows]) -> list[Any]:
