@@ -12,6 +12,7 @@ import math
 
 import numpy as np
 import xarray as xr
+from test_machine_common import PLANAR
 
 from rotorlab.analyses._machine import _simulate_rows, machine_simulate
 from rotorlab.analyses._verdict import MARGIN, basin_verdict, round_up_horizon
@@ -71,49 +72,14 @@ def test_a_machine_basin_too_short_says_not_settled_and_the_horizon_that_would_d
     assert labels[int(longer["label"].isel(horizon=-1).values[0])] == "balanced"
 
 
-SWEEP_CASE = """
-schema_version = 1
-name = "planar-machine-sweep"
-
-[model]
-type = "machine"
-n_modes = 2
-
-[model.structure]
-type = "multibody"
-
-[[model.structure.bodies]]
-name = "disc"
-position = "0 m"
-mass = "1 kg"
-diametral_inertia = "0.3 kg*m^2"
-polar_inertia = "0 kg*m^2"
-spinning = false
-
-[model.structure.elastic]
-stiffness = [["1 N/m", "0 N/rad"], ["0 N/rad", "5 N*m/rad"]]
-damping = [["0.02 N*s/m", "0 N*s/rad"], ["0 N*s/rad", "0 N*m*s/rad"]]
-
-[[model.races]]
-at = "disc"
-radius = "1 m"
-balls = [{ mass = "0.02 kg", damping = "0.01 N*m*s/rad", count = 2 }]
-
-[[model.unbalances]]
-at = "disc"
-magnitude = "0.01 kg*m"
-
-[model.drive]
-profile = "constant"
-speed = "2 rad/s"
-
-[[analysis]]
-type = "sweep"
-name = "s"
-ic = { psi_1 = ["0.3 rad", "0.3 rad", 1], psi_2 = ["2 rad", "2 rad", 1] }
-t_end = "600 s"
-n_horizons = 10
-"""
+# the PLANAR case of test_machine_common with this machine's damping and speed, and a sweep
+SWEEP_CASE = (PLANAR[:PLANAR.index("[[analysis]]")]
+              .replace('damping = [["0.1 N*s/m", "0 N*s/rad"], ["0 N*s/rad", "0.05 N*m*s/rad"]]',
+                       'damping = [["0.02 N*s/m", "0 N*s/rad"], ["0 N*s/rad", "0 N*m*s/rad"]]')
+              .replace('damping = "0.05 N*m*s/rad", count = 2', 'damping = "0.01 N*m*s/rad", count = 2')
+              .replace('phase = "30 deg"\n', "").replace('speed = "2.5 rad/s"', 'speed = "2 rad/s"')
+              + '[[analysis]]\ntype = "sweep"\nname = "s"\nt_end = "600 s"\nn_horizons = 10\n'
+              'ic = { psi_1 = ["0.3 rad", "0.3 rad", 1], psi_2 = ["2 rad", "2 rad", 1] }\n')
 
 
 def test_a_machine_sweep_too_short_is_judged_against_the_slowest_mode_and_names_the_horizon():
