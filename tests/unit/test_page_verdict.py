@@ -28,17 +28,24 @@ def test_contact_line_gives_the_share_the_bound_when_none_touched_and_the_dampin
     32.4 %."""
     z2 = 1.959964**2
     rows = [{"ball_damping": 0.01, "contact_probability": 0.0, "probability_low": 0.0,
-             "probability_high": z2 / (8 + z2), "largest_impulse": None, "runs": 8, "failed": 0},
+             "probability_high": z2 / (8 + z2), "largest_impulse": None, "runs": 8, "failed": 0,
+             "least_margin": 0.0042},
             {"ball_damping": 0.2, "contact_probability": 1.0, "probability_low": 0.68, "probability_high": 1.0,
-             "largest_impulse": 1.71, "runs": 8, "failed": 0}]
-    (line,) = VERDICT_EVIDENCE["machine-knock"](xr.Dataset(attrs={"name": "knock"}), rows, None)
+             "largest_impulse": 1.71, "runs": 8, "failed": 0, "least_margin": 0.0}]
+    knock = xr.Dataset(attrs={"name": "knock", "gap": 0.01, "margin_sample_interval": 0.002})
+    (line,) = VERDICT_EVIDENCE["machine-knock"](knock, rows, None)
     assert (line.topic, line.status) == ("contact", "no")
     assert line.sentence == ("Touches the stator in 8 of 8 (100 %) run-ups at ball damping 0.2 N*m*s/rad, largest "
                              "impulse 1.71 N*s; 0 of 8 (0 %) run-ups at ball damping 0.01 N*m*s/rad, at most 32.4 % "
-                             "with 95 % confidence (knock; least margin not recorded).")
+                             "with 95 % confidence (knock; where no run-up touched, the least margin is 4.2 mm, "
+                             "sampled every 2 ms).")
     assert line.fix == "a ball damping of 0.01 N*m*s/rad"
-    (clear,) = VERDICT_EVIDENCE["machine-knock"](xr.Dataset(attrs={"name": "knock"}), rows[:1], None)
-    assert clear.status == "yes" and clear.sentence.startswith("No contact: 0 of 8 (0 %) run-ups")
+    (clear,) = VERDICT_EVIDENCE["machine-knock"](knock, rows[:1], None)
+    assert clear.status == "yes" and clear.sentence == (
+        "No contact: 0 of 8 (0 %) run-ups at ball damping 0.01 N*m*s/rad, at most 32.4 % with 95 % confidence; least "
+        "margin 4.2 mm of the 10 mm gap, sampled every 2 ms (knock).")
+    (touched,) = VERDICT_EVIDENCE["machine-knock"](knock, rows[1:], None)
+    assert touched.sentence.endswith("(knock; least margin 0 (touched)).")
 
 
 def test_run_up_line_counts_the_starts_that_pass_and_names_the_passing_torque():

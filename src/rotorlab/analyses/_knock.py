@@ -21,6 +21,10 @@ import numpy as np
 
 __all__ = ["machine_knock", "run_knock_analysis", "knock_rows", "knock_task_size"]
 
+#: Evenly spaced samples over a run-up from which its least margin (gap less the largest
+#: excursion of the clearance station) is read.
+MARGIN_SAMPLES = 2000
+
 #: Where each run-up ends is judged over windows of this many turns at the final speed ...
 WINDOW_REVOLUTIONS = 2.0
 #: ... sampled at this many states each. A run whose speed changed by more than STEADY_SPEED
@@ -92,7 +96,7 @@ def machine_knock(machine, *, t_end: float, ball_damping, starts: int = 32, seed
     ref = solve(bare, bare.initial_state(), (0.0, float(t_end)), save_at=SaveAt(ts=[float(t_end)]),
                 control=StepControl(rtol=rtol, atol=atol), max_events_recorded=0)
     final_bare = float(bare.spin(float(t_end), ref.y_final)[1])
-    ts, windows = _end_windows(float(t_end), final_bare)
+    ts, windows = _margin_times(float(t_end), *_end_windows(float(t_end), final_bare))
     check_memory(8.0 * n_runs * ((4 + ts.size) * machine.kernels.n_state + machine.layout.n_param + nb),
                  f"starts = {starts} for {damping.size} ball damping(s) ({n_runs} run-ups)",
                  "use fewer starts")  # fmt: skip
@@ -119,6 +123,7 @@ def machine_knock(machine, *, t_end: float, ball_damping, starts: int = 32, seed
                   dtype=float).reshape(-1, 2)
     lo, hi = ci[:, 0], ci[:, 1]
     largest = np.array([np.nanmax(row) if np.any(np.isfinite(row)) else np.nan for row in peak])
+    margin = _least_margins(machine, sol.ys, impacts, ok).reshape(shape)
     outcome, settle = _end_labels(machine, sol, ts, windows, status.ravel())
     outcome, settle = outcome.reshape(shape), settle.reshape(shape)
     n_bal = (outcome == "balanced").sum(axis=1)
@@ -138,6 +143,7 @@ def machine_knock(machine, *, t_end: float, ball_damping, starts: int = 32, seed
             "settle_estimate": (("ball_damping", "ic"), settle, {"units": "s"}),
             "balanced_share": (("ball_damping",), np.where(n_ok > 0, n_bal / np.maximum(n_ok, 1), np.nan),
                                {"units": "1"}),
+            "least_margin": (("ball_damping", "ic"), margin, {"units": "m"}),
             "balanced_low": (("ball_damping",), bal_ci[:, 0], {"units": "1"}),
             "balanced_high": (("ball_damping",), bal_ci[:, 1], {"units": "1"}),
         },
@@ -147,9 +153,32 @@ def machine_knock(machine, *, t_end: float, ball_damping, starts: int = 32, seed
                "starts": starts, "gap": float(machine.clearances[0].gap),
                "no_balls_impacts": float(ref.y_final[-3]) if int(ref.status) >= 0 else math.nan,
                "no_balls_peak_impulse": float(ref.y_final[-2]) if int(ref.status) >= 0 else math.nan,
-               "no_balls_status": int(ref.status), "final_speed": final_bare},
+               "no_balls_status": int(ref.status), "final_speed": final_bare,
+               "margin_sample_interval": float(t_end) / MARGIN_SAMPLES},
     )
     return ds
+
+
+def _margin_times(t_end: float, ts: np.ndarray, windows: list[np.ndarray]) -> tuple[np.ndarray, list[np.ndarray]]:
+    """The end windows' save times merged with :data:`MARGIN_SAMPLES` evenly spaced ones over the
+    whole run (for the least margin), and the windows' indices among them."""
+    every = np.linspace(0.0, t_end, MARGIN_SAMPLES + 1)[1:]
+    merged = np.unique(np.concatenate([every, ts]))
+    return merged, [np.searchsorted(merged, ts[w]) for w in windows]
+
+
+def _least_margins(machine, ys: np.ndarray, impacts: np.ndarray, ok: np.ndarray) -> np.ndarray:
+    """Per run: the gap less the largest distance of the clearance station from the stator's
+    centre over the saved states (m); 0 for a run that touched; NaN for a failed run.
+
+    Sampled (:data:`MARGIN_SAMPLES` evenly over the run, plus the end windows), so a margin can
+    be overstated by the excursion between two samples; a run that touched is exact (0).
+    """
+    w = machine.gap_vector(ys)
+    far = np.hypot(w[..., 0], w[..., 1]).max(axis=-1)
+    margin = np.maximum(float(machine.clearances[0].gap) - far, 0.0)
+    touched = impacts.ravel() > 0
+    return np.where(~ok.ravel(), np.nan, np.where(touched, 0.0, margin))
 
 
 def _end_windows(t_end: float, speed: float) -> tuple[np.ndarray, list[np.ndarray]]:
@@ -232,6 +261,8 @@ def knock_rows(ds) -> list[dict[str, Any]]:
             "mean_impacts": _num(np.nanmean(imp)) if np.any(np.isfinite(imp)) else None,
             "failed": int(np.sum(ds.status.values[i] < 0)),
             "runs": int(ds.sizes["ic"]),
+            **({"least_margin": _num(np.nanmin(ds.least_margin.values[i]))}
+               if "least_margin" in ds and np.any(np.isfinite(ds.least_margin.values[i])) else {}),
             **(_end_row(ds, i) if "outcome" in ds else {}),
         })
     return rows

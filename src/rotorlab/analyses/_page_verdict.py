@@ -318,8 +318,13 @@ def _knock_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ver
 
     worst = max(probs, key=lambda r: r["contact_probability"])
     best = min(probs, key=lambda r: r["contact_probability"])
+    margins = [r["least_margin"] for r in probs if r.get("least_margin") is not None]
+    every = ds.attrs.get("margin_sample_interval")
+    sampled = f", sampled every {people.duration(every)}" if every else ""
     if worst["contact_probability"] == 0:
-        return [VerdictLine("contact", "yes", f"No contact: {at(worst)} ({ds.attrs.get('name', '')}).")]
+        least = (f"; least margin {people.length(min(margins))} of the {people.length(ds.attrs['gap'])} gap"
+                 f"{sampled}" if margins and "gap" in ds.attrs else "")
+        return [VerdictLine("contact", "yes", f"No contact: {at(worst)}{least} ({ds.attrs.get('name', '')}).")]
     text = f"Touches the stator in {at(worst)}" + (f"; {at(best)}" if best is not worst else "")
     fix = (f"a ball damping of {people.number(best['ball_damping'])} N*m*s/rad"
            if best["contact_probability"] < worst["contact_probability"] else
@@ -328,7 +333,10 @@ def _knock_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ver
         text += (f"; at rest the rotor already lies {people.length(facts.rest_offset)} from the stator's centre, "
                  f"beyond the gap {people.length(facts.gap)}: it rests on the stator, with or without balls")
         fix = f"give {facts.gap_key}.center_at_rest = true (the stator centred where the rotor rests)"
-    return [VerdictLine("contact", "no", text + f" ({ds.attrs.get('name', '')}; least margin not recorded).", fix)]
+    clear = [r["least_margin"] for r in probs if r.get("least_margin") is not None and r["contact_probability"] == 0]
+    least = (f"; where no run-up touched, the least margin is {people.length(min(clear))}{sampled}" if clear
+             else "; least margin 0 (touched)")
+    return [VerdictLine("contact", "no", text + f" ({ds.attrs.get('name', '')}{least}).", fix)]
 
 
 def _steady_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
