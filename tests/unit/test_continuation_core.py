@@ -31,6 +31,24 @@ def test_circle_two_folds_and_closes():
     assert not [z for z in c.crossings if z.name == "branch"]  # a fold is not a branch point
 
 
+def test_a_curve_winding_a_whole_turn_in_an_angle_closes():
+    # lam = 0.5 sin(theta): in the plane (theta, lam) a wave that never closes, on the circle of
+    # theta (an angle) a closed curve: it closes after one turn, with its two folds at lam = +-0.5
+    # located once each; without the angle marked it goes round again and again to max_points
+    def f(u):
+        return np.array([u[1] - 0.5 * np.sin(u[0])])
+
+    st = ContinuationSettings(ds=0.05, ds_max=0.1, max_points=400)
+    c = continue_curve(f, [0.0, 0.0], settings=ContinuationSettings(**{**st.__dict__, "periodic": (0,)}),
+                       tangent0=np.array([1.0, 0.5]))
+    folds = sorted(z.point.lam for z in c.crossings if z.name == "fold")
+    assert c.end == "closed"
+    np.testing.assert_allclose(folds, [-0.5, 0.5], atol=1e-9)
+    assert 2 * np.pi - 0.2 < c.points[-1].x[0] - c.points[0].x[0] < 2 * np.pi + 0.2
+    plain = continue_curve(f, [0.0, 0.0], settings=st, tangent0=np.array([1.0, 0.5]))
+    assert plain.end == "max_points" and len([z for z in plain.crossings if z.name == "fold"]) > 2
+
+
 def test_saddle_node_fold_located():
     # x^2 = lam - 0.3: one fold at lam = 0.3, x = 0
     c = continue_curve(lambda u: np.array([u[0] ** 2 - u[1] + 0.3]), [0.5, 0.55],

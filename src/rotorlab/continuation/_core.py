@@ -79,6 +79,10 @@ class ContinuationSettings:
         Correct each step with the Jacobian of the last accepted point (a chord method: no new
         Jacobian during the iterations; full Newton only where the chord iteration fails). For
         residuals whose Jacobian costs many residual calls (the fold and Hopf curves).
+    periodic : tuple of int
+        Indices of unknowns that are angles (period 2 pi): a curve that comes back to its first
+        point with such an angle a whole number of turns on is closed (it would otherwise go
+        round again, e.g. a steady motion whose ball angles wind once around the race).
     """
 
     ds: float = 1e-2
@@ -92,6 +96,7 @@ class ContinuationSettings:
     bounds: tuple[float, float] = (-math.inf, math.inf)
     direction: int = 1
     chord: bool = False
+    periodic: tuple[int, ...] = ()
 
     def __post_init__(self) -> None:
         if not (0 < self.ds_min <= self.ds <= self.ds_max):
@@ -377,7 +382,7 @@ def continue_curve(
             on_point(q)
         if end == "bound":
             break
-        if len(points) > 3 and _passes(points[0].u, p.u, q.u, scale):
+        if len(points) > 3 and _passes(points[0].u, p.u, q.u, scale, st.periodic):
             end = "closed"
             break
         p = q
@@ -389,8 +394,13 @@ def continue_curve(
                  test_values={k: np.array(v) for k, v in values.items()})
 
 
-def _passes(u0: np.ndarray, a: np.ndarray, b: np.ndarray, scale: np.ndarray) -> bool:
-    """True if the chord from ``a`` to ``b`` passes (within 5 % of its length) through ``u0``."""
+def _passes(u0: np.ndarray, a: np.ndarray, b: np.ndarray, scale: np.ndarray, periodic: tuple[int, ...] = ()) -> bool:
+    """True if the chord from ``a`` to ``b`` passes (within 5 % of its length) through ``u0``
+    (its ``periodic`` angles taken the whole number of turns nearest ``a``)."""
+    u0 = np.array(u0, dtype=float)
+    if periodic:
+        i = list(periodic)
+        u0[i] = a[i] + np.angle(np.exp(1j * (u0[i] - a[i])))
     d, e = (u0 - a) / scale, (b - a) / scale
     ee = float(e @ e)
     if ee == 0.0:

@@ -21,6 +21,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Sequence
+from dataclasses import replace
 
 import numpy as np
 
@@ -153,8 +154,6 @@ class _Builder:
 
 def _from(z, curve: Curve) -> Curve:
     """``curve`` with the branch point it started from as its first point."""
-    from dataclasses import replace
-
     crossings = tuple(replace(c, index=c.index + 1) for c in curve.crossings)
     values = {k: np.concatenate([[np.nan], v]) for k, v in curve.test_values.items()}
     return Curve(points=(z.point,) + curve.points, crossings=crossings, end=curve.end, test_values=values)
@@ -259,6 +258,8 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
         raise ValueError(f"no {start_from} steady motion at {parameter} = {start:g} {unit} nor at {stop:g} {unit}"
                          if isinstance(start_from, str) else "start_from: no starting states given")
     st = settings if settings is not None else equilibrium_settings(start, stop)
+    if not st.periodic:  # the ball angles: a branch that winds a whole turn back to its start is closed
+        st = replace(st, periodic=tuple(range(prob.nz, prob.n)))
     scale = _scale(prob, start, stop)
     tests = {"fold": fold_test, "branch": branch_point_test, "hopf": lambda p: prob.hopf_test(p.u)}
     build = _Builder(prob, parameter, unit)
