@@ -44,6 +44,7 @@ For implementers
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
 from dataclasses import replace
 from typing import Any, ClassVar
 
@@ -52,7 +53,7 @@ import numpy as np
 __all__ = ["AbstractPart", "AbstractKernelPart", "part_slots"]
 
 
-class AbstractKernelPart:
+class AbstractKernelPart(ABC):
     """The sizes and kernel lines of a part (see the module docstring, item 2)."""
 
     key: ClassVar[str] = ""
@@ -60,17 +61,20 @@ class AbstractKernelPart:
     n_param: ClassVar[int] = 0
     n_stations: ClassVar[int] = 0
 
+    @abstractmethod
     def force_lines(self, lay, L: list[str], place) -> list[tuple[int, str, str]]:
-        raise NotImplementedError
+        ...
 
+    @abstractmethod
     def rate_lines(self, lay, place) -> list[str]:
-        raise NotImplementedError
+        ...
 
+    @abstractmethod
     def dissipation_terms(self, lay, place) -> list[str]:
-        raise NotImplementedError
+        ...
 
 
-class AbstractPart:
+class AbstractPart(ABC):
     """An attachment of a machine (see the module docstring's "For implementers" list)."""
 
     key: ClassVar[str] = ""
@@ -78,30 +82,33 @@ class AbstractPart:
     fields: ClassVar[tuple[tuple[str, str, tuple], ...]] = ()
     node: int
 
+    @abstractmethod
     def kernel(self) -> AbstractKernelPart:
-        raise NotImplementedError
+        ...
 
+    @abstractmethod
     def stations(self, machine) -> list[np.ndarray]:
-        raise NotImplementedError
+        ...
 
+    @abstractmethod
     def pack(self, machine) -> np.ndarray:
-        raise NotImplementedError
+        ...
 
+    @abstractmethod
     def state_names(self, index: int) -> list[str]:
         """Names of its states; ``index`` counts the parts of its key (0, 1, ...)."""
-        raise NotImplementedError
 
+    @abstractmethod
     def initial(self, machine, y: np.ndarray, place) -> None:
         """Set its states in the new initial state ``y`` (structure coordinates already set)."""
-        raise NotImplementedError
 
+    @abstractmethod
     def energy(self, machine, y: np.ndarray, place) -> float:
         """Its kinetic and potential energy (J) at the fixed-frame state ``y``."""
-        raise NotImplementedError
 
+    @abstractmethod
     def rotating_refusal(self) -> str | None:
         """Why the co-rotating frame has no equilibria with this part, None if it has."""
-        raise NotImplementedError
 
     def dynamic_stiffness(self, machine, omega: float) -> np.ndarray | None:
         """What it adds to the structure's dynamic stiffness ``K + i w C - w^2 M`` over the DOFs
