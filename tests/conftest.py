@@ -146,3 +146,12 @@ def browser_page(chromium):
     page = BrowserPage(chromium)
     yield page
     page.page.close()
+
+
+@pytest.fixture(autouse=True)
+def _no_inherited_terminal_size(monkeypatch):
+    """Every test sees no ``COLUMNS``/``LINES``: tables are printed 100 columns wide when not a
+    terminal unless ``COLUMNS`` says otherwise, and a test run before (e.g. the docs build's
+    notebook kernels) may leave them set in the worker's environment."""
+    monkeypatch.delenv("COLUMNS", raising=False)
+    monkeypatch.delenv("LINES", raising=False)

@@ -101,7 +101,7 @@ def test_map_starts_argument_checks():
         map_starts(MAPPER, {"psi": [1.0]}, chunk_size=0)
     with pytest.raises(TypeError, match="AbstractMapper"):
         map_starts(object(), {"psi": [1.0]})
-    with pytest.raises(ValueError, match="ToroidalBall.rolling_friction"):
+    with pytest.raises(ValueError, match=r"rolling_friction = -1: must be >= 0"):
         map_starts(MAPPER, {"rolling_friction": [-1.0]})
 
 

@@ -180,6 +180,8 @@ class ContinuationSpec(AbstractAnalysisSpec):
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """Check the model type and that ``param2`` and ``range2`` come together."""
         issues = super().case_issues(model)
+        if issues:  # a model this analysis does not take: the parameters are not its to check
+            return issues
         if (self.param2 is None) != (self.range2 is None):
             key = "range2" if self.range2 is None else "param2"
             issues.append(Issue((key,), "param2 and range2 come together: give both or neither",

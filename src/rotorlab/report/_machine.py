@@ -120,9 +120,19 @@ def _run_up(ds: Any, rows: Rows):
 _TABLES = {"steady": _steady, "stability-chart": _chart, "simulate": _simulate, "run-up": _run_up}
 
 
+#: Columns left out when no row has a value in them (no column of blanks).
+_OPTIONAL = ("settles by (s)",)
+
+
 def machine_rows_table(ds: Any, rows: Rows):
-    """``(header, body)`` of a machine result's table."""
-    return _TABLES[ds.attrs["analysis"]](ds, rows)
+    """``(header, body)`` of a machine result's table (an optional column that no row fills is
+    left out)."""
+    header, body = _TABLES[ds.attrs["analysis"]](ds, rows)
+    empty = {i for i, h in enumerate(header) if h in _OPTIONAL and all(b[i] in ("", "-") for b in body)}
+    if empty:
+        header = tuple(h for i, h in enumerate(header) if i not in empty)
+        body = [tuple(v for i, v in enumerate(b) if i not in empty) for b in body]
+    return header, body
 
 
 def machine_section(ds: Any, rows: Rows) -> str:
