@@ -94,7 +94,8 @@ def pytest_terminal_summary(terminalreporter, exitstatus, config):
 # ``playwright install``: no browser is downloaded). A page may load nothing from the network: the
 # report is one file that must work offline; every request that is not a file is refused and
 # listed, and the page's errors are collected.
-CHROMIUM = "/usr/bin/chromium"
+#: Names of a Chromium executable looked up on PATH (``ROTORLAB_CHROMIUM`` names one explicitly).
+CHROMIUM_NAMES = ("chromium", "chromium-browser", "google-chrome", "chrome")
 CHROMIUM_ARGS = ["--headless", "--no-sandbox", "--disable-gpu", "--disable-background-networking",
                  "--disable-component-update", "--disable-sync"]
 
@@ -129,13 +130,16 @@ class BrowserPage:
 @pytest.fixture(scope="session")
 def chromium():
     """A headless Chromium (session-wide); fails, naming the Debian package, where it is missing."""
-    if not os.path.exists(CHROMIUM):
-        pytest.fail(f"{CHROMIUM} is missing: install the Debian package chromium (apt-get install chromium); "
-                    "the report and the docs are checked in a real browser")
+    given = os.environ.get("ROTORLAB_CHROMIUM")
+    found = shutil.which(given) if given else next(filter(None, map(shutil.which, CHROMIUM_NAMES)), None)
+    if found is None:
+        pytest.fail(f"no Chromium found ({given or ', '.join(CHROMIUM_NAMES)} on PATH): install the Debian "
+                    "package chromium (apt-get install chromium) or set ROTORLAB_CHROMIUM; the report and the "
+                    "docs are checked in a real browser")
     from playwright.sync_api import sync_playwright
 
     with sync_playwright() as pw:
-        browser = pw.chromium.launch(executable_path=CHROMIUM, args=CHROMIUM_ARGS)
+        browser = pw.chromium.launch(executable_path=found, args=CHROMIUM_ARGS)
         yield browser
         browser.close()
 
