@@ -18,6 +18,8 @@ balanced state is stable.
 
 from __future__ import annotations
 
+from abc import ABC, abstractmethod
+
 import math
 from dataclasses import dataclass
 from typing import Any
@@ -89,18 +91,78 @@ def _num(x) -> float | None:
     return x if math.isfinite(x) else None
 
 
-class _Augmented:
-    """The fold or Hopf system in ``u = (x, p1, p2)``."""
+class _Augmented(ABC):
+    """The fold or Hopf system in ``u = (x, p1, p2)``: the equilibrium equations and one
+    condition (:class:`_Fold`, :class:`_Hopf`, by the special point's type in :data:`_SYSTEMS`)."""
 
-    def __init__(self, prob: MachineEquilibria, kind: str, u0: np.ndarray, frequency: float):
-        self.prob, self.kind, self.n = prob, kind, prob.n
-        self.vec = None
-        if kind == "fold":
-            jx = prob.jacobian(u0)[:, :self.n]
-            w, _, vt = np.linalg.svd(jx)
-            self.b, self.c = w[:, -1], vt[-1]
-        else:
-            self.restart(frequency)
+    def __init__(self, prob: MachineEquilibria, u0: np.ndarray, frequency: float):
+        self.prob, self.n = prob, prob.n
+
+    @abstractmethod
+    def condition(self, u) -> float:
+        """The extra equation that makes the equilibrium this special point."""
+
+    def restart(self, frequency: float) -> None:
+        """Before each half of the curve (nothing to forget here)."""
+
+    def finish(self, u: np.ndarray, p2: float, ends: list[str]) -> tuple[np.ndarray, np.ndarray, list[str]]:
+        """The curve's points, their frequency (rad/s; NaN: none) and how each half ended."""
+        return u, np.full(len(u), np.nan), ends
+
+    def condition_row(self, u) -> np.ndarray:
+        """The condition's derivative over ``u``: central differences (steps 1e-4 of each
+        unknown's scale)."""
+        row = np.empty(u.size)
+        for j in range(u.size):
+            h = 1e-4 * (self.scale[j] if j < self.n else max(abs(u[j]), self.scale[j]))
+            up, um = u.copy(), u.copy()
+            up[j] += h
+            um[j] -= h
+            row[j] = (self.condition(up) - self.condition(um)) / (2.0 * h)
+        return row
+
+    def jacobian(self, u) -> np.ndarray:
+        """Rows of F from :meth:`MachineEquilibria.jacobian`, then the condition's row."""
+        u = np.asarray(u, dtype=float)
+        return np.vstack([self.prob.jacobian(u), self.condition_row(u)])
+
+    def residual(self, u) -> np.ndarray:
+        f = self.prob.residual(u)
+        if not np.all(np.isfinite(f)):  # a parameter value the model refuses
+            return np.full(self.n + 1, np.nan)
+        return np.concatenate([f, [self.condition(u)]])
+
+    def follow(self, point) -> float:
+        """A 'test' that never changes sign, called at each accepted point."""
+        return 1.0
+
+
+class _Fold(_Augmented):
+    """A zero eigenvalue: the last entry of the bordered system's solution (a fold curve; the
+    condition's row by central differences, the condition holding a difference Jacobian itself)."""
+
+    def __init__(self, prob: MachineEquilibria, u0: np.ndarray, frequency: float):
+        super().__init__(prob, u0, frequency)
+        jx = prob.jacobian(u0)[:, :self.n]
+        w, _, vt = np.linalg.svd(jx)
+        self.b, self.c = w[:, -1], vt[-1]
+
+    def condition(self, u) -> float:
+        jx = self.prob.jacobian(u)[:, :self.n]
+        a = np.block([[jx, self.b[:, None]], [self.c[None, :], np.zeros((1, 1))]])
+        rhs = np.zeros(self.n + 1)
+        rhs[-1] = 1.0
+        return float(np.linalg.solve(a, rhs)[-1])
+
+
+class _Hopf(_Augmented):
+    """The real part of the tracked pair's eigenvalue (a Hopf curve; the condition's row from the
+    crossing eigenvalue's derivative, :meth:`MachineEquilibria.eigenvalue_gradient`)."""
+
+    def __init__(self, prob: MachineEquilibria, u0: np.ndarray, frequency: float):
+        super().__init__(prob, u0, frequency)
+        self.frequency = frequency
+        self.restart(frequency)
 
     def restart(self, frequency: float) -> None:
         """Track the pair crossing at ``i frequency`` afresh (no eigenvector yet)."""
@@ -110,44 +172,41 @@ class _Augmented:
         return self.prob.eigen_triplet(u, self.ref, self.vec)[0]
 
     def condition(self, u) -> float:
-        if self.kind == "hopf":
-            return self.crossing(u).real
-        jx = self.prob.jacobian(u)[:, :self.n]
-        a = np.block([[jx, self.b[:, None]], [self.c[None, :], np.zeros((1, 1))]])
-        rhs = np.zeros(self.n + 1)
-        rhs[-1] = 1.0
-        return float(np.linalg.solve(a, rhs)[-1])
+        return self.crossing(u).real
 
-    def jacobian(self, u) -> np.ndarray:
-        """Rows of F from :meth:`MachineEquilibria.jacobian`; the condition's row: for a Hopf
-        curve the real part of the crossing eigenvalue's derivative (:meth:`MachineEquilibria.
-        eigenvalue_gradient`), for a fold curve central differences (steps 1e-4 of each unknown's
-        scale: the condition holds a difference Jacobian itself)."""
-        u = np.asarray(u, dtype=float)
-        if self.kind == "hopf":
-            _, v, w = self.prob.eigen_triplet(u, self.ref, self.vec)
-            return np.vstack([self.prob.jacobian(u), self.prob.eigenvalue_gradient(u, v, w).real])
-        row = np.empty(u.size)
-        for j in range(u.size):
-            h = 1e-4 * (self.scale[j] if j < self.n else max(abs(u[j]), self.scale[j]))
-            up, um = u.copy(), u.copy()
-            up[j] += h
-            um[j] -= h
-            row[j] = (self.condition(up) - self.condition(um)) / (2.0 * h)
-        return np.vstack([self.prob.jacobian(u), row])
-
-    def residual(self, u) -> np.ndarray:
-        f = self.prob.residual(u)
-        if not np.all(np.isfinite(f)):  # a parameter value the model refuses
-            return np.full(self.n + 1, np.nan)
-        return np.concatenate([f, [self.condition(u)]])
+    def condition_row(self, u) -> np.ndarray:
+        _, v, w = self.prob.eigen_triplet(u, self.ref, self.vec)
+        return self.prob.eigenvalue_gradient(u, v, w).real
 
     def follow(self, point) -> float:
-        """Move the Hopf reference to the accepted point's crossing eigenvalue and its mode (a
-        'test' that never changes sign)."""
-        if self.kind == "hopf":
-            self.ref, self.vec, _ = self.prob.eigen_triplet(point.u, self.ref, self.vec)
+        """Move the reference to the accepted point's crossing eigenvalue and its mode."""
+        self.ref, self.vec, _ = self.prob.eigen_triplet(point.u, self.ref, self.vec)
         return 1.0
+
+    def finish(self, u: np.ndarray, p2: float, ends: list[str]) -> tuple[np.ndarray, np.ndarray, list[str]]:
+        """The crossing pair's frequency at each point, followed outwards from the start; the
+        curve ends where the pair becomes real (a Bogdanov-Takens point)."""
+        prob = self.prob
+        freq = np.full(len(u), np.nan)
+        k0 = int(np.argmin(np.abs(u[:, -1] - p2)))
+        keep = np.ones(len(u), bool)
+        for order in (range(k0, len(u)), range(k0, -1, -1)):  # follow the pair outwards
+            self.restart(self.frequency)
+            for k in order:
+                lam = self.crossing(u[k])
+                big = max(np.abs(prob.eigenvalues(u[k])).max(), 1.0)
+                if abs(lam.imag) <= 1e-6 * big:  # the pair became real: a Bogdanov-Takens point
+                    keep[k:] = False if order.step > 0 else keep[k:]
+                    keep[:k + 1] = False if order.step < 0 else keep[:k + 1]
+                    ends = [e if (order.step > 0) != (j == 0) else "bogdanov-takens" for j, e in enumerate(ends)]
+                    break
+                freq[k] = abs(lam.imag)
+                self.ref, self.vec, _ = prob.eigen_triplet(u[k], self.ref, self.vec)
+        return u[keep], freq[keep], ends
+
+
+#: The augmented system of each special point type that continues in two parameters.
+_SYSTEMS = {"fold": _Fold, "hopf": _Hopf}
 
 
 def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: float, stop2: float, *,
@@ -173,7 +232,7 @@ def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: 
         raise ValueError(f"{parameter2}: the point was located at {p2:g}, outside the range {lo:g} to {hi:g}")
     x0 = prob.unknowns(point.state)
     u0 = np.concatenate([x0, [point.value, p2]])
-    system = _Augmented(prob, point.type, u0, point.frequency)
+    system = _SYSTEMS[point.type](prob, u0, point.frequency)
     scale = prob.scale([point.value, 1.0])
     scale[-1] = hi - lo
     system.scale = scale
@@ -184,30 +243,13 @@ def continue_special_point(model, point: SpecialPoint, parameter2: str, start2: 
         st = settings if settings is not None else ContinuationSettings(
             ds=0.02, ds_min=1e-6, ds_max=0.25, max_points=200, newton_tol=1e-8, bounds=(lo, hi), chord=True)
         st = ContinuationSettings(**{**st.__dict__, "bounds": (lo, hi), "direction": direction})
-        if point.type == "hopf":
-            system.restart(point.frequency)
+        system.restart(point.frequency)
         curve = continue_curve(system.residual, u0, jacobian=system.jacobian, scale=scale, settings=st,
                                tests={"follow": system.follow})
         halves.append(curve.u if direction > 0 else curve.u[::-1])
         ends.append(curve.end)
     u = np.concatenate([halves[0], halves[1][1:]]) if len(halves) == 2 else halves[0]
-    freq = np.full(len(u), np.nan)
-    if point.type == "hopf":
-        k0 = int(np.argmin(np.abs(u[:, -1] - p2)))
-        keep = np.ones(len(u), bool)
-        for order in (range(k0, len(u)), range(k0, -1, -1)):  # follow the pair outwards
-            system.restart(point.frequency)
-            for k in order:
-                lam = system.crossing(u[k])
-                big = max(np.abs(prob.eigenvalues(u[k])).max(), 1.0)
-                if abs(lam.imag) <= 1e-6 * big:  # the pair became real: a Bogdanov-Takens point
-                    keep[k:] = False if order.step > 0 else keep[k:]
-                    keep[:k + 1] = False if order.step < 0 else keep[:k + 1]
-                    ends = [e if (order.step > 0) != (j == 0) else "bogdanov-takens" for j, e in enumerate(ends)]
-                    break
-                freq[k] = abs(lam.imag)
-                system.ref, system.vec, _ = prob.eigen_triplet(u[k], system.ref, system.vec)
-        u, freq = u[keep], freq[keep]
+    u, freq, ends = system.finish(u, p2, ends)
     return TwoParameterCurve(type=point.type, parameters=(point.parameter, parameter2), values=u[:, -2:],
                              states=np.array([prob.state(v[:prob.n]) for v in u]), frequency=freq,
                              label=label, end="/".join(ends), boundary=point.changes_stability is not False)
@@ -246,7 +288,7 @@ def _passes_through(curve: TwoParameterCurve, point: SpecialPoint, p2: float) ->
             continue
         t = d[k] / (d[k] - d[k + 1])
         near = abs(v[k, 0] + t * (v[k + 1, 0] - v[k, 0]) - point.value) <= 0.25 * abs(v[k + 1, 0] - v[k, 0]) + 1e-9
-        if curve.type == "hopf":
+        if np.isfinite(f[k]) and np.isfinite(f[k + 1]):  # a curve with a frequency (Hopf): it must agree
             near = near and abs(f[k] + t * (f[k + 1] - f[k]) - point.frequency) <= 0.25 * abs(f[k + 1] - f[k]) + 1e-6 * point.frequency
         if near:
             return True

@@ -182,9 +182,13 @@ for _entry in (
                  lazy("rotorlab.cli._continuation:continuation_tables"), interactive=True),
     Presentation("knock", lazy("rotorlab.report._knock:knock_figures"), lazy("rotorlab.report._knock:knock_section"),
                  lazy("rotorlab.report._knock:knock_findings"), lazy("rotorlab.report._knock:knock_tables")),
-    *(Presentation(f"{kind}-margin", lazy(f"rotorlab.plot._margins:{kind}_margin_figures"),
-                   lazy(f"rotorlab.report._margins:{kind}_margin_section"),
-                   lazy(f"rotorlab.report._margins:{kind}_margin_findings"),
-                   lazy(f"rotorlab.report._margins:{kind}_margin_tables")) for kind in ("shock", "friction")),
+    Presentation("shock-margin", lazy("rotorlab.plot._margins:shock_margin_figures"),
+                 lazy("rotorlab.report._margins:shock_margin_section"),
+                 lazy("rotorlab.report._margins:shock_margin_findings"),
+                 lazy("rotorlab.report._margins:shock_margin_tables")),
+    Presentation("friction-margin", lazy("rotorlab.plot._margins:friction_margin_figures"),
+                 lazy("rotorlab.report._margins:friction_margin_section"),
+                 lazy("rotorlab.report._margins:friction_margin_findings"),
+                 lazy("rotorlab.report._margins:friction_margin_tables")),
 ):  # fmt: skip
     register_presentation(_entry)
