@@ -2,10 +2,10 @@
 balances with confidence over its operating range.
 
 Layers: a :class:`DesignProblem` says what varies (named parameters with bounds), what is
-minimised (one or two objectives of :data:`~rotorlab.analyses._design_registry.DESIGN_OBJECTIVES`),
+minimised (one or two objectives of :data:`~rotorlab.design.DESIGN_OBJECTIVES`),
 what must hold (the Wilson lower bound of P(balanced) at every operating value, upper limits on
 objectives) and the random starts; :func:`design_search` lets an optimiser of
-:data:`~rotorlab.analyses._design_registry.DESIGN_OPTIMIZERS` propose designs, evaluates each on
+:data:`~rotorlab.design.DESIGN_OPTIMIZERS` propose designs, evaluates each on
 the basin-stability sweep (:func:`rotorlab.explore.basin_stability_over`: Zarr store, resume, any
 executor, the vectorised lane driver), and re-simulates the winner from fresh random starts.
 
@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab.analyses._design_registry import DESIGN_OBJECTIVES, DESIGN_OPTIMIZERS, DesignPoint
+from rotorlab.design import DESIGN_OBJECTIVES, DESIGN_OPTIMIZERS, DesignPoint
 
 __all__ = ["DesignVariable", "DesignProblem", "design_search", "pareto_mask", "VERIFY_SEED_OFFSET"]
 
@@ -114,8 +114,8 @@ class DesignProblem:
             found = self.mapper.coordinate_parameter(name)
             if found is not None:
                 return found
-        space = self.model.parameters
-        return space[name] if name in space else None
+        space, key = self.model.parameters, name.removeprefix("model.")
+        return space[key] if key in space else None
 
     def issues(self) -> list[tuple[str, str]]:
         """Every problem as ``(key path, message)``: unknown objectives, parameters, bounds."""
@@ -189,7 +189,7 @@ class _Evaluator:
             model = pb.mapper.starts({k: np.array([float(v)]) for k, v in values.items()})[0]
             mapper = replace(pb.mapper, model=model)
         else:
-            model = pb.model.with_parameters(**values)
+            model = pb.model.with_parameters(**{k.removeprefix("model."): float(v) for k, v in values.items()})
         if pb.needs_starts:
             mapper = horizon_over(mapper, pb.operating_name, pb.operating, pb.horizon_given, "")[0]
             path = None if self.store is None else self.store / f"{tag}-{self.key(values)}.zarr"
