@@ -143,11 +143,24 @@ class DesignProblem:
             elif not (math.isfinite(v.low) and math.isfinite(v.high) and v.high > v.low):
                 out.append((f"vary.{v.name}", f"[{v.low:g}, {v.high:g}]: high must be > low"))
             else:
-                for bound in (v.low, v.high):
-                    if not p.admits(bound):
-                        out.append((f"vary.{v.name}", f"{bound:g} is outside the parameter's range: must be "
-                                                      f"{p.allowed}"))  # fmt: skip
+                bad = [b for b in (v.low, v.high) if not p.admits(b)]
+                if bad:
+                    out.append((f"vary.{v.name}", f"{bad[0]:g} is outside the parameter's range: must be {p.allowed}"))
+                else:
+                    out += [(f"vary.{v.name}", text) for text in self._model_refuses(v)]
         return out
+
+    def _model_refuses(self, v: DesignVariable) -> list[str]:
+        """The model's own refusal of either bound (a ball inside its tube, ...), if any."""
+        try:
+            for bound in (v.low, v.high):
+                if self.mapper is not None:
+                    self.mapper.starts({v.name: np.array([bound])})
+                else:
+                    self.model.with_parameters(**{v.name.removeprefix("model."): bound})
+        except ValueError as exc:
+            return [str(exc)]
+        return []
 
     def _known_names(self) -> str:
         names = list(getattr(self.mapper, "coordinate_units", {}) or [])
@@ -349,8 +362,11 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
                                                           for n in problem.objectives]), {"units": "SI"})  # fmt: skip
     units = {v.name: (getattr(problem.parameter(v.name), "unit", "") or "") for v in problem.variables}
     constraint_names = list(trials[0]["margins"]) if trials else []
-    coords = {"trial": np.arange(len(trials)), "variable": [v.name for v in problem.variables],
-              "objective": list(problem.objectives), "constraint": constraint_names,
+    one = {"units": "1"}
+    coords = {"trial": ("trial", np.arange(len(trials)), {"units": "1", "description": "evaluation number"}),
+              "variable": ("variable", [v.name for v in problem.variables], one),
+              "objective": ("objective", list(problem.objectives), one),
+              "constraint": ("constraint", constraint_names, one),
               dim: (dim, np.asarray(problem.operating, dtype=float), {"units": "rad/s" if dim == "spin_speed" else ""})}
     attrs = {"best": best, "optimizer": optimizer, "budget": int(budget), "optimizer_seed": int(optimizer_seed),
              "seed": int(problem.seed), "verify_seed": verify_seed, "starts": int(problem.starts),

@@ -175,6 +175,7 @@ class DesignSpec(BasinStabilitySpec):
                                     name))  # fmt: skip
             elif len(entry) != 2 or not entry[1] > entry[0]:
                 issues.append(Issue(("vary", name), "give [low, high] with high > low", list(entry)))
+        issues += self._starts_issues()
         from rotorlab.design import DESIGN_OPTIMIZERS
 
         most = DESIGN_OPTIMIZERS[self.optimizer].objectives
@@ -182,6 +183,31 @@ class DesignSpec(BasinStabilitySpec):
             issues.append(Issue(("objectives",), f"the optimiser {self.optimizer!r} takes {most} objective(s); tpe takes "
                                                  "two (a Pareto front)", list(self.objectives)))  # fmt: skip
         return issues
+
+    def _starts_issues(self) -> list[Issue]:
+        """Too few starts for ``min_balanced``: even with every start balanced the Wilson lower
+        bound stays below it, so no design could pass."""
+        import math
+
+        from rotorlab._wilson import wilson_interval
+
+        if self.min_balanced is None:
+            return []
+        n = self.design_starts
+        best = float(wilson_interval(n, n, self.confidence)[0])
+        if best >= self.min_balanced:
+            return []
+        need = n
+        while float(wilson_interval(need, need, self.confidence)[0]) < self.min_balanced:
+            need = math.ceil(need * 1.05) + 1
+        lo = n
+        while lo < need:  # the least count that reaches it
+            mid = (lo + need) // 2
+            lo, need = (mid + 1, need) if float(wilson_interval(mid, mid, self.confidence)[0]) < self.min_balanced \
+                else (lo, mid)  # fmt: skip
+        return [Issue(("starts",), f"even if every start balances, the {self.confidence * 100:g} % Wilson lower bound "
+                                   f"of {n} starts is {best:.4f} < min_balanced = {self.min_balanced:g}: give starts >= "
+                                   f"{need}", n)]  # fmt: skip
 
     def describe(self, model: AbstractModelSpec) -> str:
         names = ", ".join(self.vary)
