@@ -239,6 +239,10 @@ class _Evaluator:
         return [rec["metrics"][n] for n in self.problem.objectives], violations
 
 
+class _BudgetSpent(Exception):
+    """Raised by the evaluation after the budget, to stop an optimiser that asks for more."""
+
+
 def pareto_mask(costs: np.ndarray, feasible: np.ndarray) -> np.ndarray:
     """The feasible rows of ``costs`` (rows: designs, columns: objectives to minimise) that no
     other feasible row dominates.
@@ -288,7 +292,8 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
         Dims ``trial`` (evaluation order), ``variable``, ``objective``, ``constraint`` and the
         operating dim: ``value`` (trial, variable; SI), ``objective_value`` (trial, objective),
         ``margin`` (trial, constraint; P(balanced): the lower bound minus the level, a limit:
-        (limit - value) / limit; >= 0 holds), ``feasible`` and ``pareto`` (trial), ``balanced``,
+        (limit - value) / limit; >= 0 holds), ``feasible`` and ``pareto`` (trial; the feasible
+        designs no other feasible one dominates; one objective: the winner), ``balanced``,
         ``balanced_low``, ``balanced_high`` (trial, operating), and the winner's check
         ``verify_balanced``, ``verify_low``, ``verify_high`` (operating) and
         ``verify_objective`` (objective); attrs ``best`` (trial of the winner, -1: no feasible
@@ -313,20 +318,21 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
     ev = _Evaluator(problem, folder, resume, executor)
-    if progress is not None:
-        inner = ev.__call__
 
-        def counted(values):
-            out = inner(values)
+    def call(values):
+        if len(ev.trials) >= budget:  # the budget holds for any optimiser (a generation may be larger)
+            raise _BudgetSpent
+        out = ev(values)
+        if progress is not None:
             progress(len(ev.trials), int(budget))
-            return out
+        return out
 
-        call = counted
-    else:
-        call = ev
     cpu = time.process_time()
-    entry.run(call, [(v.name, v.low, v.high) for v in problem.variables], int(budget), int(optimizer_seed),
-              len(problem.objectives))  # fmt: skip
+    try:
+        entry.run(call, [(v.name, v.low, v.high) for v in problem.variables], int(budget), int(optimizer_seed),
+                  len(problem.objectives))  # fmt: skip
+    except _BudgetSpent:
+        pass
     search_cpu = time.process_time() - cpu
     trials = ev.trials
     costs = np.array([[t["metrics"][n] for n in problem.objectives] for t in trials])
@@ -334,6 +340,8 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
     feasible = np.all(margins >= 0.0, axis=1) & np.all(np.isfinite(costs), axis=1)
     pareto = pareto_mask(costs, feasible)
     best = int(np.flatnonzero(pareto)[np.argmin(costs[pareto, 0])]) if pareto.any() else -1
+    if len(problem.objectives) == 1:  # one objective: the front is the winner (the first of equals)
+        pareto = np.arange(len(trials)) == best
     dim = problem.operating_name
     n_op = len(problem.operating)
     nan_op = np.full(n_op, np.nan)
@@ -375,5 +383,6 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
              "limits": json.dumps(dict(problem.limits)), "units": json.dumps(units),
              "objective_units": json.dumps({n: DESIGN_OBJECTIVES[n].unit for n in problem.objectives}),
              "bounds": json.dumps({v.name: [v.low, v.high] for v in problem.variables}),
-             "cpu_s": search_cpu, "verify_cpu_s": check["cpu_s"] if check else 0.0}  # fmt: skip
+             "cpu_s": search_cpu, "verify_cpu_s": check["cpu_s"] if check else 0.0,
+             "trial_cpu_s": json.dumps([t["cpu_s"] for t in trials])}  # fmt: skip
     return xr.Dataset(data, coords=coords, attrs=attrs)

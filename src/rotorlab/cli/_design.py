@@ -105,6 +105,11 @@ def design_command(
         executor = checked_outputs(plot, out, None, False, scheduler, workers)
         _store(store, resume)
         loaded = _load(case, sets, settings)
+        from rotorlab.io._coordinates import mappable_text
+        from rotorlab.io._sweep_specs import sweep_coordinates
+
+        if not sweep_coordinates(loaded.model, "ic"):  # P(balanced) needs random starts of a model with balls
+            raise BadInput(f"case {loaded.name}: design needs {mappable_text(loaded.model)}")
         base = find_analysis(loaded, "design", analysis)
         data = base.model_dump() if base is not None else {"type": "design", "name": "design"}
         updates: dict[str, Any] = {"starts": starts, "seed": seed, "budget": budget, "optimizer": optimizer,
@@ -134,7 +139,7 @@ def design_command(
              json_mode=json_out)  # fmt: skip
         from rotorlab.sweep import ExecutorError, SweepStoreError
 
-        with progress_bar(settings, {spec.name: spec.budget}) as update:
+        with progress_bar(settings, {spec.name: spec.budget}, {spec.name: "designs"}) as update:
             try:
                 ds = run_design_analysis(loaded.model, spec, progress=lambda d, t: update(spec.name, d, t),
                                          store=store, resume=resume, executor=executor)  # fmt: skip

@@ -145,6 +145,21 @@ def residual_vibration(point: DesignPoint) -> float:
     return float(np.max(means)) if means else math.inf
 
 
+def settle_time(point: DesignPoint) -> float:
+    """Time (s) by which 95 % of the balanced starts had balanced for good (the horizon from which
+    each stayed balanced, ``label_since``), the largest over the operating values; ``inf`` where
+    no start balanced. Resolved to the classification horizons (``n_horizons``)."""
+    ds = point.stability
+    k = list(ds["regime"].values).index("balanced")
+    since = np.asarray(ds["label_since"].values, dtype=float)
+    outcome = np.asarray(ds["outcome"].values)
+    out = []
+    for s, o in zip(since, outcome):
+        s = s[(o == k) & np.isfinite(s)]
+        out.append(float(np.quantile(s, 0.95)) if s.size else math.inf)
+    return float(np.max(out)) if out else math.inf
+
+
 def receptance_peak(point: DesignPoint) -> float:
     """Largest linear receptance (m/N) of the first unbalance's station over the operating range:
     its response to a unit rotating force, with the balls locked and the absorbers' dynamic
@@ -209,6 +224,8 @@ def _register_builtins() -> None:
         Objective("ball-mass", "kg", "total mass of the balls", False, ball_mass),
         Objective("residual-vibration", "m", "mean disc deflection after start-up from random starts, the largest "
                   "over the operating range", True, residual_vibration),
+        Objective("settle-time", "s", "time by which 95 % of the balanced random starts had balanced, the largest "
+                  "over the operating range", True, settle_time),
         Objective("receptance-peak", "m/N", "largest linear receptance of the unbalance's station over the operating "
                   "range (response to a unit rotating force)", False, receptance_peak),
     ):  # fmt: skip

@@ -88,20 +88,22 @@ def _table(ds: xarray.Dataset, rows: Rows, only_front: bool) -> tuple[list[str],
     objs = [str(o) for o in ds["objective"].values]
     head = ["#", *names, *objs, "P(balanced) low", "feasible", ""]
     body = []
-    for r in rows:
-        if only_front and not (r["pareto"] or r["best"]):
-            continue
+    if only_front and len(objs) == 1:  # the winner and the next best feasible designs
+        shown = sorted((r for r in rows if r["feasible"]), key=lambda r: r["objectives"][objs[0]])[:5]
+    else:
+        shown = [r for r in rows if r["pareto"] or r["best"] or not only_front]
+    for r in shown:
         low = r["balanced_low"]
         body.append([str(r["trial"]), *(people.quantity(r["values"][n], units.get(n, "")) for n in names),
                      *(people.quantity(r["objectives"][o], ounits.get(o, "")) for o in objs),
                      "–" if low is None else people.number(low, 4), "yes" if r["feasible"] else "no",
-                     "winner" if r["best"] else ("Pareto" if r["pareto"] else "")])  # fmt: skip
+                     "winner" if r["best"] else ("Pareto" if r["pareto"] and len(objs) > 1 else "")])  # fmt: skip
     return head, body
 
 
 def design_section(ds: xarray.Dataset, rows: Rows) -> str:
-    """HTML: the recommendation, margins, check, what was not explored, the front (or the best
-    designs) as a table."""
+    """HTML: the recommendation, margins, check, what was not explored, the Pareto front (one
+    objective: the five best feasible designs) as a table."""
     from html import escape
 
     from rotorlab.report._table import table
