@@ -213,7 +213,9 @@ def _de_run(evaluate, variables: Sequence[tuple[str, float, float]], budget: int
     def f(x):
         objectives, violations = evaluate(dict(zip([v[0] for v in variables], map(float, x))))
         excess = float(sum(max(0.0, v) for v in violations))
-        return 1e300 + excess if excess > 0 or not math.isfinite(objectives[0]) else float(objectives[0])
+        if excess > 0 or not math.isfinite(objectives[0]):  # after every feasible design, by its violation
+            return 1e30 * (1.0 + min(excess, 1e6))
+        return float(objectives[0])
 
     differential_evolution(f, [(lo, hi) for _, lo, hi in variables], seed=int(seed), popsize=per, maxiter=generations,
                            init="latinhypercube", polish=False, tol=0.0, atol=0.0, updating="deferred")  # fmt: skip
