@@ -133,3 +133,29 @@ def test_the_design_command_and_rotorlab_run_with_a_design_analysis(case, tmp_pa
     html = next(out.glob("*.html")).read_text(encoding="utf-8")
     assert "Build ball_mass = " in html and "Not explored:" in html and "fresh random starts" in html
     assert (out / "light_design.png").exists() or list(out.rglob("light_design.png"))
+
+
+def test_the_problem_names_the_key_path_and_what_is_allowed():
+    from rotorlab.analyses import DesignProblem, DesignVariable, build_model
+
+    machine = build_model(load_case("pico21-balancer").model)
+    ops = np.array([1000.0])
+
+    def refusal(variables, objectives=("ball-mass",), **kw):
+        with pytest.raises(ValueError) as err:
+            DesignProblem(machine, variables, objectives, ops, **kw)
+        return str(err.value)
+
+    # a name that changes the compiled layout (the structure's mode count) is refused, saying so
+    assert "vary.n_modes: changes the compiled layout" in refusal((DesignVariable("n_modes", 2, 4),))
+    text = refusal((DesignVariable("races[0].balls[0].mass", -0.01, 0.02),))
+    assert "vary.races[0].balls[0].mass: -0.01 is outside the parameter's range: must be > 0 kg" in text
+    text = refusal((DesignVariable("nope", 0.0, 1.0),))
+    assert "vary.nope: not a named parameter of this model (allowed: " in text and "races[0].balls[0].mass" in text
+    assert "'fastest' is not an objective (allowed: ball-mass" in refusal(
+        (DesignVariable("races[0].balls[0].mass", 0.01, 0.02),), ("fastest",))
+    # P(balanced) needs random starts: a model without its mapper is refused
+    assert "min_balanced: needs a model with a regime mapper" in refusal(
+        (DesignVariable("races[0].balls[0].mass", 0.01, 0.02),), min_balanced=0.99)
+    ok = DesignProblem(machine, (DesignVariable("model.races[0].balls[0].mass", 0.01, 0.02),), ("ball-mass",), ops)
+    assert ok.parameter("model.races[0].balls[0].mass").unit == "kg"
