@@ -78,7 +78,8 @@ def design_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
         rows.append({
             "trial": i,
             "values": {str(v): float(ds["value"].values[i, k]) for k, v in enumerate(ds["variable"].values)},
-            "objectives": {str(o): float(ds["objective_value"].values[i, k]) for k, o in enumerate(ds["objective"].values)},
+            "objectives": {str(o): float(ds["objective_value"].values[i, k])
+                           for k, o in enumerate(ds["objective"].values)},
             "margins": {str(c): float(ds["margin"].values[i, k]) for k, c in enumerate(ds["constraint"].values)},
             "balanced_low": float(np.min(low)) if np.isfinite(low).all() and low.size else None,
             "feasible": bool(ds["feasible"].values[i]), "pareto": bool(ds["pareto"].values[i]), "best": i == best,
@@ -109,8 +110,8 @@ def recommendation(ds: xarray.Dataset) -> str:
         return (f"No design of the {ds.sizes['trial']} evaluated met every constraint: widen the bounds of "
                 f"{', '.join(names)}, relax a limit, or raise the budget.")  # fmt: skip
     values = ", ".join(f"{n} = {_value_text(ds, n, float(ds['value'].values[best, k]))}" for k, n in enumerate(names))
-    objs = ", ".join(f"{o} {people.quantity(float(ds['objective_value'].values[best, k]), _unit(ds, 'objective_units', o))}"
-                     for k, o in enumerate(ds["objective"].values))  # fmt: skip
+    objs = ", ".join(f"{o} {people.quantity(float(v), _unit(ds, 'objective_units', o))}"
+                     for o, v in zip(ds["objective"].values, ds["objective_value"].values[best]))  # fmt: skip
     text = f"Build {values}: {objs}"
     low = ds["balanced_low"].values[best]
     if np.isfinite(low).all():
@@ -133,8 +134,8 @@ def design_document(ds: xarray.Dataset) -> dict[str, Any]:
         "verify_seed": int(ds.attrs["verify_seed"]), "starts": int(ds.attrs["starts"]),
         "operating": {"param": dim, "values": floats(ds[dim].values)},
         "winner": design_rows(ds)[best] if best >= 0 else None,
-        "search_interval": {"low": floats(ds["balanced_low"].values[best]), "high": floats(ds["balanced_high"].values[best])}
-        if best >= 0 else None,
+        "search_interval": {"low": floats(ds["balanced_low"].values[best]),
+                            "high": floats(ds["balanced_high"].values[best])} if best >= 0 else None,
         "check": {"balanced": floats(ds["verify_balanced"].values), "low": floats(ds["verify_low"].values),
                   "high": floats(ds["verify_high"].values), "objectives": floats(ds["verify_objective"].values),
                   "inside_search_interval": check_agrees(ds)},

@@ -16,7 +16,7 @@ from rotorlab._limits import MAX_STARTS
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app, find_analysis
 from rotorlab.cli._options import MAX_SEED, count_option
 from rotorlab.cli._output import BadInput, handled, info, progress_bar
-from rotorlab.cli._sweep_common import SchedulerOpt, WorkersOpt
+from rotorlab.cli._sweep_common import OutNcOpt, ResumeOpt, SchedulerOpt, WorkersOpt
 
 __all__ = ["design_command"]
 
@@ -64,7 +64,8 @@ def design_command(
         "--vary", metavar="NAME=LOW:HIGH", help="A named parameter varied between bounds (repeatable; replaces the "
         "case's vary table).")] = None,
     objective: Annotated[Optional[list[str]], typer.Option(  # noqa: UP007
-        "--objective", metavar="NAME", help="An objective to minimise (repeatable, at most two: a Pareto front).")] = None,
+        "--objective", metavar="NAME", help="An objective to minimise (repeatable, at most two: a Pareto "
+        "front).")] = None,
     param: Annotated[Optional[str], typer.Option(  # noqa: UP007
         "--param", metavar="NAME=A:B:N", help="The operating range (spin_speed=1800rpm:2400rpm:3).")] = None,
     starts: Annotated[Optional[int], count_option(  # noqa: UP007
@@ -81,11 +82,10 @@ def design_command(
     store: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--store", metavar="DIR", help="Checkpoint: every design's starts go to a Zarr store in this folder; an "
         "interrupted search continues with --resume.")] = None,
-    resume: Annotated[bool, typer.Option("--resume", help="Continue the search in --store.")] = False,
+    resume: ResumeOpt = False,
     scheduler: SchedulerOpt = None,
     workers: WorkersOpt = None,
-    out: Annotated[Optional[Path], typer.Option(  # noqa: UP007
-        "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")] = None,
+    out: OutNcOpt = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--plot", metavar="FILE", help="Save the designs figure (PNG, PDF or SVG).")] = None,
     sets: SetOpt = None,
@@ -149,5 +149,6 @@ def design_command(
         from rotorlab.plot._design import design_figure
         from rotorlab.report._design import design_tables
 
+        tables = lambda: design_tables({spec.name: ds}, {spec.name: design_rows(ds)})  # noqa: E731
         write_and_report(loaded, spec.name, ds, lambda: design_figure(ds), plot, out, json_out,
-                         lambda: design_document(ds), lambda: design_tables({spec.name: ds}, {spec.name: design_rows(ds)}))
+                         lambda: design_document(ds), tables)

@@ -180,8 +180,8 @@ class DesignSpec(BasinStabilitySpec):
 
         most = DESIGN_OPTIMIZERS[self.optimizer].objectives
         if len(self.objectives) > most:
-            issues.append(Issue(("objectives",), f"the optimiser {self.optimizer!r} takes {most} objective(s); tpe takes "
-                                                 "two (a Pareto front)", list(self.objectives)))  # fmt: skip
+            issues.append(Issue(("objectives",), f"the optimiser {self.optimizer!r} takes {most} objective(s); "
+                                                 "tpe takes two (a Pareto front)", list(self.objectives)))  # fmt: skip
         return issues
 
     def _starts_issues(self) -> list[Issue]:
@@ -205,9 +205,9 @@ class DesignSpec(BasinStabilitySpec):
             mid = (lo + need) // 2
             lo, need = (mid + 1, need) if float(wilson_interval(mid, mid, self.confidence)[0]) < self.min_balanced \
                 else (lo, mid)  # fmt: skip
-        return [Issue(("starts",), f"even if every start balances, the {self.confidence * 100:g} % Wilson lower bound "
-                                   f"of {n} starts is {best:.4f} < min_balanced = {self.min_balanced:g}: give starts >= "
-                                   f"{need}", n)]  # fmt: skip
+        return [Issue(("starts",), f"even if every start balances, the {self.confidence * 100:g} % Wilson lower "
+                                   f"bound of {n} starts is {best:.4f} < min_balanced = {self.min_balanced:g}: "
+                                   f"give starts >= {need}", n)]  # fmt: skip
 
     def describe(self, model: AbstractModelSpec) -> str:
         names = ", ".join(self.vary)
