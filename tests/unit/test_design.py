@@ -76,6 +76,15 @@ def test_the_winner_is_the_lightest_feasible_design_and_its_fresh_check_lies_in_
     fresh = float(ds.verify_balanced.values[0])
     assert lo <= fresh <= hi and check_agrees(ds) is True
     assert "Build ball_mass = " in recommendation(ds) and "P(balanced) >= " in recommendation(ds)
+    # the verdict line (VERDICT_EVIDENCE): the recommendation, confirmed; none feasible is a "no"
+    from rotorlab.analyses import VERDICT_EVIDENCE
+
+    (line,) = VERDICT_EVIDENCE["design"](ds, rows, None)
+    assert line.status == "yes" and "confirmed from fresh random starts" in line.sentence
+    none = ds.copy()
+    none.attrs["best"] = -1
+    (line,) = VERDICT_EVIDENCE["design"](none, rows, None)
+    assert line.status == "no" and "No design of the 6 evaluated met every constraint" in line.sentence
     # two balls cancel the unbalance only if 2 m R >= M1 e (seed 002 eq. (17), eta / 2 < 1): m >= 15 g here
     light = [r for r in rows if r["values"]["ball_mass"] < 1.0 * 1.5e-3 / (2 * 0.05)]
     assert light and all(not r["feasible"] and ds.balanced.values[r["trial"], 0] == 0.0 for r in light)
