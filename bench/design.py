@@ -144,6 +144,7 @@ def main() -> None:
             print(f"| {key} | {r['best_g']:.2f} | {r['evals_to_2pct'] or '-'} | {r['feasible']}/{ds.sizes['trial']} | "
                   f"{r['cpu_s']:.0f} (+{r['verify_cpu_s']:.0f} check) | {per[0]:.1f}, {per[1]:.1f} | {r['check']} |")
         summary["zhakash"] = rows
+        summary["zhakash_closed_form_g"] = ref * 1e3
         _convergence_figure(summary, args.out)
     if "pareto" not in skip:
         from rotorlab.analyses._design_case import run_design_analysis
@@ -186,6 +187,8 @@ def _convergence_figure(summary: dict, out: Path) -> None:
         opt = key.split("/")[0]
         b.plot(np.arange(1, len(r["curve_g"]) + 1), r["curve_g"], color=colours[opt], alpha=0.7,
                label=opt if key.endswith("/0") else None)  # fmt: skip
+    if summary.get("zhakash_closed_form_g"):
+        b.axhline(summary["zhakash_closed_form_g"], color="0.5", ls=":", label="closed form")
     b.set(xlabel="evaluation", ylabel="lightest feasible balls so far (g)", title="zhakash-k2, P(balanced) >= 0.99")
     b.legend(fontsize=8)
     fig.savefig(out / "design_optimizers.png", dpi=110)
