@@ -68,3 +68,19 @@ def test_differential_evolution_runs_the_same_budget_and_the_same_seeds_give_the
     # generations only improve on the first (Latin hypercube) one; the floor is never passed
     first, last = (float(np.min(a.objective_value.values[s, 0])) for s in (slice(0, 10), slice(0, 40)))
     assert FLOOR * (1 - 1e-9) <= last <= first
+
+
+def test_a_limit_is_a_constraint_with_its_margin():
+    # the peak bounded at twice the floor: feasible exactly where it holds, margin (limit - value) / limit
+    limit = 2.0 * FLOOR
+    base = problem()
+    bounded = DesignProblem(base.model, base.variables, base.objectives, base.operating,
+                            limits={"receptance-peak": limit})  # fmt: skip
+    ds = design_search(bounded, optimizer="tpe", budget=12, optimizer_seed=1)
+    peak = ds.objective_value.values[:, 0]
+    assert list(ds.constraint.values) == ["limits.receptance-peak"]
+    np.testing.assert_allclose(ds.margin.values[:, 0], (limit - peak) / limit, rtol=1e-12)
+    np.testing.assert_array_equal(ds.feasible.values, peak <= limit)
+    assert (~ds.feasible.values).any() and ds.feasible.values.any()
+    best = int(ds.attrs["best"])
+    assert peak[best] == peak[ds.feasible.values].min()
