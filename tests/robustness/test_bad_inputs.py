@@ -228,7 +228,11 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
     ("design-unknown-param", ["design", "autobalancer", "--vary", "nope=1:2", "--objective", "ball-mass", "--param",
      "spin_speed=2400rpm:2400rpm:1"], None, ["--vary", "nope", "ball_damping"]),
     ("design-negative-damping", ["design", "autobalancer", "--vary", "ball_damping=-1e-3:2e-3", "--objective",
-     "ball-mass", "--param", "spin_speed=2400rpm:2400rpm:1"], None, ["vary.ball_damping", "-0.001", "must be >= 0"]),
+     "ball-mass", "--param", "spin_speed=2400rpm:2400rpm:1"], None, ["--vary", "ball_damping", "-0.001", "must be >= 0"]),
+    ("design-case-negative-damping", ["run", FILE, "--out", "{d}/o"], ("autobalancer", "[[analysis]]",
+     '[[analysis]]\ntype = "design"\nvary = {ball_damping = ["-1e-3 N*m*s", "2e-3 N*m*s"]}\n'
+     'objectives = ["ball-mass"]\nparam = {spin_speed = ["2400 rpm", "2400 rpm", 1]}\n\n[[analysis]]'),
+     ["analysis[0].vary.ball_damping", "-0.001", "must be >= 0"]),
     ("design-unknown-objective", ["design", "autobalancer", "--vary", "ball_mass=10g:40g", "--objective", "fastest",
      "--param", "spin_speed=2400rpm:2400rpm:1"], None, ["--objective", "fastest", "ball-mass"]),
     ("design-unknown-optimizer", ["design", "autobalancer", "--vary", "ball_mass=10g:40g", "--objective", "ball-mass",

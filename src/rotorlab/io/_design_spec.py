@@ -49,6 +49,27 @@ def _dimension_of(unit: str) -> str:
     return next((k for k, d in DIMENSIONS.items() if d.si == unit), "dimensionless")
 
 
+def _bound_issues(model: AbstractModelSpec, name: str, entry: tuple) -> list[Issue]:
+    """Either bound outside the range of the case key the name varies (``ball_<field>``: every
+    ball's ``balls[].<field>``; ``model.<key path>`` and the rotor's names: that key)."""
+    from pydantic_core import PydanticCustomError
+
+    from rotorlab.io._coordinates import key_quantity
+
+    path = name if name.startswith("model.") else (
+        f"model.balls[0].{name[5:]}" if name.startswith("ball_") else f"model.{name}")  # fmt: skip
+    check = key_quantity(path, type(model))
+    if check is None:  # the speed and other names without a key of their own: checked when built
+        return []
+    for value in entry:
+        try:
+            check(value)
+        except PydanticCustomError as exc:
+            detail = (exc.context or {}).get("detail", exc.message())
+            return [Issue(("vary", name), f"{value:g} is outside the parameter's range: {detail}", list(entry))]
+    return []
+
+
 class DesignSpec(BasinStabilitySpec):
     """Design search: named parameters varied within bounds to minimise one or two objectives,
     with P(balanced) from the same random starts for every design.
@@ -175,6 +196,8 @@ class DesignSpec(BasinStabilitySpec):
                                     name))  # fmt: skip
             elif len(entry) != 2 or not entry[1] > entry[0]:
                 issues.append(Issue(("vary", name), "give [low, high] with high > low", list(entry)))
+            else:
+                issues += _bound_issues(model, name, entry)
         issues += self._starts_issues()
         from rotorlab.design import DESIGN_OPTIMIZERS
 
