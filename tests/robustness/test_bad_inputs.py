@@ -224,6 +224,31 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
     ("bstab-linear-model", ["basin-stability", "pico21", "--param", "spin_speed=1:2:2"], None, ["pico21"]),
     ("bstab-resume-without-store", ["basin-stability", "autobalancer", "--param", "ball_damping=1e-3:2e-3:2",
      "--resume"], None, ["--resume", "--store"]),
+    # ---- design (issue 27) ---------------------------------------------------------------------
+    ("design-unknown-param", ["design", "autobalancer", "--vary", "nope=1:2", "--objective", "ball-mass", "--param",
+     "spin_speed=2400rpm:2400rpm:1"], None, ["--vary", "nope", "ball_damping"]),
+    ("design-negative-damping", ["design", "autobalancer", "--vary", "ball_damping=-1e-3:2e-3", "--objective",
+     "ball-mass", "--param", "spin_speed=2400rpm:2400rpm:1"], None, ["--vary", "ball_damping", "-0.001", "must be >= 0"]),
+    ("design-case-negative-damping", ["run", FILE, "--out", "{d}/o"], ("autobalancer", "[[analysis]]",
+     '[[analysis]]\ntype = "design"\nvary = {ball_damping = ["-1e-3 N*m*s", "2e-3 N*m*s"]}\n'
+     'objectives = ["ball-mass"]\nparam = {spin_speed = ["2400 rpm", "2400 rpm", 1]}\n\n[[analysis]]'),
+     ["analysis[0].vary.ball_damping", "-0.001", "must be >= 0"]),
+    ("design-unknown-objective", ["design", "autobalancer", "--vary", "ball_mass=10g:40g", "--objective", "fastest",
+     "--param", "spin_speed=2400rpm:2400rpm:1"], None, ["--objective", "fastest", "ball-mass"]),
+    ("design-unknown-optimizer", ["design", "autobalancer", "--vary", "ball_mass=10g:40g", "--objective", "ball-mass",
+     "--param", "spin_speed=2400rpm:2400rpm:1", "--optimizer", "sgd"], None, ["--optimizer", "sgd", "tpe"]),
+    ("design-de-two-objectives", ["design", "autobalancer", "--vary", "ball_mass=10g:40g", "--objective", "ball-mass",
+     "--objective", "residual-vibration", "--param", "spin_speed=2400rpm:2400rpm:1", "--optimizer",
+     "differential-evolution"], None, ["--objective", "differential-evolution", "two"]),
+    ("design-too-few-starts", ["design", "autobalancer", "--vary", "ball_mass=10g:40g", "--objective", "ball-mass",
+     "--param", "spin_speed=2400rpm:2400rpm:1", "--starts", "64"], None, ["--starts", "min_balanced", "381"]),
+    ("design-no-analysis", ["design", "autobalancer"], None, ["--vary", "no design analysis"]),
+    ("design-resume-without-store", ["design", "autobalancer", "--resume"], None, ["--resume", "--store"]),
+    ("design-linear-model", ["design", "pico21", "--vary", "disc_mass=1:2", "--objective", "ball-mass", "--param",
+     "spin_speed=1:2:2"], None, ["pico21"]),
+    ("design-case-unknown-objective", ["design", FILE], ("autobalancer", "[[analysis]]",
+     '[[analysis]]\ntype = "design"\nvary = {ball_mass = ["10 g", "40 g"]}\nobjectives = ["nope"]\n'
+     'param = {spin_speed = ["2400 rpm", "2400 rpm", 1]}\n\n[[analysis]]'), ["objectives", "nope", "ball-mass"]),
     # ---- impacts / impacts-sweep ----------------------------------------------------------------
     ("impacts-negative-stone", ["impacts", "krasnov-crusher", "--stone-mass", "-1"], None, ["--stone-mass"]),
     ("impacts-zero-t-end", ["impacts", "krasnov-crusher", "--t-end", "0"], None, ["--t-end"]),
@@ -456,7 +481,7 @@ def test_the_corpus_is_large_and_covers_every_command_and_model_type():
     assert len({entry[0] for entry in CORPUS}) == len(CORPUS)
     commands = {entry[1][0] for entry in CORPUS} | {entry[1][2] for entry in CORPUS if entry[1][0] == "-q"}
     assert commands >= {"run", "simulate", "campbell", "modes", "steady", "stability-chart", "continue", "basin", "sweep",
-                        "show", "impacts", "impacts-sweep", "validate", "cases"}  # fmt: skip
+                        "show", "impacts", "impacts-sweep", "validate", "cases", "design"}  # fmt: skip
     bases = {entry[2][0] for entry in CORPUS if entry[2]}
     assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher", "rub-jeffcott"}
 

@@ -74,6 +74,7 @@ from rotorlab.analyses._facts import MACHINE_FACTS, MachineFacts, machine_facts,
 from rotorlab.analyses._page_verdict import VERDICT_EVIDENCE, VerdictLine, explain_regime, machine_verdict, register_evidence
 from rotorlab.analyses._sanity import SANITY_CHECKS, SanityWarning, register_sanity_check, sanity_warnings
 from rotorlab.analyses._machine import machine_simulate, machine_steady
+from rotorlab.analyses._design import DesignProblem, DesignVariable, design_search
 from rotorlab.analyses._machine_run_up import PassingTorque, machine_run_up, passing_torque
 from rotorlab.analyses._steady import (
     STEADY_ANALYSES,
@@ -85,6 +86,9 @@ from rotorlab.analyses._steady import (
 )
 
 __all__ = [
+    "DesignProblem",
+    "DesignVariable",
+    "design_search",
     "MACHINE_FACTS",
     "MachineFacts",
     "machine_facts",

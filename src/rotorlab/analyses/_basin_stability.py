@@ -48,17 +48,23 @@ def stability_mapper(case_model: Any, spec: Any, *, t_end: float | None = None) 
     values: several time constants of each value's slowest mode, within revolution bounds.
     """
     from rotorlab.analyses._basin import basin_mapper
-    from rotorlab.explore._settle import default_horizon
 
     explain: dict[str, Any] = {}
     given = t_end is not None or spec.t_end is not None
     mapper = basin_mapper(case_model, spec, t_end=t_end, explain=explain)
     name, a, b, n = spec.param_axis
-    values = np.linspace(a, b, n)
+    return horizon_over(mapper, name, np.linspace(a, b, n), given, str(explain.get("horizon_rule", "")))
+
+
+def horizon_over(mapper: Any, name: str, values: np.ndarray, given: bool, rule: str) -> tuple[Any, np.ndarray, str]:
+    """The mapper with the longest default horizon over ``name = values`` (unless ``given``: the
+    horizon was set), the balanced state's slowest decay rate at each value (1/s, NaN where none
+    is stable) and how the horizon was chosen (``rule`` when it was given)."""
+    from rotorlab.explore._settle import default_horizon
+
     variants = [_at(mapper, name, v) for v in values]
     rate_of = [getattr(m, "balanced_decay_rate", None) for m in variants]
     rates = np.array([np.nan if f is None or f() is None else float(f()) for f in rate_of])
-    rule = str(explain.get("horizon_rule", ""))
     if not given and getattr(mapper, "balanced_decay_rate", None) is not None:
         choices = [default_horizon(None if not np.isfinite(r) else r, m.start_value("spin_speed") if m else
                                    mapper.start_value("spin_speed"), float(mapper.t_end))

@@ -367,6 +367,15 @@ for _type, _fn in (("simulate", _simulate_evidence), ("basin", _basin_evidence),
     register_evidence(_type, _fn)
 
 
+def _design_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    from rotorlab.analyses._design_case import design_evidence
+
+    return design_evidence(ds, rows, facts)
+
+
+register_evidence("design", _design_evidence)
+
+
 # --------------------------------------------------------------------------- the verdict
 
 _WHIRL = {"F": "forward", "B": "backward", "M": "mixed"}

@@ -215,6 +215,10 @@ def _register_builtins() -> None:
                                         _shock_margin.shock_margin_task_size, progress_unit="ensembles"))
     register_analysis_type(AnalysisType("friction-margin", _friction_margin.run_friction_margin_analysis,
                                         _friction_margin.friction_margin_rows, "friction-margin"))
+    from rotorlab.analyses import _design_case
+
+    register_analysis_type(AnalysisType("design", _design_case.run_design_analysis, _design_case.design_rows, "design",
+                                        _design_case.design_task_size, progress_unit="designs"))
 
 
 _register_builtins()

@@ -1,5 +1,5 @@
 """The ``rotorlab`` command line (typer): ``run``, ``simulate``, ``campbell``, ``modes``,
-``validate``, ``cases``, ``impacts``, ``impacts-sweep``, ``basin``, ``basin-stability``, ``sweep``, ``show``,
+``validate``, ``cases``, ``impacts``, ``impacts-sweep``, ``basin``, ``basin-stability``, ``design``, ``sweep``, ``show``,
 ``steady``, ``stability-chart``.
 
 Importing this package is instant (the commands load on first use of :data:`app` or in
@@ -23,6 +23,7 @@ def _load_app() -> Any:
     from rotorlab.cli import _basin  # noqa: F401 - registers the basin command
     from rotorlab.cli import _basin_stability  # noqa: F401 - registers the basin-stability command
     from rotorlab.cli import _continuation  # noqa: F401 - registers the continue command
+    from rotorlab.cli import _design  # noqa: F401 - registers the design command
     from rotorlab.cli import _impacts  # noqa: F401 - registers the impacts and impacts-sweep commands
     from rotorlab.cli import _linear  # noqa: F401 - registers the campbell and modes commands
     from rotorlab.cli import _margins  # noqa: F401 - registers the shock-margin and friction-margin commands

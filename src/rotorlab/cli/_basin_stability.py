@@ -17,7 +17,7 @@ from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _sett
 from rotorlab._limits import MAX_STARTS
 from rotorlab.cli._options import MAX_SEED, count_option
 from rotorlab.cli._output import BadInput, handled, info, progress_bar
-from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt, YesOpt
+from rotorlab.cli._sweep_common import ChunkOpt, OutNcOpt, ResumeOpt, SchedulerOpt, WorkersOpt, YesOpt
 
 __all__ = ["basin_stability_command"]
 
@@ -123,11 +123,10 @@ def basin_stability_command(
     store: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--store", metavar="STORE.zarr", help="Checkpoint: every finished chunk of starts goes to this Zarr store; "
         "an interrupted run continues with --resume.")] = None,
-    resume: Annotated[bool, typer.Option("--resume", help="Continue the run in --store.")] = False,
+    resume: ResumeOpt = False,
     scheduler: SchedulerOpt = None,
     workers: WorkersOpt = None,
-    out: Annotated[Optional[Path], typer.Option(  # noqa: UP007
-        "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")] = None,
+    out: OutNcOpt = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--plot", metavar="FILE", help="Save the fractions against the parameter (PNG, PDF or SVG).")] = None,
     sets: SetOpt = None,

@@ -17,7 +17,8 @@ import typer
 from rotorlab.cli._options import MAX_CHUNK, MAX_WORKERS, count_option
 from rotorlab.cli._output import BadInput, clean_text, say, stderr
 
-__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "YesOpt", "LONG_RUN_S", "scheduler_is_safe", "check_store_path",
+__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "YesOpt", "OutNcOpt", "ResumeOpt", "LONG_RUN_S",
+           "scheduler_is_safe", "check_store_path",
            "executor_from_options", "run_into_store",
            "SweepBar", "run_with_bar", "stability_line", "regime_fractions"]
 
@@ -29,6 +30,11 @@ WorkersOpt = Annotated[Optional[int], count_option(  # noqa: UP007
     help="Run the chunks on a local Dask cluster of N workers (threads of this command).")]
 
 
+
+# the result file and --resume of the commands that write one Dataset (basin-stability, design)
+OutNcOpt = Annotated[Optional[Path], typer.Option(  # noqa: UP007
+    "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")]
+ResumeOpt = Annotated[bool, typer.Option("--resume", help="Continue the run in --store.")]
 
 #: Above this estimated time (s) a sweep asks for --yes before it starts (rotorlab.sweep.long_run_guard).
 LONG_RUN_S = 600.0

@@ -226,7 +226,7 @@ def basin_stability_over(
         ``count`` (value, horizon, regime), ``probability``, ``ci_low``, ``ci_high`` (value,
         regime; at the last horizon), ``half_width`` (widest interval's, value), ``computed``
         (value, start), the per-start ``outcome``, ``status``, ``label_since`` and (a balancer)
-        ``settle_estimate`` at the last horizon, and the drawn ``start_<name>``; attrs of the
+        ``settle_estimate`` and ``amplitude`` at the last horizon, and the drawn ``start_<name>``; attrs of the
         analysis plus ``seed``, ``confidence``, ``mode`` ("starts" or "ci-width"), ``target_half_width``,
         ``chunk``, ``pool``, ``rounds``, ``param``, ``ranges`` (JSON: name -> [low, high]).
 
@@ -350,7 +350,7 @@ def _summary(ds: Any, n: np.ndarray, dim: str, confidence: float) -> Any:
             if name == "outcome":  # -1: a start not computed at that value
                 values_ = np.where(computed, values_, -1).astype(values_.dtype)
             data[name] = ((dim, START_DIM), values_, dict(var.attrs))
-        elif name == "settle_estimate":
+        elif name in ("settle_estimate", "amplitude"):
             data[name] = ((dim, START_DIM), np.asarray(var.isel(horizon=-1).transpose(dim, START_DIM).values),
                           dict(var.attrs))  # fmt: skip
     attrs = {k: v for k, v in ds.attrs.items() if k not in ("sweep", "fingerprint", "complete")}

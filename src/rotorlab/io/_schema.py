@@ -61,6 +61,7 @@ from pydantic import (
 from rotorlab._registry import Registry
 from rotorlab.io._basin_specs import BasinSpec, ToroidalBallSpec, WorkingPointSpec
 from rotorlab.io._basin_stability_spec import BasinStabilitySpec
+from rotorlab.io._design_spec import DesignSpec
 from rotorlab.io._continuation_spec import ContinuationSpec
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
@@ -158,7 +159,7 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
                      WorkingPointSpec, SweepSpec, BasinStabilitySpec, ImpactsSpec, ImpactsSweepSpec, RubSpec, MachineKnockSpec,
-                     RubMapSpec, ContinuationSpec, ShockMarginSpec, FrictionMarginSpec)  # fmt: skip
+                     RubMapSpec, ContinuationSpec, ShockMarginSpec, FrictionMarginSpec, DesignSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:

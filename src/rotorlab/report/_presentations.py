@@ -190,5 +190,7 @@ for _entry in (
                  lazy("rotorlab.report._margins:friction_margin_section"),
                  lazy("rotorlab.report._margins:friction_margin_findings"),
                  lazy("rotorlab.report._margins:friction_margin_tables")),
+    Presentation("design", lazy("rotorlab.plot._design:design_figures"), lazy("rotorlab.report._design:design_section"),
+                 lazy("rotorlab.report._design:design_findings"), lazy("rotorlab.report._design:design_tables")),
 ):  # fmt: skip
     register_presentation(_entry)

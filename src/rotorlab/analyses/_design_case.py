@@ -1,0 +1,162 @@
+"""Run a case's ``design`` analysis and say what it found: the problem built from the case, the
+summary rows (one per evaluated design), the recommendation in one sentence, its margins, the
+winner's independent check, and the verdict line.
+"""
+
+from __future__ import annotations
+
+import json
+import math
+from collections.abc import Callable
+from typing import TYPE_CHECKING, Any
+
+import numpy as np
+
+from rotorlab import _people as people
+
+if TYPE_CHECKING:
+    import xarray
+
+__all__ = ["design_problem", "run_design_analysis", "design_rows", "design_document", "design_task_size",
+           "recommendation", "design_evidence", "check_agrees"]  # fmt: skip
+
+
+def design_problem(case_model: Any, spec: Any, *, t_end: float | None = None) -> Any:
+    """The :class:`~rotorlab.analyses._design.DesignProblem` of a case's ``design`` analysis.
+
+    Raises
+    ------
+    ValueError
+        The problem's issues (``vary.<name>: ...``: unknown name, bounds outside the
+        parameter's range, a structural name), or a model without a regime mapper.
+    """
+    from rotorlab.analyses._basin import basin_mapper
+    from rotorlab.analyses._design import DesignProblem, DesignVariable
+
+    mapper = basin_mapper(case_model, spec, t_end=t_end)
+    name, a, b, n = spec.param_axis
+    return DesignProblem(
+        mapper.model, tuple(DesignVariable(k, float(v[0]), float(v[1])) for k, v in spec.vary.items()),
+        tuple(spec.objectives), np.linspace(a, b, n), name, spec.min_balanced, dict(spec.limits), mapper,
+        spec.start_ranges(case_model), spec.design_starts, spec.seed, spec.confidence,
+        horizon_given=t_end is not None or spec.t_end is not None, chunk=spec.chunk)  # fmt: skip
+
+
+def run_design_analysis(case_model: Any, analysis: Any, progress: Callable[[int, int], None] | None = None, *,
+                        t_end: float | None = None, store: Any = None, resume: bool = False,
+                        executor: Any = None) -> xarray.Dataset:  # fmt: skip
+    """Run one ``design`` analysis of a case (:func:`rotorlab.analyses.design_search`); attrs
+    ``analysis``, ``name``, ``model`` added."""
+    from rotorlab.analyses._design import design_search
+
+    problem = design_problem(case_model, analysis, t_end=t_end)
+    ds = design_search(problem, optimizer=analysis.optimizer, budget=analysis.budget,
+                       optimizer_seed=analysis.optimizer_seed, store=store, resume=resume, executor=executor,
+                       verify=analysis.verify, progress=progress)  # fmt: skip
+    ds.attrs.update(analysis="design", name=analysis.name, model=str(case_model.type))
+    return ds
+
+
+def design_task_size(case_model: Any, analysis: Any) -> int:
+    """The designs a ``design`` analysis evaluates (its progress total)."""
+    return int(analysis.budget)
+
+
+def _unit(ds: Any, key: str, name: str) -> str:
+    return str(json.loads(ds.attrs.get(key, "{}")).get(name, ""))
+
+
+def design_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    """One row per evaluated design: ``trial``, ``values`` (name -> SI), ``objectives`` (name ->
+    SI), ``margins`` (constraint -> margin, >= 0 holds), ``balanced_low`` (the least Wilson
+    lower bound of P(balanced) over the operating range, None without starts), ``feasible``,
+    ``pareto``, ``best``."""
+    best = int(ds.attrs["best"])
+    rows = []
+    for i in range(ds.sizes["trial"]):
+        low = np.asarray(ds["balanced_low"].values[i], dtype=float)
+        rows.append({
+            "trial": i,
+            "values": {str(v): float(ds["value"].values[i, k]) for k, v in enumerate(ds["variable"].values)},
+            "objectives": {str(o): float(ds["objective_value"].values[i, k])
+                           for k, o in enumerate(ds["objective"].values)},
+            "margins": {str(c): float(ds["margin"].values[i, k]) for k, c in enumerate(ds["constraint"].values)},
+            "balanced_low": float(np.min(low)) if np.isfinite(low).all() and low.size else None,
+            "feasible": bool(ds["feasible"].values[i]), "pareto": bool(ds["pareto"].values[i]), "best": i == best,
+        })  # fmt: skip
+    return rows
+
+
+def check_agrees(ds: xarray.Dataset) -> bool | None:
+    """Whether the winner's P(balanced) from fresh starts lies within the search's Wilson
+    interval at every operating value (None: no check was run)."""
+    best = int(ds.attrs["best"])
+    check = np.asarray(ds["verify_balanced"].values, dtype=float)
+    if best < 0 or not np.isfinite(check).all():
+        return None
+    lo, hi = ds["balanced_low"].values[best], ds["balanced_high"].values[best]
+    return bool(np.all((check >= lo) & (check <= hi)))
+
+
+def _value_text(ds: Any, name: str, value: float) -> str:
+    return people.quantity(value, _unit(ds, "units", name))
+
+
+def recommendation(ds: xarray.Dataset) -> str:
+    """The recommendation in one sentence (or why there is none)."""
+    best = int(ds.attrs["best"])
+    names = [str(v) for v in ds["variable"].values]
+    if best < 0:
+        return (f"No design of the {ds.sizes['trial']} evaluated met every constraint: widen the bounds of "
+                f"{', '.join(names)}, relax a limit, or raise the budget.")  # fmt: skip
+    values = ", ".join(f"{n} = {_value_text(ds, n, float(ds['value'].values[best, k]))}" for k, n in enumerate(names))
+    objs = ", ".join(f"{o} {people.quantity(float(v), _unit(ds, 'objective_units', o))}"
+                     for o, v in zip(ds["objective"].values, ds["objective_value"].values[best]))  # fmt: skip
+    text = f"Build {values}: {objs}"
+    low = ds["balanced_low"].values[best]
+    if np.isfinite(low).all():
+        text += (f", P(balanced) >= {people.number(float(np.min(low)), 3)} over the operating range "
+                 f"({float(ds.attrs['confidence']) * 100:g} % lower bound, {int(ds.attrs['starts'])} starts per speed)")
+    return text + "."
+
+
+def design_document(ds: xarray.Dataset) -> dict[str, Any]:
+    """A design result as JSON-ready data (``rotorlab design --json``)."""
+    best = int(ds.attrs["best"])
+    dim = str(ds.attrs["operating"])
+
+    def floats(values):
+        return [None if not math.isfinite(float(v)) else float(v) for v in np.asarray(values).reshape(-1)]
+
+    return {
+        "recommendation": recommendation(ds), "best": best, "optimizer": ds.attrs["optimizer"],
+        "budget": int(ds.attrs["budget"]), "evaluations": int(ds.attrs["evaluations"]), "seed": int(ds.attrs["seed"]),
+        "verify_seed": int(ds.attrs["verify_seed"]), "starts": int(ds.attrs["starts"]),
+        "operating": {"param": dim, "values": floats(ds[dim].values)},
+        "winner": design_rows(ds)[best] if best >= 0 else None,
+        "search_interval": {"low": floats(ds["balanced_low"].values[best]),
+                            "high": floats(ds["balanced_high"].values[best])} if best >= 0 else None,
+        "check": {"balanced": floats(ds["verify_balanced"].values), "low": floats(ds["verify_low"].values),
+                  "high": floats(ds["verify_high"].values), "objectives": floats(ds["verify_objective"].values),
+                  "inside_search_interval": check_agrees(ds)},
+        "cpu_s": float(ds.attrs["cpu_s"]), "rows": design_rows(ds),
+    }  # fmt: skip
+
+
+def design_evidence(ds: Any, rows: Any, facts: Any) -> list[Any]:
+    """The verdict line of a design search: the recommendation (yes), or none feasible (no), or a
+    winner whose independent check fell outside the search's interval (not settled)."""
+    from rotorlab.analyses._page_verdict import VerdictLine
+
+    best = int(ds.attrs["best"])
+    name = ds.attrs.get("name", "")
+    if best < 0:
+        return [VerdictLine("design", "no", recommendation(ds) + f" ({name})",
+                            "widen the bounds or relax min_balanced / limits")]  # fmt: skip
+    agrees = check_agrees(ds)
+    if agrees is False:
+        return [VerdictLine("design", "not-settled", recommendation(ds)[:-1] + "; but the winner re-simulated from "
+                            f"fresh starts falls outside the search's interval ({name})",
+                            "raise starts (the search's intervals are too optimistic for its winner)")]  # fmt: skip
+    tail = "; confirmed from fresh random starts" if agrees else ""
+    return [VerdictLine("design", "yes", recommendation(ds)[:-1] + f"{tail} ({name}).")]
