@@ -33,10 +33,13 @@ from typing import Any
 import numpy as np
 
 __all__ = ["Distribution", "UncertainInput", "sobol_sample", "sobol_indices", "run_sensitivity", "SAMPLE_DIM",
-           "saltelli_rows"]  # fmt: skip
+           "saltelli_rows", "U_CLIP"]  # fmt: skip
 
 #: Name of the sample dimension of a sensitivity run.
 SAMPLE_DIM = "sample"
+#: The design's unit-cube values are kept in [U_CLIP, 1 - U_CLIP] (an open interval for the
+#: quantile functions: a normal's draws stay within 6.1 std of its mean).
+U_CLIP = 0.5 / (1 << 30)
 _KINDS = ("normal", "uniform")
 
 
@@ -164,7 +167,7 @@ def sobol_sample(inputs: Sequence[UncertainInput], n: int, seed: int) -> dict[st
     if isinstance(n, bool) or int(n) != n or n < 2 or int(n) & (int(n) - 1):
         raise ValueError(f"the base sample size must be a power of 2 >= 2, got {n!r}")
     u = sobol_design.sample(problem, int(n), calc_second_order=False, scramble=True, seed=int(seed))
-    u = np.clip(u, 0.5 / (1 << 30), 1.0 - 0.5 / (1 << 30))  # an open interval for the quantiles
+    u = np.clip(u, U_CLIP, 1.0 - U_CLIP)
     return {i.name: i.distribution.quantile(u[:, k]) for k, i in enumerate(inputs)}
 
 
@@ -193,6 +196,13 @@ def sobol_indices(names: Sequence[str], y: np.ndarray, *, confidence: float = 0.
     si = sobol_analysis.analyze(problem, y, calc_second_order=False, num_resamples=int(resamples),
                                 conf_level=float(confidence), seed=int(seed))  # fmt: skip
     return {k: np.asarray(si[k], dtype=float) for k in ("S1", "S1_conf", "ST", "ST_conf")} | out
+
+
+def _units(points: Any, outputs: Sequence[str], power: int = 1) -> str:
+    """The units of the outputs' means (``power`` 2: variances), one per output."""
+    units = [str(points[o].attrs.get("units", "1")) for o in outputs]
+    shown = [u if power == 1 or u == "1" else f"({u})^{power}" for u in units]
+    return shown[0] if len(set(shown)) == 1 else "per output: " + ", ".join(f"{o} {u}" for o, u in zip(outputs, shown))
 
 
 def run_sensitivity(analysis: Any, inputs: Sequence[UncertainInput], outputs: Sequence[str], *, n: int, seed: int,
@@ -256,8 +266,10 @@ def run_sensitivity(analysis: Any, inputs: Sequence[UncertainInput], outputs: Se
          "ST": (dims2, np.array(table["ST"]), {"units": "1", "description": "total-order Sobol index"}),
          "ST_conf": (dims2, np.array(table["ST_conf"]), {"units": "1", "confidence": confidence,
                                                          "description": "half-width of the bootstrap interval"}),
-         "mean": (("output",), np.array(table["mean"]), {"description": "mean over the A and B samples"}),
-         "variance": (("output",), np.array(table["variance"]), {"description": "variance over the A and B samples"})},
+         "mean": (("output",), np.array(table["mean"]), {"units": _units(points, outputs),
+                                                         "description": "mean over the A and B samples"}),
+         "variance": (("output",), np.array(table["variance"]), {"units": _units(points, outputs, 2),
+                                                                 "description": "variance over the A and B samples"})},
         coords={"output": list(outputs), "input": names},
         attrs={"n_base": int(n), "seed": int(seed), "confidence": float(confidence), "resamples": int(resamples),
                "n_points": int(points.sizes[SAMPLE_DIM]), "estimator": "SALib.analyze.sobol (Saltelli 2010, Jansen)",
