@@ -62,38 +62,50 @@ def _dimension(name: str) -> str | None:
 
 
 def _read_inputs(value: Any) -> dict[str, dict[str, Any]]:
-    """Read ``{NAME = {distribution = ..., ...}}`` into SI numbers (no model needed)."""
+    """Read ``{NAME = {distribution = ..., ...}}`` into SI numbers (no model needed); every problem
+    at once, each at its key path (``inputs.<NAME>.<key>``)."""
+    from rotorlab.io._errors import IssueGroup
     from rotorlab.io._units import UnitError, convert
 
     if not isinstance(value, Mapping) or not value:
         raise _error("must be a table NAME = {distribution = \"normal\" | \"uniform\", ...} of two or more inputs")
-    out = {}
+    out, issues = {}, []
     for name, entry in value.items():
         name = str(name)
         dim = _dimension(name)
-        if dim is None:
-            raise _error(f"{name}: not a number of any model (give a named parameter's key path such as "
-                         f"races[0].balls[0].mass, or one of {', '.join(ALIASES)})")  # fmt: skip
+        unknown = Issue((name,), f"not a number of any model (give a named parameter's key path such as "
+                                 f"races[0].balls[0].mass, or one of {', '.join(ALIASES)})", None,
+                        show_value=False)  # fmt: skip
+        plain = isinstance(entry, Mapping) and all(isinstance(v, (int, float)) for k, v in entry.items()
+                                                   if k != "distribution")  # fmt: skip
+        if dim is None and not plain:
+            issues.append(unknown)  # plain numbers: the model decides (an integer key is structural)
+            continue
+        dim = dim or "dimensionless"
         if not isinstance(entry, Mapping) or entry.get("distribution") not in _KEYS:
-            raise _error(f"{name}: give {{distribution = \"normal\" | \"uniform\", ...}} (got {entry!r})")
+            got = entry.get("distribution") if isinstance(entry, Mapping) else entry
+            issues.append(Issue((name, "distribution"), "give distribution = \"normal\" or \"uniform\"", got))
+            continue
         kind = entry["distribution"]
-        extra = sorted(set(entry) - {"distribution", *_KEYS[kind]})
-        if extra:
-            raise _error(f"{name}: {', '.join(extra)} not allowed for a {kind} distribution (allowed: "
-                         f"{', '.join(_KEYS[kind])})")  # fmt: skip
+        for key in sorted(set(entry) - {"distribution", *_KEYS[kind]}):
+            issues.append(Issue((name, key), f"not allowed for a {kind} distribution (allowed: "
+                                             f"{', '.join(_KEYS[kind])})", entry[key]))  # fmt: skip
         item: dict[str, Any] = {"distribution": kind}
         for key in _KEYS[kind]:
             raw = entry.get(key)
+            item[key] = None
             if raw is None:
-                item[key] = None
                 continue
             try:
                 item[key] = convert(raw, "dimensionless" if key == "tolerance" else dim)
             except UnitError as exc:
-                raise _error(f"{name}.{key}: {exc}") from None
+                issues.append(Issue((name, key), str(exc), raw))
+                continue
             if not math.isfinite(item[key]):
-                raise _error(f"{name}.{key}: must be finite, got {raw!r}")
+                issues.append(Issue((name, key), "must be finite", raw))
         out[name] = item
+    if issues:
+        raise IssueGroup(issues)
     return out
 
 
@@ -242,8 +254,13 @@ def _case_value(name: str, machine: Any) -> tuple[float | None, Any]:
         return value, Parameter(name, unit, math.nan if value is None else value, bounds)
     space = machine.parameters
     if name not in space:
-        shown = ", ".join(n for n in space.names if not space.structural(n))
-        raise ValueError(f"not a named parameter of this machine (allowed: {shown}, {', '.join(ALIASES)})")
+        import difflib
+
+        names = [n for n in space.names if not space.structural(n)]
+        near = difflib.get_close_matches(name, names, n=4, cutoff=0.6)
+        hint = f"did you mean {', '.join(near)}? " if near else ""
+        raise ValueError(f"not a named parameter of this machine ({hint}it has {len(names)}: {', '.join(names[:6])}, "
+                         f"...; `rotorlab show CASE` lists them; or one of {', '.join(ALIASES)})")
     if space.structural(name):
         raise ValueError("structural (a new value changes the compiled layout): it cannot be uncertain")
     return float(space[name].value), space[name]
