@@ -34,6 +34,8 @@ __all__ = ["run_tolerances_analysis", "tolerances_rows", "tolerances_document", 
 ENVELOPE_QUANTILES = (0.05, 0.5, 0.95)
 #: Saves per revolution in every window (an orbit sampled at an irrational phase step).
 _SAVES_PER_TURN = 4.3
+#: Machines per chunk when none is given (each runs ``starts`` trajectories).
+_CHUNK = 16
 
 
 def tolerance_study(case_model: Any, spec: Any) -> tuple[Any, list[Any]]:
@@ -90,9 +92,12 @@ def run_tolerances_analysis(case_model: Any, analysis: Any, progress: Callable[[
     from rotorlab.analyses._tolerance_machine import OUTPUTS
 
     point, inputs = tolerance_study(case_model, analysis)
+    size = chunk_size if chunk_size is not None else analysis.chunk
+    if size is None and not (store is not None and resume):  # a resumed store keeps its own
+        size = _CHUNK
     indices, points = run_sensitivity(point, inputs, list(OUTPUTS), n=analysis.samples, seed=analysis.seed,
                                       confidence=analysis.confidence, resamples=analysis.resamples,
-                                      chunk_size=chunk_size if chunk_size is not None else analysis.chunk or 16,
+                                      chunk_size=size,
                                       store=store, resume=resume, executor=executor, progress=progress)  # fmt: skip
     d = len(inputs)
     rows = points["design_row"].values

@@ -83,7 +83,10 @@ class Distribution:
             if not (math.isfinite(self.mean) and math.isfinite(self.std) and self.std > 0):
                 raise ValueError(f"a normal distribution needs a finite mean and std > 0, got mean = {self.mean:g}, "
                                  f"std = {self.std:g}")  # fmt: skip
-            if self._frozen().cdf(hi) - self._frozen().cdf(lo) < 1e-6:
+            from scipy import stats
+
+            kept = stats.norm.cdf(hi, self.mean, self.std) - stats.norm.cdf(lo, self.mean, self.std)
+            if not kept >= 1e-6:
                 raise ValueError(f"the truncation [{lo:g}, {hi:g}] keeps less than 1e-6 of the normal's "
                                  f"probability (mean {self.mean:g}, std {self.std:g})")  # fmt: skip
 
