@@ -43,13 +43,12 @@ def tolerance_study(case_model: Any, spec: Any) -> tuple[Any, list[Any]]:
     analysis (ValueError where the case cannot run it)."""
     from dataclasses import replace
 
-    from rotorlab.analyses._machine_common import machine_model
     from rotorlab.analyses._tolerance_machine import SampleStarts, UncertainMachine
     from rotorlab.explore import MachineRegimes
     from rotorlab.explore._sensitivity import UncertainInput
     from rotorlab.models import ConstantSpeed
 
-    source = machine_model(case_model)
+    source = spec.machine(case_model)
     speed = spec.speed if spec.speed is not None else float(source.drive.speed)
     inputs, units = [], []
     for name in spec.inputs:

@@ -8,7 +8,7 @@ and the Monte-Carlo envelope of its vibration; on the sweep engine (``--store``,
 from __future__ import annotations
 
 from pathlib import Path
-from typing import Annotated, Any, Optional
+from typing import Annotated, Optional
 
 import typer
 

@@ -35,7 +35,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, WithJsonSchema
 
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, _error, integer, quantity
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, _error, integer, quantity
 
 __all__ = ["TolerancesSpec", "ALIASES"]
 
@@ -146,6 +146,9 @@ class TolerancesSpec(AbstractAnalysisSpec):
         Bootstrap resamples of the indices.
     chunk : int, optional
         Machines per chunk of the sweep engine.
+    races : list of int, optional
+        The ball races that take part (default all); the inputs' ``races[i]`` count the chosen
+        races from 0.
     """
 
     model_types: ClassVar[tuple[str, ...]] = ("machine",)
@@ -162,6 +165,17 @@ class TolerancesSpec(AbstractAnalysisSpec):
     confidence: quantity("dimensionless", gt=0, lt=1) = Field(0.95, description="level of the intervals (-)")
     resamples: integer(ge=10, le=10000) = Field(200, description="bootstrap resamples")
     chunk: integer(ge=1, le=100_000) | None = Field(None, description="machines per chunk")
+    races: RaceIndices | None = Field(None, description="ball races that take part (default all)")
+
+    def machine(self, model: AbstractModelSpec) -> Any:
+        """The machine the inputs' names refer to: the case's, with the chosen ``races`` only
+        (renumbered from 0 in the order given)."""
+        from dataclasses import replace
+
+        from rotorlab.io._machine_spec import build_machine
+
+        machine = build_machine(model)
+        return machine if self.races is None else replace(machine, races=tuple(machine.races[i] for i in self.races))
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
         """Check the machine (balls, a constant speed), every input's name, its distribution
@@ -173,10 +187,11 @@ class TolerancesSpec(AbstractAnalysisSpec):
             issues.append(Issue(("samples",), "must be a power of 2 (the balance of the Sobol sequence)", self.samples))
         if len(self.inputs) < 2:
             issues.append(Issue(("inputs",), "give two or more uncertain inputs", list(self.inputs)))
-        from rotorlab.io._machine_spec import build_machine
-
+        race_issues = model.race_issues(self.races)
+        if race_issues:
+            return issues + race_issues
         try:
-            machine = build_machine(model)
+            machine = self.machine(model)
         except (ValueError, TypeError):
             return issues  # the model's own checks report it
         if machine.n_balls == 0:
@@ -197,7 +212,7 @@ class TolerancesSpec(AbstractAnalysisSpec):
         """The :class:`~rotorlab.explore.Distribution` of input ``name`` on ``machine`` (a built
         :class:`~rotorlab.models.Machine`) and the :class:`~rotorlab.models.Parameter` whose range
         it must keep (None for an alias); ValueError saying what is wrong."""
-        from rotorlab.explore._sensitivity import Distribution
+        from rotorlab._distributions import Distribution
 
         entry = self.inputs[name]
         case_value, param = _case_value(name, machine)
@@ -270,7 +285,7 @@ def _check_support(dist: Any, param: Any) -> None:
     """ValueError where the distribution's draws reach values outside the parameter's range."""
     import numpy as np
 
-    from rotorlab.explore._sensitivity import U_CLIP
+    from rotorlab._distributions import U_CLIP
 
     lo, hi = (float(v) for v in dist.quantile(np.array([U_CLIP, 1.0 - U_CLIP])))
     gt, ge, lt, le = param.bounds
