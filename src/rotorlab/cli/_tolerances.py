@@ -15,7 +15,7 @@ import typer
 from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app, find_analysis
 from rotorlab.cli._options import MAX_SEED, count_option
 from rotorlab.cli._output import BadInput, handled, info, progress_bar
-from rotorlab.cli._sweep_common import ChunkOpt, SchedulerOpt, WorkersOpt, YesOpt
+from rotorlab.cli._sweep_common import ChunkOpt, OutNcOpt, ResumeOpt, SchedulerOpt, StoreOpt, WorkersOpt, YesOpt
 
 __all__ = ["tolerances_command"]
 
@@ -41,14 +41,11 @@ def tolerances_command(
     t_end: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--t-end", metavar="S", help="Simulated time of every start (s).")] = None,
     chunk: ChunkOpt("Machines per chunk (default 16).") = None,
-    store: Annotated[Optional[Path], typer.Option(  # noqa: UP007
-        "--store", metavar="STORE.zarr", help="Checkpoint: every finished chunk of machines goes to this Zarr store; "
-        "an interrupted run continues with --resume.")] = None,
-    resume: Annotated[bool, typer.Option("--resume", help="Continue the run in --store.")] = False,
+    store: StoreOpt("machines") = None,
+    resume: ResumeOpt = False,
     scheduler: SchedulerOpt = None,
     workers: WorkersOpt = None,
-    out: Annotated[Optional[Path], typer.Option(  # noqa: UP007
-        "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")] = None,
+    out: OutNcOpt = None,
     plot: Annotated[Optional[Path], typer.Option(  # noqa: UP007
         "--plot", metavar="FILE", help="Save the Sobol indices as bars with their intervals (PNG, PDF or SVG).")] = None,
     envelope: Annotated[Optional[Path], typer.Option(  # noqa: UP007
