@@ -11,6 +11,7 @@ against the analytic indices.
 
     python bench/tolerances.py            # the built-in example, then Ishigami
     python bench/tolerances.py --samples 8  # a smaller design of the same case
+    python bench/tolerances.py --save /tmp/tol  # also the result and its figures
 """
 
 from __future__ import annotations
@@ -31,7 +32,7 @@ def _widths(names, values, n, d, confidence=0.95):
     return float(np.nanmean(si["ST_conf"])), float(np.nanmax(si["ST_conf"])), si
 
 
-def machine(samples: int) -> None:
+def machine(samples: int, save: str | None) -> None:
     from rotorlab.analyses._tolerances import run_tolerances_analysis
     from rotorlab.explore._sensitivity import UncertainInput, sobol_sample
     from rotorlab.io import load_case
@@ -41,6 +42,16 @@ def machine(samples: int) -> None:
     cpu, wall = time.process_time(), time.perf_counter()
     ds = run_tolerances_analysis(case.model, spec)
     cpu, wall = time.process_time() - cpu, time.perf_counter() - wall
+    if save:
+        from pathlib import Path
+
+        from rotorlab.io import save_netcdf
+        from rotorlab.plot._tolerances import tolerances_figures
+
+        Path(save).mkdir(parents=True, exist_ok=True)
+        save_netcdf(ds, Path(save) / "tolerances.nc")
+        for stem, fig in tolerances_figures(ds, "tolerances").items():
+            fig.savefig(Path(save) / f"{stem}.png", dpi=110)
     d = int(ds.attrs["n_inputs"])
     names = [str(v) for v in ds["input"].values]
     trajectories = int(ds.sizes["sample"]) * int(ds.attrs["starts"])
@@ -94,9 +105,10 @@ def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--samples", type=int, default=32, help="base samples of the machine run (a power of 2)")
     parser.add_argument("--skip-machine", action="store_true")
+    parser.add_argument("--save", metavar="DIR", help="write the result (NetCDF) and its figures (PNG) there")
     args = parser.parse_args()
     if not args.skip_machine:
-        machine(args.samples)
+        machine(args.samples, args.save)
     ishigami()
 
 

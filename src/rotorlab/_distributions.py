@@ -39,7 +39,9 @@ class Distribution:
     --------
     >>> d = Distribution("normal", mean=1.0, std=0.1, low=0.95)
     >>> bool(d.quantile(np.array([1e-9]))[0] >= 0.95), round(float(d.quantile(np.array([0.5]))[0]), 4)
-    (True, 1.0164)
+    (True, 1.0397)
+
+    (the median m of the kept part: Phi((m - 1) / 0.1) = Phi(-0.5) + (1 - Phi(-0.5)) / 2, z = 0.397)
     >>> Distribution("uniform", low=2.0, high=4.0).quantile(np.array([0.25])).tolist()
     [2.5]
     """
