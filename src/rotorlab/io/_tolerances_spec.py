@@ -35,7 +35,7 @@ from typing import Annotated, Any, ClassVar, Literal
 from pydantic import Field, PlainValidator, WithJsonSchema
 
 from rotorlab.io._errors import Issue
-from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, _error, integer, quantity
+from rotorlab.io._fields import AbstractAnalysisSpec, AbstractModelSpec, RaceIndices, Unit, _error, integer, quantity
 
 __all__ = ["TolerancesSpec", "ALIASES"]
 
@@ -110,7 +110,8 @@ def _read_inputs(value: Any) -> dict[str, dict[str, Any]]:
 
 
 _InputsField = Annotated[dict[str, dict[str, Any]], PlainValidator(_read_inputs),
-                         WithJsonSchema({"type": "object", "additionalProperties": {"type": "object"}})]  # fmt: skip
+                         WithJsonSchema({"type": "object", "additionalProperties": {"type": "object"}}),
+                         Unit("SI")]  # fmt: skip
 
 
 class TolerancesSpec(AbstractAnalysisSpec):
@@ -207,6 +208,12 @@ class TolerancesSpec(AbstractAnalysisSpec):
             except ValueError as exc:
                 issues.append(Issue(("inputs", name), str(exc), dict(self.inputs[name])))
         return issues
+
+    def describe(self, model: AbstractModelSpec) -> str:
+        d = len(self.inputs)
+        return (f"Sobol indices of P(balanced), residual vibration and transient peak over {d} uncertain inputs "
+                f"({', '.join(self.inputs)}): {self.samples * (d + 2)} machines x {self.starts} starts of "
+                f"{self.t_end:g} s")
 
     def distribution(self, name: str, machine: Any) -> tuple[Any, Any]:
         """The :class:`~rotorlab.explore.Distribution` of input ``name`` on ``machine`` (a built
