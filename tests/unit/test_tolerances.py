@@ -128,6 +128,9 @@ def test_same_seed_same_bits_and_a_resumed_store_gives_the_same_bits(tmp_path):
     assert np.array_equal(points["y"].values, ref_points["y"].values)
     other, _ = run_sensitivity(Ishigami(), inputs, ["y"], n=64, seed=4, chunk_size=320)
     assert not np.array_equal(other["ST"].values, ref["ST"].values)
+    # seed 0 too: the bootstrap intervals are drawn from the seed (SALib leaves a seed of 0 unseeded)
+    zero = [run_sensitivity(Ishigami(), inputs, ["y"], n=64, seed=0, chunk_size=320)[0] for _ in range(2)]
+    assert zero[0].identical(zero[1])
 
 
 # ---- the machine: pico21-balancer (a model the machine tests compile), short runs ------------------------------
@@ -211,6 +214,9 @@ def test_the_tolerances_command_writes_figures_json_and_the_report(tmp_path):
                                  "--envelope", str(tmp_path / "e.png"), "--out", str(tmp_path / "t.nc")])  # fmt: skip
     assert result.exit_code == 0, result.output
     doc = json.loads(result.stdout)
+    on_dask = runner.invoke(app, ["tolerances", str(path), "--json", "--workers", "2"])
+    assert on_dask.exit_code == 0, on_dask.output
+    assert json.loads(on_dask.stdout)["rows"] == doc["rows"]  # the same numbers on a local Dask cluster
     assert doc["inputs"] == ["unbalances[0].magnitude", "ball_damping", "races[1].balls[0].damping"]
     assert doc["machines"] == 20 and doc["failed"] == 0
     assert all((tmp_path / f).stat().st_size > 1000 for f in ("s.png", "e.png", "t.nc"))

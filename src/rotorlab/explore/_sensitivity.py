@@ -112,7 +112,8 @@ def sobol_indices(names: Sequence[str], y: np.ndarray, *, confidence: float = 0.
         return {"S1": nan, "S1_conf": nan, "ST": nan, "ST_conf": nan, **out}
     problem = {"num_vars": d, "names": list(names), "bounds": [[0.0, 1.0]] * d}
     si = sobol_analysis.analyze(problem, y, calc_second_order=False, num_resamples=int(resamples),
-                                conf_level=float(confidence), seed=int(seed))  # fmt: skip
+                                conf_level=float(confidence), seed=int(seed) + 1)  # fmt: skip
+    # (+ 1: SALib draws its bootstrap unseeded for a seed that is false, i.e. 0)
     return {k: np.asarray(si[k], dtype=float) for k in ("S1", "S1_conf", "ST", "ST_conf")} | out
 
 
