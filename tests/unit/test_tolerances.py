@@ -225,3 +225,20 @@ def test_the_tolerances_command_writes_figures_json_and_the_report(tmp_path):
     assert result.exit_code == 0, result.output
     html = next(out.rglob("*.html")).read_text(encoding="utf-8")
     assert "tol_sensitivity" in html and "tol_envelope" in html and "Uncertain inputs" in html
+
+
+def test_the_verdict_names_the_input_p_balanced_is_most_sensitive_to():
+    import xarray as xr
+
+    from rotorlab.analyses import VERDICT_EVIDENCE
+
+    ds = xr.Dataset({"ST": (("output", "input"), [[0.1, 0.62], [0.9, 0.0]]),
+                     "ST_conf": (("output", "input"), [[0.02, 0.05], [0.1, 0.0]])},
+                    coords={"output": ["p_balanced", "transient_peak"], "input": ["ball_mass", "ball_damping"]},
+                    attrs={"name": "tol"})  # fmt: skip
+    line, = VERDICT_EVIDENCE["tolerances"](ds, [], None)
+    assert (line.topic, line.status) == ("tolerances", "info")
+    assert line.sentence == "P(balanced) is most sensitive to ball_damping (total Sobol index 0.62 ± 0.05; tol)."
+    flat = ds.copy()
+    flat["ST"][0] = np.nan  # P(balanced) did not vary: no line
+    assert VERDICT_EVIDENCE["tolerances"](flat, [], None) == []
