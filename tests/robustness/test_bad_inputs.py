@@ -465,6 +465,43 @@ MARGINS = [
     ("fm-nan-ratio", ["friction-margin", "strautmanis-torus", "--speed-ratio", "nan"], None, ["--speed-ratio"]),
 ]
 CORPUS += MARGINS
+
+# ---- tolerances (issue 27): the uncertain inputs of the built-in example, one text change each ------------------
+_TOL = '"races[0].radius" = { distribution = "normal", mean = "40 mm", std = "0.1 mm" }'
+TOLERANCES = [
+    ("tol-unknown-parameter", ["tolerances", FILE, "--plot", "{d}/s.png"],
+     ("pico21-balancer", _TOL, '"races[0].radiu" = { distribution = "normal", mean = "40 mm", std = "0.1 mm" }'),
+     ['analysis[6].inputs."races[0].radiu"', "not a number of any model"]),
+    ("tol-parameter-past-end", ["tolerances", FILE],
+     ("pico21-balancer", _TOL, '"races[4].radius" = { distribution = "normal", mean = "40 mm", std = "0.1 mm" }'),
+     ['analysis[6].inputs."races[4].radius"', "not a named parameter of this machine", "did you mean",
+      "races[0].radius"]),
+    ("tol-bad-distribution", ["validate", FILE],
+     ("pico21-balancer", _TOL, '"races[0].radius" = { distribution = "lognormal", mean = "40 mm", std = "0.1 mm" }'),
+     ['analysis[6].inputs."races[0].radius".distribution', "lognormal", "normal", "uniform"]),
+    ("tol-normal-without-std", ["tolerances", FILE],
+     ("pico21-balancer", _TOL, '"races[0].radius" = { distribution = "normal", mean = "40 mm" }'),
+     ['analysis[6].inputs."races[0].radius"', "give std or tolerance"]),
+    ("tol-wrong-unit", ["validate", FILE],
+     ("pico21-balancer", _TOL, '"races[0].radius" = { distribution = "normal", mean = "40 kg", std = "0.1 mm" }'),
+     ['analysis[6].inputs."races[0].radius".mean', "40 kg", "wrong dimension"]),
+    ("tol-uniform-reaches-negative", ["tolerances", FILE],
+     ("pico21-balancer", 'ball_damping = { distribution = "uniform", low = "1e-4 N*m*s", high = "4e-4 N*m*s" }',
+      'ball_damping = { distribution = "uniform", low = "-1e-4 N*m*s", high = "4e-4 N*m*s" }'),
+     ["analysis[6].inputs.ball_damping", "reaches values the parameter cannot take", ">= 0"]),
+    ("tol-structural", ["tolerances", FILE],
+     ("pico21-balancer", _TOL, 'n_modes = { distribution = "uniform", low = 4, high = 6 }'),
+     ["analysis[6].inputs.n_modes", "structural"]),
+    ("tol-samples-not-power-of-two", ["tolerances", "pico21-balancer", "--samples", "24"], None,
+     ["--samples", "power of 2"]),
+    ("tol-no-analysis", ["tolerances", "washer-horizontal"], None, ["no tolerances analysis"]),
+    ("tol-jeffcott", ["validate", FILE], ("autobalancer", "n_horizons = 10",
+                                          'n_horizons = 10\n\n[[analysis]]\ntype = "tolerances"\n'
+                                          'inputs = { ball_damping = { distribution = "uniform", tolerance = 0.1 }, '
+                                          'ball_mass = { distribution = "uniform", tolerance = 0.1 } }'),
+     ["type", "needs a machine model with balls", "jeffcott_balls"]),
+]
+CORPUS += TOLERANCES
 if resources.files("rotorlab.cases").joinpath("washer-knock.toml").is_file():
     CORPUS.append(("mk-center-outside-gap", ["validate", FILE], ("washer-knock", "center_at_rest = true",
                                                                  'center = ["0 mm", "12 mm"]'),

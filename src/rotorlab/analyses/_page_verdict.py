@@ -361,7 +361,18 @@ def _steady_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[Ve
                         _balance_fix(facts, speed, status, None))]
 
 
-for _type, _fn in (("simulate", _simulate_evidence), ("basin", _basin_evidence), ("run-up", _run_up_evidence),
+def _tolerances_evidence(ds: Any, rows: Rows, facts: MachineFacts | None) -> list[VerdictLine]:
+    from rotorlab.analyses._tolerances import most_sensitive
+
+    top = most_sensitive(ds, "p_balanced") if "output" in ds.coords else None
+    if top is None:
+        return []
+    name, st, conf = top
+    return [VerdictLine("tolerances", "info", f"P(balanced) is most sensitive to {name} (total Sobol index "
+                        f"{st:.2f} ± {conf:.2f}; {ds.attrs.get('name', '')}).")]
+
+
+for _type, _fn in (("tolerances", _tolerances_evidence), ("simulate", _simulate_evidence), ("basin", _basin_evidence), ("run-up", _run_up_evidence),
                    ("stability-chart", _chart_evidence), ("machine-knock", _knock_evidence),
                    ("steady", _steady_evidence)):
     register_evidence(_type, _fn)

@@ -219,6 +219,10 @@ def _register_builtins() -> None:
 
     register_analysis_type(AnalysisType("design", _design_case.run_design_analysis, _design_case.design_rows, "design",
                                         _design_case.design_task_size, progress_unit="designs"))
+    from rotorlab.analyses import _tolerances
+
+    register_analysis_type(AnalysisType("tolerances", _tolerances.run_tolerances_analysis, _tolerances.tolerances_rows,
+                                        "tolerances", _tolerances.tolerances_task_size, progress_unit="machines"))
 
 
 _register_builtins()

@@ -31,6 +31,7 @@ def _load_app() -> Any:
     from rotorlab.cli import _show  # noqa: F401 - registers the show command
     from rotorlab.cli import _steady  # noqa: F401 - registers the steady and stability-chart commands
     from rotorlab.cli import _sweep  # noqa: F401 - registers the sweep command
+    from rotorlab.cli import _tolerances  # noqa: F401 - registers the tolerances command
     from rotorlab.cli._app import app
 
     return app

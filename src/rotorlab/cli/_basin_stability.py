@@ -17,7 +17,7 @@ from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _json_case, _load, _sett
 from rotorlab._limits import MAX_STARTS
 from rotorlab.cli._options import MAX_SEED, count_option
 from rotorlab.cli._output import BadInput, handled, info, progress_bar
-from rotorlab.cli._sweep_common import ChunkOpt, OutNcOpt, ResumeOpt, SchedulerOpt, WorkersOpt, YesOpt
+from rotorlab.cli._sweep_common import ChunkOpt, OutNcOpt, ResumeOpt, SchedulerOpt, StoreOpt, WorkersOpt, YesOpt
 
 __all__ = ["basin_stability_command"]
 
@@ -120,9 +120,7 @@ def basin_stability_command(
     t_end: Annotated[Optional[float], typer.Option(  # noqa: UP007
         "--t-end", metavar="S", help="Simulated time (s); default from the balanced state's slowest mode.")] = None,
     chunk: ChunkOpt("Starts per chunk (with --ci-width: the step in which a value grows, default 128).") = None,
-    store: Annotated[Optional[Path], typer.Option(  # noqa: UP007
-        "--store", metavar="STORE.zarr", help="Checkpoint: every finished chunk of starts goes to this Zarr store; "
-        "an interrupted run continues with --resume.")] = None,
+    store: StoreOpt("starts") = None,
     resume: ResumeOpt = False,
     scheduler: SchedulerOpt = None,
     workers: WorkersOpt = None,

@@ -17,7 +17,7 @@ import typer
 from rotorlab.cli._options import MAX_CHUNK, MAX_WORKERS, count_option
 from rotorlab.cli._output import BadInput, clean_text, say, stderr
 
-__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "YesOpt", "OutNcOpt", "ResumeOpt", "LONG_RUN_S",
+__all__ = ["SchedulerOpt", "WorkersOpt", "ChunkOpt", "YesOpt", "OutNcOpt", "ResumeOpt", "StoreOpt", "LONG_RUN_S",
            "scheduler_is_safe", "check_store_path",
            "executor_from_options", "run_into_store",
            "SweepBar", "run_with_bar", "stability_line", "regime_fractions"]
@@ -30,7 +30,6 @@ WorkersOpt = Annotated[Optional[int], count_option(  # noqa: UP007
     help="Run the chunks on a local Dask cluster of N workers (threads of this command).")]
 
 
-
 # the result file and --resume of the commands that write one Dataset (basin-stability, design)
 OutNcOpt = Annotated[Optional[Path], typer.Option(  # noqa: UP007
     "--out", "-o", metavar="FILE.nc", help="Write the result Dataset to this NetCDF file.")]
@@ -41,6 +40,13 @@ LONG_RUN_S = 600.0
 
 YesOpt = Annotated[bool, typer.Option(
     "--yes", "-y", help=f"Run even when the estimate (timed on a pilot) exceeds {LONG_RUN_S / 60:g} min.")]
+
+
+def StoreOpt(what: str) -> Any:  # noqa: N802 - an option type, named like the others
+    """The ``--store STORE.zarr`` checkpoint of a command whose chunks hold ``what``."""
+    return Annotated[Optional[Path], typer.Option(  # noqa: UP007
+        "--store", metavar="STORE.zarr", help=f"Checkpoint: every finished chunk of {what} goes to this Zarr store; "
+        "an interrupted run continues with --resume.")]
 
 
 def ChunkOpt(what: str) -> Any:  # noqa: N802 - an option type, named like the others

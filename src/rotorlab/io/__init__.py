@@ -73,6 +73,7 @@ from rotorlab.io._steady_specs import (
 from rotorlab.io._sweep_specs import SweepSpec
 from rotorlab.io._basin_stability_spec import BasinStabilitySpec
 from rotorlab.io._design_spec import DesignSpec
+from rotorlab.io._tolerances_spec import TolerancesSpec
 from rotorlab.io._units import ACCEPTED_UNITS, DIMENSIONS, Dimension, to_si
 
 __all__ = [
@@ -131,6 +132,7 @@ __all__ = [
     "SweepSpec",
     "BasinStabilitySpec",
     "DesignSpec",
+    "TolerancesSpec",
     "UnbalanceResponseSpec",
     "VerifySpec",
     "WorkingPointSpec",

@@ -54,6 +54,14 @@ class StructureSource:
         self._system = None
         self._parameters = None
 
+    def __repr__(self) -> str:
+        # what a sweep store remembers of a machine (rotorlab.sweep.describe_value): the table's
+        # content, never the object's address (a resumed run must find the same description)
+        import hashlib
+
+        text = self.spec.model_dump_json(warnings=False)
+        return f"StructureSource({self.spec.type}, sha256 {hashlib.sha256(text.encode()).hexdigest()[:16]})"
+
     @property
     def system(self) -> Any:
         """The :class:`rotorlab.linear.LinearSystem` of the table."""

@@ -62,6 +62,7 @@ from rotorlab._registry import Registry
 from rotorlab.io._basin_specs import BasinSpec, ToroidalBallSpec, WorkingPointSpec
 from rotorlab.io._basin_stability_spec import BasinStabilitySpec
 from rotorlab.io._design_spec import DesignSpec
+from rotorlab.io._tolerances_spec import TolerancesSpec
 from rotorlab.io._continuation_spec import ContinuationSpec
 from rotorlab.io._errors import Issue, IssueGroup
 from rotorlab.io._fe_rotor_spec import FeRotorSpec
@@ -159,7 +160,7 @@ _BUILTIN_MODELS = (JeffcottBallsSpec, MultibodySpec, FeRotorSpec, ToroidalBallSp
 _BUILTIN_ANALYSES = (SimulateSpec, CampbellSpec, ModesSpec, CriticalSpeedsSpec, UnbalanceResponseSpec, IdentifySpec,
                      DataAuditSpec, SteadySpec, StabilityChartSpec, VerifySpec, RunUpSpec, BasinSpec,
                      WorkingPointSpec, SweepSpec, BasinStabilitySpec, ImpactsSpec, ImpactsSweepSpec, RubSpec, MachineKnockSpec,
-                     RubMapSpec, ContinuationSpec, ShockMarginSpec, FrictionMarginSpec, DesignSpec)  # fmt: skip
+                     RubMapSpec, ContinuationSpec, ShockMarginSpec, FrictionMarginSpec, DesignSpec, TolerancesSpec)  # fmt: skip
 
 
 def _type_key(spec: type[BaseModel]) -> str:

@@ -129,15 +129,7 @@ def basin_stability_section(ds: xarray.Dataset, rows: Rows) -> str:
 
 def basin_stability_tables(results: Mapping[str, Any], rows: Mapping[str, Rows]) -> list[Any]:
     """Rich tables for ``rotorlab run`` and ``rotorlab basin-stability``: one per result."""
-    from rich.table import Table
+    from rotorlab.report._table import console_table
 
-    out = []
-    for name, ds in results.items():
-        head, body = _table_rows(ds, rows[name])
-        t = Table(title=f"{name}: {stability_verdict(ds, rows[name])}", title_justify="left")
-        for col in head:
-            t.add_column(col, justify="left" if col == "value" else "right")
-        for line in body:
-            t.add_row(*line)
-        out.append(t)
-    return out
+    return [console_table(f"{name}: {stability_verdict(ds, rows[name])}", *_table_rows(ds, rows[name]), left="value")
+            for name, ds in results.items()]  # fmt: skip

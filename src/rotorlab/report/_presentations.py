@@ -192,5 +192,9 @@ for _entry in (
                  lazy("rotorlab.report._margins:friction_margin_tables")),
     Presentation("design", lazy("rotorlab.plot._design:design_figures"), lazy("rotorlab.report._design:design_section"),
                  lazy("rotorlab.report._design:design_findings"), lazy("rotorlab.report._design:design_tables")),
+    Presentation("tolerances", lazy("rotorlab.plot._tolerances:tolerances_figures"),
+                 lazy("rotorlab.report._tolerances:tolerances_section"),
+                 lazy("rotorlab.report._tolerances:tolerances_findings"),
+                 lazy("rotorlab.report._tolerances:tolerances_tables")),
 ):  # fmt: skip
     register_presentation(_entry)

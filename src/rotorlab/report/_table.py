@@ -7,7 +7,7 @@ import re
 from collections.abc import Iterable, Sequence
 from typing import Any
 
-__all__ = ["escape", "table"]
+__all__ = ["escape", "table", "console_table"]
 
 _NUMBER = re.compile(r"^[±+-]?(\d|\.\d)")
 
@@ -45,3 +45,16 @@ def table(header: Sequence[str], rows: Iterable[Sequence[Any]], numeric: set[int
             cells.append(f"<td{css}>{cell if j in raw else escape(cell)}</td>")
         body.append("<tr>" + "".join(cells) + "</tr>")
     return f"<table><thead><tr>{head}</tr></thead><tbody>{''.join(body)}</tbody></table>"
+
+
+def console_table(title: str, header: Sequence[str], rows: Iterable[Sequence[str]], left: str) -> Any:
+    """A rich table for the console: ``title`` above, the column ``left`` left-aligned, the others
+    right-aligned (numbers)."""
+    from rich.table import Table
+
+    t = Table(title=title, title_justify="left")
+    for col in header:
+        t.add_column(col, justify="left" if col == left else "right")
+    for line in rows:
+        t.add_row(*line)
+    return t
