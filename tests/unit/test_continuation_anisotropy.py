@@ -183,3 +183,52 @@ def test_case_file_and_cli_draw_the_boundary_over_the_floquet_chart(tmp_path):
                          "--param2: is continued against drive.speed only")):
         res = CliRunner().invoke(app, ["continue", str(path), "--param", *extra, "--plot", str(bad)])
         assert res.exit_code == 2 and said in res.output and "Traceback" not in res.output and not bad.exists()
+
+
+class _DampedMathieu:
+    """``x'' + c x' + (delta + eps cos t) x = 0`` as a periodic linear system in ``(w, a) = (delta,
+    eps)``, its monodromy over ``2 pi`` by the boundary code's own Magnus integrator (A(t) = A0 +
+    Ac cos 2 Omega t with Omega = 1/2), Richardson-extrapolated as :class:`BalancedFloquet` does."""
+
+    label, state = "mathieu", np.zeros(2)
+
+    def __init__(self, c: float):
+        self.c = c
+
+    def multipliers(self, delta: float, eps: float) -> np.ndarray:
+        from rotorlab.continuation._anisotropic import _magnus4
+
+        a0 = np.array([[0.0, 1.0], [-delta, -self.c]])
+        ac = np.array([[0.0, 0.0], [-eps, 0.0]])
+        p1, p2 = (_magnus4(a0, ac, np.zeros((2, 2)), 0.5, n) for n in (100, 200))
+        mu = np.linalg.eigvals(p2 + (p2 - p1) / 15.0)
+        return mu[np.argsort(-np.abs(mu), kind="stable")]
+
+    def exponent(self, delta: float, eps: float) -> float:
+        return math.log(abs(self.multipliers(delta, eps)[0])) / (2.0 * math.pi)
+
+
+def test_floquet_boundary_labels_plus_and_minus_one_crossings_at_the_mathieu_tongues():
+    """The boundary's crossing labels on a system with both real crossings: the damped Mathieu
+    equation x'' + c x' + (delta + eps cos t) x = 0 (McLachlan 1947; Abramowitz & Stegun 20.1,
+    with z = t / 2: a = 4 delta, q = -2 eps). Its tongue from delta = 1/4 has a multiplier through
+    -1 (solutions of period 4 pi, ce_1 / se_1), the one from delta = 1 a multiplier through +1
+    (period 2 pi, ce_2 / se_2). x = exp(-c t / 2) y turns the damping into a shift of delta by
+    c^2 / 4 and a growth threshold c / 2, both below 1e-8 here, so the boundaries are the tongue
+    edges delta = a_m(2 eps) / 4 and b_m(2 eps) / 4 (scipy.special.mathieu_a / mathieu_b, their
+    own series) to 1e-6 at eps = 0.3, where each curve ends."""
+    from scipy.special import mathieu_a, mathieu_b
+
+    from rotorlab.continuation._anisotropic import boundaries
+
+    curves = boundaries(_DampedMathieu(1e-4), 0.05, 1.3, 0.02, 0.3)
+    labels = {}
+    for c in curves:
+        kinds = set(c.crossing)
+        assert len(kinds) == 1, kinds  # one tongue, one kind of crossing along it
+        top = c.values[np.isclose(c.values[:, 1], 0.3, atol=1e-12), 0]
+        labels[kinds.pop()] = sorted(top)
+    q = 2 * 0.3
+    assert labels["-1"] == pytest.approx(sorted([mathieu_b(1, q) / 4, mathieu_a(1, q) / 4]), abs=1e-6)
+    assert labels["+1"] == pytest.approx(sorted([mathieu_b(2, q) / 4, mathieu_a(2, q) / 4]), abs=1e-6)
+    assert len(curves) == 2
