@@ -208,27 +208,38 @@ class _DampedMathieu:
         return math.log(abs(self.multipliers(delta, eps)[0])) / (2.0 * math.pi)
 
 
+def _dop853_exponent(c: float, delta: float, eps: float) -> float:
+    """log max|mu| of the damped Mathieu equation over 2 pi, SciPy's DOP853 (rtol 1e-12)."""
+    def f(t, y):
+        x = y.reshape(2, 2)
+        return (np.array([[0.0, 1.0], [-(delta + eps * math.cos(t)), -c]]) @ x).ravel()
+
+    sol = solve_ivp(f, (0.0, 2 * math.pi), np.eye(2).ravel(), method="DOP853", rtol=1e-12, atol=1e-14)
+    return math.log(np.abs(np.linalg.eigvals(sol.y[:, -1].reshape(2, 2))).max())
+
+
 def test_floquet_boundary_labels_plus_and_minus_one_crossings_at_the_mathieu_tongues():
     """The boundary's crossing labels on a system with both real crossings: the damped Mathieu
     equation x'' + c x' + (delta + eps cos t) x = 0 (McLachlan 1947; Abramowitz & Stegun 20.1,
     with z = t / 2: a = 4 delta, q = -2 eps). Its tongue from delta = 1/4 has a multiplier through
     -1 (solutions of period 4 pi, ce_1 / se_1), the one from delta = 1 a multiplier through +1
-    (period 2 pi, ce_2 / se_2). x = exp(-c t / 2) y turns the damping into a shift of delta by
-    c^2 / 4 and a growth threshold c / 2, both below 1e-8 here, so the boundaries are the tongue
-    edges delta = a_m(2 eps) / 4 and b_m(2 eps) / 4 (scipy.special.mathieu_a / mathieu_b, their
-    own series) to 1e-6 at eps = 0.3, where each curve ends."""
+    (period 2 pi, ce_2 / se_2). With c = 0.02 each tongue's boundary is one curve around its tip,
+    both ends at eps = 0.4; there it lies inside the undamped tongue (edges a_m(2 eps) / 4 and
+    b_m(2 eps) / 4, scipy.special.mathieu_a / mathieu_b) and equals the zero of the largest
+    Floquet exponent by SciPy's DOP853 (an independent integrator) to 1e-6."""
+    from scipy.optimize import brentq
     from scipy.special import mathieu_a, mathieu_b
 
     from rotorlab.continuation._anisotropic import boundaries
 
-    curves = boundaries(_DampedMathieu(1e-4), 0.05, 1.3, 0.02, 0.3)
-    labels = {}
-    for c in curves:
-        kinds = set(c.crossing)
-        assert len(kinds) == 1, kinds  # one tongue, one kind of crossing along it
-        top = c.values[np.isclose(c.values[:, 1], 0.3, atol=1e-12), 0]
-        labels[kinds.pop()] = sorted(top)
-    q = 2 * 0.3
-    assert labels["-1"] == pytest.approx(sorted([mathieu_b(1, q) / 4, mathieu_a(1, q) / 4]), abs=1e-6)
-    assert labels["+1"] == pytest.approx(sorted([mathieu_b(2, q) / 4, mathieu_a(2, q) / 4]), abs=1e-6)
-    assert len(curves) == 2
+    c, top, q = 0.02, 0.4, 0.8
+    curves = boundaries(_DampedMathieu(c), 0.02, 1.3, 0.02, top)
+    assert len(curves) == 2 and all(x.end == "bound" for x in curves)
+    for curve, m, label in zip(sorted(curves, key=lambda x: x.values[0, 0]), (1, 2), ("-1", "+1")):
+        assert set(curve.crossing) == {label}
+        ends = sorted(curve.values[np.isclose(curve.values[:, 1], top, atol=1e-12), 0])
+        lo, hi = mathieu_b(m, q) / 4, mathieu_a(m, q) / 4  # the undamped tongue at eps = 0.4
+        mid = 0.5 * (lo + hi)
+        ref = [brentq(lambda d: _dop853_exponent(c, d, top), *br, xtol=1e-12) for br in ((lo, mid), (mid, hi))]
+        assert lo < ends[0] < ends[1] < hi
+        assert ends == pytest.approx(ref, abs=1e-6)
