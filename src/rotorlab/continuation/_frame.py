@@ -15,12 +15,12 @@ class _Frame:
     some ten thousand times per curve; per call they cost 30 us against the kernel's 2 us).
     ``tests/unit/test_continuation_two_parameter.py`` checks both against the Machine's own."""
 
-    def __init__(self, machine, p: np.ndarray | None = None):
+    def __init__(self, machine):
         self.om = machine._require_rotating()
         lay = machine.layout
         self.nz, self.nb, self.i_phi, self.i_w = lay.n_z, lay.n_balls, lay.i_phi, lay.i_w
         self.y = np.zeros(lay.n_state)
-        self.p = machine.to_array() if p is None else p  # given: MachineEquilibria's affine map
+        self.p = machine.to_array()
         self.kernel = machine.kernels.rhs
         nz, nb = self.nz, self.nb  # Machine._fd_step: one step per block (z, z', psi and psi')
         self.steps = np.repeat([machine._fd_step(j, self.om) for j in (0, nz, 2 * nz)], [nz, nz, 2 * nb])

@@ -269,7 +269,6 @@ class MachineEquilibria:
         self.z_scale = max(u / max(machine.structure.total_mass, 1e-300), 1e-12)
         self._machines: dict[tuple[float, ...], object] = {}
         self._frames: dict[tuple[float, ...], _Frame] = {}
-        self._affine: tuple | None | bool = None  # see :meth:`_packed`
         self._spectra: dict[bytes, np.ndarray] = {}
 
     # ------------------------------------------------------------------ building blocks
@@ -293,35 +292,8 @@ class MachineEquilibria:
         key = tuple(float(v) for v in values)
         fr = self._frames.get(key)
         if fr is None:
-            m = self.machine(key)
-            fr = self._frames[key] = _Frame(m, self._packed(key, m))
+            fr = self._frames[key] = _Frame(self.machine(key))
         return fr
-
-    def _packed(self, key: tuple[float, ...], machine) -> np.ndarray | None:
-        """The machine's packed parameters at ``key`` as ``p0 + D (key - key0)`` where they are affine
-        in the continued values (the speed: one entry), checked once at a third point to 1e-13;
-        None (``Machine.to_array``, 1.5 ms a call, most of a curve's time) where they are not (a
-        ball mass enters squared radii times masses and damping over masses)."""
-        if self._affine is None:
-            self._affine = False
-            k0 = np.array(key)
-            d = 1e-2 * np.maximum(np.abs(k0), 1e-3)
-            try:
-                p0 = self.machine(key).to_array()
-                cols = [(self.machine(tuple(k0 + d * (np.arange(k0.size) == i))).to_array() - p0) / d[i]
-                        for i in range(k0.size)]
-                far = k0 - 2.5 * d
-                ref = self.machine(tuple(far)).to_array()
-            except ValueError:
-                return None
-            D = np.array(cols).T
-            if machine.layout == self.base.layout and \
-                    np.max(np.abs(p0 + D @ (far - k0) - ref)) <= 1e-13 * max(np.max(np.abs(ref)), 1.0):
-                self._affine = (k0, p0, D)
-        if not self._affine or machine.layout != self.base.layout:
-            return None
-        k0, p0, D = self._affine
-        return p0 + D @ (np.array(key) - k0)
 
     def state(self, x) -> np.ndarray:
         """The co-rotating state at rest ``[z, 0, psi, 0]`` of ``x = (z, psi)``."""
