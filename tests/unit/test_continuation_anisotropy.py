@@ -183,3 +183,63 @@ def test_case_file_and_cli_draw_the_boundary_over_the_floquet_chart(tmp_path):
                          "--param2: is continued against drive.speed only")):
         res = CliRunner().invoke(app, ["continue", str(path), "--param", *extra, "--plot", str(bad)])
         assert res.exit_code == 2 and said in res.output and "Traceback" not in res.output and not bad.exists()
+
+
+class _DampedMathieu:
+    """``x'' + c x' + (delta + eps cos t) x = 0`` as a periodic linear system in ``(w, a) = (delta,
+    eps)``, its monodromy over ``2 pi`` by the boundary code's own Magnus integrator (A(t) = A0 +
+    Ac cos 2 Omega t with Omega = 1/2), Richardson-extrapolated as :class:`BalancedFloquet` does."""
+
+    label, state = "mathieu", np.zeros(2)
+
+    def __init__(self, c: float):
+        self.c = c
+
+    def multipliers(self, delta: float, eps: float) -> np.ndarray:
+        from rotorlab.continuation._anisotropic import _magnus4
+
+        a0 = np.array([[0.0, 1.0], [-delta, -self.c]])
+        ac = np.array([[0.0, 0.0], [-eps, 0.0]])
+        p1, p2 = (_magnus4(a0, ac, np.zeros((2, 2)), 0.5, n) for n in (100, 200))
+        mu = np.linalg.eigvals(p2 + (p2 - p1) / 15.0)
+        return mu[np.argsort(-np.abs(mu), kind="stable")]
+
+    def exponent(self, delta: float, eps: float) -> float:
+        return math.log(abs(self.multipliers(delta, eps)[0])) / (2.0 * math.pi)
+
+
+def _dop853_exponent(c: float, delta: float, eps: float) -> float:
+    """log max|mu| of the damped Mathieu equation over 2 pi, SciPy's DOP853 (rtol 1e-12)."""
+    def f(t, y):
+        x = y.reshape(2, 2)
+        return (np.array([[0.0, 1.0], [-(delta + eps * math.cos(t)), -c]]) @ x).ravel()
+
+    sol = solve_ivp(f, (0.0, 2 * math.pi), np.eye(2).ravel(), method="DOP853", rtol=1e-12, atol=1e-14)
+    return math.log(np.abs(np.linalg.eigvals(sol.y[:, -1].reshape(2, 2))).max())
+
+
+def test_floquet_boundary_labels_plus_and_minus_one_crossings_at_the_mathieu_tongues():
+    """The boundary's crossing labels on a system with both real crossings: the damped Mathieu
+    equation x'' + c x' + (delta + eps cos t) x = 0 (McLachlan 1947; Abramowitz & Stegun 20.1,
+    with z = t / 2: a = 4 delta, q = -2 eps). Its tongue from delta = 1/4 has a multiplier through
+    -1 (solutions of period 4 pi, ce_1 / se_1), the one from delta = 1 a multiplier through +1
+    (period 2 pi, ce_2 / se_2). With c = 0.02 each tongue's boundary is one curve around its tip,
+    both ends at eps = 0.4; there it lies inside the undamped tongue (edges a_m(2 eps) / 4 and
+    b_m(2 eps) / 4, scipy.special.mathieu_a / mathieu_b) and equals the zero of the largest
+    Floquet exponent by SciPy's DOP853 (an independent integrator) to 1e-6."""
+    from scipy.optimize import brentq
+    from scipy.special import mathieu_a, mathieu_b
+
+    from rotorlab.continuation._anisotropic import boundaries
+
+    c, top, q = 0.02, 0.4, 0.8
+    curves = boundaries(_DampedMathieu(c), 0.02, 1.3, 0.02, top)
+    assert len(curves) == 2 and all(x.end == "bound" for x in curves)
+    for curve, m, label in zip(sorted(curves, key=lambda x: x.values[0, 0]), (1, 2), ("-1", "+1")):
+        assert set(curve.crossing) == {label}
+        ends = sorted(curve.values[np.isclose(curve.values[:, 1], top, atol=1e-12), 0])
+        lo, hi = mathieu_b(m, q) / 4, mathieu_a(m, q) / 4  # the undamped tongue at eps = 0.4
+        mid = 0.5 * (lo + hi)
+        ref = [brentq(lambda d: _dop853_exponent(c, d, top), *br, xtol=1e-12) for br in ((lo, mid), (mid, hi))]
+        assert lo < ends[0] < ends[1] < hi
+        assert ends == pytest.approx(ref, abs=1e-6)

@@ -31,6 +31,26 @@ def test_circle_two_folds_and_closes():
     assert not [z for z in c.crossings if z.name == "branch"]  # a fold is not a branch point
 
 
+def test_rescale_follows_a_state_that_grows_a_thousandfold():
+    """The ellipse (x / R)^2 + lam^2 = 1 with R = 1000 and x's typical size 1 (a whirl that grows
+    far beyond its balanced scale near a resonance): measured in the fixed scale its arclength is
+    about 4000, out of reach of 400 steps of at most 0.1; measured in the branch's own size
+    (``rescale``: x by max(1, |x|)) it closes, with its two folds at lam = +-1 to 1e-9, each once."""
+    big = 1e3
+
+    def f(u):
+        return np.array([(u[0] / big) ** 2 + u[1] ** 2 - 1.0])
+
+    st = ContinuationSettings(ds=0.05, ds_max=0.1, max_points=400)
+    fixed = continue_curve(f, [0.6 * big, 0.8], settings=st)
+    own = continue_curve(f, [0.6 * big, 0.8], settings=st, rescale=lambda u: np.array([max(1.0, abs(u[0])), 1.0]))
+    assert fixed.end == "max_points" and own.end == "closed"
+    folds = sorted(z.point.lam for z in own.crossings if z.name == "fold")
+    np.testing.assert_allclose(folds, [-1.0, 1.0], rtol=0, atol=1e-9)
+    with pytest.raises(ValueError, match="rescale must give 2 positive"):
+        continue_curve(f, [0.6 * big, 0.8], settings=st, rescale=lambda u: np.array([0.0, 1.0]))
+
+
 def test_a_curve_winding_a_whole_turn_in_an_angle_closes():
     # lam = 0.5 sin(theta): in the plane (theta, lam) a wave that never closes, on the circle of
     # theta (an angle) a closed curve: it closes after one turn, with its two folds at lam = +-0.5

@@ -279,12 +279,22 @@ def floquet_boundary(model, start: float, stop: float, start2: float, stop2: flo
         multiplier's angle over the period, ``|arg mu| Omega / pi`` (rad/s, in ``[0, Omega]``: the
         co-rotating frequency modulo ``2 Omega``, up to sign; 0 or ``Omega`` for a real multiplier).
     """
+    return boundaries(BalancedFloquet(model, steps=steps), start, stop, start2, stop2, grid=grid, settings=settings)
+
+
+def boundaries(bf, start: float, stop: float, start2: float, stop2: float, *, grid: int = 65,
+               settings=None) -> tuple:
+    """:func:`floquet_boundary` of any periodic linear system ``bf`` in two parameters ``(w, a)``:
+    ``bf.multipliers(w, a)`` (largest modulus first), ``bf.exponent(w, a)`` (< 0: stable),
+    ``bf.label`` and ``bf.state`` (what the curves carry); ``w`` plays the speed (> 0: the
+    frequency of a curve is ``|arg mu| w / pi``), ``a`` the anisotropy (in (-1, 1)).
+    ``tests/unit/test_continuation_anisotropy.py`` runs it on the damped Mathieu equation, whose
+    boundaries carry both real labels."""
     from scipy.optimize import brentq
 
     from rotorlab.continuation._core import ContinuationSettings, continue_curve
     from rotorlab.continuation._two_parameter import TwoParameterCurve
 
-    bf = BalancedFloquet(model, steps=steps)
     lo, hi = sorted((float(start), float(stop)))
     lo2, hi2 = sorted((float(start2), float(stop2)))
     if not 0.0 < lo < hi or not -1.0 < lo2 <= hi2 < 1.0:

@@ -22,7 +22,12 @@ oriented as the previous tangent), ``u_p = u + ds t``, and corrects with Newton'
 whose Jacobian ``[J; t]`` is regular at regular points and at folds. A step whose Newton
 iteration fails or that turns the tangent by more than ``max_turn`` is halved; a step that
 converged in few iterations grows. Variables are scaled by ``scale`` (a typical size of each
-unknown) so that metres, radians and rad/s weigh alike in the arclength.
+unknown) so that metres, radians and rad/s weigh alike in the arclength. Where the sizes change
+along the curve (a structure whose whirl grows twenty-fold near a resonance), ``rescale`` gives
+them at each accepted point and the next step measures the arclength with them, the tangent
+re-expressed in the new units: the step then follows the branch's own variables, as AUTO's and
+BifurcationKit's weighted arclength norms (Doedel et al., AUTO-07p manual, the ``THU`` weights;
+Salinger et al. 2002, LOCA's arclength scaling) do with a fixed or a parameter-driven weight.
 
 A test function ``tau(point)`` whose sign differs between two consecutive points has a zero
 between them; it is located by the Illinois variant of regula falsi on the arclength from the
@@ -34,7 +39,7 @@ from __future__ import annotations
 
 import math
 from collections.abc import Callable, Mapping
-from dataclasses import dataclass, field
+from dataclasses import dataclass, field, replace
 
 import numpy as np
 
@@ -220,29 +225,43 @@ class _Stepper:
         t /= np.linalg.norm(t)
         return t if t @ previous >= 0 else -t
 
-    def correct(self, u_pred: np.ndarray, t: np.ndarray,
-                chord: np.ndarray | None = None) -> tuple[np.ndarray | None, int]:
+    def correct(self, u_pred: np.ndarray, t: np.ndarray, chord: np.ndarray | None = None,
+                stall: bool = False, radius: float = math.inf) -> tuple[np.ndarray | None, int]:
         """Newton on ``F(u) = 0, t . (u - u_pred) = 0`` (scaled); the point and the iterations.
-        With ``chord`` (a Jacobian dF/du, unscaled) that matrix serves every iteration."""
+        With ``chord`` (a Jacobian dF/du, unscaled) that matrix serves every iteration.
+
+        ``stall``: also accept an update below ``1e3 * newton_tol`` once the residual stops
+        falling (it is at round-off): next to a branch point ``[J; t]`` is nearly singular and
+        the updates stay at round-off times its condition number (1e-10 at a condition of 3e10),
+        above ``newton_tol``, while the point is known far better than the zero it brackets.
+        ``radius``: no update longer than it (max-norm, scaled): there the nearly singular
+        system's Newton step overshoots along its near-null direction."""
         w = u_pred / self.scale
         w_pred = w.copy()
         fixed = None if chord is None else np.vstack([chord * self.scale[None, :], t])
-        for k in range(1, self.st.max_newton + 1):
+        f_prev = math.inf
+        most = self.st.max_newton if math.isinf(radius) else 3 * self.st.max_newton  # shorter updates: more
+        for k in range(1, most + 1):
             u = w * self.scale
             f = np.asarray(self.F(u), dtype=float)
             if not np.all(np.isfinite(f)):
                 return None, k
+            f_norm = float(np.max(np.abs(f)))
+            stalled = stall and k > 1 and f_norm >= 0.5 * f_prev
+            f_prev = f_norm
             a = fixed if fixed is not None else np.vstack([self.jac_scaled(u), t])
             r = np.concatenate([f, [t @ (w - w_pred)]])
             try:
                 dw = np.linalg.solve(a, -r)
             except np.linalg.LinAlgError:
                 return None, k
-            w = w + dw
-            if np.max(np.abs(dw)) <= self.st.newton_tol * max(1.0, np.max(np.abs(w))):
+            big = float(np.max(np.abs(dw)))
+            w = w + (dw if big <= radius else dw * (radius / big))
+            tol = self.st.newton_tol * max(1.0, np.max(np.abs(w)))
+            if np.max(np.abs(dw)) <= (1e3 * tol if stalled else tol):
                 u = w * self.scale
                 return (u, k) if np.all(np.isfinite(u)) else (None, k)
-        return None, self.st.max_newton
+        return None, most
 
     def point(self, u: np.ndarray, previous_t: np.ndarray, s: float) -> CurvePoint:
         js = self.jac_scaled(u)
@@ -281,6 +300,7 @@ def continue_curve(
     tests: Mapping[str, TestFunction] | None = None,
     tangent0: np.ndarray | None = None,
     on_point: Callable[[CurvePoint], None] | None = None,
+    rescale: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> Curve:
     """Follow the solution curve of ``residual(u) = 0`` through ``u0``.
 
@@ -305,6 +325,9 @@ def continue_curve(
         Called with each accepted point (the first one included), after the test functions were
         evaluated there: a residual whose condition follows the curve (the phase condition of a
         periodic orbit against the previous orbit) updates itself here.
+    rescale : callable, optional
+        ``u -> scale`` (n + 1 positive numbers): the typical sizes at an accepted point, used
+        from it on in place of ``scale`` (the arclength measured in the branch's own variables).
 
     Returns
     -------
@@ -342,21 +365,22 @@ def continue_curve(
     ds, end = st.ds, "max_points"
     lo, hi = st.bounds
     while len(points) < st.max_points:
+        if rescale is not None:
+            p = _rescaled(stepper, p, rescale(p.u))
+            scale = stepper.scale
         q = None
         while ds >= st.ds_min:
-            u_pred = (p.u / scale + ds * p.tangent) * scale
-            u, its = stepper.correct(u_pred, p.tangent, p.jacobian) if st.chord else (None, 0)
-            if u is None:
-                u, its = stepper.correct(u_pred, p.tangent)
-            if u is not None:
-                q = stepper.point(u, p.tangent, p.s + ds)
-                if q.tangent @ p.tangent >= math.cos(st.max_turn):
-                    break
-            q = None
+            q, its = _step(stepper, p, ds)
+            if q is not None:
+                break
             ds *= 0.5
         if q is None:
             end = "step"
             break
+        if lo <= q.lam <= hi and any(_changes(values[k][-1], fn(q)) for k, fn in tests.items()):
+            half, its_half = _step(stepper, p, 0.5 * ds)
+            if half is not None and not _same_branch(stepper, half, q, 0.5 * ds):
+                q, its, ds = half, its_half, 0.5 * ds  # the full step jumped onto a crossing branch
         if not lo <= q.lam <= hi:
             # the last point on the bound: solve at fixed lam = bound from the predicted point
             bound = hi if q.lam > hi else lo
@@ -373,7 +397,7 @@ def continue_curve(
             end = "bound"
         for k, fn in tests.items():
             v = fn(q)
-            if np.sign(v) != np.sign(values[k][-1]) and v != 0.0 and values[k][-1] != 0.0:
+            if _changes(values[k][-1], v):
                 z = _locate(stepper, p, q, fn, values[k][-1], v, st)
                 crossings.append(Crossing(name=k, index=len(points), point=z[0], converged=z[1]))
             values[k].append(v)
@@ -394,6 +418,48 @@ def continue_curve(
                  test_values={k: np.array(v) for k, v in values.items()})
 
 
+def _changes(a: float, b: float) -> bool:
+    return a != 0.0 and b != 0.0 and np.sign(a) != np.sign(b)
+
+
+def _step(stepper: _Stepper, p: CurvePoint, ds: float) -> tuple[CurvePoint | None, int]:
+    """One predictor-corrector step of length ``ds`` from ``p`` (None: the corrector failed or
+    the tangent turned by more than ``max_turn``) and the corrector's iterations."""
+    st, scale = stepper.st, stepper.scale
+    u_pred = (p.u / scale + ds * p.tangent) * scale
+    u, its = stepper.correct(u_pred, p.tangent, p.jacobian) if st.chord else (None, 0)
+    if u is None:
+        u, its = stepper.correct(u_pred, p.tangent)
+    if u is None:
+        return None, its
+    q = stepper.point(u, p.tangent, p.s + ds)
+    return (q, its) if q.tangent @ p.tangent >= math.cos(st.max_turn) else (None, its)
+
+
+def _same_branch(stepper: _Stepper, m: CurvePoint, q: CurvePoint, ds: float) -> bool:
+    """Whether a step of ``ds`` from ``m`` (half-way along the branch from p) lands next to
+    ``q`` (within 2 % of the step, scaled). Where a test function changes sign (a branch point
+    is bracketed, where a second branch crosses) the corrector of the full step may have
+    converged onto a branch passing close by: its end then lies far from the two half steps'
+    (on one branch they differ by about the step times the square of the turn; rcfw-two-plane's
+    side branches near 0.99 rad/s: 2e-4 of the step on one branch, 7e-2 after a jump). A
+    branch that turns sharply is wrongly suspected at worst: its step is halved."""
+    q2, _ = _step(stepper, m, ds)
+    return q2 is not None and float(np.max(np.abs((q2.u - q.u) / stepper.scale))) <= 0.02 * ds
+
+
+def _rescaled(stepper: _Stepper, p: CurvePoint, new: np.ndarray) -> CurvePoint:
+    """``p`` with its tangent in the units ``new`` (which the stepper then uses)."""
+    new = np.asarray(new, dtype=float)
+    if new.shape != p.u.shape or np.any(new <= 0) or not np.all(np.isfinite(new)):
+        raise ValueError(f"rescale must give {p.u.size} positive finite numbers, got {new!r}")
+    if np.array_equal(new, stepper.scale):
+        return p
+    t = p.tangent * stepper.scale / new
+    stepper.scale = new
+    return replace(p, tangent=t / np.linalg.norm(t))
+
+
 def _passes(u0: np.ndarray, a: np.ndarray, b: np.ndarray, scale: np.ndarray, periodic: tuple[int, ...] = ()) -> bool:
     """True if the chord from ``a`` to ``b`` passes (within 5 % of its length) through ``u0``
     (its ``periodic`` angles taken the whole number of turns nearest ``a``)."""
@@ -411,16 +477,21 @@ def _passes(u0: np.ndarray, a: np.ndarray, b: np.ndarray, scale: np.ndarray, per
 
 def _locate(stepper: _Stepper, p: CurvePoint, q: CurvePoint, fn: TestFunction, fp: float, fq: float,
             st: ContinuationSettings) -> tuple[CurvePoint, bool]:
-    """The zero of ``fn`` between ``p`` and ``q`` (Illinois regula falsi on the arclength from p)."""
-    a, b = 0.0, q.s - p.s
+    """The zero of ``fn`` between ``p`` and ``q``: Illinois regula falsi on the distance along the
+    chord from p to q, each trial corrected on the plane normal to the chord (both ends lie on
+    the curve: next to a branch point, where a second curve crosses, the tangent line of p can
+    lead the corrector onto the other one)."""
+    chord = (q.u - p.u) / stepper.scale
+    a, b = 0.0, float(np.linalg.norm(chord))
+    chord = chord / b
     fa, fb = fp, fq
     best, lam_prev, side = q, math.inf, 0
     for _ in range(60):
         s = b - fb * (b - a) / (fb - fa) if fb != fa else 0.5 * (a + b)
         if not (min(a, b) < s < max(a, b)):
             s = 0.5 * (a + b)
-        u_pred = (p.u / stepper.scale + s * p.tangent) * stepper.scale
-        u, _ = stepper.correct(u_pred, p.tangent)
+        u_pred = (p.u / stepper.scale + s * chord) * stepper.scale
+        u, _ = stepper.correct(u_pred, chord, stall=True, radius=0.1 * b)
         if u is None:
             return best, False
         m = stepper.point(u, p.tangent, p.s + s)
@@ -452,6 +523,7 @@ def switch_branch(
     tests: Mapping[str, TestFunction] | None = None,
     offset: float | None = None,
     side: int = 1,
+    rescale: Callable[[np.ndarray], np.ndarray] | None = None,
 ) -> Curve:
     """Continue the other branch through a located simple branch point.
 
@@ -462,7 +534,7 @@ def switch_branch(
     away from the branch point. The direction is the one in which the parameter increases
     (``settings.direction``) or, where the new branch leaves at constant parameter (a pitchfork),
     the one whose largest component is positive; ``side=-1`` takes the opposite one (the other
-    half of a pitchfork).
+    half of a pitchfork). ``rescale`` as in :func:`continue_curve` (the new branch only).
 
     Raises
     ------
@@ -495,4 +567,4 @@ def switch_branch(
         raise ValueError("the corrected point fell back onto the old branch; not a simple branch point?")
     tangent = (u - u_bp) / scale
     return continue_curve(residual, u, jacobian=jacobian, scale=scale, settings=settings, tests=tests,
-                          tangent0=tangent * scale)
+                          tangent0=tangent * scale, rescale=rescale)

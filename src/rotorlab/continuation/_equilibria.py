@@ -70,6 +70,48 @@ def _scale(prob: MachineEquilibria, start: float, stop: float) -> np.ndarray:
     return sc
 
 
+def _rescale(prob: MachineEquilibria, scale: np.ndarray):
+    """The branch's own sizes at ``u``: the structure's coordinates by the largest of them (at
+    least the unbalance's scale), so that a step moves a whirl that has grown twenty-fold near a
+    critical speed by a few per cent of itself, not of the balanced state's scale."""
+    nz = prob.nz
+
+    def sizes(u: np.ndarray) -> np.ndarray:
+        sc = scale.copy()
+        sc[:nz] = max(prob.z_scale, float(np.max(np.abs(u[:nz]))))
+        return sc
+
+    return sizes
+
+
+def _exchanges(model, parameter: str, start: float, stop: float, nz: int) -> list[np.ndarray]:
+    """Index permutations of ``u = (z, psi, lam)`` exchanging identical balls of one race (equal
+    at both ends of the range: a parameter of one ball breaks the symmetry), the identity
+    first. A steady motion's image under one is a steady motion; at most 120 of them."""
+    import itertools
+
+    ends = [as_machine(with_value(model, parameter, v)) for v in (start, stop)]
+    groups = []  # per race, per class of identical balls: their indices
+    k = 0
+    for r, race in enumerate(ends[0].races):
+        kinds: dict[int, list[int]] = {}
+        for j, ball in enumerate(race.balls):
+            same = next((i for i in kinds if all(m.races[r].balls[i - k] == m.races[r].balls[j] for m in ends)), None)
+            kinds.setdefault(k + j if same is None else same, []).append(k + j)
+        groups += [g for g in kinds.values() if len(g) > 1]
+        k += len(race.balls)
+    n = nz + k + 1
+    if math.prod(math.factorial(len(g)) for g in groups) > 120:
+        groups = []
+    perms = []
+    for choice in itertools.product(*(itertools.permutations(g) for g in groups)):
+        perm = np.arange(n)
+        for g, image in zip(groups, choice):
+            perm[nz + np.array(g)] = nz + np.array(image)
+        perms.append(perm)
+    return perms or [np.arange(n)]
+
+
 def _kind(prob: MachineEquilibria, u) -> str:
     """balanced / balls together / balls apart, from the state."""
     if prob.amplitude(u) <= 1e-9 * prob.z_scale:
@@ -120,7 +162,7 @@ class _Builder:
             sp = self.special(z, curve, stable, label, folds_at)
             if sp is not None:
                 specials.append(sp)
-        specials.sort(key=lambda s: s.index)
+        specials = _unique(sorted(specials, key=lambda s: s.index), self.unit)
         return Branch(kind="equilibrium", parameter=self.name, values=us[:, -1],
                       states=np.array([prob.state(u[:prob.n]) for u in us]), stable=stable,
                       amplitude=np.array([prob.amplitude(u) for u in us]), spectrum=np.array(ev),
@@ -152,6 +194,23 @@ class _Builder:
                             changes_stability=bool(stable[i - 1]) != bool(stable[i]), amplitude=prob.amplitude(u))
 
 
+def _unique(specials: list[SpecialPoint], unit: str) -> list[SpecialPoint]:
+    """One entry for a special point found twice: the same type in neighbouring intervals of the
+    branch within 1e-6 of the value (a branch that turns back and forth within that, e.g. two
+    folds 9e-8 rad/s apart on rcfw-two-plane's side branches near 0.99 rad/s, is one fold
+    to anyone reading the diagram; the note says so)."""
+    out: list[SpecialPoint] = []
+    for sp in specials:
+        last = next((o for o in reversed(out) if o.type == sp.type), None)
+        if (last is not None and sp.index - last.index <= 2
+                and abs(sp.value - last.value) <= 1e-6 * max(1.0, abs(sp.value))):
+            gap = format_value(abs(sp.value - last.value), unit) if sp.value != last.value else "no distance"
+            out[out.index(last)] = replace(last, description=f"{last.description} (found twice, {gap} apart)")
+            continue
+        out.append(sp)
+    return out
+
+
 def _from(z, curve: Curve) -> Curve:
     """``curve`` with the branch point it started from as its first point."""
     crossings = tuple(replace(c, index=c.index + 1) for c in curve.crossings)
@@ -160,13 +219,16 @@ def _from(z, curve: Curve) -> Curve:
 
 
 def _near(curve: Curve, other: Curve, scale: np.ndarray, angles: slice) -> bool:
-    """Whether the second point of ``curve`` lies on ``other`` (within 5 % of a segment's length
-    of one of its chords, scaled; ball angles compared modulo 2 pi)."""
-    if len(curve.points) < 2:
-        return True
+    """Whether the second point of ``curve`` lies on ``other`` (:func:`_on`)."""
+    return len(curve.points) < 2 or _on(curve.points[1].u, other, scale, angles)
+
+
+def _on(u: np.ndarray, other: Curve, scale: np.ndarray, angles: slice) -> bool:
+    """Whether ``u`` lies on ``other`` (within 5 % of a segment's length of one of its chords,
+    scaled; ball angles compared modulo 2 pi)."""
     pts = other.u / scale
     for a, b in zip(pts[:-1], pts[1:]):
-        x = curve.points[1].u / scale
+        x = u / scale
         x[angles] = a[angles] + np.angle(np.exp(1j * (x[angles] - a[angles])))
         e = b - a
         ee = float(e @ e)
@@ -261,15 +323,24 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
     if not st.periodic:  # the ball angles: a branch that winds a whole turn back to its start is closed
         st = replace(st, periodic=tuple(range(prob.nz, prob.n)))
     scale = _scale(prob, start, stop)
+    own = _rescale(prob, scale)
     tests = {"fold": fold_test, "branch": branch_point_test, "hopf": lambda p: prob.hopf_test(p.u)}
     build = _Builder(prob, parameter, unit)
     angles = slice(prob.nz, prob.n)  # ball angles (scale 1 rad)
     curves: list[tuple[Curve, str]] = []
+    swaps = _exchanges(model, parameter, start, stop, prob.nz)
+    copies: dict[str, list[str]] = {}
     for label, y in starts:
         u0 = np.concatenate([prob.unknowns(y), [start]])
-        curve = continue_curve(prob.residual, u0, jacobian=prob.jacobian, scale=scale, settings=st, tests=tests)
-        if any(_near(curve, c, scale, angles) for c, _ in curves):
+        # a start on a branch already continued (it came back to the range's end there), or one
+        # whose identical balls exchanged lie on one: the same branch, not continued again
+        twin = next((lab for c, lab in curves for perm in swaps if _on(u0[perm], c, scale, angles)), None)
+        if twin is not None:
+            if not _on(u0, next(c for c, lab in curves if lab == twin), scale, angles):
+                copies.setdefault(twin, []).append(label)
             continue
+        curve = continue_curve(prob.residual, u0, jacobian=prob.jacobian, scale=scale, settings=st, tests=tests,
+                               rescale=own)
         curves.append((curve, label))
     k = 0
     while switch and k < len(curves) and len(curves) < max_branches:
@@ -283,16 +354,24 @@ def continue_equilibria(model, parameter: str, start: float, stop: float, *,
                     break
                 try:
                     new = switch_branch(prob.residual, z, jacobian=prob.jacobian, scale=scale, settings=st,
-                                        tests=tests, side=side, offset=2 * st.ds)
+                                        tests=tests, side=side, offset=2 * st.ds, rescale=own)
                 except ValueError:
                     continue
                 if any(_near(new, c, scale, angles) for c, _ in curves):
                     continue
-                new = _from(z, new)
                 mid = new.points[len(new.points) // 2].u
-                curves.append((new, f"{_kind(prob, mid)} (from {label} at "
-                                    f"{format_value(z.point.lam, unit)})"))
+                name = f"{_kind(prob, mid)} (from {label} at {format_value(z.point.lam, unit)})"
+                twin = next((lab for c, lab in curves for perm in swaps[1:]
+                             if len(new.points) > 1 and _on(new.points[1].u[perm], c, scale, angles)), None)
+                if twin is not None:  # the other half of a pitchfork of identical balls: the same motion
+                    copies.setdefault(twin, []).append(name)
+                    continue
+                curves.append((_from(z, new), name))
     branches = tuple(build.branch(c, lab) for c, lab in curves)
+    notes += tuple(f"{', '.join(x for x in labs if x != lab)}: the {lab} branch with identical balls of a race "
+                   "exchanged (not repeated)" if any(x != lab for x in labs) else
+                   f"{lab}: its other half is the same branch with identical balls of a race exchanged (not repeated)"
+                   for lab, labs in copies.items())
     result = ContinuationResult(branches, units={parameter: unit}, notes=notes)
     if parameter2 is None:
         return result

@@ -24,6 +24,7 @@ import numpy as np
 
 from rotorlab._constants import RPM_PER_RAD_S
 from rotorlab.continuation._anisotropic import ANISOTROPY, with_anisotropy
+from rotorlab.continuation._frame import _Frame
 
 __all__ = ["NAMED_PARAMETERS", "as_machine", "smooth_part_note", "with_value", "current_value", "parameter_unit", "format_value", "MachineEquilibria",
            "starting_motions", "START_KINDS"]
@@ -237,55 +238,6 @@ def _refuse_anisotropy(machine, name: str, setter) -> None:
         "run or basin with the supports' stiffnesses set)")
 
 
-class _Frame:
-    """:meth:`Machine.rotating_rhs` and the Jacobian of :meth:`Machine.linearize` for one machine,
-    with its checks, packed parameters and kernel looked up once (the continuation evaluates them
-    some ten thousand times per curve; per call they cost 30 us against the kernel's 2 us).
-    ``tests/unit/test_continuation_two_parameter.py`` checks both against the Machine's own."""
-
-    def __init__(self, machine):
-        self.om = machine._require_rotating()
-        lay = machine.layout
-        self.nz, self.nb, self.i_phi, self.i_w = lay.n_z, lay.n_balls, lay.i_phi, lay.i_w
-        self.y = np.zeros(lay.n_state)
-        self.p = machine.to_array()
-        self.kernel = machine.kernels.rhs
-        nz, nb = self.nz, self.nb  # Machine._fd_step: one step per block (z, z', psi and psi')
-        self.steps = np.repeat([machine._fd_step(j, self.om) for j in (0, nz, 2 * nz)], [nz, nz, 2 * nb])
-
-    def rhs(self, yr: np.ndarray) -> np.ndarray:
-        return self.rhs_many(np.asarray(yr, dtype=float)[None, :])[0]
-
-    def rhs_many(self, yr: np.ndarray) -> np.ndarray:
-        """:meth:`Machine.rotating_rhs` of each row of ``yr`` (shape (k, 2 (n_z + n_balls)))."""
-        nz, nb, om = self.nz, self.nb, self.om
-        z, v = yr[:, :nz], yr[:, nz:2 * nz]
-        y = np.zeros((yr.shape[0], self.y.size))
-        y[:, :nz] = z
-        y[:, nz:2 * nz:2] = v[:, 0::2] - om * z[:, 1::2]
-        y[:, nz + 1:2 * nz:2] = v[:, 1::2] + om * z[:, 0::2]
-        y[:, self.i_phi:self.i_phi + nb] = yr[:, 2 * nz:2 * nz + nb]
-        y[:, self.i_w:self.i_w + nb] = yr[:, 2 * nz + nb:] + om
-        f = np.empty_like(y)
-        for k in range(y.shape[0]):
-            self.kernel(0.0, y[k], self.p, f[k])
-        out = np.empty_like(yr)
-        out[:, :nz] = v
-        out[:, nz:2 * nz:2] = f[:, nz:2 * nz:2] + 2.0 * om * v[:, 1::2] + om * om * z[:, 0::2]
-        out[:, nz + 1:2 * nz:2] = f[:, nz + 1:2 * nz:2] - 2.0 * om * v[:, 0::2] + om * om * z[:, 1::2]
-        out[:, 2 * nz:2 * nz + nb] = yr[:, 2 * nz + nb:]
-        out[:, 2 * nz + nb:] = f[:, self.i_w:self.i_w + nb]
-        return out
-
-    def matrix(self, yr: np.ndarray) -> np.ndarray:
-        """The co-rotating Jacobian, fourth-order central differences as :meth:`Machine.linearize`."""
-        n = yr.size
-        e = np.diag(self.steps)
-        f = self.rhs_many(np.concatenate([yr + e, yr - e, yr + 2 * e, yr - 2 * e]))
-        f1, f2 = f[:n] - f[n:2 * n], f[2 * n:3 * n] - f[3 * n:]
-        return ((8.0 * f1 - f2) / (12.0 * self.steps[:, None])).T
-
-
 class MachineEquilibria:
     """The residual, Jacobian and spectrum of a machine's co-rotating equilibria in named parameters.
 
@@ -368,16 +320,33 @@ class MachineEquilibria:
             fr = self.frame(u[self.n:])
         except ValueError:
             return np.full(self.n, np.nan)
-        f = fr.rhs(self.state(u[:self.n]))
-        return np.concatenate([f[self.nz:2 * self.nz], f[2 * self.nz + self.nb:]])
+        return self._accelerations(fr, u[None, :self.n])[0]
+
+    def _accelerations(self, fr, xs: np.ndarray) -> np.ndarray:
+        """``(z'', psi'')`` at rest at each row ``x = (z, psi)`` of ``xs`` (one batched call)."""
+        nz, nb = self.nz, self.nb
+        ys = np.zeros((xs.shape[0], 2 * self.n))
+        ys[:, :nz] = xs[:, :nz]
+        ys[:, 2 * nz:2 * nz + nb] = xs[:, nz:self.n]
+        f = fr.rhs_many(ys)
+        return np.concatenate([f[:, nz:2 * nz], f[:, 2 * nz + nb:]], axis=1)
 
     def jacobian(self, u) -> np.ndarray:
-        """``dF/du`` by central differences (steps 1e-6 of each unknown's scale)."""
+        """``dF/du`` by central differences (steps 1e-6 of each unknown's scale; the state's
+        columns from one batched call of the right-hand side)."""
         u = np.asarray(u, dtype=float)
         sc = self.scale(u[self.n:])
-        cols = []
-        for j in range(u.size):
-            h = 1e-6 * (sc[j] if j < self.n else max(abs(u[j]), sc[j]))
+        n = self.n
+        try:
+            fr = self.frame(u[n:])
+        except ValueError:
+            return np.full((n, u.size), np.nan)
+        h = 1e-6 * sc[:n]
+        shift = np.diag(h)
+        f = self._accelerations(fr, np.concatenate([u[:n] + shift, u[:n] - shift]))
+        cols = list(((f[:n] - f[n:]) / (2.0 * h[:, None])))
+        for j in range(n, u.size):
+            h = 1e-6 * max(abs(u[j]), sc[j])
             up, um = u.copy(), u.copy()
             up[j] += h
             um[j] -= h
