@@ -40,37 +40,71 @@ class MachineStick:
     def __init__(self, machine, om: float):
         nz = machine.n_coordinates
         red = machine.reduced
-        D = red["K"] + 1j * om * (red["C"] + om * red["G"]) - om * om * machine._m0()
         st = machine._stations
+        m, l, J, c, race = machine._ball_arrays
+        nr = len(machine.races)
+        self.om, self.l, self.m = om, l, m
+        self.kap = np.array([b.coulomb * r.radius + b.rolling for r in machine.races for b in r.balls])
+        self.tilting = bool(machine.layout.tilt)
+        self.B = np.array([st[race[b]] for b in range(m.size)]).reshape(m.size, 2, nz)
+        self.T = np.array([machine.tilt_matrix(machine.races[race[b]].node) for b in range(m.size)]).reshape(
+            m.size, 2, nz)
+        self.nodes = np.stack([machine.basis[0::4, :], machine.basis[1::4, :]])  # (2, n_nodes, nz)
+        if self.tilting:  # the real co-rotating system (module docstring), one solve per arrangement
+            pairs = np.zeros((nz, nz))
+            pairs[0::2, 1::2] = -np.eye(nz // 2)
+            pairs[1::2, 0::2] = np.eye(nz // 2)
+            jc = J - m * l * l
+            self.A0 = (red["K"] - om * om * machine._m0() + om * (red["C"] + om * red["G"]) @ pairs
+                       + om * om * sum(jc[b] * self.T[b].T @ self.T[b] for b in range(m.size)))
+            self.fu = om * om * sum((me * (st[nr + u].T @ np.array([math.cos(beta), math.sin(beta)]))
+                                     for u, (_, _, me, beta) in enumerate(machine._point_unbalances)), np.zeros(nz))
+            self.D = m * l * l
+            return
+        D = red["K"] + 1j * om * (red["C"] + om * red["G"]) - om * om * machine._m0()
         proj = np.array([1.0, -1j])
         fu = np.zeros(nz, dtype=complex)
         for u, (_, _, me, beta) in enumerate(machine._point_unbalances):
-            fu += me * np.exp(1j * beta) * (st[len(machine.races) + u].T @ proj)
-        m, l, J, c, race = machine._ball_arrays
+            fu += me * np.exp(1j * beta) * (st[nr + u].T @ proj)
         fb = np.array([m[b] * l[b] * (st[race[b]].T @ proj) for b in range(m.size)]).reshape(m.size, nz)
-        zu = np.linalg.solve(D, om * om * fu)
-        zb = np.linalg.solve(D, om * om * fb.T).T  # (n_b, nz)
-        # station x-deflection of each ball's race: constant + sum_b e^{i psi_b} per-ball part
-        self.wu = np.array([(st[race[b]] @ zu)[0] for b in range(m.size)])
-        self.wb = np.array([[(st[race[a]] @ zb[b])[0] for b in range(m.size)] for a in range(m.size)])
-        xs = machine.basis[0::4, :]
-        self.xu, self.xb = xs @ zu, zb @ xs.T  # node x-deflections (n_nodes,), (n_b, n_nodes)
-        self.zu, self.zb = zu, zb
-        self.l = l
-        self.kap = np.array([b.coulomb * r.radius + b.rolling for r in machine.races for b in r.balls])
+        self.zu = np.linalg.solve(D, om * om * fu)
+        self.zb = np.linalg.solve(D, om * om * fb.T).T  # (n_b, nz)
+
+    def coordinates(self, psi) -> np.ndarray:
+        """The structure's co-rotating coordinates z_r (real, shape (..., n_z)) with the balls stuck at psi."""
+        psi = np.asarray(psi, dtype=float)
+        if not self.tilting:
+            return (self.zu + np.exp(1j * psi) @ self.zb).real
+        cs = np.stack([np.cos(psi), np.sin(psi)], axis=-1)  # (..., n_b, 2): e_b
+        f = self.fu + self.om ** 2 * np.einsum("...bk,bkz->...z", cs * (self.m * self.l)[:, None], self.B)
+        te = np.einsum("...bk,bkz->...bz", cs, self.T)  # e_b . T_r
+        A = self.A0 + self.om ** 2 * np.einsum("b,...bi,...bj->...ij", self.D, te, te)
+        flat_a, flat_f = A.reshape(-1, *self.A0.shape), f.reshape(-1, self.A0.shape[0])
+        out = np.empty_like(flat_f)
+        for k in range(0, flat_f.shape[0], 4096):  # batches of a bounded size
+            out[k:k + 4096] = np.linalg.solve(flat_a[k:k + 4096], flat_f[k:k + 4096, :, None])[..., 0]
+        return out.reshape(f.shape)
+
+    def holding(self, psi):
+        """``(amplitude, hold, allow)`` at stuck angles psi (..., n_b): the largest node deflection (m), the
+        race's holding torque on each ball and what friction allows, both per ``m_b l_b Omega^2`` (m)."""
+        psi = np.asarray(psi, dtype=float)
+        z = self.coordinates(psi)
+        e = np.stack([np.cos(psi), np.sin(psi)], axis=-1)
+        t = np.stack([-e[..., 1], e[..., 0]], axis=-1)
+        w = np.einsum("bkz,...z->...bk", self.B, z)  # the race station of each ball
+        hold = -np.sum(t * w, axis=-1)
+        if self.tilting:
+            phi = np.einsum("bkz,...z->...bk", self.T, z)
+            hold = hold + self.l * np.sum(e * phi, axis=-1) * np.sum(t * phi, axis=-1)
+        allow = self.kap / self.l * (self.l + np.sum(e * w, axis=-1))
+        amp = np.hypot(*np.einsum("knz,...z->k...n", self.nodes, z)).max(axis=-1)
+        return amp, hold, allow
 
     def terms(self, psi):
         """``(largest node deflection (m), holding-torque margin per ball)`` at stuck angles psi (..., n_b)."""
-        e = np.exp(1j * np.asarray(psi, dtype=float))
-        w = self.wu + e @ self.wb.T  # (..., n_b): the race deflection seen by each ball
-        x = self.xu + e @ self.xb  # (..., n_nodes)
-        rel = w * np.conj(e)
-        margin = np.abs(rel.imag) - self.kap / self.l * (self.l + rel.real)
-        return np.abs(x).max(axis=-1), margin
-
-    def coordinates(self, psi) -> np.ndarray:
-        """The structure's co-rotating coordinates z_r (real) with the balls stuck at psi."""
-        return (self.zu + np.exp(1j * np.asarray(psi, dtype=float)) @ self.zb).real
+        amp, hold, allow = self.holding(psi)
+        return amp, np.abs(hold) - allow
 
 
 def _frictionless(machine):
