@@ -31,7 +31,10 @@ from dataclasses import replace
 
 import numpy as np
 
-__all__ = ["machine_band", "MachineStick"]
+__all__ = ["machine_band", "MachineStick", "balanced_family"]
+
+#: Seeded least-squares solves for distinct balanced arrangements (the optimiser's starts).
+BALANCED_STARTS = 8
 
 
 class MachineStick:
@@ -114,15 +117,16 @@ def _frictionless(machine):
 
 
 def machine_band(machine, speeds, *, grid: int = 241, simulate: bool = True, threads: int | None = None):
-    """Friction band and worst residual deflection of a machine with one or two balls (module docstring)."""
+    """Friction band and worst residual deflection of a machine (module docstring): on a grid for one or two
+    balls, by constrained optimisation from the balanced family for more (:mod:`._friction_search`)."""
     from rotorlab.analyses._friction_margin import stuck_band
     from rotorlab.models import ConstantSpeed
 
     smooth = _frictionless(machine).with_drive(ConstantSpeed(1.0))
     why = smooth.why_no_rotating_frame()
-    if why is not None or machine.layout.tilt or not 1 <= machine.n_balls <= 2:
-        raise ValueError("friction_margin of a machine needs one or two balls on races that do not tilt and a "
-                         f"balanced state of the machine without friction: {why or 'a race tilts or too many balls'}")
+    if why is not None or machine.n_balls == 0:
+        raise ValueError("friction_margin of a machine needs balls and a balanced state of the machine without "
+                         f"friction as a steady equilibrium: {why or 'the machine has no balls'}")
     cache: dict[float, MachineStick] = {}
 
     def stick(om):
@@ -130,14 +134,60 @@ def machine_band(machine, speeds, *, grid: int = 241, simulate: bool = True, thr
             cache[om] = MachineStick(machine.with_drive(ConstantSpeed(om)), om)
         return cache[om]
 
-    def terms(om, psi):
-        amp, margin = stick(float(om)).terms(psi)
-        return amp, margin
+    def check(om, centre, offset, beyond):
+        return _check(machine, stick(om), om, centre, offset, beyond, threads)
 
-    return stuck_band(
-        machine.n_balls, speeds, grid=grid, simulate=simulate, terms=terms,
-        centre=lambda om: smooth.with_drive(ConstantSpeed(om)).balanced_angles(),
-        check=lambda om, centre, offset, beyond: _check(machine, stick(om), om, centre, offset, beyond, threads))
+    if machine.n_balls > 2:
+        return _searched_band(machine, smooth, speeds, stick, check if simulate else None)
+    out = stuck_band(machine.n_balls, speeds, grid=grid, simulate=simulate, terms=lambda om, psi: stick(float(om)).terms(psi),
+                     centre=lambda om: smooth.with_drive(ConstantSpeed(om)).balanced_angles(), check=check)
+    out["search"] = f"grid of {grid} points per ball angle"
+    return out
+
+
+def balanced_family(smooth, starts: int = BALANCED_STARTS) -> list[np.ndarray]:
+    """Distinct balanced arrangements of the machine without friction (seeded least-squares solves)."""
+    found: list[np.ndarray] = []
+    for seed in range(starts):
+        psi = smooth.balanced_angles(starts=16, seed=seed)
+        if psi is not None and all(np.abs(np.angle(np.exp(1j * (psi - q)))).max() > 1e-6 for q in found):
+            found.append(psi)
+    return found
+
+
+def _searched_band(machine, smooth, speeds, stick, check) -> dict:
+    """The band of three or more balls, per speed, by :func:`._friction_search.worst_stuck`."""
+    from rotorlab.analyses._friction_margin import CHECK_STEP
+    from rotorlab.analyses._friction_search import worst_stuck
+    from rotorlab.models import ConstantSpeed
+
+    n, ns = machine.n_balls, len(speeds)
+    low, high, worst_at = (np.full((ns, n), np.nan) for _ in range(3))
+    worst = np.full(ns, np.nan)
+    inside, outside = np.full(ns, -1, dtype=np.int64), np.full(ns, -1, dtype=np.int64)
+    runs, kept = [], []
+    for i, om in enumerate(speeds):
+        st = stick(float(om))
+        starts = balanced_family(smooth.with_drive(ConstantSpeed(float(om))))
+        if not starts:
+            continue
+        res = worst_stuck(st.holding, starts, scale=float(st.kap.max()))
+        runs.append(res["runs"])
+        kept.append(res["kept"])
+        if not np.isfinite(res["worst"]):
+            continue
+        worst[i], low[i], high[i] = res["worst"], res["low"], res["high"]
+        offset = res["worst_at"] - res["centre"]
+        worst_at[i] = offset
+        beyond = next((k * offset for k in (1.0 + CHECK_STEP, 1.06, 1.1, 1.2, 1.5, 2.0)
+                       if not np.all(st.terms(res["centre"] + k * offset)[1] <= 0.0)), None)
+        if check is not None and beyond is not None:
+            inside[i], outside[i] = check(float(om), res["centre"], offset, beyond)
+    return {"band_low": low, "band_high": high, "worst_residual": worst, "worst_angles": worst_at,
+            "check_inside": inside, "check_outside": outside,
+            "coordinates": [f"psi_{k + 1}" for k in range(n)], "residual": "largest node deflection", "units": "m",
+            "search": f"SLSQP from {min(runs, default=0)}+ seeded starts on the balanced family per speed, "
+                      f"at least {min(kept, default=0)} joined to it by a stuck segment"}  # fmt: skip
 
 
 def _check(machine, stick, om, centre, offset, beyond, threads):

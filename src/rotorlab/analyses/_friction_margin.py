@@ -254,6 +254,7 @@ def friction_margin(model_type: str, model, speeds, *, grid: int = 241, simulate
         },
         coords={"speed": ("speed", speeds, {"units": "rad/s"}), "coordinate": ("coordinate", out["coordinates"])},
         attrs={"residual": out["residual"], "model": model_type, "check_step": CHECK_STEP,
+               "search": out.get("search", f"grid of {grid} points per coordinate"),
                "simulated": int(bool(simulate))},
     )  # fmt: skip
 
