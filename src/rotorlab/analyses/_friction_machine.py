@@ -14,10 +14,37 @@ with the rotor, its acceleration ``-Omega^2 w_r``, so ball b needs the holding t
 ``D_b = m_b l_b Omega^2 Im(w_r e^{-i psi_b})`` and is pressed with ``N_b = m_b Omega^2 (l_b +
 Re(w_r e^{-i psi_b}))``: it sticks while ``|Im(w_r e^{-i psi_b})| <= (kap_b / l_b) (l_b +
 Re(w_r e^{-i psi_b}))`` - for one race on a planar rotor the condition of ``jeffcott_balls``
-(kap = f l). The band is searched as for that rotor (:func:`rotorlab.analyses._friction_margin.stuck_band`)
-around the balanced angles of the machine without friction; the residual is the largest node
-deflection ``max |X|`` (m). Needs an isotropic structure, no gravity across the axis, races that
-do not tilt (a tilting race adds the ball's gyroscopic terms), at most two balls.
+(kap = f l).
+
+Races that tilt with their node (rigid ball kinematics, :mod:`rotorlab.models._machine`: ball b
+turns with the race plane, ``phi = T_r z`` its node's tilt). With every ball stuck at
+``phi_b = Omega t + psi_b`` and the structure standing still in the co-rotating frame, at t = 0
+``z = u``, ``z' = Omega J u``, ``z'' = -Omega^2 u`` (J turns every coordinate pair by 90 deg), so
+``phi' = Omega (-phi_y, phi_x)``, ``e_b . phi' = -Omega t_b . phi`` and ``t_b . phi' = Omega e_b .
+phi``. The tilting terms of the structure (its mass ``m_b l_b^2 T^T e_b e_b^T T``, the force
+``-T^T [m_b l_b^2 Omega ((t_b . phi') e_b + (e_b . phi') t_b) + J_b Omega (phi_y', -phi_x')]``)
+then add ``Omega^2 T^T (m_b l_b^2 e_b e_b^T + J_c I) phi`` (``J_b = m_b l_b^2 + J_c``): the
+steady response solves the real system
+
+    (K - Omega^2 M0 + Omega (C + Omega G) J + Omega^2 sum_b T_r^T (m_b l_b^2 e_b e_b^T + J_c I) T_r) u
+        = Omega^2 (sum_b m_b l_b B_r^T e_b + sum_u U_u B_u^T e_u),
+
+one solve per arrangement (without tilt it is the complex solve above). The ball's equation
+(``J_b phi_b'' + m_b l_b t_b . B_r z'' + J_b / 2 (phi_y phi_x'' - phi_x phi_y'') - m_b l_b^2
+(e_b . phi') (t_b . phi') = torque of the race``) gives, with ``w_b = B_r u`` and ``phi = T_r u``,
+the holding torque ``D_b = m_b l_b Omega^2 (-t_b . w_b + l_b (e_b . phi) (t_b . phi))`` (the
+gyroscopic coupling vanishes: ``phi'' = -Omega^2 phi``), and the race presses the ball with the
+kernel's in-plane ``N_b = m_b Omega^2 (l_b + e_b . w_b)``; the ball sticks while ``|D_b| <= kap_b
+N_b`` (:meth:`MachineStick.holding`; checked against the kernel's ``terms`` in
+``tests/validation/test_friction_machines.py``).
+
+One or two balls: the band is searched as for that rotor (:func:`rotorlab.analyses._friction_margin.stuck_band`)
+around the balanced angles of the machine without friction. Three or more: the stuck set is
+every arrangement where all balls stick, the part of it joined to the balanced family is searched by
+constrained optimisation (:mod:`rotorlab.analyses._friction_search`; ``search`` in the result says
+how). The residual is the largest node deflection ``max |X|`` (m). Needs, without friction, a
+steady balanced state: an isotropic structure and no gravity across the axis (the analysis sets a
+constant speed).
 
 The simulated check releases the balls stuck (mode 0) at the worst point just inside and at the
 next grid point outside, the structure on its locked response, and follows them for
@@ -138,7 +165,8 @@ def machine_band(machine, speeds, *, grid: int = 241, simulate: bool = True, thr
         return _check(machine, stick(om), om, centre, offset, beyond, threads)
 
     if machine.n_balls > 2:
-        return _searched_band(machine, smooth, speeds, stick, check if simulate else None)
+        return _searched_band(machine, smooth, speeds, stick, (lambda om, pair: _release(
+            machine, stick(om), om, pair, threads)) if simulate else None)
     out = stuck_band(machine.n_balls, speeds, grid=grid, simulate=simulate, terms=lambda om, psi: stick(float(om)).terms(psi),
                      centre=lambda om: smooth.with_drive(ConstantSpeed(om)).balanced_angles(), check=check)
     out["search"] = f"grid of {grid} points per ball angle"
@@ -155,9 +183,32 @@ def balanced_family(smooth, starts: int = BALANCED_STARTS) -> list[np.ndarray]:
     return found
 
 
-def _searched_band(machine, smooth, speeds, stick, check) -> dict:
-    """The band of three or more balls, per speed, by :func:`._friction_search.worst_stuck`."""
+def _either_side(stick, res):
+    """Arrangements just inside the stuck set at the worst one and just outside, or None: from the worst
+    arrangement in the least-norm direction that lowers every margin holding it on the edge at the same
+    rate (a step of CHECK_STEP of its offset from the balanced start, less until every ball sticks), and
+    as far the other way."""
     from rotorlab.analyses._friction_margin import CHECK_STEP
+
+    x, centre = res["worst_at"], res["centre"]
+    margin = stick.terms(x)[1]
+    active = margin > -1e-6 * stick.kap
+    h = 1e-7
+    grads = np.array([(stick.terms(x + h * e)[1] - stick.terms(x - h * e)[1]) / (2 * h) for e in np.eye(x.size)]).T
+    if not active.any():
+        return None
+    d = -np.linalg.lstsq(grads[active], np.ones(int(active.sum())), rcond=None)[0]  # every held margin grows
+    d = d / np.linalg.norm(d) * CHECK_STEP * np.linalg.norm(x - centre)
+    for _ in range(20):
+        inside, outside = x + d, x - d
+        if np.all(stick.terms(inside)[1] < 0.0) and not np.all(stick.terms(outside)[1] <= 0.0):
+            return inside, outside
+        d = 0.5 * d
+    return None
+
+
+def _searched_band(machine, smooth, speeds, stick, release) -> dict:
+    """The band of three or more balls, per speed, by :func:`._friction_search.worst_stuck`."""
     from rotorlab.analyses._friction_search import worst_stuck
     from rotorlab.models import ConstantSpeed
 
@@ -177,12 +228,10 @@ def _searched_band(machine, smooth, speeds, stick, check) -> dict:
         if not np.isfinite(res["worst"]):
             continue
         worst[i], low[i], high[i] = res["worst"], res["low"], res["high"]
-        offset = res["worst_at"] - res["centre"]
-        worst_at[i] = offset
-        beyond = next((k * offset for k in (1.0 + CHECK_STEP, 1.06, 1.1, 1.2, 1.5, 2.0)
-                       if not np.all(st.terms(res["centre"] + k * offset)[1] <= 0.0)), None)
-        if check is not None and beyond is not None:
-            inside[i], outside[i] = check(float(om), res["centre"], offset, beyond)
+        worst_at[i] = res["worst_at"] - res["centre"]
+        pair = _either_side(st, res)
+        if release is not None and pair is not None:
+            inside[i], outside[i] = release(float(om), pair)
     return {"band_low": low, "band_high": high, "worst_residual": worst, "worst_angles": worst_at,
             "check_inside": inside, "check_outside": outside,
             "coordinates": [f"psi_{k + 1}" for k in range(n)], "residual": "largest node deflection", "units": "m",
@@ -193,16 +242,24 @@ def _searched_band(machine, smooth, speeds, stick, check) -> dict:
 def _check(machine, stick, om, centre, offset, beyond, threads):
     """Release the balls stuck at (1 - CHECK_STEP) times the worst ``offset`` (must stay) and at ``beyond``
     (must move), the structure on its locked response; 1 agrees, 0 not, -1 failed."""
-    from rotorlab.analyses._friction_margin import CHECK_REVOLUTIONS, CHECK_STEP
+    from rotorlab.analyses._friction_margin import CHECK_STEP
+
+    outside = (1.0 + CHECK_STEP) * offset if beyond is None else beyond
+    return _release(machine, stick, om, (centre + (1.0 - CHECK_STEP) * offset, centre + outside), threads)
+
+
+def _release(machine, stick, om, pair, threads):
+    """Release the balls stuck at the two arrangements of ``pair`` (inside: must stay; outside: must move),
+    the structure on its steady response; per arrangement 1 agrees, 0 not, -1 failed."""
+    from rotorlab.analyses._friction_margin import CHECK_REVOLUTIONS
     from rotorlab.integrate import SaveAt, StepControl, solve_ensemble
     from rotorlab.models import ConstantSpeed
 
     m = machine.with_drive(ConstantSpeed(om))
     lay = m.layout
     nz, nb = lay.n_z, lay.n_balls
-    outside = (1.0 + CHECK_STEP) * offset if beyond is None else beyond
     starts = []
-    for psi in (centre + (1.0 - CHECK_STEP) * offset, centre + outside):
+    for psi in pair:
         y = np.zeros(lay.n_state)
         z = stick.coordinates(psi)
         y[:nz] = z

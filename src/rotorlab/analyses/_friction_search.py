@@ -85,7 +85,7 @@ def _step(objective, holding, x, lo, hi, scale):
 def _climb(objective, holding, x0, centre, scale, tol):
     """Maximise ``-objective`` from the stuck ``x0`` in steps of at most :data:`STEP` rad per angle, each
     step joined to the last by a stuck segment: the end is joined to ``x0`` by a stuck polyline."""
-    x, rho = x0, STEP
+    x, rho, prev = x0, STEP, x0
     f = objective(x)
     for _ in range(MAX_STEPS):
         lo, hi = np.maximum(centre - math.pi, x - rho), np.minimum(centre + math.pi, x + rho)
@@ -100,10 +100,10 @@ def _climb(objective, holding, x0, centre, scale, tol):
             continue
         free = np.all((xn > lo + 1e-9) | (lo <= centre - math.pi)) and np.all((xn < hi - 1e-9) | (hi >= centre + math.pi))
         gain = f - fn
-        x, f = xn, fn
+        prev, x, f = x, xn, fn
         if free and gain <= 1e-10 * max(abs(f), 1e-300):
             break
-    return x
+    return x, prev
 
 
 def worst_stuck(holding: Callable, starts, *, scale: float, seed: int = 0) -> dict:
@@ -123,8 +123,9 @@ def worst_stuck(holding: Callable, starts, *, scale: float, seed: int = 0) -> di
     Returns
     -------
     dict
-        ``worst`` (m), ``worst_at`` (rad), ``centre`` (its start, rad), ``low``, ``high`` (each
-        ball's band, rad from ``centre``), ``runs``, ``kept`` (the runs kept by the segment test).
+        ``worst`` (m), ``worst_at`` (rad), ``centre`` (its start, rad), ``before`` (the last point of
+        the stuck polyline from ``centre`` to ``worst_at``, rad), ``low``, ``high`` (each ball's band,
+        rad from ``centre``), ``runs``, ``kept`` (the runs that ended stuck).
     """
     rng = np.random.default_rng(seed)
     tol = 1e-8 * scale
@@ -141,33 +142,34 @@ def worst_stuck(holding: Callable, starts, *, scale: float, seed: int = 0) -> di
             if x0 is None:
                 continue
             runs += 1
-            x = _climb(objective, holding, x0, start, scale, tol)
+            x, prev = _climb(objective, holding, x0, start, scale, tol)
             if not _stuck(holding, x, tol):
                 continue
             kept += 1
             amp = float(holding(x)[0])
             if best is None or amp > best[0]:
-                best = (amp, x, start)
+                best = (amp, x, start, prev)
     n = len(np.asarray(starts[0])) if len(starts) else 0
     out = {"worst": math.nan, "worst_at": np.full(n, math.nan), "centre": np.full(n, math.nan),
+           "before": np.full(n, math.nan),
            "low": np.full(n, math.nan), "high": np.full(n, math.nan), "runs": runs, "kept": kept}
     if best is None:
         return out
-    amp, x, start = best
+    amp, x, start, prev = best
     x0 = _leave(holding, start, rng, tol)
     ends = []
     for b in range(n):
         for sign, key in ((-1.0, "low"), (1.0, "high")):
-            xb = _climb(lambda x, b=b, sign=sign: -sign * (x[b] - start[b]), holding, x0, start, scale, tol)
+            xb, _ = _climb(lambda x, b=b, sign=sign: -sign * (x[b] - start[b]), holding, x0, start, scale, tol)
             if _stuck(holding, xb, tol):
                 out[key][b] = xb[b] - start[b]
                 ends.append(xb)
     for xb in ends:  # from the band's ends (past a neck of the stuck set a climb from the start cannot cross)
         runs += 1
-        xe = _climb(objective, holding, xb, start, scale, tol)
+        xe, pe = _climb(objective, holding, xb, start, scale, tol)
         if _stuck(holding, xe, tol):
             kept += 1
             if float(holding(xe)[0]) > amp:
-                amp, x = float(holding(xe)[0]), xe
-    out.update(worst=amp, worst_at=x, centre=start, runs=runs, kept=kept)
+                amp, x, prev = float(holding(xe)[0]), xe, pe
+    out.update(worst=amp, worst_at=x, centre=start, runs=runs, kept=kept, before=prev)
     return out
