@@ -268,8 +268,9 @@ def _release(machine, stick, om, pair, threads):
         y[lay.i_w:lay.i_w + nb] = om
         starts.append(m.initial_modes(0.0, y))  # the kernel's own stick test: stuck inside, slipping outside
     t_end = CHECK_REVOLUTIONS * 2.0 * math.pi / om
+    # the scalar driver (two trajectories): the copy `solve` and the machine tests build for this layout
     sol = solve_ensemble(m, np.array(starts), (0.0, t_end), save_at=SaveAt(ts=[t_end]),
-                         control=StepControl(rtol=1e-9, atol=1e-12), threads=threads)  # fmt: skip
+                         control=StepControl(rtol=1e-9, atol=1e-12), threads=threads, lanes=None)  # fmt: skip
     ok = np.asarray(sol.status) >= 0
     yf = np.asarray(sol.y_final)
     balls = slice(lay.i_phi, lay.i_phi + nb)
