@@ -463,7 +463,8 @@ MARGINS = [
     ("fm-machine-tilting-no-friction", ["friction-margin", "rcfw-two-plane"], None,
      ["friction-margin.type", "coulomb or rolling > 0"]),
     ("fm-machine-gravity", ["friction-margin", FILE, "--speed-rpm", "1000"],
-     ("washer-horizontal", 'damping = "0.05 N*m*s/rad", count = 2', 'damping = "0.05 N*m*s/rad", coulomb = 0.01, count = 2'),
+     ("washer-horizontal", 'damping = "0.05 N*m*s/rad", count = 2',
+      'damping = "0.05 N*m*s/rad", coulomb = 0.01, count = 2'),
      ["friction-margin.type", "gravity acts across the axis"]),
     ("fm-machine-anisotropic", ["friction-margin", FILE, "--speed-rpm", "1000"],
      ("washer-horizontal", 'cxx = "400 N*s/m"\nk_tilt_x = "3 kN*m/rad"\n\n[[model.races]]\nat = "drum"\nradius = "0.27 m"\n'

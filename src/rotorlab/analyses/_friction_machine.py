@@ -167,8 +167,9 @@ def machine_band(machine, speeds, *, grid: int = 241, simulate: bool = True, thr
     if machine.n_balls > 2:
         return _searched_band(machine, smooth, speeds, stick, (lambda om, pair: _release(
             machine, stick(om), om, pair, threads)) if simulate else None)
-    out = stuck_band(machine.n_balls, speeds, grid=grid, simulate=simulate, terms=lambda om, psi: stick(float(om)).terms(psi),
-                     centre=lambda om: smooth.with_drive(ConstantSpeed(om)).balanced_angles(), check=check)
+    out = stuck_band(machine.n_balls, speeds, grid=grid, simulate=simulate,
+                     terms=lambda om, psi: stick(float(om)).terms(psi), check=check,
+                     centre=lambda om: smooth.with_drive(ConstantSpeed(om)).balanced_angles())
     out["search"] = f"grid of {grid} points per ball angle"
     return out
 
@@ -235,8 +236,8 @@ def _searched_band(machine, smooth, speeds, stick, release) -> dict:
     return {"band_low": low, "band_high": high, "worst_residual": worst, "worst_angles": worst_at,
             "check_inside": inside, "check_outside": outside,
             "coordinates": [f"psi_{k + 1}" for k in range(n)], "residual": "largest node deflection", "units": "m",
-            "search": f"SLSQP from {min(runs, default=0)}+ seeded starts on the balanced family per speed, "
-                      f"at least {min(kept, default=0)} joined to it by a stuck segment"}  # fmt: skip
+            "search": f"SLSQP: {min(runs, default=0)}+ climbs from the balanced family per speed, "
+                      f"{min(kept, default=0)}+ ended stuck"}  # fmt: skip
 
 
 def _check(machine, stick, om, centre, offset, beyond, threads):

@@ -12,17 +12,18 @@ by SciPy's SLSQP (:func:`scipy.optimize.minimize`) instead:
   solves, :meth:`rotorlab.models.Machine.balanced_angles`), each left in a seeded random
   direction by a step small enough that every ball still sticks (at a balanced arrangement
   the residual is zero and so is its gradient);
-- maximise the squared residual over the ball angles, each within half a turn of its start,
-  subject to ``+-hold_b - allow_b <= 0`` per ball (the two smooth halves of ``|hold_b| <=
-  allow_b``: the holding torque and what friction allows, per ``m_b l_b Omega^2``);
-- keep a result only when it is stuck and joined to its start: every one of
-  :data:`SEGMENT_SAMPLES` points on the straight segment from the start sticks (a segment that
-  leaves the set - a pocket behind a slip region - is not counted, and the report gives how many
-  of the runs were kept);
-- the band of each ball: the extreme offsets of its angle from the worst run's start over the
-  stuck set (two more such maximisations per ball, kept under the same test).
+- climb: maximise the squared residual over the ball angles (each within half a turn of its
+  start) subject to ``+-hold_b - allow_b <= 0`` per ball (the two smooth halves of ``|hold_b| <=
+  allow_b``: the holding torque and what friction allows, per ``m_b l_b Omega^2``), in steps of at
+  most :data:`STEP` rad per angle, a step kept only when every one of :data:`SEGMENT_SAMPLES`
+  points of its segment sticks: the end is joined to the balanced start by a stuck polyline, in
+  the stuck set's component that holds it;
+- the band of each ball: the extreme offsets of its angle from the best run's start (two more
+  climbs per ball); from each of these ends the residual is climbed again (a thin neck of the
+  stuck set, where the residual falls, stops a climb from the start but not one from beyond it).
 
-The result is a local maximum of each run: the largest over the seeded starts. Checked against
+The result is the largest of local maxima (a lower bound of the worst residual over the component:
+a climb cannot cross a region where the residual falls, short of the band's ends). Checked against
 the grid search for two balls and against the three-ball closed form in
 ``tests/validation/test_friction_machines.py``.
 """
@@ -98,7 +99,8 @@ def _climb(objective, holding, x0, centre, scale, tol):
             if rho < 1e-6:
                 break
             continue
-        free = np.all((xn > lo + 1e-9) | (lo <= centre - math.pi)) and np.all((xn < hi - 1e-9) | (hi >= centre + math.pi))
+        free = (np.all((xn > lo + 1e-9) | (lo <= centre - math.pi))
+                and np.all((xn < hi - 1e-9) | (hi >= centre + math.pi)))
         gain = f - fn
         prev, x, f = x, xn, fn
         if free and gain <= 1e-10 * max(abs(f), 1e-300):

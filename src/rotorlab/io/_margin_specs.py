@@ -97,7 +97,8 @@ class FrictionMarginSpec(_Speeds):
     model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls", "toroidal_ball", "machine")
     wrong_model_message: ClassVar[str] = ('needs a balancer with ball friction ([model] type "jeffcott_balls", '
                                           '"toroidal_ball" or "machine"), but the case\'s model is "{kind}"')
-    grid: integer(ge=21, le=2001) = Field(241, description="grid points per ball angle over the band search")
+    grid: integer(ge=21, le=2001) = Field(241, description="grid points per ball angle over the band search (one "
+                                                           "or two balls; more are searched by optimisation)")
     simulate: flag() = Field(True, description="check the band's worst point by simulation")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
