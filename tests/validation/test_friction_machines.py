@@ -6,7 +6,7 @@ steady response is an equilibrium of the kernel's right-hand side in the co-rota
 three-ball closed form is derived in :func:`test_three_equal_balls_closed_form`. The tilting
 machine is the rigid two-plane rotor of ``tests/unit/test_machine_friction.py`` (the same kernel
 layout: four balls on two tilting races, two unbalances, energy states, a constant speed) on
-isotropic supports.
+the isotropic supports of the built-in case ``rcfw-two-plane``.
 """
 
 from __future__ import annotations
@@ -22,23 +22,14 @@ from rotorlab.analyses._friction_machine import MachineStick, _frictionless, bal
 from rotorlab.analyses._friction_margin import friction_margin
 from rotorlab.analyses._friction_search import worst_stuck
 from rotorlab.io import load_case
-from rotorlab.linear import LinearSystem
 from rotorlab.models import Ball, BallRace, ConstantSpeed, Machine, Unbalance
 
 
 def two_plane(speed: float, coulomb: float) -> Machine:
-    """Rigid long rotor (Rodrigues et al. 2008 proportions) on two isotropic supports at z = +-3 m,
-    gyroscopic, two tilting 2-ball races at z = +-2 m with Coulomb and rolling friction."""
-    M = np.diag([1.0, 1.0, 3.25, 3.25])
-    G = np.zeros((4, 4))
-    G[2, 3], G[3, 2] = 0.5, -0.5
-    K, C = np.zeros((4, 4)), np.zeros((4, 4))
-    for zs in (3.0, -3.0):
-        for j in (0, 1):
-            T = np.zeros((1, 4))
-            T[0, j], T[0, j + 2] = 1.0, zs
-            K += 0.5 * T.T @ T
-            C += 0.01 * T.T @ T
+    """The rigid long rotor of the built-in case ``rcfw-two-plane`` (Rodrigues et al. 2008: isotropic
+    supports at z = +-3 m, gyroscopic) with two tilting 2-ball races at z = +-2 m carrying unequal balls
+    with Coulomb and rolling friction, and two unbalances (the layout of the friction tests' rotor)."""
+    structure = build_model(load_case("rcfw-two-plane").model).structure
 
     def balls(masses, inertias):
         return tuple(Ball(m, inertia=i, damping=0.01, coulomb=coulomb, rolling=0.2 * coulomb)
@@ -47,8 +38,7 @@ def two_plane(speed: float, coulomb: float) -> Machine:
     races = (BallRace(0, 1.0, balls((0.02, 0.025), (1e-4, 0.0)), axial_offset=2.0),
              BallRace(0, 1.0, balls((0.02, 0.02), (0.0, 2e-4)), axial_offset=-2.0))
     unb = (Unbalance(0, 0.01, 0.3, axial_offset=1.0), Unbalance(0, 0.004, 2.0, axial_offset=-1.5))
-    return Machine(LinearSystem(M=M, C=C, G=G, K=K), races=races, unbalances=unb, drive=ConstantSpeed(speed),
-                   energy_states=True)
+    return Machine(structure, races=races, unbalances=unb, drive=ConstantSpeed(speed), energy_states=True)
 
 
 def fixed_state(mac, stick, psi, om):
