@@ -170,7 +170,7 @@ def machine_band(machine, speeds, *, grid: int = 241, simulate: bool = True, thr
     out = stuck_band(machine.n_balls, speeds, grid=grid, simulate=simulate,
                      terms=lambda om, psi: stick(float(om)).terms(psi), check=check,
                      centre=lambda om: smooth.with_drive(ConstantSpeed(om)).balanced_angles())
-    out["search"] = f"grid of {grid} points per ball angle"
+    out["search"] = f"a grid of {grid} points per ball angle"
     return out
 
 
