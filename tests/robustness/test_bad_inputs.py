@@ -458,7 +458,20 @@ MARGINS = [
     ("fm-torus-no-friction", ["friction-margin", FILE], ("strautmanis-torus", 'rolling_friction = "1e-5 m"',
                                                          'rolling_friction = "0 m"'),
      ["rolling_friction", "> 0"]),
-    ("fm-machine-four-balls", ["friction-margin", "rcfw-two-plane"], None, ["friction-margin.type", "one or two balls", "4"]),
+    # four balls on tilting races are covered; balls without friction, gravity across the axis and
+    # anisotropic supports are not (no steady response for the stuck balls to ride on)
+    ("fm-machine-tilting-no-friction", ["friction-margin", "rcfw-two-plane"], None,
+     ["friction-margin.type", "coulomb or rolling > 0"]),
+    ("fm-machine-gravity", ["friction-margin", FILE, "--speed-rpm", "1000"],
+     ("washer-horizontal", 'damping = "0.05 N*m*s/rad", count = 2',
+      'damping = "0.05 N*m*s/rad", coulomb = 0.01, count = 2'),
+     ["friction-margin.type", "gravity acts across the axis"]),
+    ("fm-machine-anisotropic", ["friction-margin", FILE, "--speed-rpm", "1000"],
+     ("washer-horizontal", 'cxx = "400 N*s/m"\nk_tilt_x = "3 kN*m/rad"\n\n[[model.races]]\nat = "drum"\nradius = "0.27 m"\n'
+                           'balls = [{ mass = "0.5 kg", damping = "0.05 N*m*s/rad", count = 2 }]',
+      'kyy = "30 kN/m"\ncxx = "400 N*s/m"\nk_tilt_x = "3 kN*m/rad"\n\n[[model.races]]\nat = "drum"\nradius = "0.27 m"\n'
+      'balls = [{ mass = "0.5 kg", damping = "0.05 N*m*s/rad", coulomb = 0.01, count = 2 }]'),
+     ["friction-margin.type", "anisotropic"]),
     ("fm-machine-no-friction", ["friction-margin", "washer-horizontal", "--speed-rpm", "1000"], None,
      ["friction-margin.type", "coulomb or rolling > 0"]),
     ("fm-small-grid", ["friction-margin", "strautmanis-torus", "--grid", "5"], None, ["--grid", "5"]),

@@ -52,6 +52,8 @@ def test_both_margins_through_run_and_the_report(tmp_path):
     assert row["worst_residual"] > 0.0 and row["psi_1_low_deg"] < 0.0 < row["psi_1_high_deg"]
     page = (tmp_path / "o" / "report.html").read_text(encoding="utf-8")
     assert "friction holds the balls within psi_1" in page and " um" in page and "not simulated" in page
+    assert "searched by a grid of 61 points per coordinate" in page  # how the band was found
+    assert row["psi_1_low_deg"] <= row["psi_1_worst_deg"] <= row["psi_1_high_deg"]  # the worst arrangement
 
 
 def test_shock_margin_through_run_and_the_report(tmp_path):

@@ -254,6 +254,7 @@ def friction_margin(model_type: str, model, speeds, *, grid: int = 241, simulate
         },
         coords={"speed": ("speed", speeds, {"units": "rad/s"}), "coordinate": ("coordinate", out["coordinates"])},
         attrs={"residual": out["residual"], "model": model_type, "check_step": CHECK_STEP,
+               "search": out.get("search", f"a grid of {grid} points per coordinate"),
                "simulated": int(bool(simulate))},
     )  # fmt: skip
 
@@ -270,7 +271,8 @@ def run_friction_margin_analysis(case_model: Any, analysis: Any,
 
 
 def friction_margin_rows(ds) -> list[dict[str, Any]]:
-    """One row per speed: the band of every coordinate (deg), the worst residual and the checks."""
+    """One row per speed: the band of every coordinate and the worst arrangement (deg, from the balanced
+    one), the worst residual and the checks."""
     from rotorlab._constants import RPM_PER_RAD_S
     from rotorlab.analyses._shock_margin import _num
 
@@ -280,6 +282,7 @@ def friction_margin_rows(ds) -> list[dict[str, Any]]:
         for k, name in enumerate(ds.coordinate.values):
             row[f"{name}_low_deg"] = _num(np.degrees(ds.band_low.values[i, k]))
             row[f"{name}_high_deg"] = _num(np.degrees(ds.band_high.values[i, k]))
+            row[f"{name}_worst_deg"] = _num(np.degrees(ds.worst_angles.values[i, k]))
         row["worst_residual"] = _num(ds.worst_residual.values[i])
         row["check_inside"] = int(ds.check_inside.values[i])
         row["check_outside"] = int(ds.check_outside.values[i])

@@ -93,7 +93,8 @@ def friction_margin_command(
     speed_rpm: SpeedRpmOpt = None,
     speed_ratio: SpeedRatioOpt = None,
     grid: Annotated[Optional[int], count_option(  # noqa: UP007
-        "--grid", low=21, high=2001, metavar="N", help="Grid points per ball angle of the band search.",
+        "--grid", low=21, high=2001, metavar="N",
+        help="Grid points per ball angle of the band search (one or two balls; more are searched by optimisation).",
         show_default=False)] = None,  # fmt: skip
     no_simulate: NoSimOpt = False,
     analysis: AnalysisOpt = None,

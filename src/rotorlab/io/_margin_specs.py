@@ -97,7 +97,8 @@ class FrictionMarginSpec(_Speeds):
     model_types: ClassVar[tuple[str, ...]] = ("jeffcott_balls", "toroidal_ball", "machine")
     wrong_model_message: ClassVar[str] = ('needs a balancer with ball friction ([model] type "jeffcott_balls", '
                                           '"toroidal_ball" or "machine"), but the case\'s model is "{kind}"')
-    grid: integer(ge=21, le=2001) = Field(241, description="grid points per ball angle over the band search")
+    grid: integer(ge=21, le=2001) = Field(241, description="grid points per ball angle over the band search (one "
+                                                           "or two balls; more are searched by optimisation)")
     simulate: flag() = Field(True, description="check the band's worst point by simulation")
 
     def case_issues(self, model: AbstractModelSpec) -> list[Issue]:
@@ -148,7 +149,8 @@ def _rotor_friction_issues(model: AbstractModelSpec) -> list[Issue]:
     if not model.balls:
         return [Issue(("type",), "needs balls on the rotor ([[model.balls]])", "friction-margin")]
     if len(model.balls) > 2:
-        return [Issue(("type",), f"maps the band of one or two balls, the model has {len(model.balls)}",
+        return [Issue(("type",), f"maps the band of one or two balls on this rotor, the model has {len(model.balls)} "
+                                 "(a machine case, [model] type \"machine\", searches the stuck set of any number)",
                       "friction-margin")]
     if not any(b.friction > 0 for b in model.balls):
         return [Issue(("type",), "needs Coulomb friction on the balls (model.balls[i].friction > 0): "
@@ -165,16 +167,17 @@ def _torus_friction_issues(model: AbstractModelSpec) -> list[Issue]:
 
 
 def _machine_friction_issues(model: AbstractModelSpec) -> list[Issue]:
-    """A machine: one or two balls with Coulomb or rolling friction on races that do not tilt, and without
-    friction a balanced state in the co-rotating frame (isotropic, no gravity across the axis)."""
+    """A machine: balls with Coulomb or rolling friction and, without friction, a balanced state in the
+    co-rotating frame (isotropic supports, no gravity across the axis, a constant speed); any number of
+    balls, on races that tilt or not (:mod:`rotorlab.analyses._friction_machine`)."""
     from dataclasses import replace
 
     from rotorlab.io._build import build_machine
     from rotorlab.models import ConstantSpeed
 
     balls = model.balls
-    if not 1 <= len(balls) <= 2:
-        return [Issue(("type",), f"maps the band of one or two balls, the machine has {len(balls)}", "friction-margin")]
+    if not balls:
+        return [Issue(("type",), "needs balls on the machine ([[model.races]] with balls)", "friction-margin")]
     if not any(b.coulomb > 0 or b.rolling > 0 for b in balls):
         return [Issue(("type",), "needs friction on the balls (model.races[i].balls[j].coulomb or rolling > 0): "
                                  "without it the band is a point", "friction-margin")]  # fmt: skip
@@ -182,11 +185,10 @@ def _machine_friction_issues(model: AbstractModelSpec) -> list[Issue]:
     smooth = replace(m, races=tuple(replace(r, balls=tuple(replace(b, coulomb=0.0, rolling=0.0) for b in r.balls))
                                     for r in m.races))  # fmt: skip
     why = smooth.why_no_rotating_frame()
-    if why is None and m.layout.tilt:
-        why = "a race tilts with its node (the band assumes races that only translate)"
     if why is not None:
-        return [Issue(("type",), f"needs the machine's balanced state without friction as a steady equilibrium, "
-                                 f"but {why}", "friction-margin")]  # fmt: skip
+        return [Issue(("type",), "needs the machine's balanced state without friction as a steady equilibrium "
+                                 f"(the stuck balls then ride on a steady response), but {why}",
+                      "friction-margin")]  # fmt: skip
     return []
 
 

@@ -75,9 +75,15 @@ def friction_margin_figure(ds: xarray.Dataset) -> Figure:
     ax1.set_ylabel("stuck band (deg from balanced)")
     ax1.legend(fontsize="small")
     ax1.set_title(f"{ds.attrs.get('name', 'friction margin')}: where friction holds the balls")
-    ax2.plot(rpm, ds.worst_residual.values * 1e6, "o-", color="tab:red")
+    worst = ds.worst_residual.values * 1e6
+    ax2.plot(rpm, worst, "o-", color="tab:red")
+    agree = (ds.check_inside.values == 1) & (ds.check_outside.values == 1)
+    if agree.any():  # released stuck just inside the balls stayed, just outside they moved
+        ax2.plot(rpm[agree], worst[agree], "o", mfc="none", mec="k", ms=9, label="confirmed by simulation")
+        ax2.legend(fontsize="x-small", loc="lower right")
+    ax2.set_title(f"searched by {ds.attrs.get('search', 'grid')}", fontsize="x-small")
     ax2.ticklabel_format(axis="y", useOffset=False)
-    ax2.set_ylim(bottom=0.0)
+    ax2.set_ylim(0.0, 1.1 * np.nanmax(worst) if np.isfinite(worst).any() else 1.0)
     ax2.set_ylabel(f"worst {ds.attrs.get('residual', 'residual')} (um)")
     ax2.set_xlabel("speed (rpm)")
     return fig

@@ -4,6 +4,7 @@ people's units (rpm, N s, g mm, deg, um), a table per result, the console tables
 
 from __future__ import annotations
 
+import html
 from collections.abc import Mapping, Sequence
 from typing import TYPE_CHECKING, Any
 
@@ -132,6 +133,7 @@ def friction_margin_section(ds: xarray.Dataset, rows: Rows) -> str:
 
     coords = _coords(rows[0]) if rows else []
     head = "".join(f"<p>{_friction_sentence(ds, r)}</p>" for r in rows)
+    head += f"<p>The band was searched by {html.escape(str(ds.attrs.get('search', 'a grid')))}.</p>"
     body = [[f"{r['speed_rpm']:.0f}", *(f"{_g(r[c + '_low_deg'], '+.3g')} to {_g(r[c + '_high_deg'], '+.3g')}"
                                         for c in coords),
              _g(r["worst_residual"], ".4g", "", 1e6), _check(r)] for r in rows]  # fmt: skip
