@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rotorlab.steady._motions import SteadyMotion, find_steady_motions, resolve_speed
+from rotorlab.steady._motions import find_steady_motions, resolve_speed, steady_machine
+from rotorlab.steady._records import SteadyMotion
 from rotorlab.steady._stability import _seed_h_values, assess_stability
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
@@ -252,7 +253,7 @@ def _disagreements(motions, ratio: float) -> tuple[Disagreement, ...]:
 
 
 def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
-                   family_samples: int = 12) -> SteadyAnalysis:  # fmt: skip
+                   family_samples: int = 12, machine=None) -> SteadyAnalysis:  # fmt: skip
     """Find every steady motion at a constant speed and assess its stability three ways.
 
     Parameters
@@ -263,6 +264,11 @@ def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
         Omega (rad/s), > 0; default the model's constant speed.
     family_samples : int
         Sample points per free angle of the family of main motions (n >= 3).
+    machine : Machine, optional
+        The machine that solves and judges the motions, the model's own
+        (:func:`rotorlab.steady._motions.steady_machine`) by default; another machine must be
+        this rotor (its first node's translations the disc's, the unbalance at angle 0, the
+        spin speed set), e.g. with uncoupled tilt modes of its own.
 
     Returns
     -------
@@ -285,9 +291,11 @@ def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
     (('main+', 'main-'), ('main+', 'main-'), 0)
     """
     om = resolve_speed(model, spin_speed)
-    motions = find_steady_motions(model, om, family_samples=family_samples)
+    machine = steady_machine(model, om) if machine is None else machine
+    motions = find_steady_motions(model, om, family_samples=family_samples, machine=machine)
     values = _seed_h_values(model, om)
-    motions = tuple(replace(m, stability=assess_stability(model, m, om, seed_h_values=values)) for m in motions)
+    motions = tuple(replace(m, stability=assess_stability(model, m, om, seed_h_values=values, machine=machine))
+                    for m in motions)
     p = model.critical_speed
     return SteadyAnalysis(
         spin_speed=om, critical_speed=p, imbalance=model.imbalance, capacity=model.capacity,
