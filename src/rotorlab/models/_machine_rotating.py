@@ -75,14 +75,8 @@ class MachineLinearization(Linearization):
     ``G``, ``K`` (shape (n, n)) with ``M q'' + (C + G) q' + K q = 0`` (mass, damping as the
     symmetric part of the velocity matrix, gyroscopic as its skew part, stiffness);
     ``spin_speed`` Omega (rad/s); ``residual`` the rotating-frame dy/dt at the state (zero at an
-    equilibrium). Adds :attr:`is_stable` and :meth:`verdict`.
+    equilibrium). Adds :attr:`is_stable`; :func:`spectrum_verdict` classifies its eigenvalues.
     """
-
-    def verdict(self, neutral: int = 0) -> tuple[str, float]:
-        """``"stable"``, ``"unstable"`` or ``"marginal"`` and the largest real part (1/s), the
-        ``neutral`` eigenvalues of least magnitude left out (:func:`spectrum_verdict`, zero within
-        ``EXACT_RTOL`` of the spectral radius or of Omega)."""
-        return spectrum_verdict(self.eigenvalues, neutral, scale=abs(self.spin_speed))
 
     @property
     def is_stable(self) -> bool:
@@ -152,16 +146,30 @@ class _RotatingFrame:
         Evaluated through the compiled fixed-frame kernel at t = 0 (theta = 0), where the frames
         coincide: ``u'' = x'' - 2 Omega J u' + Omega^2 u``, ``psi'' = phi''``.
         """
+        return self.rotating_rhs_many(np.asarray(yr, dtype=float)[None, :])[0]
+
+    def rotating_rhs_many(self, yr) -> np.ndarray:
+        """:meth:`rotating_rhs` of each row of ``yr`` (shape (k, 2 (n_z + n_balls))), the checks,
+        the packed parameters and the kernel looked up once."""
         om = self._require_rotating()
         lay = self.layout
         nz, nb = lay.n_z, lay.n_balls
         yr = np.asarray(yr, dtype=float)
-        f = self.rhs(0.0, self.rotating_to_fixed(yr))
-        out = np.empty(2 * nz + 2 * nb)
-        out[:nz] = yr[nz:2 * nz]
-        out[nz:2 * nz] = f[nz:2 * nz] - 2.0 * self._rot_pairs(yr[nz:2 * nz], om) + om * om * yr[:nz]
-        out[2 * nz:2 * nz + nb] = yr[2 * nz + nb:2 * nz + 2 * nb]
-        out[2 * nz + nb:] = f[lay.i_w:lay.i_w + nb]
+        z, v = yr[:, :nz], yr[:, nz:2 * nz]
+        y = np.zeros((yr.shape[0], lay.n_state))
+        y[:, :nz] = z
+        y[:, nz:2 * nz] = v + self._rot_pairs(z, om)
+        y[:, lay.i_phi:lay.i_phi + nb] = yr[:, 2 * nz:2 * nz + nb]
+        y[:, lay.i_w:lay.i_w + nb] = yr[:, 2 * nz + nb:2 * nz + 2 * nb] + om
+        kernel, p = self.kernels.rhs, self.to_array()
+        f = np.empty_like(y)
+        for k in range(y.shape[0]):
+            kernel(0.0, y[k], p, f[k])
+        out = np.empty_like(yr)
+        out[:, :nz] = v
+        out[:, nz:2 * nz] = f[:, nz:2 * nz] - 2.0 * self._rot_pairs(v, om) + om * om * z
+        out[:, 2 * nz:2 * nz + nb] = yr[:, 2 * nz + nb:2 * nz + 2 * nb]
+        out[:, 2 * nz + nb:] = f[:, lay.i_w:lay.i_w + nb]
         return out
 
     def linearize(self, yr) -> MachineLinearization:
@@ -173,20 +181,17 @@ class _RotatingFrame:
         om = self._require_rotating()
         yr = np.asarray(yr, dtype=float)
         n = yr.size
-        A = np.empty((n, n))
-        for j in range(n):
-            h = self._fd_step(j, om)
-            e = np.zeros(n)
-            e[j] = h
-            f1 = self.rotating_rhs(yr + e) - self.rotating_rhs(yr - e)
-            f2 = self.rotating_rhs(yr + 2 * e) - self.rotating_rhs(yr - 2 * e)
-            A[:, j] = (8.0 * f1 - f2) / (12.0 * h)
+        nz, nb = self.n_coordinates, self.n_balls  # one step per block: z, z', psi and psi'
+        e = np.diag(np.repeat([self._fd_step(j, om) for j in (0, nz, 2 * nz)], [nz, nz, 2 * nb]))
+        f = self.rotating_rhs_many(np.concatenate([yr[None, :], yr + e, yr - e, yr + 2 * e, yr - 2 * e]))
+        f1, f2 = f[1:n + 1] - f[n + 1:2 * n + 1], f[2 * n + 1:3 * n + 1] - f[3 * n + 1:]
+        A = ((8.0 * f1 - f2) / (12.0 * np.diag(e)[:, None])).T
         half = n // 2
         Mf = self.mass_matrix(self.rotating_to_fixed(yr))[: half, : half]
         K = -Mf @ A[half:, :half]
         D = -Mf @ A[half:, half:]
         return MachineLinearization(A=A, M=Mf, C=0.5 * (D + D.T), G=0.5 * (D - D.T), K=K,
-                                    spin_speed=om, residual=self.rotating_rhs(yr))
+                                    spin_speed=om, residual=f[0])
 
     @property
     def _unbalance_scale(self) -> float:

@@ -103,7 +103,20 @@ def steady_machine(model: JeffcottBalls, spin_speed: float):
     from rotorlab.continuation import as_machine
     from rotorlab.models import ConstantSpeed
 
-    return as_machine(model).with_drive(ConstantSpeed(float(spin_speed)))
+    machine = as_machine(model).with_drive(ConstantSpeed(float(spin_speed)))
+    # a chart builds one machine per point, all of one layout: its compiled kernel looked up once
+    lay = machine.layout
+    kernels = next((k for known, k in _KERNELS if known == lay), None)
+    if kernels is None:
+        _KERNELS.insert(0, (lay, machine.kernels))
+        del _KERNELS[4:]
+    else:
+        machine._cache.setdefault("kernels", kernels)
+    return machine
+
+
+#: The kernels of the last few machine layouts of :func:`steady_machine` (layout, kernels).
+_KERNELS: list = []
 
 
 def motion_state(machine, deflection: complex, angles) -> np.ndarray:

@@ -21,7 +21,8 @@ equations, and the exact eigenvalues of the co-rotating-frame Jacobian.
    B = det of eq. (19); the motion is stable when every eigenvalue is negative ((20) for k = 2).
    Equal balls: ``K = Omega^2 W / beta0 = Omega^4 m / (beta0 (c - M Omega^2))``.
 3. **Exact**: eigenvalues of the co-rotating linearization of the machine the rotor is
-   (:meth:`rotorlab.models.Machine.linearize` and its :meth:`~MachineLinearization.verdict`, the
+   (:meth:`rotorlab.models.Machine.linearize`, classified by
+   :func:`rotorlab.models._machine_rotating.spectrum_verdict`, the
    implementation every isotropic machine uses; shaft and ball damping, ball inertia, support
    damping) at the exact steady motion. Along a family of main motions the n - 2 zero
    eigenvalues of the neutral directions are left out.
@@ -50,7 +51,7 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rotorlab.models._machine_rotating import EXACT_RTOL, _drop_neutral
+from rotorlab.models._machine_rotating import EXACT_RTOL, _drop_neutral, spectrum_verdict
 from rotorlab.steady._motions import main_motions_exist, motion_state, steady_machine, wrap
 from rotorlab.steady._records import Stability, SteadyMotion
 
@@ -154,9 +155,9 @@ def _exact(machine, motion: SteadyMotion) -> tuple[str, np.ndarray, float, float
         return "absent", np.full(4 + 2 * n, complex(np.nan, np.nan)), math.nan, 0.0
     verdicts, growths, eig0 = [], [], None
     for psi in motion.samples:
-        lin = machine.linearize(motion_state(machine, motion.deflection, psi))
-        eig0 = lin.eigenvalues if eig0 is None else eig0
-        verdict, growth = lin.verdict(motion.dimension)
+        lam = machine.linearize(motion_state(machine, motion.deflection, psi)).eigenvalues
+        eig0 = lam if eig0 is None else eig0
+        verdict, growth = spectrum_verdict(lam, motion.dimension, scale=motion.spin_speed)
         verdicts.append(verdict)
         growths.append(growth)
     frac = verdicts.count("stable") / len(verdicts)
