@@ -80,6 +80,9 @@ class SteadyAnalysis:
     disagreements : tuple of Disagreement
         Every motion on which a first-order method disagrees with the exact eigenvalues, or the
         two first-order methods disagree with each other.
+    friction : str
+        Empty without ball friction; else what was computed (the smooth part's motions and
+        eigenvalues: :func:`rotorlab.continuation.smooth_part_note`).
     """
 
     spin_speed: float
@@ -89,6 +92,7 @@ class SteadyAnalysis:
     moments: np.ndarray
     motions: tuple[SteadyMotion, ...]
     disagreements: tuple[Disagreement, ...]
+    friction: str = ""
 
     @property
     def labels(self) -> tuple[str, ...]:
@@ -129,7 +133,8 @@ class SteadyAnalysis:
             (m), ``phase`` (rad), ``h_tilde`` (J), ``verdicts`` {hamilton, averaged, exact},
             ``hessian``, ``hamilton_minimal``, ``averaged_A`` (1/s), ``averaged_B`` (1/s^2),
             ``growth_rate`` (1/s), ``stable_fraction``) and ``disagreements`` (``label``,
-            ``method``, ``against``, ``predicted``, ``exact``, ``message``). NaN becomes None.
+            ``method``, ``against``, ``predicted``, ``exact``, ``message``), and ``friction``
+            (:attr:`friction`) where the balls have friction. NaN becomes None.
         """
 
         def num(x):
@@ -162,6 +167,7 @@ class SteadyAnalysis:
                  "exact": d.exact, "message": d.message}
                 for d in self.disagreements
             ],  # fmt: skip
+            **({"friction": self.friction} if self.friction else {}),
         }
 
     def to_dataset(self) -> xarray.Dataset:
@@ -221,6 +227,7 @@ class SteadyAnalysis:
                 "imbalance": self.imbalance,
                 "capacity": self.capacity,
                 "disagreements": "\n".join(d.message for d in self.disagreements),
+                **({"friction": self.friction} if self.friction else {}),
             },
         )
 
@@ -259,7 +266,9 @@ def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
     Parameters
     ----------
     model : JeffcottBalls
-        Rotor and balls (any frame; Coulomb friction is switched off for the eigenvalues).
+        Rotor and balls (any frame). With ball friction, the motions and eigenvalues are those of
+        the smooth part, friction left out (each motion is also one with friction, its balls
+        stuck with no friction torque needed); :attr:`SteadyAnalysis.friction` says so.
     spin_speed : float, optional
         Omega (rad/s), > 0; default the model's constant speed.
     family_samples : int
@@ -290,6 +299,8 @@ def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
     >>> res.stable("exact"), res.stable("hamilton"), len(res.disagreements)
     (('main+', 'main-'), ('main+', 'main-'), 0)
     """
+    from rotorlab.continuation import smooth_part_note
+
     om = resolve_speed(model, spin_speed)
     machine = steady_machine(model, om) if machine is None else machine
     motions = find_steady_motions(model, om, family_samples=family_samples, machine=machine)
@@ -300,5 +311,5 @@ def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
     return SteadyAnalysis(
         spin_speed=om, critical_speed=p, imbalance=model.imbalance, capacity=model.capacity,
         moments=np.array([b.static_moment for b in model.balls]), motions=motions,
-        disagreements=_disagreements(motions, om / p),
+        disagreements=_disagreements(motions, om / p), friction=smooth_part_note(model),
     )  # fmt: skip

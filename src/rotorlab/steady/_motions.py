@@ -95,15 +95,26 @@ def resolve_speed(model: JeffcottBalls, spin_speed: float | None) -> float:
 def steady_machine(model: JeffcottBalls, spin_speed: float):
     """The :class:`rotorlab.models.Machine` the rotor is, at the constant speed ``spin_speed``.
 
-    :func:`rotorlab.continuation.as_machine`: one node, one race of the balls, the disc's
-    unbalance at angle 0 (ball angles are measured from it, as psi here), ball friction left out
+    :func:`rotorlab.continuation.as_machine`: one node, one race of the balls (one race per ball
+    where their radii differ), the disc's unbalance at angle 0 (ball angles are measured from it, as psi here), ball friction left out
     (its smooth part: see :func:`find_steady_motions`). Its co-rotating frame solves and judges
     every steady motion this package lists.
     """
     from rotorlab.continuation import as_machine
-    from rotorlab.models import ConstantSpeed
+    from rotorlab.models import BallParams, ConstantSpeed
 
-    machine = as_machine(model).with_drive(ConstantSpeed(float(spin_speed)))
+    # a point mass's inertia m l^2 computed another way may fall below as_machine's m l^2 by
+    # round-off (its own inertia then -1e-19 kg m^2, refused): snap those to as_machine's value
+    model = replace(model, balls=tuple(
+        replace(b, inertia=b.mass * b.radius ** 2) if abs(b.inertia - b.mass * b.radius ** 2) <= 1e-12 * b.inertia
+        else b for b in model.balls))
+    if len({b.radius for b in model.balls}) == 1:
+        machine = as_machine(model)
+    else:  # balls on several radii (or none): one race per ball at the disc, in the model's order
+        parts = [as_machine(replace(model, balls=(b,))) for b in model.balls]
+        base = parts[0] if parts else as_machine(replace(model, balls=(BallParams(1.0, 1.0),)))
+        machine = replace(base, races=tuple(m.races[0] for m in parts))
+    machine = machine.with_drive(ConstantSpeed(float(spin_speed)))
     # a chart builds one machine per point, all of one layout: its compiled kernel looked up once
     lay = machine.layout
     kernels = next((k for known, k in _KERNELS if known == lay), None)
@@ -258,8 +269,8 @@ def side_deflection(imbalance: float, moments, bits, spin_speed: float, stiffnes
     dim = float(damping) * om
     dd = complex(dre, dim)
     mod2 = dre * dre + dim * dim
-    if mod2 == 0.0:
-        return None
+    if math.sqrt(mod2) <= 1e-12 * (float(stiffness) + float(total_mass) * om * om):
+        return None  # at resonance without support damping (to round-off): no steady motion
     if me == 0.0:
         if dim != 0.0 and s != 0.0:
             return None  # a balanced disc has no side motion off the axis when d > 0
