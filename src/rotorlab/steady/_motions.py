@@ -96,9 +96,9 @@ def steady_machine(model: JeffcottBalls, spin_speed: float):
     """The :class:`rotorlab.models.Machine` the rotor is, at the constant speed ``spin_speed``.
 
     :func:`rotorlab.continuation.as_machine`: one node, one race of the balls (one race per ball
-    where their radii differ), the disc's unbalance at angle 0 (ball angles are measured from it, as psi here), ball friction left out
-    (its smooth part: see :func:`find_steady_motions`). Its co-rotating frame solves and judges
-    every steady motion this package lists.
+    where their radii differ), the disc's unbalance at angle 0 (ball angles psi are measured from
+    it), ball friction left out (its smooth part: see :func:`find_steady_motions`). Its
+    co-rotating frame solves and judges every steady motion this package lists.
     """
     from rotorlab.continuation import as_machine
     from rotorlab.models import BallParams, ConstantSpeed

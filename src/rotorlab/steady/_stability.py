@@ -52,7 +52,7 @@ from typing import TYPE_CHECKING
 import numpy as np
 
 from rotorlab.models._machine_rotating import EXACT_RTOL, _drop_neutral, spectrum_verdict
-from rotorlab.steady._motions import main_motions_exist, motion_state, steady_machine, wrap
+from rotorlab.steady._motions import _moments, main_motions_exist, motion_state, steady_machine, wrap
 from rotorlab.steady._records import Stability, SteadyMotion
 
 if TYPE_CHECKING:
@@ -63,15 +63,10 @@ __all__ = [
     "assess_stability",
     "hessian_f",
     "averaged_jacobian",
-    "exact_eigenvalues",
     "EXACT_RTOL",
 ]
 
 _HESSIAN_RTOL = 1e-9
-
-
-def _moments(model: JeffcottBalls) -> np.ndarray:
-    return np.array([b.static_moment for b in model.balls], dtype=float)
 
 
 def hessian_f(imbalance: float, moments, angles) -> np.ndarray:
@@ -132,19 +127,6 @@ def _averaged_from_hessian(model: JeffcottBalls, spin_speed: float, a: np.ndarra
     if np.any(b <= 0.0) or den == 0.0:
         return None
     return (spin_speed**4 / den) * a / b[:, None]
-
-
-def exact_eigenvalues(model: JeffcottBalls, spin_speed: float, state) -> np.ndarray:
-    """Return the eigenvalues of the co-rotating-frame Jacobian at a steady state (1/s).
-
-    The machine's linearization (:meth:`rotorlab.models.Machine.linearize` of
-    :func:`rotorlab.steady._motions.steady_machine`: Coulomb and rolling friction left out, the
-    balls free with their viscous damping) at the state ``[u, v, ., ., psi_i, .]`` of ``model``.
-    """
-    y = np.asarray(state, dtype=float)
-    n = model.n_balls
-    machine = steady_machine(model, spin_speed)
-    return machine.linearize(motion_state(machine, complex(y[0], y[1]), y[4:4 + n])).eigenvalues
 
 
 def _exact(machine, motion: SteadyMotion) -> tuple[str, np.ndarray, float, float]:
