@@ -115,7 +115,9 @@ class _RotatingFrame:
         return next((why for why in reasons if why), None)
 
     def _require_rotating(self) -> float:
-        why = self.why_no_rotating_frame()
+        if "why_no_rotating" not in self._cache:  # the machine is frozen: its answer is too
+            self._cache["why_no_rotating"] = self.why_no_rotating_frame()
+        why = self._cache["why_no_rotating"]
         if why is not None:
             raise ValueError(f"no co-rotating equilibria: {why}")
         return float(self.drive.speed)
@@ -320,7 +322,9 @@ class _RotatingFrame:
         if coordinates is not None:
             y[:nz] = coordinates
         elif displacements is not None:
-            y[:nz] = np.linalg.lstsq(self.basis, np.asarray(displacements, dtype=float), rcond=None)[0]
+            if "basis_pinv" not in self._cache:
+                self._cache["basis_pinv"] = np.linalg.pinv(self.basis)
+            y[:nz] = self._cache["basis_pinv"] @ np.asarray(displacements, dtype=float)
         y[2 * nz:2 * nz + nb] = ball_angles
         return y
 

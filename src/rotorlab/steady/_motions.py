@@ -108,13 +108,13 @@ def steady_machine(model: JeffcottBalls, spin_speed: float):
     model = replace(model, balls=tuple(
         replace(b, inertia=b.mass * b.radius ** 2) if abs(b.inertia - b.mass * b.radius ** 2) <= 1e-12 * b.inertia
         else b for b in model.balls))
+    model = replace(model, speed=ConstantSpeed(float(spin_speed)))
     if len({b.radius for b in model.balls}) == 1:
         machine = as_machine(model)
     else:  # balls on several radii (or none): one race per ball at the disc, in the model's order
         parts = [as_machine(replace(model, balls=(b,))) for b in model.balls]
         base = parts[0] if parts else as_machine(replace(model, balls=(BallParams(1.0, 1.0),)))
         machine = replace(base, races=tuple(m.races[0] for m in parts))
-    machine = machine.with_drive(ConstantSpeed(float(spin_speed)))
     # a chart builds one machine per point, all of one layout: its compiled kernel looked up once
     lay = machine.layout
     kernels = next((k for known, k in _KERNELS if known == lay), None)
