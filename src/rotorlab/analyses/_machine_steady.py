@@ -298,18 +298,10 @@ def _run_steady(case_model, analysis, progress=None):
     return _annotate(ds, case_model, analysis)
 
 
-def _with_parameter(machine, name: str, value: float):
-    """Every ball of the machine with ``mass`` or ``damping`` (``ball_mass``, ``ball_damping``) set."""
-    from dataclasses import replace
-
-    key = name.removeprefix("ball_")
-    races = tuple(replace(r, balls=tuple(replace(b, **{key: float(value)}) for b in r.balls))
-                  for r in machine.races)
-    return replace(machine, races=races)
-
-
 def _run_chart(case_model, analysis, progress=None):
     import xarray as xr
+
+    from rotorlab.continuation import with_value  # every ball's mass or damping (ball_mass, ball_damping)
 
     speeds = analysis.spin_speeds(case_model)
     m = _variant(case_model, analysis, float(speeds[0]))
@@ -319,7 +311,7 @@ def _run_chart(case_model, analysis, progress=None):
     else:
         parts = []
         for k, v in enumerate(values):
-            parts.append(machine_steady(_with_parameter(m, analysis.param, v), speeds))
+            parts.append(machine_steady(with_value(m, analysis.param, v), speeds))
             if progress is not None:
                 progress(k + 1, len(values))
         ds = xr.concat(parts, dim="parameter", combine_attrs="drop_conflicts")
