@@ -87,16 +87,10 @@ def machine_steady(machine, speeds, *, ball_angles=None):
             if y is None:
                 continue
             nz = m.n_coordinates
-            psi = y[2 * nz:2 * nz + nb]
-            guess, near = psi, y
-            lin = m.linearize(y)
+            guess, near = y[2 * nz:2 * nz + nb], y
             exists[i] = True
             balanced[i] = bool(np.all(y[:nz] == 0.0))
-            angles[i] = _wrap(psi)
-            lam_max[i] = float(lin.eigenvalues.real.max())
-            stable[i] = lin.is_stable
-            amp = m.station_amplitudes(m.rotating_to_fixed(y))
-            amplitude[i] = amp
+            angles[i], amplitude[i], lam_max[i], stable[i] = _judge(m, y)
             _, hit = clearance_violation(m, y)
             if hit is not None:
                 exists[i], stable[i], status[i] = False, False, CLEARANCE_STATUS
@@ -177,7 +171,8 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
     Returns
     -------
     xarray.Dataset
-        Dim ``motion``: ``kind`` ("balanced" or "partly balanced"), ``exists``, ``ball_angle``
+        Dim ``motion``: ``label``, ``kind`` ("balanced" or "partly balanced"; "side" too where
+        the seeds' verdicts are given), ``exists``, ``ball_angle``
         (motion, ball) (rad, from the rotor's reference direction), ``amplitude`` (motion,
         station) whirl radius (m), ``max_real_eigenvalue`` (1/s), ``stable``,
         ``verdict_exact``, ``verdict_hamilton``, ``verdict_averaged``; ``status`` (0, or
@@ -190,11 +185,15 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
     import xarray as xr
     from scipy.optimize import least_squares
 
-    nb, nz = machine.n_balls, machine.n_coordinates
+    nb = machine.n_balls
     message = machine.why_no_rotating_frame()
-    found: list[np.ndarray] = []
-    kinds: list[str] = []
-    if message is None and nb:
+    limit = jeffcott_limit(machine) if message is None and nb else None
+    note = SEED_VERDICTS_NOTE
+    if limit is not None:
+        note = "the machine is the planar single-mass rotor of seeds 002/003: their verdicts are given"
+        motions, machine = _seed_motions(machine, *limit)
+    elif message is None and nb:
+        found: list[np.ndarray] = []
         scale = max(machine._unbalance_scale, 1e-300)
         rng = np.random.default_rng(seed)
         for _ in range(starts):
@@ -208,71 +207,21 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
         kinds = ["balanced"] * len(ys)
         if not ys:
             y = machine.steady_state()
-            if y is not None:
-                ys, kinds = [y], ["partly balanced"]
+            ys, kinds = ([y], ["partly balanced"]) if y is not None else ([], [])
         if not ys:
             message = "no steady motion found (the equilibrium solver did not converge); simulate instead"
+        motions = [(f"{k} {j}", k, y, *_judge(machine, y), "n/a", "n/a") for j, (k, y) in enumerate(zip(kinds, ys))]
     else:
-        ys = []
+        motions = []
         if message is None:
             message = "the machine has no balls"
-    n = max(len(ys), 1)
-    angles = np.full((n, nb), np.nan)
-    amp = np.full((n, machine.structure.n_nodes), np.nan)
-    lam = np.full(n, np.nan)
-    stable = np.zeros(n, bool)
-    exact = ["absent"] * n
-    hamilton = ["n/a"] * n
-    averaged = ["n/a"] * n
-    states = list(ys)
-    for j, y in enumerate(ys):
-        lin = machine.linearize(y)
-        angles[j] = _wrap(y[2 * nz:2 * nz + nb])
-        amp[j] = machine.station_amplitudes(machine.rotating_to_fixed(y))
-        lam[j] = float(lin.eigenvalues.real.max())
-        stable[j] = lin.is_stable
-        exact[j] = "stable" if stable[j] else "unstable"
-    note = SEED_VERDICTS_NOTE
-    limit = jeffcott_limit(machine) if message is None else None
-    labels = [f"{k} {j}" for j, k in enumerate(kinds)] or ["none"]
-    if limit is not None:
-        # the planar single-mass rotor: every steady motion of seeds 002/003 (balanced and side
-        # motions), each found again in the machine (root solve from the seeds' motion) and judged
-        # by the machine's own eigenvalues, with the seeds' two verdicts beside
-        from rotorlab.steady import analyze_steady
-
-        jb, phase = limit
-        doc = analyze_steady(jb).to_dict()
-        note = "the machine is the planar single-mass rotor of seeds 002/003: their verdicts are given"
-        n = len(doc["motions"])
-        angles, amp = np.full((n, nb), np.nan), np.full((n, machine.structure.n_nodes), np.nan)
-        lam, stable = np.full(n, np.nan), np.zeros(n, bool)
-        exact, hamilton, averaged, kinds, labels, exists = [], [], [], [], [], []
-        states = []
-        for j, mo in enumerate(doc["motions"]):
-            y = None
-            if mo["exists"]:
-                d = (mo["amplitude"] or 0.0) * np.exp(1j * ((mo["phase"] or 0.0) + phase))
-                y = _equilibrium_near(machine, np.array([d.real, d.imag, 0.0, 0.0]),
-                                      np.asarray(mo["ball_angles"]) + phase)
-            exists.append(y is not None)
-            states.append(y)
-            if y is not None:
-                lin = machine.linearize(y)
-                angles[j] = _wrap(y[2 * nz:2 * nz + nb])
-                amp[j] = machine.station_amplitudes(machine.rotating_to_fixed(y))
-                lam[j] = float(lin.eigenvalues.real.max())
-                stable[j] = lin.is_stable
-            exact.append(("stable" if stable[j] else "unstable") if y is not None else "absent")
-            hamilton.append(mo["verdicts"]["hamilton"] if mo["exists"] else "absent")
-            averaged.append(mo["verdicts"]["averaged"] if mo["exists"] else "absent")
-            kinds.append("balanced" if mo["kind"] == "main" else str(mo["kind"]))
-            labels.append(str(mo["label"]))
-        ys = [True] * sum(exists)  # found at least one
-        exists_arr = np.asarray(exists)
-    else:
-        exists_arr = np.asarray([True] * len(ys) or [False])
-        n = max(len(ys), 1)
+    nst = machine.structure.n_nodes
+    if not motions:  # one row that says there is none
+        motions = [("none", "none", None, np.full(nb, np.nan), np.full(nst, np.nan), math.nan, False, "n/a", "n/a")]
+    labels, kinds, states, angles, amp, lam, stable, hamilton, averaged = (list(c) for c in zip(*motions))
+    exists_arr = np.array([y is not None for y in states])
+    angles, amp, lam, stable = np.array(angles).reshape(-1, nb), np.array(amp), np.array(lam, float), np.array(stable)
+    exact = [("stable" if st else "unstable") if y is not None else "absent" for y, st in zip(states, stable)]
     # a motion computed without contact whose orbit reaches past the clearance does not exist
     hits: list[str] = []
     for j, y in enumerate(states):
@@ -284,7 +233,7 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
         message = "; ".join(hits) if message is None else message + "; " + "; ".join(hits)
     ds = xr.Dataset(
         {
-            "kind": (("motion",), np.asarray(kinds or ["none"], dtype=str)),
+            "kind": (("motion",), np.asarray(kinds, dtype=str)),
             "label": (("motion",), np.asarray(labels, dtype=str)),
             "exists": (("motion",), exists_arr),
             "ball_angle": (("motion", "ball"), angles, {"units": "rad"}),
@@ -305,29 +254,40 @@ def machine_motions(machine, *, starts: int = 24, seed: int = 0, angle_tol: floa
     return ds
 
 
-def _equilibrium_near(machine, q, psi):
-    """The co-rotating equilibrium near node displacements ``q`` (full structure coordinates, m)
-    and ball angles ``psi`` (rad), or None (SciPy's hybrid Powell method on the rotating-frame
-    accelerations, as :meth:`Machine.steady_state`)."""
-    from scipy.optimize import root
-
+def _judge(machine, y):
+    """Ball angles (rad, wrapped), whirl radius per node (m), largest real part of the eigenvalues
+    (1/s) and stability (:attr:`MachineLinearization.is_stable`) of the co-rotating state ``y``."""
     nz, nb = machine.n_coordinates, machine.n_balls
+    lin = machine.linearize(y)
+    return (_wrap(y[2 * nz:2 * nz + nb]), machine.station_amplitudes(machine.rotating_to_fixed(y)),
+            float(lin.eigenvalues.real.max()), lin.is_stable)
 
-    def state(x):
-        y = np.zeros(2 * nz + 2 * nb)
-        y[:nz], y[2 * nz:2 * nz + nb] = x[:nz], x[nz:]
-        return y
 
-    def residual(x):
-        f = machine.rotating_rhs(state(x))
-        return np.concatenate([f[nz:2 * nz], f[2 * nz + nb:]])
+def _seed_motions(machine, rotor, phase: float):
+    """Every steady motion of seeds 002/003 (balanced and side motions) of a machine that is the
+    planar rotor ``rotor`` (:func:`jeffcott_limit`), solved and judged by the machine itself
+    (:func:`rotorlab.steady.analyze_steady` on it, its unbalance turned to angle 0), with the seeds'
+    two verdicts: rows for :func:`machine_motions` and that turned machine."""
+    from dataclasses import replace
 
-    z0 = np.linalg.lstsq(machine.basis, np.asarray(q, float), rcond=None)[0]
-    sol = root(residual, np.concatenate([z0, psi]), method="hybr", options={"xtol": 1e-13})
-    om = float(machine.drive.speed)
-    scale = max(machine._unbalance_scale / max(machine.structure.total_mass, 1e-300),
-                1e-300)
-    return state(sol.x) if np.max(np.abs(residual(sol.x))) <= 1e-9 * scale * max(1.0, om * om) else None
+    from rotorlab.models._machine_rotating import spectrum_is_stable
+    from rotorlab.steady import analyze_steady
+    from rotorlab.steady._motions import motion_state
+
+    turned = replace(machine, unbalances=tuple(replace(u, phase=u.phase - phase) for u in machine.unbalances))
+    nb, nst = machine.n_balls, machine.structure.n_nodes
+    rows = []
+    for mo in analyze_steady(rotor, machine=turned).motions:
+        st, kind = mo.stability, "balanced" if mo.kind == "main" else mo.kind
+        if not mo.exists:
+            rows.append((mo.label, kind, None, np.full(nb, np.nan), np.full(nst, np.nan), math.nan, False,
+                         "absent", "absent"))
+            continue
+        y = motion_state(turned, mo.deflection, mo.ball_angles)
+        rows.append((mo.label, kind, y, _wrap(mo.ball_angles + phase),
+                     turned.station_amplitudes(turned.rotating_to_fixed(y)), float(st.eigenvalues.real.max()),
+                     spectrum_is_stable(st.eigenvalues), st.hamilton, st.averaged))
+    return rows, turned
 
 
 def _run_steady(case_model, analysis, progress=None):
@@ -338,18 +298,10 @@ def _run_steady(case_model, analysis, progress=None):
     return _annotate(ds, case_model, analysis)
 
 
-def _with_parameter(machine, name: str, value: float):
-    """Every ball of the machine with ``mass`` or ``damping`` (``ball_mass``, ``ball_damping``) set."""
-    from dataclasses import replace
-
-    key = name.removeprefix("ball_")
-    races = tuple(replace(r, balls=tuple(replace(b, **{key: float(value)}) for b in r.balls))
-                  for r in machine.races)
-    return replace(machine, races=races)
-
-
 def _run_chart(case_model, analysis, progress=None):
     import xarray as xr
+
+    from rotorlab.continuation import with_value  # every ball's mass or damping (ball_mass, ball_damping)
 
     speeds = analysis.spin_speeds(case_model)
     m = _variant(case_model, analysis, float(speeds[0]))
@@ -359,7 +311,7 @@ def _run_chart(case_model, analysis, progress=None):
     else:
         parts = []
         for k, v in enumerate(values):
-            parts.append(machine_steady(_with_parameter(m, analysis.param, v), speeds))
+            parts.append(machine_steady(with_value(m, analysis.param, v), speeds))
             if progress is not None:
                 progress(k + 1, len(values))
         ds = xr.concat(parts, dim="parameter", combine_attrs="drop_conflicts")

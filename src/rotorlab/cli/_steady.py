@@ -220,6 +220,8 @@ def _print_steady(doc: dict[str, Any]) -> None:
     con.print(f"Exactly stable: {', '.join(stable) if stable else 'none'}", markup=False)
     for d in doc["disagreements"]:
         con.print(f"disagreement: {d['message']}", markup=False)
+    if doc.get("friction"):
+        con.print(f"friction: {doc['friction']}", markup=False)
 
 
 @app.command("stability-chart")

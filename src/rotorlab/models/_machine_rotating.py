@@ -13,7 +13,57 @@ import numpy as np
 
 from rotorlab.models._jeffcott_physics import Linearization
 
-__all__ = ["MachineLinearization"]
+__all__ = ["EXACT_RTOL", "MachineLinearization", "spectrum_is_stable", "spectrum_verdict"]
+
+
+#: Real parts within this fraction of the spectral scale count as zero ("marginal").
+EXACT_RTOL = 1e-10
+
+
+def _drop_neutral(values: np.ndarray, count: int) -> np.ndarray:
+    """``values`` without the ``count`` of least magnitude (a family's neutral directions)."""
+    if count <= 0:
+        return values
+    order = np.argsort(np.abs(values))
+    return values[np.sort(order[count:])]
+
+
+def spectrum_verdict(eigenvalues, neutral: int = 0, *, scale: float = 0.0,
+                     rtol: float = EXACT_RTOL) -> tuple[str, float]:
+    """Classify an equilibrium by the eigenvalues of its linearization.
+
+    Parameters
+    ----------
+    eigenvalues : array_like of complex
+        Of the first-order Jacobian (1/s).
+    neutral : int
+        Eigenvalues of least magnitude left out: the directions along a family of equilibria.
+    scale : float
+        A rate (1/s) below which the spectral radius is not taken as the scale of zero (the spin
+        speed for a steady motion).
+    rtol : float
+        Real parts within ``rtol * max(spectral radius, scale)`` of zero count as zero.
+
+    Returns
+    -------
+    (str, float)
+        ``"stable"`` (every real part below the tolerance), ``"unstable"`` (one above it) or
+        ``"marginal"``, and the largest real part of the eigenvalues kept (1/s).
+
+    Examples
+    --------
+    >>> spectrum_verdict([-1 + 2j, -1 - 2j, -0.5])
+    ('stable', -0.5)
+    >>> spectrum_verdict([1e-15 + 1j, 1e-15 - 1j, -3.0])[0]
+    'marginal'
+    >>> spectrum_verdict([1e-14, -2.0], neutral=1)
+    ('stable', -2.0)
+    """
+    lam = np.asarray(eigenvalues, dtype=complex).reshape(-1)
+    rest = _drop_neutral(lam, int(neutral))
+    growth = float(np.max(rest.real))
+    tol = rtol * max(float(np.max(np.abs(lam))), float(scale))
+    return ("stable" if growth < -tol else "unstable" if growth > tol else "marginal"), growth
 
 
 @dataclass(frozen=True)
@@ -25,15 +75,19 @@ class MachineLinearization(Linearization):
     ``G``, ``K`` (shape (n, n)) with ``M q'' + (C + G) q' + K q = 0`` (mass, damping as the
     symmetric part of the velocity matrix, gyroscopic as its skew part, stiffness);
     ``spin_speed`` Omega (rad/s); ``residual`` the rotating-frame dy/dt at the state (zero at an
-    equilibrium). Adds :attr:`is_stable`.
+    equilibrium). Adds :attr:`is_stable`; :func:`spectrum_verdict` classifies its eigenvalues.
     """
 
     @property
     def is_stable(self) -> bool:
         """All eigenvalues in the open left half-plane, up to round-off (zero modes excluded)."""
-        lam = self.eigenvalues
-        scale = max(np.abs(lam).max(), 1.0)
-        return bool(np.all(lam.real < 1e-9 * scale))
+        return spectrum_is_stable(self.eigenvalues)
+
+
+def spectrum_is_stable(eigenvalues) -> bool:
+    """No real part above ``1e-9`` of ``max(spectral radius, 1 / s)``: stable, marginal modes (an
+    undamped tilt, a family's neutral direction) counted as stable (:attr:`MachineLinearization.is_stable`)."""
+    return spectrum_verdict(eigenvalues, scale=1.0, rtol=1e-9)[0] != "unstable"
 
 
 class _RotatingFrame:
@@ -61,7 +115,9 @@ class _RotatingFrame:
         return next((why for why in reasons if why), None)
 
     def _require_rotating(self) -> float:
-        why = self.why_no_rotating_frame()
+        if "why_no_rotating" not in self._cache:  # the machine is frozen: its answer is too
+            self._cache["why_no_rotating"] = self.why_no_rotating_frame()
+        why = self._cache["why_no_rotating"]
         if why is not None:
             raise ValueError(f"no co-rotating equilibria: {why}")
         return float(self.drive.speed)
@@ -92,16 +148,30 @@ class _RotatingFrame:
         Evaluated through the compiled fixed-frame kernel at t = 0 (theta = 0), where the frames
         coincide: ``u'' = x'' - 2 Omega J u' + Omega^2 u``, ``psi'' = phi''``.
         """
+        return self.rotating_rhs_many(np.asarray(yr, dtype=float)[None, :])[0]
+
+    def rotating_rhs_many(self, yr) -> np.ndarray:
+        """:meth:`rotating_rhs` of each row of ``yr`` (shape (k, 2 (n_z + n_balls))), the checks,
+        the packed parameters and the kernel looked up once."""
         om = self._require_rotating()
         lay = self.layout
         nz, nb = lay.n_z, lay.n_balls
         yr = np.asarray(yr, dtype=float)
-        f = self.rhs(0.0, self.rotating_to_fixed(yr))
-        out = np.empty(2 * nz + 2 * nb)
-        out[:nz] = yr[nz:2 * nz]
-        out[nz:2 * nz] = f[nz:2 * nz] - 2.0 * self._rot_pairs(yr[nz:2 * nz], om) + om * om * yr[:nz]
-        out[2 * nz:2 * nz + nb] = yr[2 * nz + nb:2 * nz + 2 * nb]
-        out[2 * nz + nb:] = f[lay.i_w:lay.i_w + nb]
+        z, v = yr[:, :nz], yr[:, nz:2 * nz]
+        y = np.zeros((yr.shape[0], lay.n_state))
+        y[:, :nz] = z
+        y[:, nz:2 * nz] = v + self._rot_pairs(z, om)
+        y[:, lay.i_phi:lay.i_phi + nb] = yr[:, 2 * nz:2 * nz + nb]
+        y[:, lay.i_w:lay.i_w + nb] = yr[:, 2 * nz + nb:2 * nz + 2 * nb] + om
+        kernel, p = self.kernels.rhs, self.to_array()
+        f = np.empty_like(y)
+        for k in range(y.shape[0]):
+            kernel(0.0, y[k], p, f[k])
+        out = np.empty_like(yr)
+        out[:, :nz] = v
+        out[:, nz:2 * nz] = f[:, nz:2 * nz] - 2.0 * self._rot_pairs(v, om) + om * om * z
+        out[:, 2 * nz:2 * nz + nb] = yr[:, 2 * nz + nb:2 * nz + 2 * nb]
+        out[:, 2 * nz + nb:] = f[:, lay.i_w:lay.i_w + nb]
         return out
 
     def linearize(self, yr) -> MachineLinearization:
@@ -113,20 +183,17 @@ class _RotatingFrame:
         om = self._require_rotating()
         yr = np.asarray(yr, dtype=float)
         n = yr.size
-        A = np.empty((n, n))
-        for j in range(n):
-            h = self._fd_step(j, om)
-            e = np.zeros(n)
-            e[j] = h
-            f1 = self.rotating_rhs(yr + e) - self.rotating_rhs(yr - e)
-            f2 = self.rotating_rhs(yr + 2 * e) - self.rotating_rhs(yr - 2 * e)
-            A[:, j] = (8.0 * f1 - f2) / (12.0 * h)
+        nz, nb = self.n_coordinates, self.n_balls  # one step per block: z, z', psi and psi'
+        e = np.diag(np.repeat([self._fd_step(j, om) for j in (0, nz, 2 * nz)], [nz, nz, 2 * nb]))
+        f = self.rotating_rhs_many(np.concatenate([yr[None, :], yr + e, yr - e, yr + 2 * e, yr - 2 * e]))
+        f1, f2 = f[1:n + 1] - f[n + 1:2 * n + 1], f[2 * n + 1:3 * n + 1] - f[3 * n + 1:]
+        A = ((8.0 * f1 - f2) / (12.0 * np.diag(e)[:, None])).T
         half = n // 2
         Mf = self.mass_matrix(self.rotating_to_fixed(yr))[: half, : half]
         K = -Mf @ A[half:, :half]
         D = -Mf @ A[half:, half:]
         return MachineLinearization(A=A, M=Mf, C=0.5 * (D + D.T), G=0.5 * (D - D.T), K=K,
-                                    spin_speed=om, residual=self.rotating_rhs(yr))
+                                    spin_speed=om, residual=f[0])
 
     @property
     def _unbalance_scale(self) -> float:
@@ -192,10 +259,7 @@ class _RotatingFrame:
         if psi is None:
             raise ValueError("the balls cannot cancel the unbalance (capacity too small or "
                              "races in the wrong planes)")
-        nz, nb = self.n_coordinates, self.n_balls
-        y = np.zeros(2 * nz + 2 * nb)
-        y[2 * nz:2 * nz + nb] = psi
-        return y
+        return self.rotating_state(ball_angles=psi)
 
     def steady_state(self, ball_angles=None, *, starts: int = 16, seed: int = 0,
                      near=None) -> np.ndarray | None:
@@ -208,10 +272,10 @@ class _RotatingFrame:
         distinct best partial balances (mirror images); ``near`` (a co-rotating state, e.g. the
         steady motion at a neighbouring speed) is tried first as the start.
         """
-        from scipy.optimize import least_squares, root
+        from scipy.optimize import least_squares
 
         om = self._require_rotating()
-        nz, nb = self.n_coordinates, self.n_balls
+        nb = self.n_balls
         psi = self.balanced_angles(ball_angles, starts=starts, seed=seed)
         if psi is not None:
             return self.balanced_state(psi)
@@ -230,28 +294,69 @@ class _RotatingFrame:
             if all(np.max(np.abs(np.angle(np.exp(1j * (fit.x - q))))) > 1e-6 for q in layouts):
                 layouts.append(fit.x)
         K0 = self.reduced["K"] - om * om * self._m0()
-
-        def residual(x):
-            y = np.zeros(2 * nz + 2 * nb)
-            y[:nz], y[2 * nz:2 * nz + nb] = x[:nz], x[nz:]
-            f = self.rotating_rhs(y)
-            return np.concatenate([f[nz:2 * nz], f[2 * nz + nb:]])
-
-        starts_x = [np.concatenate([np.linalg.lstsq(K0, om * om * self.balance_residual(q), rcond=None)[0], q])
-                    for q in layouts[:4]]
+        starts_y = [self.rotating_state(ball_angles=q, coordinates=np.linalg.lstsq(
+            K0, om * om * self.balance_residual(q), rcond=None)[0]) for q in layouts[:4]]
         if near is not None:
-            near = np.asarray(near, dtype=float)
-            starts_x.insert(0, np.concatenate([near[:nz], near[2 * nz:2 * nz + nb]]))
-        zs = max(scale / max(self.structure.total_mass, 1e-300), 1e-300)
-        for x0 in starts_x:
-            sol = root(residual, x0, method="hybr", options={"xtol": 1e-13})
-            if np.max(np.abs(residual(sol.x))) > 1e-9 * zs * max(1.0, om * om):
-                sol = root(residual, x0, method="lm", options={"xtol": 1e-15, "ftol": 1e-15})
-            if np.max(np.abs(residual(sol.x))) <= 1e-9 * zs * max(1.0, om * om):
-                y = np.zeros(2 * nz + 2 * nb)
-                y[:nz], y[2 * nz:2 * nz + nb] = sol.x[:nz], sol.x[nz:]
+            starts_y.insert(0, np.asarray(near, dtype=float))
+        for y0 in starts_y:
+            y = self.equilibrium_near(y0)
+            if y is not None:
                 return y
         return None
+
+    def rotating_state(self, displacements=None, ball_angles=(), *, coordinates=None) -> np.ndarray:
+        """Return the co-rotating state at rest ``[z, 0, psi, 0]``.
+
+        Parameters
+        ----------
+        displacements : array_like, optional
+            The structure's nodal coordinates (m, rad), mapped to the reduced coordinates ``z``
+            by least squares on :attr:`basis`; zero if neither this nor ``coordinates`` is given.
+        ball_angles : array_like
+            psi of every ball (rad).
+        coordinates : array_like, optional
+            ``z`` itself (the reduced coordinates).
+        """
+        nz, nb = self.n_coordinates, self.n_balls
+        y = np.zeros(2 * nz + 2 * nb)
+        if coordinates is not None:
+            y[:nz] = coordinates
+        elif displacements is not None:
+            if "basis_pinv" not in self._cache:
+                self._cache["basis_pinv"] = np.linalg.pinv(self.basis)
+            y[:nz] = self._cache["basis_pinv"] @ np.asarray(displacements, dtype=float)
+        y[2 * nz:2 * nz + nb] = ball_angles
+        return y
+
+    def equilibrium_near(self, y0) -> np.ndarray | None:
+        """Return the co-rotating equilibrium nearest the positions of state ``y0``, or None.
+
+        Solves ``rotating_rhs(y) = 0`` for the positions ``(z, psi)`` (velocities zero) with
+        SciPy's hybrid Powell method, Levenberg-Marquardt where it stalls; accepted where every
+        acceleration is below ``1e-9`` of the unbalance over the structure's mass times
+        ``max(1, Omega^2)``; a start that meets this already is returned as it is (at rest).
+        """
+        from scipy.optimize import root
+
+        om = self._require_rotating()
+        nz, nb = self.n_coordinates, self.n_balls
+        y0 = np.asarray(y0, dtype=float)
+
+        def residual(x):
+            f = self.rotating_rhs(self.rotating_state(ball_angles=x[nz:], coordinates=x[:nz]))
+            return np.concatenate([f[nz:2 * nz], f[2 * nz + nb:]])
+
+        zs = max(self._unbalance_scale / max(self.structure.total_mass, 1e-300), 1e-300)
+        tol = 1e-9 * zs * max(1.0, om * om)
+        x0 = np.concatenate([y0[:nz], y0[2 * nz:2 * nz + nb]])
+        if np.max(np.abs(residual(x0)), initial=0.0) <= tol:
+            return self.rotating_state(ball_angles=x0[nz:], coordinates=x0[:nz])
+        sol = root(residual, x0, method="hybr", options={"xtol": 1e-13})
+        if np.max(np.abs(residual(sol.x))) > tol:
+            sol = root(residual, x0, method="lm", options={"xtol": 1e-15, "ftol": 1e-15})
+        if np.max(np.abs(residual(sol.x))) > tol:
+            return None
+        return self.rotating_state(ball_angles=sol.x[nz:], coordinates=sol.x[:nz])
 
     def reduction_change(self, spin_speed: float) -> float:
         """Relative change of the locked-ball unbalance response when ``n_modes`` doubles.

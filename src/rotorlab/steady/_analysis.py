@@ -12,7 +12,8 @@ from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rotorlab.steady._motions import SteadyMotion, find_steady_motions, resolve_speed
+from rotorlab.steady._motions import find_steady_motions, resolve_speed, steady_machine
+from rotorlab.steady._records import SteadyMotion
 from rotorlab.steady._stability import _seed_h_values, assess_stability
 from rotorlab._constants import RPM_PER_RAD_S as _RPM
 
@@ -79,6 +80,9 @@ class SteadyAnalysis:
     disagreements : tuple of Disagreement
         Every motion on which a first-order method disagrees with the exact eigenvalues, or the
         two first-order methods disagree with each other.
+    friction : str
+        Empty without ball friction; else what was computed (the smooth part's motions and
+        eigenvalues: :func:`rotorlab.continuation.smooth_part_note`).
     """
 
     spin_speed: float
@@ -88,6 +92,7 @@ class SteadyAnalysis:
     moments: np.ndarray
     motions: tuple[SteadyMotion, ...]
     disagreements: tuple[Disagreement, ...]
+    friction: str = ""
 
     @property
     def labels(self) -> tuple[str, ...]:
@@ -128,7 +133,8 @@ class SteadyAnalysis:
             (m), ``phase`` (rad), ``h_tilde`` (J), ``verdicts`` {hamilton, averaged, exact},
             ``hessian``, ``hamilton_minimal``, ``averaged_A`` (1/s), ``averaged_B`` (1/s^2),
             ``growth_rate`` (1/s), ``stable_fraction``) and ``disagreements`` (``label``,
-            ``method``, ``against``, ``predicted``, ``exact``, ``message``). NaN becomes None.
+            ``method``, ``against``, ``predicted``, ``exact``, ``message``), and ``friction``
+            (:attr:`friction`) where the balls have friction. NaN becomes None.
         """
 
         def num(x):
@@ -161,6 +167,7 @@ class SteadyAnalysis:
                  "exact": d.exact, "message": d.message}
                 for d in self.disagreements
             ],  # fmt: skip
+            **({"friction": self.friction} if self.friction else {}),
         }
 
     def to_dataset(self) -> xarray.Dataset:
@@ -220,6 +227,7 @@ class SteadyAnalysis:
                 "imbalance": self.imbalance,
                 "capacity": self.capacity,
                 "disagreements": "\n".join(d.message for d in self.disagreements),
+                **({"friction": self.friction} if self.friction else {}),
             },
         )
 
@@ -252,17 +260,24 @@ def _disagreements(motions, ratio: float) -> tuple[Disagreement, ...]:
 
 
 def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
-                   family_samples: int = 12) -> SteadyAnalysis:  # fmt: skip
+                   family_samples: int = 12, machine=None) -> SteadyAnalysis:  # fmt: skip
     """Find every steady motion at a constant speed and assess its stability three ways.
 
     Parameters
     ----------
     model : JeffcottBalls
-        Rotor and balls (any frame; Coulomb friction is switched off for the eigenvalues).
+        Rotor and balls (any frame). With ball friction, the motions and eigenvalues are those of
+        the smooth part, friction left out (each motion is also one with friction, its balls
+        stuck with no friction torque needed); :attr:`SteadyAnalysis.friction` says so.
     spin_speed : float, optional
         Omega (rad/s), > 0; default the model's constant speed.
     family_samples : int
         Sample points per free angle of the family of main motions (n >= 3).
+    machine : Machine, optional
+        The machine that solves and judges the motions, the model's own
+        (:func:`rotorlab.steady._motions.steady_machine`) by default; another machine must be
+        this rotor (its first node's translations the disc's, the unbalance at angle 0, the
+        spin speed set), e.g. with uncoupled tilt modes of its own.
 
     Returns
     -------
@@ -284,13 +299,17 @@ def analyze_steady(model: JeffcottBalls, spin_speed: float | None = None, *,
     >>> res.stable("exact"), res.stable("hamilton"), len(res.disagreements)
     (('main+', 'main-'), ('main+', 'main-'), 0)
     """
+    from rotorlab.continuation import smooth_part_note
+
     om = resolve_speed(model, spin_speed)
-    motions = find_steady_motions(model, om, family_samples=family_samples)
+    machine = steady_machine(model, om) if machine is None else machine
+    motions = find_steady_motions(model, om, family_samples=family_samples, machine=machine)
     values = _seed_h_values(model, om)
-    motions = tuple(replace(m, stability=assess_stability(model, m, om, seed_h_values=values)) for m in motions)
+    motions = tuple(replace(m, stability=assess_stability(model, m, om, seed_h_values=values, machine=machine))
+                    for m in motions)
     p = model.critical_speed
     return SteadyAnalysis(
         spin_speed=om, critical_speed=p, imbalance=model.imbalance, capacity=model.capacity,
         moments=np.array([b.static_moment for b in model.balls]), motions=motions,
-        disagreements=_disagreements(motions, om / p),
+        disagreements=_disagreements(motions, om / p), friction=smooth_part_note(model),
     )  # fmt: skip

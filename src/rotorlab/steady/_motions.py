@@ -38,14 +38,15 @@ from __future__ import annotations
 
 import itertools
 import math
-from dataclasses import dataclass, field
-from typing import TYPE_CHECKING, Literal
+from dataclasses import replace
+from typing import TYPE_CHECKING
 
 import numpy as np
 
+from rotorlab.steady._records import SteadyMotion
+
 if TYPE_CHECKING:
     from rotorlab.models import JeffcottBalls
-    from rotorlab.steady._stability import Stability
 
 __all__ = [
     "SteadyMotion",
@@ -53,7 +54,9 @@ __all__ = [
     "main_family_angles",
     "main_motions_exist",
     "motion_labels",
+    "motion_state",
     "resolve_speed",
+    "steady_machine",
     "side_deflection",
     "wrap",
 ]
@@ -87,6 +90,69 @@ def resolve_speed(model: JeffcottBalls, spin_speed: float | None) -> float:
     if not (math.isfinite(om) and om > 0.0):
         raise ValueError(f"spin_speed must be a finite number > 0 (rad/s), got {spin_speed!r}")
     return om
+
+
+def steady_machine(model: JeffcottBalls, spin_speed: float):
+    """The :class:`rotorlab.models.Machine` the rotor is, at the constant speed ``spin_speed``.
+
+    :func:`rotorlab.continuation.as_machine`: one node, one race of the balls (one race per ball
+    where their radii differ), the disc's unbalance at angle 0 (ball angles psi are measured from
+    it), ball friction left out (its smooth part: see :func:`find_steady_motions`). Its
+    co-rotating frame solves and judges every steady motion this package lists.
+    """
+    from rotorlab.continuation import as_machine
+    from rotorlab.models import BallParams, ConstantSpeed
+
+    # a point mass's inertia m l^2 computed another way may fall below as_machine's m l^2 by
+    # round-off (its own inertia then -1e-19 kg m^2, refused): snap those to as_machine's value
+    model = replace(model, balls=tuple(
+        replace(b, inertia=b.mass * b.radius ** 2) if abs(b.inertia - b.mass * b.radius ** 2) <= 1e-12 * b.inertia
+        else b for b in model.balls))
+    model = replace(model, speed=ConstantSpeed(float(spin_speed)))
+    if len({b.radius for b in model.balls}) == 1:
+        machine = as_machine(model)
+    else:  # balls on several radii (or none): one race per ball at the disc, in the model's order
+        parts = [as_machine(replace(model, balls=(b,))) for b in model.balls]
+        base = parts[0] if parts else as_machine(replace(model, balls=(BallParams(1.0, 1.0),)))
+        machine = replace(base, races=tuple(m.races[0] for m in parts))
+    # a chart builds one machine per point, all of one layout: its compiled kernel looked up once
+    lay = machine.layout
+    kernels = next((k for known, k in _KERNELS if known == lay), None)
+    if kernels is None:
+        _KERNELS.insert(0, (lay, machine.kernels))
+        del _KERNELS[4:]
+    else:
+        machine._cache.setdefault("kernels", kernels)
+    return machine
+
+
+#: The kernels of the last few machine layouts of :func:`steady_machine` (layout, kernels).
+_KERNELS: list = []
+
+
+def motion_state(machine, deflection: complex, angles) -> np.ndarray:
+    """The machine's co-rotating state at rest with the disc at ``deflection`` (m) and the balls at
+    ``angles`` (rad)."""
+    q = np.zeros(machine.structure.n_dof)
+    q[0], q[1] = deflection.real, deflection.imag
+    return machine.rotating_state(q, angles)
+
+
+def _on_machine(machine, motion: SteadyMotion) -> SteadyMotion:
+    """The motion as an equilibrium of the machine's co-rotating frame: the closed form where the
+    machine confirms it (its accelerations vanish to round-off), else the machine's root near it."""
+    if not motion.exists:
+        return motion
+    rows = [machine.equilibrium_near(motion_state(machine, motion.deflection, a)) for a in motion.samples]
+    if any(y is None for y in rows):
+        raise RuntimeError(f"steady motion {motion.label} at {motion.spin_speed:.6g} rad/s: the closed form is "
+                           "not an equilibrium of the machine's co-rotating frame and no root was found near it")
+    nz, nb = machine.n_coordinates, machine.n_balls
+    q = machine.basis @ rows[0][:nz]
+    samples = np.array([y[2 * nz:2 * nz + nb] for y in rows])
+    if np.array_equal(samples, motion.samples) and complex(q[0], q[1]) == motion.deflection:
+        return motion
+    return replace(motion, deflection=complex(q[0], q[1]), ball_angles=wrap(samples[0]), samples=wrap(samples))
 
 
 def _moments(model: JeffcottBalls) -> np.ndarray:
@@ -203,8 +269,8 @@ def side_deflection(imbalance: float, moments, bits, spin_speed: float, stiffnes
     dim = float(damping) * om
     dd = complex(dre, dim)
     mod2 = dre * dre + dim * dim
-    if mod2 == 0.0:
-        return None
+    if math.sqrt(mod2) <= 1e-12 * (float(stiffness) + float(total_mass) * om * om):
+        return None  # at resonance without support damping (to round-off): no steady motion
     if me == 0.0:
         if dim != 0.0 and s != 0.0:
             return None  # a balanced disc has no side motion off the axis when d > 0
@@ -233,69 +299,6 @@ def motion_labels(n_balls: int) -> tuple[str, ...]:
     main = ("main+", "main-") if n_balls == 2 else (("main",) if n_balls >= 3 else ())
     bits = itertools.product((0, 1), repeat=n_balls)
     return main + tuple("side " + "".join(str(b) for b in k) for k in bits)
-
-
-@dataclass(frozen=True)
-class SteadyMotion:
-    """One steady motion (or family of steady motions) at a constant speed.
-
-    Attributes
-    ----------
-    label : str
-        ``"main+"``, ``"main-"``, ``"main"`` (family, n >= 3) or ``"side 0110"``.
-    kind : {"main", "side"}
-    bits : tuple of int
-        Seed 003's k_i of a side motion (0: ball towards the heavy side of the disc when d = 0);
-        empty for a main motion.
-    exists : bool
-        Whether the motion exists in the model (with its support damping).
-    ball_angles : ndarray, shape (n,)
-        Angles psi_i from the unbalance, in (-pi, pi] (rad); for a family, one representative
-        member (the first of ``samples``); NaN when the motion does not exist.
-    deflection : complex
-        Steady shaft deflection ``u + i v`` in the co-rotating axes (m) (U along the unbalance).
-    h_tilde : float
-        H~* = Pi - T0 on the motion (J), Filimonikhin & Filimonikhina eqs. (10), (14), (15) (with
-        the disc's ``M1 e^2`` in T0, see :func:`rotorlab.models.JeffcottBalls.reduced_hamiltonian`).
-    dimension : int
-        0 for an isolated motion, n - 2 for the family of main motions (n >= 3).
-    samples : ndarray, shape (n_samples, n)
-        Ball angles of members of the motion (one row for an isolated motion) (rad).
-    spin_speed : float
-        Omega (rad/s).
-    stability : Stability or None
-        The three stability verdicts (set by :func:`rotorlab.steady.analyze_steady`).
-    """
-
-    label: str
-    kind: Literal["main", "side"]
-    bits: tuple[int, ...]
-    exists: bool
-    ball_angles: np.ndarray
-    deflection: complex
-    h_tilde: float
-    dimension: int
-    samples: np.ndarray
-    spin_speed: float
-    stability: Stability | None = field(default=None)
-
-    @property
-    def amplitude(self) -> float:
-        """Shaft deflection ``|z|`` (m)."""
-        return abs(self.deflection)
-
-    @property
-    def phase(self) -> float:
-        """Angle of the deflection from the unbalance, in the sense of rotation (rad)."""
-        return math.atan2(self.deflection.imag, self.deflection.real) if self.amplitude > 0 else 0.0
-
-    def states(self) -> np.ndarray:
-        """Return co-rotating states ``[u, v, 0, 0, psi_i, 0]`` of every sample, shape (k, 4 + 2n)."""
-        k, n = self.samples.shape
-        y = np.zeros((k, 4 + 2 * n))
-        y[:, 0], y[:, 1] = self.deflection.real, self.deflection.imag
-        y[:, 4 : 4 + n] = self.samples
-        return y
 
 
 def _family_samples(imbalance: float, s: np.ndarray, per_dim: int, cap: int) -> np.ndarray:
@@ -339,21 +342,25 @@ def _h_tilde(model: JeffcottBalls, om: float, z: complex, angles) -> float:
 
 
 def find_steady_motions(model: JeffcottBalls, spin_speed: float | None = None, *,
-                        family_samples: int = 12,
-                        max_family_samples: int = 256) -> tuple[SteadyMotion, ...]:  # fmt: skip
+                        family_samples: int = 12, max_family_samples: int = 256,
+                        machine=None) -> tuple[SteadyMotion, ...]:  # fmt: skip
     """Find all steady motions of the rotor and its balls at a constant speed.
 
     Parameters
     ----------
     model : JeffcottBalls
-        Any frame; friction does not change the steady motions listed here (it adds a continuum
-        of stuck positions that is not enumerated).
+        Any frame. Ball friction is left out (the machine's smooth part,
+        :func:`rotorlab.continuation.smooth_part_note`): every motion listed is also a steady
+        motion with friction, its balls stuck with no friction torque needed; friction adds a
+        continuum of stuck positions around them that is not enumerated.
     spin_speed : float, optional
         Omega (rad/s), > 0; default the model's constant speed.
     family_samples : int
         Sample points per free angle of the family of main motions (n >= 3).
     max_family_samples : int
         Cap on the number of family samples kept (evenly strided).
+    machine : Machine, optional
+        :func:`steady_machine` of the model at the speed (built when not given).
 
     Returns
     -------
@@ -363,7 +370,10 @@ def find_steady_motions(model: JeffcottBalls, spin_speed: float | None = None, *
 
     Notes
     -----
-    See the module docstring for the equations. For n = 1 no main motion is listed: when
+    See the module docstring for the equations. Their closed forms (which hold for this planar
+    rotor only) list and label the motions; each is then an equilibrium of the machine's
+    co-rotating frame (:meth:`rotorlab.models.Machine.equilibrium_near`: kept where the machine's
+    accelerations vanish there to round-off, else its root nearby; RuntimeError if none). For n = 1 no main motion is listed: when
     ``m_1 l_1 = M1 e`` the side motion "side 1" has zero deflection.
 
     References
@@ -413,4 +423,5 @@ def find_steady_motions(model: JeffcottBalls, spin_speed: float | None = None, *
         ang = wrap(theta + np.pi * np.asarray(bits, dtype=float))
         out.append(SteadyMotion(label, "side", bits, True, ang, z, _h_tilde(model, om, z, ang), 0,
                                 ang[None, :], om))  # fmt: skip
-    return tuple(out)
+    machine = steady_machine(model, om) if machine is None else machine
+    return tuple(_on_machine(machine, m) for m in out)

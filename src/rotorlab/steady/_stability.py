@@ -20,9 +20,17 @@ equations, and the exact eigenvalues of the co-rotating-frame Jacobian.
    ``(Omega^4 / (c - M Omega^2)) B^{-1} a`` with the a of eq. (19). For n = 2, A = -trace and
    B = det of eq. (19); the motion is stable when every eigenvalue is negative ((20) for k = 2).
    Equal balls: ``K = Omega^2 W / beta0 = Omega^4 m / (beta0 (c - M Omega^2))``.
-3. **Exact**: eigenvalues of :meth:`rotorlab.models.JeffcottBalls.linearize` (shaft and ball
-   damping, ball inertia, support damping) at the exact steady motion. Along a family of main
-   motions the n - 2 zero eigenvalues of the neutral directions are left out.
+3. **Exact**: eigenvalues of the co-rotating linearization of the machine the rotor is
+   (:meth:`rotorlab.models.Machine.linearize`, classified by
+   :func:`rotorlab.models._machine_rotating.spectrum_verdict`, the
+   implementation every isotropic machine uses; shaft and ball damping, ball inertia, support
+   damping) at the exact steady motion. Along a family of main motions the n - 2 zero
+   eigenvalues of the neutral directions are left out.
+
+Methods 1 and 2 hold only for the planar point-mass balancer (one disc, one race in its plane,
+isotropic supports): they run on :class:`rotorlab.models.JeffcottBalls` and, for a machine, only
+where it is that rotor (:func:`rotorlab.analyses._machine_steady.jeffcott_limit`; elsewhere they
+are "n/a" with the reason).
 
 Methods 1 and 2 are both first-order (slow-ball) approximations; their local criteria coincide
 (the averaged Jacobian is similar to ``a`` up to the sign of c - M Omega^2), and so do the
@@ -39,12 +47,13 @@ Filimonikhin & Filimonikhina eqs. (5), (10)-(19); Zhakash et al. 2024 eqs. (9)-(
 from __future__ import annotations
 
 import math
-from dataclasses import dataclass, replace
 from typing import TYPE_CHECKING
 
 import numpy as np
 
-from rotorlab.steady._motions import SteadyMotion, main_motions_exist, wrap
+from rotorlab.models._machine_rotating import EXACT_RTOL, _drop_neutral, spectrum_verdict
+from rotorlab.steady._motions import _moments, main_motions_exist, motion_state, steady_machine, wrap
+from rotorlab.steady._records import Stability, SteadyMotion
 
 if TYPE_CHECKING:
     from rotorlab.models import JeffcottBalls
@@ -54,71 +63,10 @@ __all__ = [
     "assess_stability",
     "hessian_f",
     "averaged_jacobian",
-    "exact_eigenvalues",
     "EXACT_RTOL",
 ]
 
-#: Real parts within this fraction of the spectral radius count as zero ("marginal").
-EXACT_RTOL = 1e-10
 _HESSIAN_RTOL = 1e-9
-
-
-@dataclass(frozen=True)
-class Stability:
-    """Stability of one steady motion by the three methods.
-
-    Attributes
-    ----------
-    hamilton : {"stable", "unstable"}
-        Seed 003's verdict: H~* least among the (undamped) steady motions and f of eq. (18) a
-        minimum above / maximum below omega_cr = sqrt(c / M).
-    hamilton_minimal : bool
-        H~* is least among the steady motions at d = 0 (eqs. (14), (15)).
-    hessian : {"minimum", "maximum", "saddle", "degenerate"}
-        Type of the critical point of f (eq. (19)); a family's n - 2 neutral directions are left
-        out.
-    hessian_eigenvalues : ndarray, shape (n,)
-        Eigenvalues of the matrix a of eq. (19) (kg^2 m^2).
-    averaged : {"stable", "unstable", "undefined"}
-        Seed 002's verdict from the averaged equations (undefined when a ball has no damping).
-    averaged_eigenvalues : ndarray, shape (n,)
-        Eigenvalues of dP_s / dpsi_j (1/s), real.
-    averaged_a, averaged_b : float
-        A and B of eq. (19) (corrected), for n = 2 (1/s, 1/s^2); NaN otherwise.
-    exact : {"stable", "unstable", "marginal", "partly stable", "absent"}
-        From the eigenvalues of the full linearization; "partly stable" for a family whose
-        members differ; "absent" when the motion does not exist with the support damping.
-    eigenvalues : ndarray, shape (4 + 2 n,)
-        Eigenvalues of the representative member (1/s, complex); NaN when absent.
-    growth_rate : float
-        Largest real part of the eigenvalues, neutral family directions left out, over all
-        members (1/s); NaN when absent.
-    stable_fraction : float
-        Fraction of the family's members that are exactly stable (1 or 0 for isolated motions).
-    """
-
-    hamilton: str
-    hamilton_minimal: bool
-    hessian: str
-    hessian_eigenvalues: np.ndarray
-    averaged: str
-    averaged_eigenvalues: np.ndarray
-    averaged_a: float
-    averaged_b: float
-    exact: str
-    eigenvalues: np.ndarray
-    growth_rate: float
-    stable_fraction: float
-
-    def is_stable(self, method: str) -> bool:
-        """Return the verdict of ``method`` ("hamilton", "averaged" or "exact") as a bool."""
-        if method not in ("hamilton", "averaged", "exact"):
-            raise ValueError(f"method must be 'hamilton', 'averaged' or 'exact', got {method!r}")
-        return getattr(self, method) == "stable"
-
-
-def _moments(model: JeffcottBalls) -> np.ndarray:
-    return np.array([b.static_moment for b in model.balls], dtype=float)
 
 
 def hessian_f(imbalance: float, moments, angles) -> np.ndarray:
@@ -181,21 +129,27 @@ def _averaged_from_hessian(model: JeffcottBalls, spin_speed: float, a: np.ndarra
     return (spin_speed**4 / den) * a / b[:, None]
 
 
-def exact_eigenvalues(model: JeffcottBalls, spin_speed: float, state) -> np.ndarray:
-    """Return the eigenvalues of the co-rotating-frame Jacobian at a steady state (1/s).
-
-    Coulomb friction, if any, is switched off (the balls free, viscous damping kept).
-    """
-    if model.has_friction:
-        model = replace(model, balls=tuple(replace(b, friction=0.0) for b in model.balls))
-    return model.linearize(np.asarray(state, dtype=float), spin_speed=spin_speed).eigenvalues
-
-
-def _drop_neutral(values: np.ndarray, count: int) -> np.ndarray:
-    if count <= 0:
-        return values
-    order = np.argsort(np.abs(values))
-    return values[np.sort(order[count:])]
+def _exact(machine, motion: SteadyMotion) -> tuple[str, np.ndarray, float, float]:
+    """Exact verdict, eigenvalues of the first member, growth rate and stable fraction of a motion
+    (the machine's co-rotating linearization, the family's neutral directions left out)."""
+    n = motion.ball_angles.size
+    if not motion.exists:
+        return "absent", np.full(4 + 2 * n, complex(np.nan, np.nan)), math.nan, 0.0
+    verdicts, growths, eig0 = [], [], None
+    for psi in motion.samples:
+        lam = machine.linearize(motion_state(machine, motion.deflection, psi)).eigenvalues
+        eig0 = lam if eig0 is None else eig0
+        verdict, growth = spectrum_verdict(lam, motion.dimension, scale=motion.spin_speed)
+        verdicts.append(verdict)
+        growths.append(growth)
+    frac = verdicts.count("stable") / len(verdicts)
+    if frac == 1.0:
+        exact = "stable"
+    elif frac > 0.0:
+        exact = "partly stable"
+    else:
+        exact = "unstable" if "unstable" in verdicts else "marginal"
+    return exact, eig0, max(growths), frac
 
 
 def _hessian_type(eig: np.ndarray, neutral: int) -> str:
@@ -239,7 +193,7 @@ def _seed_h_values(model: JeffcottBalls, om: float) -> list[float]:
 
 
 def assess_stability(model: JeffcottBalls, motion: SteadyMotion, spin_speed: float | None = None,
-                     *, seed_h_values: list[float] | None = None) -> Stability:  # fmt: skip
+                     *, seed_h_values: list[float] | None = None, machine=None) -> Stability:  # fmt: skip
     """Assess the stability of one steady motion by the three methods.
 
     Parameters
@@ -252,6 +206,9 @@ def assess_stability(model: JeffcottBalls, motion: SteadyMotion, spin_speed: flo
     seed_h_values : list of float, optional
         H~* of all undamped steady motions minus that of a main motion (J), to reuse across the
         motions of one speed.
+    machine : Machine, optional
+        The machine ``model`` is at the speed (:func:`rotorlab.steady._motions.steady_machine`),
+        to reuse across the motions of one speed.
 
     Returns
     -------
@@ -291,26 +248,7 @@ def assess_stability(model: JeffcottBalls, motion: SteadyMotion, spin_speed: flo
         averaged = "stable" if rest.size and np.all(rest < -tol) else "unstable"
         a_a = -float(np.trace(jac)) if n == 2 else math.nan
         a_b = float(np.linalg.det(jac)) if n == 2 else math.nan
-    if not motion.exists:
-        exact, eig0, growth, frac = "absent", np.full(4 + 2 * n, complex(np.nan, np.nan)), math.nan, 0.0
-    else:
-        verdicts, growths, eig0 = [], [], None
-        for y in motion.states():
-            eig = exact_eigenvalues(model, om, y)
-            eig0 = eig if eig0 is None else eig0
-            rest = _drop_neutral(eig, neutral)
-            gr = float(np.max(rest.real))
-            tol = EXACT_RTOL * max(float(np.max(np.abs(eig))), om)
-            growths.append(gr)
-            verdicts.append("stable" if gr < -tol else ("unstable" if gr > tol else "marginal"))
-        growth = max(growths)
-        frac = verdicts.count("stable") / len(verdicts)
-        if frac == 1.0:
-            exact = "stable"
-        elif frac > 0.0:
-            exact = "partly stable"
-        else:
-            exact = "unstable" if "unstable" in verdicts else "marginal"
+    exact, eig0, growth, frac = _exact(steady_machine(model, om) if machine is None else machine, motion)
     return Stability(
         hamilton=hamilton, hamilton_minimal=minimal, hessian=kind, hessian_eigenvalues=h_eig,
         averaged=averaged, averaged_eigenvalues=a_eig, averaged_a=a_a, averaged_b=a_b,
