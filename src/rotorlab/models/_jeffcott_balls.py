@@ -243,6 +243,17 @@ class JeffcottBalls(ParametrisedMixin):
         return any(b.friction > 0.0 for b in self.balls)
 
     @property
+    def machine(self):
+        """The :class:`~rotorlab.models.Machine` this rotor is, ball friction included (shared, cached).
+
+        Its state is this model's fixed-frame state entry for entry and its right-hand side, events
+        and energy are this model's (:mod:`rotorlab.models._jeffcott_machine`).
+        """
+        from rotorlab.models._jeffcott_machine import jeffcott_machine
+
+        return jeffcott_machine(replace(self, frame="fixed"))
+
+    @property
     def kernels(self) -> Kernels:
         """Compiled kernels for this frame and friction configuration (shared, cached)."""
         kind = float(self.speed.to_array()[0])
