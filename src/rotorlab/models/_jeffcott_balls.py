@@ -25,8 +25,11 @@ x_s = x, y_s = -y, phi_s = phi (their y axis and angle sense are both reversed, 
 clockwise angle is numerically our counter-clockwise one); for n = 2 they are exactly
 the project's benchmark problem (:data:`rotorlab.models.BENCHMARK`) with M1 e = eps, beta = b. The rotating frame uses
 x + i y = e^{i theta}(u + i v), phi_i = theta + psi_i; steady motions at constant speed are its
-equilibria. The compiled kernels and the packed parameter order are documented in
-:mod:`rotorlab._kernels.jeffcott_balls`.
+equilibria. The model is a preset of the composed machine (:attr:`JeffcottBalls.machine`,
+:mod:`rotorlab.models._jeffcott_machine`): in the fixed frame it integrates on the machine's
+generated kernel; in the co-rotating frame on its own kernel,
+:mod:`rotorlab._kernels.jeffcott_balls`, which also documents the first ``12 + 6 n`` packed
+parameters (the machine's follow them in the fixed frame).
 
 Coulomb friction uses the exact normal force of the race on the ball,
 N_i = m_i (l_i phi_i'^2 - x'' cos phi_i - y'' sin phi_i) (radial equation of the ball's mass
