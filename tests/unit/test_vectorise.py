@@ -10,11 +10,9 @@ scalar library call).
 import pytest
 from llvmlite import binding as ll
 
-from rotorlab._kernels.jeffcott_balls import SPEED_ARITHMETIC, SPEED_CONSTANT
 from rotorlab.integrate._drivers import is_vectorised
 from rotorlab.models import JeffcottBalls
 from rotorlab.models._base import Kernels
-from rotorlab.models._jeffcott_balls import _kernels_for
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
 from rotorlab.models._toroidal_ball import strautmanis_torus
@@ -28,10 +26,13 @@ pytestmark = pytest.mark.skipif(
 def _declared():
     """(name, Kernels) of every kernel bundle the package declares lane-friendly."""
     out = []
-    for frame in ("fixed", "rotating"):
+    rotor = RotorParams(disc_mass=10.0, eccentricity=1e-4, stiffness=1e5, damping=20.0)
+    ball = BallParams(mass=0.05, radius=0.1, damping=1e-4)
+    for frame in ("fixed", "rotating"):  # fixed: the preset machine's kernel; rotating: its own
         for n in (1, 2, 3):  # the ball count is a compile-time constant of each lane copy
-            for speed in (SPEED_CONSTANT, SPEED_ARITHMETIC) if n == 2 else (SPEED_CONSTANT,):
-                out.append((f"jeffcott_balls {frame} n={n} speed={speed}", _kernels_for(frame, n, False, speed)))
+            for speed in (ConstantSpeed(200.0), LinearRamp(0.0, 200.0, 1.0)) if n == 2 else (ConstantSpeed(200.0),):
+                model = JeffcottBalls(rotor, (ball,) * n, speed=speed, frame=frame)
+                out.append((f"jeffcott_balls {frame} n={n} {type(speed).__name__}", model.kernels))
     out.append(("toroidal_ball", strautmanis_torus(1e-5).kernels))
     return out
 

@@ -88,7 +88,12 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
         a(f"    v{i} = y[{nz + i}]")
     for b in range(nb):
         a(f"    s{b}, c{b} = sincos(y[{lay.i_phi + b}])")
-        a(f"    w{b} = y[{lay.i_w + b}]")
+        if lay.friction:  # a stuck ball turns with its race: phi_b' = Omega exactly (jeffcott_balls)
+            a(f"    kst{b} = 1.0 if ((p[{o['friction'] + b}] > 0.0 and y[{lay.i_modes + b}] == 0.0) "
+              f"or forced == {b}) else 0.0")
+            a(f"    w{b} = kst{b} * om + (1.0 - kst{b}) * y[{lay.i_w + b}]")
+        else:
+            a(f"    w{b} = y[{lay.i_w + b}]")
     a(f"    gx = p[{o['gravity']}]")
     a(f"    gy = p[{o['gravity'] + 1}]")
     if nu:

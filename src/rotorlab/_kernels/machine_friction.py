@@ -23,7 +23,8 @@ def friction_solve(lay: Layout, L: list[str], unknowns, t_vec, station) -> None:
       absolute acceleration of its station, linear in the unknowns: ``a_r = a0_r - sum_j E``),
       which adds ``md kap m e_b . L_(r, s_j) t_j m l_j`` to row b (S is no longer symmetric) and
       its reaction to the motor's row;
-    - stuck (``md_b == 0``, or ``forced == b`` in the trial solves of the events): the row becomes
+    - stuck (``md_b == 0``, or ``forced == b`` in the trial solves of the events; ``kst_b``, set
+      where the prefix reads the state, which also takes ``phi_b' = Omega``): the row becomes
       ``x_b = Omega'`` (prescribed spin) or ``x_b - theta'' = 0`` (motor, whose row then takes the
       ball's row: the holding torque is internal).
 
@@ -58,7 +59,6 @@ def friction_solve(lay: Layout, L: list[str], unknowns, t_vec, station) -> None:
         r = br[b]
         a(f"    kap{b} = p[{o['friction'] + b}]")
         a(f"    kmd{b} = y[{lay.i_modes + b}]")
-        a(f"    kst{b} = 1.0 if ((kap{b} > 0.0 and kmd{b} == 0.0) or forced == {b}) else 0.0")
         a(f"    ksg{b} = (1.0 - kst{b}) * kmd{b} * kap{b}")
         a(f"    kms{b} = ksg{b} * p[{o['balls'] + 4 * b}]")
         a(f"    kN0{b} = ml{b} * w{b} * w{b} + p[{o['balls'] + 4 * b}] * "

@@ -3,8 +3,9 @@ the generators share (:mod:`rotorlab._kernels.machine_codegen` and its parts
 :mod:`~rotorlab._kernels.machine_tilt`, :mod:`~rotorlab._kernels.machine_friction`,
 :mod:`~rotorlab._kernels.machine_contact`).
 
-Packed parameters ``p`` (float64; offsets from :class:`Layout`)
----------------------------------------------------------------
+Packed parameters ``p`` (float64; offsets from :class:`Layout`, after ``param_base`` entries
+the kernel does not read)
+---------------------------------------------------------------------------------------------
 =================  ===========================================================================
 ``speed``          6: the prescribed profile block (:mod:`rotorlab._kernels.speed`); zeros with a
                    motor
@@ -98,6 +99,9 @@ class Layout:
         distinct nodes: the balls follow the tilting race plane (rigid ball kinematics, see
         :mod:`rotorlab.models._machine`); adds a tilt station per distinct node and one axial
         unknown per ball to the Schur system.
+    param_base : int
+        Packed entries in front of the machine's own that the kernel leaves alone (a preset's
+        own parameters, e.g. those of ``jeffcott_balls``); every offset starts after them.
     parts : tuple
         The kernel parts of the machine's attachments (:class:`rotorlab.models._parts.AbstractKernelPart`:
         frozen objects with ``key``, ``n_states``, ``n_param``, ``n_stations`` and the lines
@@ -116,6 +120,7 @@ class Layout:
     friction: bool = False
     tilt: tuple[int, ...] = ()
     parts: tuple[Any, ...] = ()
+    param_base: int = 0
 
     def __post_init__(self) -> None:
         object.__setattr__(self, "races", tuple(int(n) for n in self.races))
@@ -271,7 +276,7 @@ class Layout:
             ("friction", self.n_balls if self.friction else 0),
             ("tilt", self.n_balls if self.tilt else 0),
         ] + [(f"part{k}", part.n_param) for k, part in enumerate(self.parts)]
-        out, k = {}, 0
+        out, k = {}, self.param_base
         for name, size in sizes:
             out[name] = k
             k += size
@@ -302,4 +307,5 @@ class Layout:
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
                 f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
                 f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}"
-                + "".join(f"p{part.key}" for part in self.parts))
+                + "".join(f"p{part.key}" for part in self.parts)
+                + (f"b{self.param_base}" if self.param_base else ""))

@@ -132,40 +132,28 @@ def parameter_unit(model, name: str) -> str:
 
 def as_machine(model):
     """``model`` as a :class:`rotorlab.models.Machine` without ball friction: a Machine itself, or the
-    planar machine a :class:`rotorlab.models.JeffcottBalls` rotor is (one node, its translation
-    modes only, one race of its balls, the disc's unbalance ``M1 e``; the same right-hand side,
-    tests/unit/test_machine.py). Balls with Coulomb or rolling friction lose it: the smooth part
+    planar machine a :class:`rotorlab.models.JeffcottBalls` rotor is (its preset
+    :attr:`~rotorlab.models.JeffcottBalls.machine`: one node, its translations only, one race of
+    its balls, the disc's unbalance ``M1 e``; the same right-hand side). Balls with Coulomb or rolling friction lose it: the smooth part
     of the model (:func:`smooth_part_note` says so).
 
     Raises
     ------
     ValueError
-        Another model, or balls of different radii.
+        Another model.
     """
-    from rotorlab.linear import LinearSystem
-    from rotorlab.models import Ball, BallRace, JeffcottBalls, Machine, Unbalance
+    from rotorlab.models import JeffcottBalls, Machine
 
-    if isinstance(model, Machine):
-        if not model.has_friction:
-            return model
-        races = tuple(replace(r, balls=tuple(replace(b, coulomb=0.0, rolling=0.0) for b in r.balls))
-                      for r in model.races)
-        return replace(model, races=races)
-    if not isinstance(model, JeffcottBalls):
+    if isinstance(model, JeffcottBalls):
+        model = model.machine
+    if not isinstance(model, Machine):
         raise ValueError(f"continuation of steady motions needs a machine with balls or a jeffcott_balls "
                          f"rotor, got {type(model).__name__}")
-    r = model.rotor
-    radii = {b.radius for b in model.balls}
-    if len(radii) != 1:
-        raise ValueError("the balls run on races of different radii: build the machine with one race per radius")
-    radius = radii.pop()
-    m1, c, d = r.disc_mass, r.stiffness, r.damping
-    # the tilt of the single node carries nothing (n_modes = 2 keeps the translations: stiffer tilt)
-    s = LinearSystem(M=np.diag([m1, m1, m1, m1]), C=np.diag([d, d, 0.0, 0.0]), G=np.zeros((4, 4)),
-                     K=np.diag([c, c, 4.0 * c, 4.0 * c]))
-    balls = tuple(Ball(b.mass, inertia=b.inertia - b.mass * radius ** 2, damping=b.damping) for b in model.balls)
-    return Machine(s, races=(BallRace(0, radius, balls),), unbalances=(Unbalance(0, m1 * r.eccentricity),),
-                   drive=model.speed, n_modes=2)
+    if not model.has_friction:
+        return model
+    races = tuple(replace(r, balls=tuple(replace(b, coulomb=0.0, rolling=0.0) for b in r.balls))
+                  for r in model.races)
+    return replace(model, races=races)
 
 
 def smooth_part_note(model) -> str:

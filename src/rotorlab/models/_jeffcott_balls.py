@@ -25,8 +25,11 @@ x_s = x, y_s = -y, phi_s = phi (their y axis and angle sense are both reversed, 
 clockwise angle is numerically our counter-clockwise one); for n = 2 they are exactly
 the project's benchmark problem (:data:`rotorlab.models.BENCHMARK`) with M1 e = eps, beta = b. The rotating frame uses
 x + i y = e^{i theta}(u + i v), phi_i = theta + psi_i; steady motions at constant speed are its
-equilibria. The compiled kernels and the packed parameter order are documented in
-:mod:`rotorlab._kernels.jeffcott_balls`.
+equilibria. The model is a preset of the composed machine (:attr:`JeffcottBalls.machine`,
+:mod:`rotorlab.models._jeffcott_machine`): in the fixed frame it integrates on the machine's
+generated kernel; in the co-rotating frame on its own kernel,
+:mod:`rotorlab._kernels.jeffcott_balls`, which also documents the first ``12 + 6 n`` packed
+parameters (the machine's follow them in the fixed frame).
 
 Coulomb friction uses the exact normal force of the race on the ball,
 N_i = m_i (l_i phi_i'^2 - x'' cos phi_i - y'' sin phi_i) (radial equation of the ball's mass
@@ -125,8 +128,7 @@ from typing import Literal
 import numpy as np
 
 from rotorlab._kernels import jeffcott_balls as _k
-from rotorlab._kernels.speed import KIND_CONSTANT, KIND_RAMP
-from rotorlab.models._base import EventSpec, Kernels, no_events, no_reset
+from rotorlab.models._base import Kernels
 from rotorlab.models._jeffcott_frames import fixed_to_rotating, rotating_to_fixed
 from rotorlab.models._jeffcott_params import BallParams, RotorParams
 from rotorlab.models._parameters import jeffcott_slots
@@ -141,43 +143,6 @@ Frame = Literal["fixed", "rotating"]
 #: being the cheaper one on the benchmark problem and the ``autobalancer`` case
 #: (``bench/README.md``, issue 11).
 FIXED_FRAME_ABOVE = 1.8
-_KERNELS: dict[tuple[str, int, bool, int], Kernels] = {}
-# the lane-friendly kernel of each frame and speed class, and the class of each profile kind
-_LANE_RHS = {("fixed", _k.SPEED_CONSTANT): _k.rhs_fixed_constant, ("rotating", _k.SPEED_CONSTANT): _k.rhs_rotating_constant,
-             ("fixed", _k.SPEED_ARITHMETIC): _k.rhs_fixed_free, ("rotating", _k.SPEED_ARITHMETIC): _k.rhs_rotating_free}
-_SPEED_OF_KIND = {KIND_CONSTANT: _k.SPEED_CONSTANT, KIND_RAMP: _k.SPEED_ARITHMETIC}
-
-
-def _kernels_for(frame: str, n_balls: int, friction: bool, speed: int = _k.SPEED_ANY) -> Kernels:
-    """Return the (shared) Kernels bundle of one frame / size / friction / speed configuration.
-
-    Without friction, the lane-friendly kernels are used for a constant speed
-    (``speed = SPEED_CONSTANT``: :func:`rotorlab._kernels.jeffcott_balls.rhs_fixed_constant`) and
-    a ramp (``SPEED_ARITHMETIC``: :func:`rotorlab._kernels.jeffcott_balls.rhs_fixed_free`): same
-    numbers, vectorised by the lane driver.
-    """
-    speed = _k.SPEED_ANY if friction else speed
-    key = (frame, n_balls, friction, speed)
-    if key not in _KERNELS:
-        rhs = _k.rhs_fixed if frame == "fixed" else _k.rhs_rotating
-        if friction:
-            specs: list[EventSpec] = []
-            for i in range(1, n_balls + 1):
-                specs += [EventSpec(f"stick_{i}", -1, "reset"), EventSpec(f"slip_{i}", -1, "reset")]
-            _KERNELS[key] = Kernels(
-                rhs=rhs,
-                n_state=4 + 3 * n_balls,
-                n_discrete=n_balls,
-                events=_k.events_fixed if frame == "fixed" else _k.events_rotating,
-                reset=_k.reset_fixed if frame == "fixed" else _k.reset_rotating,
-                event_specs=tuple(specs),
-            )
-        elif speed != _k.SPEED_ANY:
-            rhs = _LANE_RHS[frame, speed]
-            _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n_balls, vectorises=True)
-        else:
-            _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n_balls, events=no_events, reset=no_reset)
-    return _KERNELS[key]
 
 
 @dataclass(frozen=True, slots=True)
@@ -243,10 +208,24 @@ class JeffcottBalls(ParametrisedMixin):
         return any(b.friction > 0.0 for b in self.balls)
 
     @property
+    def machine(self):
+        """The :class:`~rotorlab.models.Machine` this rotor is, ball friction included (shared, cached).
+
+        Its state is this model's fixed-frame state entry for entry and its right-hand side, events
+        and energy are this model's (:mod:`rotorlab.models._jeffcott_machine`).
+        """
+        from rotorlab.models._jeffcott_machine import jeffcott_machine
+
+        return jeffcott_machine(replace(self, frame="fixed"))
+
+    @property
     def kernels(self) -> Kernels:
-        """Compiled kernels for this frame and friction configuration (shared, cached)."""
-        kind = float(self.speed.to_array()[0])
-        return _kernels_for(self.frame, self.n_balls, self.has_friction, _SPEED_OF_KIND.get(kind, _k.SPEED_ANY))
+        """Compiled kernels (shared, cached): in the fixed frame the preset machine's
+        (:attr:`machine`), in the co-rotating frame this model's own (the one exception, see
+        :func:`rotorlab.models._jeffcott_machine.jeffcott_kernels`)."""
+        from rotorlab.models._jeffcott_machine import jeffcott_kernels
+
+        return jeffcott_kernels(self)
 
     @property
     def n_state(self) -> int:
@@ -302,13 +281,19 @@ class JeffcottBalls(ParametrisedMixin):
 
     # ---- packing --------------------------------------------------------------------------------
     def to_array(self) -> np.ndarray:
-        """Return the packed parameters (order in :mod:`rotorlab._kernels.jeffcott_balls`)."""
+        """Return the packed parameters: the ``12 + 6 n`` of :mod:`rotorlab._kernels.jeffcott_balls`,
+        in the fixed frame followed by the preset machine's (its kernel's, ``param_base``)."""
         r = self.rotor
         head = [float(self.n_balls), 1.0 if self.has_friction else 0.0, r.disc_mass,
                 r.eccentricity, r.stiffness, r.damping]  # fmt: skip
         balls = [[b.mass, b.radius, b.inertia, b.damping, b.friction, 1.0 / b.inertia if b.inertia else math.inf]
                  for b in self.balls]  # fmt: skip
-        return np.concatenate([head, self.speed.to_array(), np.ravel(balls)]).astype(float)
+        own = np.concatenate([head, self.speed.to_array(), np.ravel(balls)]).astype(float)
+        if self.frame == "rotating":
+            return own
+        p = self.machine.to_array()
+        p[:own.size] = own
+        return p
 
     @classmethod
     def from_array(cls, p, *, frame: Frame = "fixed") -> JeffcottBalls:
@@ -316,7 +301,9 @@ class JeffcottBalls(ParametrisedMixin):
 
         Parameters
         ----------
-        p : array_like, shape (12 + 6 n,)
+        p : array_like, shape (12 + 6 n,) or longer
+            Only the first ``12 + 6 n`` entries are read (a fixed-frame vector carries the
+            machine's after them).
         frame : {"fixed", "rotating"}
 
         Returns
@@ -325,8 +312,8 @@ class JeffcottBalls(ParametrisedMixin):
         """
         p = np.asarray(p, dtype=float)
         n = int(p[_k.P_N]) if p.size else -1
-        if p.ndim != 1 or n < 0 or p.size != _k.P_BALLS + _k.BALL_STRIDE * n:
-            raise ValueError(f"p must have 12 + 6 n entries with n = p[0]; got shape {p.shape}")
+        if p.ndim != 1 or n < 0 or p.size < _k.P_BALLS + _k.BALL_STRIDE * n:
+            raise ValueError(f"p must have at least 12 + 6 n entries with n = p[0]; got shape {p.shape}")
         rotor = RotorParams(p[_k.P_M1], p[_k.P_E], p[_k.P_C], p[_k.P_D])
         balls = tuple(
             BallParams(*p[_k.P_BALLS + _k.BALL_STRIDE * i : _k.P_BALLS + _k.BALL_STRIDE * i + _k.B_IJ])
@@ -343,8 +330,9 @@ class JeffcottBalls(ParametrisedMixin):
         return jeffcott_slots(self)
 
     def _compiled_layout(self):
-        kind = float(self.speed.to_array()[0])
-        return (self.frame, self.n_balls, self.has_friction, _SPEED_OF_KIND.get(kind, _k.SPEED_ANY))
+        from rotorlab.models._jeffcott_machine import jeffcott_layout
+
+        return jeffcott_layout(self)
 
     def with_frame(self, frame: Frame) -> JeffcottBalls:
         """Return a copy whose states are in ``frame``."""

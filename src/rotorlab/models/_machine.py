@@ -164,6 +164,12 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
     parts : tuple of AbstractPart
         Further attachments, each owning its states, parameters and kernel lines
         (:mod:`rotorlab.models._parts`), e.g. :class:`rotorlab.models.TunedMassAbsorber`.
+    unit_modes : bool
+        With ``n_modes``: scale each kept mode so that its largest DOF entry is 1 (then a mode
+        that moves one DOF only has that DOF as its coordinate) instead of unit modal mass.
+    param_base : int
+        Entries in front of the packed parameters that the kernel leaves to a preset which owns
+        them (:meth:`rotorlab.models.JeffcottBalls.machine`); zeros here.
     structure_source : optional
         Where ``structure`` came from, when it has named parameters of its own (a machine built
         from a case: :class:`rotorlab.io.StructureSource`): ``parameters`` lists them as
@@ -198,6 +204,8 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
     energy_states: bool = field(default=False, kw_only=True)
     clearances: tuple[Clearance, ...] = field(default=(), kw_only=True)
     parts: tuple[AbstractPart, ...] = field(default=(), kw_only=True)
+    unit_modes: bool = field(default=False, kw_only=True)
+    param_base: int = field(default=0, kw_only=True, repr=False)
     structure_source: Any = field(default=None, kw_only=True, repr=False, compare=False)
     _cache: dict = field(default_factory=dict, init=False, repr=False, compare=False)
 
@@ -277,7 +285,8 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
                 clearance=self.clearances[0].kind if self.clearances else "",
                 friction=self.has_friction,
-                tilt=self._tilt_numbers(), parts=tuple(part.kernel() for part in self.parts))
+                tilt=self._tilt_numbers(), parts=tuple(part.kernel() for part in self.parts),
+                param_base=self.param_base)
         return self._cache["layout"]
 
     @property
@@ -364,7 +373,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
     def basis(self) -> np.ndarray:
         """The basis Phi (shape n_dof by n_z) from structure coordinates to DOFs.
 
-        The identity, or the kept mass-normalised modes.
+        The identity, or the kept modes (mass-normalised, or with ``unit_modes`` a largest entry 1).
 
         For an isotropic structure the modes of the x plane are used for both planes, ordered as
         x/y pairs (so that the co-rotating frame rotates each pair).
@@ -387,6 +396,8 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
                 phi[yp, 1::2] = vx
             else:
                 _, phi = sla.eigh(ks, s.M, subset_by_index=(0, self.n_modes - 1))
+            if self.unit_modes:
+                phi = phi / phi[np.argmax(np.abs(phi), axis=0), range(phi.shape[1])]
         self._cache["basis"] = phi
         return phi
 

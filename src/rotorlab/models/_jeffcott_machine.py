@@ -1,0 +1,109 @@
+"""The machine a ``jeffcott_balls`` rotor is (:meth:`rotorlab.models.JeffcottBalls.machine`).
+
+One node whose translations carry the disc (mass M1, stiffness c, damping d), its tilt kept out by
+``n_modes = 2`` (a tilt stiffer than the translation, so the two kept modes are the x and y
+translations, scaled to unit displacement by ``unit_modes``: the machine's coordinates are x, y
+themselves); a race per radius (consecutive balls of one radius share it); the disc's unbalance ``M1 e`` at
+phase 0; the same speed profile. A ball of ``jeffcott_balls`` with axial inertia J_i, damping b_i
+and friction f_i is a machine :class:`~rotorlab.models.Ball` with own inertia ``J_i - m_i l^2``,
+damping b_i and ``coulomb = f_i`` (friction arm ``f_i l``, the jeffcott law's). The state vectors
+are the same entry for entry (``[x, y, vx, vy, phi_i, w_i, (mode_i)]``) and so are the right-hand
+sides, events and energies (``tests/unit/test_jeffcott_machine.py``). The machine's packed
+parameters follow the ``12 + 6 n`` of ``jeffcott_balls`` (``param_base``), so that one vector
+serves the model's own helpers and the machine's kernel.
+
+Every simulation in the fixed frame runs the machine's generated kernel (:func:`jeffcott_kernels`).
+The one exception is the co-rotating frame (``frame="rotating"``, chosen at constant speed by
+:meth:`~rotorlab.models.JeffcottBalls.cheapest_frame` where the motion settles to a steady
+whirl): the machine has no compiled co-rotating kernel yet, so it keeps the model's hand-written
+one (:mod:`rotorlab._kernels.jeffcott_balls`). Measured on 64 constant-speed starts (200
+revolutions, rtol 1e-8; ``zhakash-k2`` and ``autobalancer``): the machine's fixed frame takes
+1.01-1.05 the CPU time of the jeffcott fixed-frame kernel, 0.39-0.46 of the co-rotating one at
+2 p (where the fixed frame is chosen), but 1.5-1.6 at 1.2 p and 6.0-6.4 at 0.6 p, against the
+required 1.3: a co-rotating machine kernel (the isotropic machine at constant speed, written by
+the machine's code writer) is what retires it.
+"""
+
+from __future__ import annotations
+
+from dataclasses import replace
+from functools import lru_cache
+from itertools import groupby
+
+import numpy as np
+
+__all__ = ["jeffcott_machine", "jeffcott_kernels", "jeffcott_layout"]
+
+_KERNELS: dict = {}
+
+
+@lru_cache(maxsize=256)
+def jeffcott_machine(model):
+    """Return the :class:`~rotorlab.models.Machine` that ``model`` (a JeffcottBalls, any frame) is.
+
+    Balls of equal radius next to each other share a race (one race for the usual balancer); the
+    ball order, hence the state order, is the model's.
+    """
+    from rotorlab.linear import LinearSystem
+    from rotorlab.models._machine import Machine
+    from rotorlab.models._machine_parts import Ball, BallRace, Unbalance
+
+    r = model.rotor
+    m1, c, d = r.disc_mass, r.stiffness, r.damping
+    # the tilt carries nothing: stiffer than the translation, it is left out by n_modes = 2
+    s = LinearSystem(M=np.diag([m1, m1, m1, m1]), C=np.diag([d, d, 0.0, 0.0]), G=np.zeros((4, 4)),
+                     K=np.diag([c, c, 4.0 * c + 1.0, 4.0 * c + 1.0]))
+    races = tuple(
+        BallRace(0, radius, tuple(Ball(b.mass, inertia=max(b.inertia - b.mass * radius**2, 0.0),
+                                       damping=b.damping, coulomb=b.friction) for b in group))
+        for radius, group in ((k, list(g)) for k, g in groupby(model.balls, key=lambda b: b.radius)))
+    return Machine(s, races=races, unbalances=(Unbalance(0, m1 * r.eccentricity),), drive=model.speed,
+                   n_modes=2, unit_modes=True, param_base=12 + 6 * model.n_balls)
+
+
+def jeffcott_layout(model):
+    """What decides ``model``'s compiled kernel: the preset machine's layout in the fixed frame,
+    the frame, ball count, friction and speed class of the co-rotating kernel otherwise."""
+    if model.frame == "fixed":
+        return ("fixed", jeffcott_machine(model).layout)
+    return ("rotating", model.n_balls, model.has_friction, _rotating_speed_class(model))
+
+
+def _rotating_speed_class(model) -> int:
+    from rotorlab._kernels import jeffcott_balls as _k
+    from rotorlab._kernels.speed import KIND_CONSTANT, KIND_RAMP
+
+    kind = float(model.speed.to_array()[0])
+    return {KIND_CONSTANT: _k.SPEED_CONSTANT, KIND_RAMP: _k.SPEED_ARITHMETIC}.get(kind, _k.SPEED_ANY)
+
+
+def jeffcott_kernels(model):
+    """The :class:`~rotorlab.models.Kernels` of ``model`` (shared per compiled layout).
+
+    Fixed frame: the preset machine's kernels, their events named ``stick_<i>``, ``slip_<i>`` by
+    the model's ball number ``i``. Co-rotating frame: the model's own kernels (the exception of
+    the module docstring); without friction the lane-friendly ones for a constant speed and a ramp.
+    """
+    from rotorlab.models._base import EventSpec, Kernels, no_events, no_reset
+
+    key = jeffcott_layout(model)
+    if key in _KERNELS:
+        return _KERNELS[key]
+    specs = tuple(EventSpec(f"{kind}_{i}", -1, "reset") for i in range(1, model.n_balls + 1)
+                  for kind in ("stick", "slip")) if model.has_friction else ()
+    if model.frame == "fixed":
+        mk = jeffcott_machine(model).kernels
+        _KERNELS[key] = replace(mk, event_specs=specs) if specs else mk
+        return _KERNELS[key]
+    from rotorlab._kernels import jeffcott_balls as _k
+
+    n, speed = model.n_balls, key[3]
+    if specs:
+        _KERNELS[key] = Kernels(rhs=_k.rhs_rotating, n_state=4 + 3 * n, n_discrete=n, events=_k.events_rotating,
+                                reset=_k.reset_rotating, event_specs=specs)
+    elif speed != _k.SPEED_ANY:
+        rhs = _k.rhs_rotating_constant if speed == _k.SPEED_CONSTANT else _k.rhs_rotating_free
+        _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n, vectorises=True)
+    else:
+        _KERNELS[key] = Kernels(rhs=_k.rhs_rotating, n_state=4 + 2 * n, events=no_events, reset=no_reset)
+    return _KERNELS[key]
