@@ -86,9 +86,9 @@ def test_mirror_image_branches_have_the_same_special_points(side):
 
 def test_no_jump_onto_a_neighbouring_branch_every_point_located(side):
     """Side 0001 passes, near 0.983 rad/s, within a step (0.025, scaled) of a neighbouring branch.
-    Before, a step landed on it: a fold and two branch points "location not converged" (put at
-    0.961 and 0.988 rad/s, outside the step that bracketed them) on side 0001 / side 0100, and the
-    branch point of side 0011 at 1.2439 rad/s gave no new branch. Reference: the same branch
+    Before, a step landed on it (and a later one jumped back): two branch points "location not
+    converged" on side 0001 / side 0100 (put at 0.961 rad/s, outside the step 0.983-0.993 that
+    bracketed it, and at 0.988 rad/s in the second jump's step). Reference: the same branch
     continued with steps half as long has the same folds, to the location tolerance (it also
     sees a Hopf point 4e-6 rad/s from the first fold, which the longer steps pass over: two
     crossings within one step); the switched branch leaves side 0011 with the balls of a race
