@@ -119,6 +119,37 @@ def test_bautin_fold_of_cycles_located():
                              settings=ContinuationSettings(ds=0.02, ds_max=0.1, max_points=80, bounds=(-1.0, 0.3)))
     (fold2,) = said.special_points
     assert fold2.value == fold.value and f"at mu = {-0.25 * 30 / math.pi:.4g} rpm (period" in fold2.description
+    _check_orbit_sentence(branch)
+
+
+def _check_orbit_sentence(branch):
+    """The report's sentence (orbit_sentence) against the branch it came from: mu = r^4 - r^2 has
+    its stable orbits (r^2 > 1/2) from the fold of cycles at mu = -1/4 to the range's end 0.3 and
+    its unstable ones from the fold to the first orbit continued from the Hopf point (r = 1e-2,
+    mu = -1e-4 + 1e-8); the stable stretch starts at the located fold, not at the computed orbit
+    nearest to it (-0.2496 here)."""
+    import re
+
+    from rotorlab.analyses._continuation_periodic import orbit_sentence
+
+    d = branch.to_dict()
+    text = orbit_sentence({**d, "label": "whirl"}, "")
+    m = re.fullmatch(r"a whirl orbit exists and is stable from (\S+) to (\S+); stability changes at the "
+                     r"fold-of-cycles at (\S+); the branch's unstable orbits lie between (\S+) and (\S+) "
+                     r"\(the branch ended at (\S+): the range ends there\)", text)
+    assert m, text
+    got = [float(x) for x in m.groups()]
+    np.testing.assert_allclose(got, [-0.25, 0.3, -0.25, -0.25, -1e-4 + 1e-8, 0.3], rtol=1e-4, atol=0)
+    assert np.min(branch.values[branch.stable]) > -0.2499  # the grid alone would have said so
+    # two stable stretches (stable, unstable, stable along the points) are both named
+    flip = {**d, "label": "whirl", "special_points": [], "points": [
+        {**p, "stable": bool(abs(i - len(d["points"]) // 2) > 2)} for i, p in enumerate(d["points"])]}
+    ok = np.array([p["stable"] for p in flip["points"]])
+    k = int(np.argmin(ok))  # the first unstable point
+    v = branch.values
+    first, second = (v[:k].min(), v[:k].max()), (v[k + 5:].min(), v[k + 5:].max())
+    assert f"stable from {first[0]:.5g} to {first[1]:.5g} and from {second[0]:.5g} to {second[1]:.5g};" \
+        in orbit_sentence(flip, "")
 
 
 def _mathieu_monodromy(delta, eps, c):

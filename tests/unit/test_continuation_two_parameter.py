@@ -14,7 +14,7 @@ from scipy.optimize import brentq
 
 from rotorlab.analyses._machine_steady import machine_steady
 from rotorlab.continuation import continue_equilibria, continue_special_point, two_parameter_curves, with_value
-from test_continuation_equilibria import D, L, U, machine
+from test_continuation_equilibria import MB, D, L, U, machine
 
 
 def _fold_speed(mb):
@@ -79,3 +79,28 @@ def test_speed_by_support_anisotropy_is_refused_saying_what_it_needs():
     assert "Floquet problem" in text and "Not implemented: the other steady motions" in text
     assert "forced periodic motions" in text and "--param2 support_anisotropy=A:B" in text
     MachineEquilibria(m, ("drive.speed", "structure.bearings[0].kxx"))  # isotropic: accepted
+
+
+def test_fold_curve_speed_by_unbalance_is_the_closed_form():
+    """Speed x unbalance: the side motions 00/11 are born at the fold ``d Omega 2 m l = U |D|``, so
+    along the fold curve ``U = d Omega 2 m l / |c - M Omega^2 + i d Omega|`` (closed form in the
+    unbalance at every speed); the balls cannot balance more than they weigh: there the unbalance
+    ratio eta = U / (m l) of every curve point stays below 2 (the balls-together pitchfork of
+    test_balanced_branch_in_ball_mass_closed_form_angles_and_pitchfork lies at eta = 2)."""
+    m = machine(0.9)
+    r = continue_equilibria(m, "drive.speed", 0.9, 1.0, start_from="side 00")
+    (c,) = two_parameter_curves(m, r, "unbalances[0].magnitude", 0.005, 0.02)
+    assert c.type == "fold" and c.parameters == ("drive.speed", "unbalances[0].magnitude")
+    assert c.values[0, 1] == 0.005 and c.values[-1, 1] == 0.02 and len(c.values) > 5
+    w = c.values[:, 0]
+    ref = [brentq(lambda s: D * s * 2 * MB * L - u * abs(1.0 - (1.0 + 2 * MB) * s * s + 1j * D * s), 0.5, 0.99,
+                  xtol=1e-15) for u in c.values[:, 1]]
+    np.testing.assert_allclose(w, ref, rtol=1e-9)
+    assert np.all(np.diff(w) > 0)  # more unbalance: the fold moves towards the resonance at 1 / sqrt(M)
+    assert np.all(c.values[:, 1] / (MB * L) < 2.0)
+    # one curve point again by a one-parameter run at its unbalance
+    k = 2 * len(c.values) // 3
+    again = continue_equilibria(with_value(m, "unbalances[0].magnitude", c.values[k, 1]), "drive.speed", 0.85,
+                                0.99, start_from="side 00")
+    (fold,) = [s for s in again.branches[0].special_points if s.type == "fold"]
+    assert abs(fold.value - c.values[k, 0]) < 1e-8 * fold.value

@@ -164,10 +164,16 @@ _ENDS = {"bound": "the range ends there", "max_points": "the continuation stoppe
 
 def orbit_sentence(branch: dict, units: str) -> str:
     """For people: over which values a periodic branch (its JSON, SI) exists and is stable, and why
-    the stable stretch ends (a special point that changes stability, or the branch's end)."""
+    the stable stretch ends (a special point that changes stability, or the branch's end).
+
+    A stretch of stable (unstable) orbits runs between the branch's points, extended to the
+    located special point that changes stability where one lies between a stretch's last point
+    and the next (the fold of cycles at its located value, not at the nearest computed orbit);
+    several stable stretches are each named."""
     from rotorlab._constants import shown_unit
 
     f, unit = shown_unit(units)
+    u = f" {unit}" if unit else ""
     param = branch["parameter"]
     pts = [p for p in branch["points"] if p[param] is not None]
     if not pts:
@@ -175,16 +181,37 @@ def orbit_sentence(branch: dict, units: str) -> str:
     who = "a whirl orbit" + ("" if branch["label"] == "whirl" else f" ({branch['label']})")
     vals = np.array([p[param] for p in pts]) * f
     stable = np.array([p["stable"] for p in pts])
-    ended = f"the branch ended at {vals[-1]:.5g} {unit}: {_ENDS.get(branch['end'], branch['end'])}"
-    changes = [f"{s['type']} at {f * s[param]:.5g} {unit}" for s in branch["special_points"]
-               if "stable before it and" in s["description"] or "unstable before it and" in s["description"]]
-    said = ("; stability changes at the " + ", ".join(changes)) if changes else ""
+    ended = f"the branch ended at {vals[-1]:.5g}{u}: {_ENDS.get(branch['end'], branch['end'])}"
+    turns = [s for s in branch["special_points"]
+             if "stable before it and" in s["description"] or "unstable before it and" in s["description"]]
+    said = ("; stability changes at the " + ", ".join(f"{s['type']} at {f * s[param]:.5g}{u}" for s in turns)
+            if turns else "")
     if stable.all():
-        return f"{who} exists and is stable from {vals.min():.5g} to {vals.max():.5g} {unit} " \
+        return f"{who} exists and is stable from {vals.min():.5g} to {vals.max():.5g}{u} " \
                f"(all of the continued stretch; {ended})"
     if not stable.any():
-        return f"{who} exists from {vals.min():.5g} to {vals.max():.5g} {unit} and is unstable " \
+        return f"{who} exists from {vals.min():.5g} to {vals.max():.5g}{u} and is unstable " \
                f"all along it ({ended})"
-    return f"{who} exists and is stable from {vals[stable].min():.5g} to " \
-           f"{vals[stable].max():.5g} {unit}{said}; the branch's unstable orbits lie between " \
-           f"{vals[~stable].min():.5g} and {vals[~stable].max():.5g} {unit} ({ended})"
+    runs = _stretches(vals, stable, [f * s[param] for s in turns])
+    good = " and from ".join(f"{a:.5g} to {b:.5g}" for a, b, ok in runs if ok)
+    bad = [(a, b) for a, b, ok in runs if not ok]
+    return f"{who} exists and is stable from {good}{u}{said}; the branch's unstable orbits lie between " \
+           f"{min(a for a, _ in bad):.5g} and {max(b for _, b in bad):.5g}{u} ({ended})"
+
+
+def _stretches(vals: np.ndarray, stable: np.ndarray, turns: list[float]) -> list[tuple[float, float, bool]]:
+    """The runs of equal stability along a branch as (lowest, highest value, stable), each end
+    pushed out to the stability-changing special point located at the change between it and the
+    next run (each special point at the change nearest it: a fold of cycles lies beyond both
+    orbits either side of it, a period doubling between them)."""
+    cuts = np.flatnonzero(stable[1:] != stable[:-1]) + 1
+    at: dict[int, list[float]] = {}
+    for t in turns if len(cuts) else ():
+        gap = [max(min(vals[j - 1], vals[j]) - t, t - max(vals[j - 1], vals[j]), 0.0) for j in cuts]
+        at.setdefault(int(cuts[int(np.argmin(gap))]), []).append(t)
+    bounds = [0, *cuts, len(vals)]
+    runs = []
+    for k in range(len(bounds) - 1):
+        seg = [*vals[bounds[k]:bounds[k + 1]], *at.get(bounds[k], ()), *at.get(bounds[k + 1], ())]
+        runs.append((min(seg), max(seg), bool(stable[bounds[k]])))
+    return runs

@@ -378,9 +378,9 @@ def continue_curve(
             end = "step"
             break
         if lo <= q.lam <= hi and any(_changes(values[k][-1], fn(q)) for k, fn in tests.items()):
-            half, its_half = _step(stepper, p, 0.5 * ds)
-            if half is not None and not _same_branch(stepper, half, q, 0.5 * ds):
-                q, its, ds = half, its_half, 0.5 * ds  # the full step jumped onto a crossing branch
+            walk = _walk(stepper, p, ds)
+            if walk and not _same_branch(stepper, p, walk, q, ds):
+                (q, its), ds = walk[0], ds / 8  # the full step jumped onto a branch passing close by
         if not lo <= q.lam <= hi:
             # the last point on the bound: solve at fixed lam = bound from the predicted point
             bound = hi if q.lam > hi else lo
@@ -436,16 +436,37 @@ def _step(stepper: _Stepper, p: CurvePoint, ds: float) -> tuple[CurvePoint | Non
     return (q, its) if q.tangent @ p.tangent >= math.cos(st.max_turn) else (None, its)
 
 
-def _same_branch(stepper: _Stepper, m: CurvePoint, q: CurvePoint, ds: float) -> bool:
-    """Whether a step of ``ds`` from ``m`` (half-way along the branch from p) lands next to
-    ``q`` (within 2 % of the step, scaled). Where a test function changes sign (a branch point
-    is bracketed, where a second branch crosses) the corrector of the full step may have
-    converged onto a branch passing close by: its end then lies far from the two half steps'
-    (on one branch they differ by about the step times the square of the turn; rcfw-two-plane's
-    side branches near 0.99 rad/s: 2e-4 of the step on one branch, 7e-2 after a jump). A
-    branch that turns sharply is wrongly suspected at worst: its step is halved."""
-    q2, _ = _step(stepper, m, ds)
-    return q2 is not None and float(np.max(np.abs((q2.u - q.u) / stepper.scale))) <= 0.02 * ds
+def _walk(stepper: _Stepper, p: CurvePoint, ds: float, n: int = 10) -> list[tuple[CurvePoint, int]]:
+    """Up to ``n`` steps of ``ds / 8`` from ``p`` along the curve (fewer where one fails)."""
+    out, cur = [], p
+    for _ in range(n):
+        nxt, its = _step(stepper, cur, ds / 8)
+        if nxt is None:
+            break
+        out.append((nxt, its))
+        cur = nxt
+    return out
+
+
+def _same_branch(stepper: _Stepper, p: CurvePoint, walk: list, q: CurvePoint, ds: float) -> bool:
+    """Whether the end ``q`` of a step of ``ds`` from ``p`` lies on the path walked from p in
+    eighths of the step (within 2 % of the step, scaled). Where a test function changes sign
+    (a branch point is bracketed, where a second branch crosses) the corrector of the full step
+    may have converged onto a branch passing close by. rcfw-two-plane's side 0001 near 0.983
+    rad/s: a step of 0.025 landed 0.027 away from the walk, on a neighbouring branch (a spurious
+    fold and a branch point "not converged", put at 0.961 rad/s); two half steps jumped with it.
+    A walk that stops short, or a branch that turns sharply, is wrongly suspected at worst: the
+    step is cut to an eighth."""
+    if len(walk) < 10:
+        return False
+    path = [p.u / stepper.scale] + [w.u / stepper.scale for w, _ in walk]
+    x = q.u / stepper.scale
+    for a, b in zip(path[:-1], path[1:]):
+        e = b - a
+        t = min(max(float((x - a) @ e) / float(e @ e), 0.0), 1.0) if e @ e > 0 else 0.0
+        if float(np.max(np.abs(x - a - t * e))) <= 0.02 * ds:
+            return True
+    return False
 
 
 def _rescaled(stepper: _Stepper, p: CurvePoint, new: np.ndarray) -> CurvePoint:
