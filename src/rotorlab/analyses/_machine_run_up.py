@@ -532,10 +532,11 @@ def _add_passing_torque(ds, machine, starts, analysis, start_speed) -> None:
 def _run_up_outcome(machine, ds, reference) -> str:
     """Where a run-up ended (:func:`~rotorlab.analyses._run_up_verdicts.run_up_outcome`)."""
     tail = ds.time.values >= 0.9 * ds.time.values[-1]
+    settle = float(ds["settle_estimate"]) if "settle_estimate" in ds else float(ds.attrs.get("settle_estimate", math.nan))
     return run_up_outcome(int(ds["status"]), machine.n_balls, float(ds["captured_at"]),
                           float(np.max(ds.residual_amplitude.values)), float(np.max(reference)),
                           float(ds["final_speed"]), ds.attrs["critical_speeds"], ds.ball_angle.values[tail],
-                          float(ds["settle_estimate"]))
+                          settle)
 
 
 def _run_up_task_size(case_model, analysis) -> int:
