@@ -19,6 +19,7 @@ from rotorlab.analyses._run_up_verdicts import PEAK_ACCURACY, jeffcott_run_up_ve
 from rotorlab.analyses._steady import _run_up_rows
 from rotorlab.explore._outcome import BALANCED_FRACTION
 from rotorlab.models import LinearRamp
+from rotorlab.report._findings import _run_up as run_up_findings
 from rotorlab.steady import run_up, steady_case
 
 CASE = steady_case("zhakash-k2")
@@ -68,6 +69,9 @@ def test_jeffcott_run_up_shares_not_settled_and_peaks_against_a_longer_re_simula
     j = next(j for j in range(peaks.size // 2, 0, -1) if 1 - 2 * stats.binom.cdf(j - 1, peaks.size, 0.5) >= 0.95)
     assert first["runs_passed"] == 12 and (first["low"], first["high"]) == (peaks[j - 1], peaks[peaks.size - j])
     assert first["median"] == pytest.approx(float(np.median(peaks)), rel=1e-12)
+    said = run_up_findings(short, rows).numbers
+    assert f"balanced at the end of the ramp in {ens['balanced']} of 12 run-ups" in said[2], said
+    assert f"{ens['not_settled']} not settled" in said[2] and said[3].startswith("transient peak at")
 
 
 def test_coarse_saves_under_read_the_transient_peak_and_say_so():
@@ -79,6 +83,7 @@ def test_coarse_saves_under_read_the_transient_peak_and_say_so():
     assert np.all(coarse.critical_peak_underread.values[:, 0] >= true)  # ... the estimate covers each shortfall
     note = coarse.attrs["peak_saves_note"]
     assert "200 saves are too coarse" in note, note
+    assert note in run_up_findings(coarse, _run_up_rows(coarse)).numbers
     need = int(note.split("n_save = ")[1].split()[0])
     fine = _run(3.0, starts, n_save=need)  # the save count the note names reads every peak to 1 %
     shortfall = 1.0 - fine.critical_peak.values[:, 0] / dense.critical_peak.values[:, 0]
