@@ -34,6 +34,7 @@ from rotorlab.analyses._machine_common import (
     unbalance_amplitudes,
 )
 from rotorlab.analyses._run_up_verdicts import (
+    PASS_MARGIN,
     PEAK_BAND,
     coarse_saves_note,
     critical_peaks,
@@ -48,8 +49,6 @@ __all__ = ["machine_run_up", "run_up_verdict", "passing_torque", "PassingTorque"
 
 #: Status of a :class:`PassingTorque` whose threshold was not bracketed (the message says why).
 NO_PASSING_TORQUE = 5
-#: A run-up passes a critical speed when its final speed exceeds it by this factor.
-PASS_MARGIN = 1.05
 #: Capture band: a motor captured at a critical speed w_c holds a speed in
 #: [CAPTURE_BAND w_c, PASS_MARGIN w_c) for the rest of the run ...
 CAPTURE_BAND = 0.85

@@ -30,6 +30,8 @@ PEAK_BAND = 0.15
 #: The settle estimate at the ramp's end compares the vibration over the last SETTLE_TAIL of the
 #: run with that over the two SETTLE_TAIL-long windows before it.
 SETTLE_TAIL = 0.1
+#: A run-up passes a critical speed when its final speed exceeds it by this factor.
+PASS_MARGIN = 1.05
 #: Accuracy the transient peaks are read to: a coarser save grid is said (:func:`coarse_saves_note`).
 PEAK_ACCURACY = 0.01
 
@@ -219,7 +221,6 @@ def jeffcott_run_up_verdicts(model, ds, confidence: float = 0.95):
     ``ensemble`` fields ``balanced_share`` / ``_low`` / ``_high`` (:func:`run_up_ensemble`).
     """
     from rotorlab.analyses._machine_common import structure_critical_speeds, unbalance_amplitudes
-    from rotorlab.analyses._machine_run_up import PASS_MARGIN
     from rotorlab.explore._outcome import BALANCED_FRACTION
 
     machine = model.machine
