@@ -19,7 +19,6 @@ from typing import Any
 import numpy as np
 
 from rotorlab.analyses._machine_common import (
-    BELOW_CRITICAL,
     _annotate,
     _ball_coords,
     _num,
@@ -34,16 +33,22 @@ from rotorlab.analyses._machine_common import (
     structure_critical_speeds,
     unbalance_amplitudes,
 )
-from rotorlab.analyses._run_up_verdicts import PEAK_BAND, critical_peaks, ramp_end_settle, run_up_ensemble
+from rotorlab.analyses._run_up_verdicts import (
+    PASS_MARGIN,
+    PEAK_BAND,
+    coarse_saves_note,
+    critical_peaks,
+    peak_underread,
+    ramp_end_settle,
+    run_up_ensemble,
+    run_up_outcome,
+)
 from rotorlab.explore._outcome import BALANCED_FRACTION
-from rotorlab.explore._settle import NOT_SETTLED
 
 __all__ = ["machine_run_up", "run_up_verdict", "passing_torque", "PassingTorque", "NO_PASSING_TORQUE"]
 
 #: Status of a :class:`PassingTorque` whose threshold was not bracketed (the message says why).
 NO_PASSING_TORQUE = 5
-#: A run-up passes a critical speed when its final speed exceeds it by this factor.
-PASS_MARGIN = 1.05
 #: Capture band: a motor captured at a critical speed w_c holds a speed in
 #: [CAPTURE_BAND w_c, PASS_MARGIN w_c) for the rest of the run ...
 CAPTURE_BAND = 0.85
@@ -126,7 +131,9 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
         ``passed`` and ``captured_at`` (:func:`run_up_verdict`), ``residual_amplitude`` per
         station (vibration amplitude about the mean position over the last 10 % of the run, m);
         ``critical_peak`` (critical): the transient peak at each critical speed passed (m, NaN
-        for those not passed, :func:`~rotorlab.analyses._run_up_verdicts.critical_peaks`);
+        for those not passed, :func:`~rotorlab.analyses._run_up_verdicts.critical_peaks`) and
+        ``critical_peak_underread`` (critical): its estimated shortfall between the saves (-,
+        :func:`~rotorlab.analyses._run_up_verdicts.peak_underread`);
         ``settle_estimate``: with balls, the estimated time to balance (s) where the vibration
         still falls towards balance at the end, else NaN
         (:func:`~rotorlab.analyses._run_up_verdicts.ramp_end_settle`);
@@ -165,6 +172,7 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
             "residual_amplitude": (("station",), orbit_amplitude(machine, sol.ys[tail]),
                                    {"units": "m"}),
             "critical_peak": (("critical",), critical_peaks(spin[:, 1], amp, crit, passed), {"units": "m"}),
+            "critical_peak_underread": (("critical",), peak_underread(spin[:, 1], amp, crit, passed), {"units": "1"}),
         },
         coords={"time": ("time", ts, {"units": "s"}), "station": list(machine.structure.node_label),
                 **_ball_coords(machine)},
@@ -483,6 +491,7 @@ def run_up_starts(m, starts, *, t_end: float, n_save: int = 2000, rtol: float = 
     ds["captured_at"].attrs["units"] = "rad/s"
     ds["settle_estimate"].attrs["units"] = "s"
     ds.attrs["peak_band"] = PEAK_BAND
+    ds.attrs["peak_saves_note"] = coarse_saves_note(n_save, ds.critical_peak_underread.values)
     return ds
 
 
@@ -520,31 +529,13 @@ def _add_passing_torque(ds, machine, starts, analysis, start_speed) -> None:
 
 
 def _run_up_outcome(machine, ds, reference) -> str:
-    """Where a run-up ended: "failed", "no balancer", "captured" (below a critical speed),
-    "balanced" (residual vibration at most BALANCED_FRACTION of the locked unbalance response at
-    the final speed, above the first critical speed; at or below it "below critical speed": a
-    machine that did not spin up is never balanced), "not settled" (its vibration still falling
-    towards balance at the end, :func:`~rotorlab.analyses._run_up_verdicts.ramp_end_settle`),
-    "non-synchronous" (balls still circling the rotor over the last 10 %) or "not balanced"."""
-    text = _ended(machine, ds, reference)
-    if text in ("not balanced", "non-synchronous") and np.isfinite(float(ds["settle_estimate"])):
-        return NOT_SETTLED  # still converging towards balance at the ramp's end
-    return text
-
-
-def _ended(machine, ds, reference) -> str:
-    if int(ds["status"]) < 0:
-        return "failed"
-    if machine.n_balls == 0:
-        return "no balancer"
-    if np.isfinite(float(ds["captured_at"])):
-        return "captured"
-    if np.max(ds.residual_amplitude.values) <= BALANCED_FRACTION * np.max(reference) + 1e-15:
-        crit = np.ravel(ds.attrs["critical_speeds"])
-        return "balanced" if not crit.size or abs(float(ds["final_speed"])) > crit[0] else BELOW_CRITICAL
+    """Where a run-up ended (:func:`~rotorlab.analyses._run_up_verdicts.run_up_outcome`)."""
     tail = ds.time.values >= 0.9 * ds.time.values[-1]
-    turn = np.ptp(np.unwrap(ds.ball_angle.values[tail], axis=0), axis=0)
-    return "non-synchronous" if np.any(turn > np.pi) else "not balanced"
+    settle = float(ds["settle_estimate"]) if "settle_estimate" in ds else float(ds.attrs.get("settle_estimate", math.nan))
+    return run_up_outcome(int(ds["status"]), machine.n_balls, float(ds["captured_at"]),
+                          float(np.max(ds.residual_amplitude.values)), float(np.max(reference)),
+                          float(ds["final_speed"]), ds.attrs["critical_speeds"], ds.ball_angle.values[tail],
+                          settle)
 
 
 def _run_up_task_size(case_model, analysis) -> int:

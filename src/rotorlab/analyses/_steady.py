@@ -111,12 +111,14 @@ def _verify(model: Any, case_model: Any, analysis: Any) -> xarray.Dataset:
 def _run_up(model: Any, case_model: Any, analysis: Any) -> xarray.Dataset:
     from rotorlab import steady
     from rotorlab.analyses._builders import speed_profile
+    from rotorlab.analyses._run_up_verdicts import jeffcott_run_up_verdicts
 
-    return steady.run_up(model, speed_profile(analysis.profile(case_model)), t_end=analysis.t_end,
-                         t_start=analysis.t_start, initial_ball_angles=analysis.initial_ball_angles,
-                         n_save=analysis.n_save, settle_revolutions=analysis.settle_revolutions,
-                         rate_tol=analysis.rate_tol, angle_tol=analysis.angle_tol, rtol=analysis.rtol,
-                         atol=analysis.atol)  # fmt: skip
+    ds = steady.run_up(model, speed_profile(analysis.profile(case_model)), t_end=analysis.t_end,
+                       t_start=analysis.t_start, initial_ball_angles=analysis.initial_ball_angles,
+                       n_save=analysis.n_save, settle_revolutions=analysis.settle_revolutions,
+                       rate_tol=analysis.rate_tol, angle_tol=analysis.angle_tol, rtol=analysis.rtol,
+                       atol=analysis.atol)  # fmt: skip
+    return jeffcott_run_up_verdicts(model, ds)
 
 
 _RUNNERS: dict[str, Callable[[Any, Any, Any], xarray.Dataset]] = {
@@ -254,6 +256,11 @@ def _verify_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
 
 
 def _run_up_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
+    from rotorlab.analyses._run_up_verdicts import run_up_ensemble
+
+    verdicts = "outcome" in ds
+    ensemble = (run_up_ensemble([str(o) for o in ds.outcome.values], ds.critical_peak.values,
+                                ds.attrs["critical_speeds"]) if verdicts else None)
     rows = []
     for i in range(ds.sizes["ic"]):
         rows.append({
@@ -267,6 +274,11 @@ def _run_up_rows(ds: xarray.Dataset) -> list[dict[str, Any]]:
             "synchronised": bool(ds.synchronised.values[i]), "final_motion": str(ds.final_motion.values[i]),
             "final_speed_rpm": float(ds.attrs["final_speed"]) * _RPM,
         })  # fmt: skip
+        if verdicts:
+            rows[-1].update(outcome=str(ds.outcome.values[i]), settle_estimate_s=_num(ds.settle_estimate.values[i]),
+                            critical_peaks=[_num(v) for v in ds.critical_peak.values[i]],
+                            critical_peak_underread=[_num(v) for v in ds.critical_peak_underread.values[i]],
+                            peak_saves_note=ds.attrs["peak_saves_note"] or None, ensemble=ensemble)
     return rows
 
 

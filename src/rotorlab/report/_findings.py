@@ -217,9 +217,19 @@ def _run_up(ds: xarray.Dataset, rows: Rows) -> Findings:
     verdict = (f"peak shaft deflection {peak['max_amplitude'] * 1e3:.3g} mm at {peak['speed_at_max_rpm']:.0f} rpm "
                f"with the balancer, {peak['max_amplitude_without'] * 1e3:.3g} mm at "
                f"{peak['speed_at_max_without_rpm']:.0f} rpm without")  # fmt: skip
-    return Findings(verdict, (f"balls synchronised in {synced} of {len(rows)} run-ups",
-                              f"final deflection {peak['final_amplitude'] * 1e3:.3g} mm at "
-                              f"{peak['final_speed_rpm']:.0f} rpm"))  # fmt: skip
+    numbers = [f"balls synchronised in {synced} of {len(rows)} run-ups",
+               f"final deflection {peak['final_amplitude'] * 1e3:.3g} mm at {peak['final_speed_rpm']:.0f} rpm"]
+    ens = rows[0].get("ensemble")
+    if ens and ens["balanced_share"] is not None:
+        numbers.append(f"balanced at the end of the ramp in {ens['balanced']} of {ens['runs']} run-ups "
+                       f"({ens['balanced_share_low']:.0%} to {ens['balanced_share_high']:.0%}, "
+                       f"{ens['confidence']:.0%} Wilson), {ens['not_settled']} not settled")
+        numbers += [f"transient peak at {c['speed'] * 30 / math.pi:.0f} rpm: median {c['median'] * 1e3:.3g} mm "
+                    f"({c['low'] * 1e3:.3g} to {c['high'] * 1e3:.3g} mm, {c['coverage']:.0%})"
+                    for c in ens["critical_peaks"] if c["median"] is not None]
+    if rows[0].get("peak_saves_note"):
+        numbers.append(rows[0]["peak_saves_note"])
+    return Findings(verdict, tuple(numbers))
 
 
 _STEADY_FINDINGS: Mapping[str, Callable[[Any, Rows], Findings]] = {

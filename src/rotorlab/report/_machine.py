@@ -312,7 +312,9 @@ def _run_up_findings(ds, rows):
     tail = _passing_torque_text(ds, rows)
     share, peaks = _ensemble_text(rows)
     late = _not_settled_text(rows, float(ds.time.values[-1])) if "time" in ds.coords else ""
-    return Findings(head + share + "; ".join(parts) + "." + late, ((tail,) if tail else ()) + tuple(numbers) + peaks)
+    coarse = (ds.attrs.get("peak_saves_note") or "",)
+    return Findings(head + share + "; ".join(parts) + "." + late,
+                    ((tail,) if tail else ()) + tuple(numbers) + peaks + tuple(c for c in coarse if c))
 
 
 def _passing_torque_text(ds, rows) -> str:
