@@ -59,6 +59,35 @@ settings.load_profile("rotorlab-ci" if os.environ.get("CI") else "rotorlab")
 # (session 10, fresh clone, CI=true).
 DRIVER_COPY_BUDGET = 80
 
+# Where the copies come from: with ``ROTORLAB_TEST_COPIES_LOG`` naming a file, every test process
+# appends one line per test that saw new copies appear or used CPU time (tab-separated: test id,
+# CPU seconds of the process and its finished subprocesses, wall seconds, the new copies). Under
+# ``-n 0`` a copy is charged to the test that built it; under xdist a copy another process built
+# meanwhile may be charged to the test running beside it.
+_COPIES_LOG = os.environ.get("ROTORLAB_TEST_COPIES_LOG")
+
+
+@pytest.hookimpl(hookwrapper=True)
+def pytest_runtest_protocol(item, nextitem):
+    if not _COPIES_LOG:
+        yield
+        return
+    import resource
+    import time
+
+    def cpu():
+        return sum(getattr(resource.getrusage(who), f) for who in (resource.RUSAGE_SELF, resource.RUSAGE_CHILDREN)
+                   for f in ("ru_utime", "ru_stime"))
+
+    folder = os.environ.get("ROTORLAB_CACHE_DIR", "")
+    before, c0, t0 = set(_driver_copies(folder)), cpu(), time.monotonic()
+    yield
+    new = sorted(set(_driver_copies(folder)) - before)
+    spent = cpu() - c0
+    if new or spent >= 0.5:
+        with open(_COPIES_LOG, "a", encoding="utf-8") as fh:
+            fh.write(f"{item.nodeid}\t{spent:.1f}\t{time.monotonic() - t0:.1f}\t{' '.join(new)}\n")
+
 
 def _driver_copies(folder):
     drivers = os.path.join(folder, "drivers")
