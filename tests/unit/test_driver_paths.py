@@ -77,11 +77,9 @@ def test_event_models_run_on_lanes_single_trajectories_scalar(used):
 
 @pytest.mark.parametrize("frame", ["fixed", "rotating"])
 def test_jeffcott_lanes_bit_identical_to_scalar(frame):
-    # MODEL's rotor and balls under a ramp: in the fixed frame the kernel set (and so the driver
-    # copies) of the run-up below (test_verify_run_up_and_machine_paths_run_on_lanes)
-    model = JeffcottBalls(ROTOR, (BALL, BALL), speed=LinearRamp(100.0, 300.0, 0.05), frame=frame)
+    model = JeffcottBalls(ROTOR, (BALL, BALL, BALL), speed=LinearRamp(100.0, 300.0, 0.05), frame=frame)
     rng = np.random.default_rng(1)
-    y0 = np.array([model.initial_state(a) for a in rng.uniform(0.0, 2 * np.pi, (11, 2))])
+    y0 = np.array([model.initial_state(a) for a in rng.uniform(0.0, 2 * np.pi, (11, 3))])
     kw = dict(control=StepControl(rtol=1e-8, atol=1e-10), threads=2)
     auto = solve_ensemble(model, y0, (0.0, 0.1), **kw)
     ref = solve_ensemble(model, y0, (0.0, 0.1), lanes=None, **kw)
