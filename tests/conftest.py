@@ -58,9 +58,9 @@ settings.load_profile("rotorlab-ci" if os.environ.get("CI") else "rotorlab")
 # budget is raised in the same commit, with the reason). The whole suite built 72 at 2026-11-28
 # (session 10, fresh clone, CI=true) and 75 at ffc4b3a (session 11); the canonical test models
 # (tests/_models.py: one failing kernel for the status tests instead of four kernels; the
-# anisotropic balanced state and the jeffcott lanes check on layouts other tests compile) take
-# out 6-7 of those: 68-69 expected, + 4 for the design tests merged since (the autobalancer's
-# and pico21's layouts, at most one copy of their own) and a new validation's published layout.
+# anisotropic balanced state on the layout the jeffcott trajectory test compiles) take out 5 of
+# those: 70 expected, + 3 for the design tests merged since (the autobalancer's and pico21's
+# layouts, at most one copy of their own) and a new validation's published layout.
 DRIVER_COPY_BUDGET = 73
 
 # Where the copies come from: with ``ROTORLAB_TEST_COPIES_LOG`` naming a file, every test process
