@@ -1,34 +1,22 @@
 """Status codes, input validation and invariance of ensemble results."""
 
-import math
 
 import numpy as np
 import pytest
-from numba import njit
 
 from rotorlab.integrate import Event, SaveAt, Status, StepControl, solve, solve_ensemble
-from rotorlab.models import Kernels
 from rotorlab.models.examples import BouncingBall, HarmonicOscillator
 
-
-@njit(cache=True, nogil=True)
-def blowup_rhs(t, y, p, out):
-    # y' = y^2 blows up at t = 1 / y0
-    out[0] = y[0] * y[0]
+from _models import BLOWUP_P, FAILING, NAN_P
 
 
-@njit(cache=True, nogil=True)
-def nan_rhs(t, y, p, out):
-    # y' = -sqrt(y) reaches y = 0 at t = 2 sqrt(y0), then the square root of a negative is NaN
-    out[0] = -math.sqrt(y[0]) if y[0] >= 0.0 else math.nan
-
-
-BLOWUP = Kernels(rhs=blowup_rhs, n_state=1)
-NAN = Kernels(rhs=nan_rhs, n_state=1)
+# y' = y^2 blows up at t = 1 / y0; y' = -sqrt(y) reaches y = 0 at t = 2 sqrt(y0), then the
+# square root of a negative is NaN: one canonical kernel, its parameter choosing (tests/_models.py)
+BLOWUP = NAN = FAILING
 
 
 def test_status_step_underflow_at_finite_time_blowup():
-    sol = solve_ensemble(BLOWUP, [[1.0], [0.1]], (0.0, 2.0), params=[0.0])
+    sol = solve_ensemble(BLOWUP, [[1.0], [0.1]], (0.0, 2.0), params=BLOWUP_P)
     assert sol.status[0] in (Status.STEP_UNDERFLOW, Status.NONFINITE)
     assert sol.t_final[0] == pytest.approx(1.0, rel=1e-3)
     # one bad trajectory never aborts the ensemble: the other one finishes
@@ -37,7 +25,7 @@ def test_status_step_underflow_at_finite_time_blowup():
 
 
 def test_status_nonfinite():
-    sol = solve(NAN, [1.0], (0.0, 5.0), params=[0.0])
+    sol = solve(NAN, [1.0], (0.0, 5.0), params=NAN_P)
     assert sol.status == Status.NONFINITE
     assert sol.t_final == pytest.approx(2.0, rel=1e-2)
     assert "non-finite" in sol.status.message

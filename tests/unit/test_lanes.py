@@ -6,13 +6,11 @@ same step-size controller, so a trajectory gives the same bits on either, whatev
 ran in, the thread, the chunking or the other trajectories. The tests therefore compare exactly.
 """
 
-import math
 import sys
 from pathlib import Path
 
 import numpy as np
 import pytest
-from numba import njit
 
 from rotorlab.integrate import SaveAt, Status, StepControl, solve_ensemble
 from rotorlab.models import Kernels
@@ -22,19 +20,11 @@ BENCH = Path(__file__).resolve().parents[2] / "bench"
 sys.path.insert(0, str(BENCH))
 from _bench_kernel import bench_rhs, bench_rhs_libm  # noqa: E402
 
+from _models import BLOWUP_P, FAILING, NAN_P  # noqa: E402
+
 BENCH_KERNELS = Kernels(rhs=bench_rhs, n_state=8)
 # rotorlab.models.BENCHMARK: M, m, R, eps, k, c, beta, Omega
 BENCH_P = np.array([1.0, 0.02, 1.0, 0.01, 1.0, 0.02, 0.01, 2.5])
-
-
-@njit(cache=True, nogil=True)
-def blowup_rhs(t, y, p, out):
-    out[0] = y[0] * y[0]  # y = y0 / (1 - y0 t) blows up at t = 1 / y0
-
-
-@njit(cache=True, nogil=True)
-def nan_rhs(t, y, p, out):
-    out[0] = -math.sqrt(y[0]) if y[0] >= 0.0 else math.nan  # reaches 0 at t = 2 sqrt(y0), then NaN
 
 
 def _bench_y0(idx):
@@ -128,13 +118,13 @@ def test_negative_start_time_and_step_options():
 
 
 def test_status_codes_match_scalar():
+    # y = y0 / (1 - y0 t) blows up at t = 1 / y0; y' = -sqrt(y) reaches 0 at t = 2 sqrt(y0), then NaN
     cases = [
-        (Kernels(rhs=blowup_rhs, n_state=1), [[1.0], [0.1], [2.0]], 2.0, StepControl()),
-        (Kernels(rhs=nan_rhs, n_state=1), [[1.0], [4.0]], 5.0, StepControl()),
-        (HarmonicOscillator().kernels, [[1.0, 0.0], [0.0, 1.0]], 100.0, StepControl(max_steps=10)),
+        (FAILING, BLOWUP_P, [[1.0], [0.1], [2.0]], 2.0, StepControl()),
+        (FAILING, NAN_P, [[1.0], [4.0]], 5.0, StepControl()),
+        (HarmonicOscillator().kernels, [1.0], [[1.0, 0.0], [0.0, 1.0]], 100.0, StepControl(max_steps=10)),
     ]
-    for kernels, y0, t1, control in cases:
-        params = [1.0]
+    for kernels, params, y0, t1, control in cases:
         ref = solve_ensemble(kernels, y0, (0.0, t1), params=params, control=control, threads=1)
         got = solve_ensemble(kernels, y0, (0.0, t1), params=params, control=control, threads=1, lanes=8)
         assert_same(got, ref)
