@@ -68,12 +68,11 @@ def run_design_analysis(case_model: Any, analysis: Any, progress: Callable[[int,
 
 
 def winner_model(problem: Any, ds: xarray.Dataset) -> Any:
-    """The base model with the winning design's named parameters set (``with_parameters``)."""
+    """The base model with the winning design's named parameters set
+    (:meth:`~rotorlab.analyses._design.DesignProblem.model_at`)."""
     best = int(ds.attrs["best"])
     values = {str(n): float(ds["value"].values[best, k]) for k, n in enumerate(ds["variable"].values)}
-    if problem.mapper is not None:
-        return problem.mapper.starts({k: np.array([v]) for k, v in values.items()})[0]
-    return problem.model.with_parameters(**{k.removeprefix("model."): v for k, v in values.items()})
+    return problem.model_at(values)
 
 
 #: The attrs of a tolerances result a design keeps (prefixed ``sensitivity_``).
