@@ -63,6 +63,11 @@ def test_the_indices_are_those_of_a_tolerances_run_at_the_winner_bit_for_bit(des
         assert np.array_equal(ds[key].values, ref[key].values, equal_nan=True), key
     assert np.array_equal(ds["sensitivity_mean"].values, ref["mean"].values)
     assert ds.attrs["sensitivity_machines"] == ref.sizes["sample"] == 2 * (2 + 2)
+    from rotorlab.analyses._design_case import design_document
+
+    doc = design_document(ds)["sensitivity"]
+    assert doc["inputs"] == ["ball_damping", "races[0].radius"] and doc["sentence"] == sensitivity_sentence(ds)
+    assert doc["ST"][1] == [float(v) for v in ref["ST"].values[1]]
     # the radius moves the residual vibration at all: its indices are numbers, not the NaN of a constant output
     assert np.isfinite(ds["ST"].sel(output="residual_vibration").values).all()
 
