@@ -210,8 +210,9 @@ class DesignSpec(BasinStabilitySpec):
                 issues += _bound_issues(model, name, entry)
         issues += self._starts_issues()
         if self.sensitivity is not None:
-            issues += [Issue(("sensitivity", *i.loc), i.message, i.value, i.show_value)
-                       for i in self.sensitivity_spec(model).case_issues(model)]  # fmt: skip
+            for i in self.sensitivity_spec(model).case_issues(model):  # its "type": the sensitivity table's
+                loc = ("sensitivity",) if i.loc == ("type",) else ("sensitivity", *i.loc)
+                issues.append(Issue(loc, i.message, i.value, i.show_value and i.loc != ("type",)))
         from rotorlab.design import DESIGN_OPTIMIZERS
 
         most = DESIGN_OPTIMIZERS[self.optimizer].objectives
