@@ -515,6 +515,29 @@ TOLERANCES = [
      ["type", "needs a machine model with balls", "jeffcott_balls"]),
 ]
 CORPUS += TOLERANCES
+
+
+def _design_sensitivity(key: str) -> tuple[str, str, str]:
+    """pico21-balancer with a design analysis first whose sensitivity table has input ``key``."""
+    block = ('[[analysis]]\ntype = "design"\nvary = {ball_mass = ["4 g", "6 g"]}\nobjectives = ["ball-mass"]\n'
+             'param = {spin_speed = ["10000 rpm", "10000 rpm", 1]}\nmin_balanced = 0.5\nstarts = 8\nraces = [0]\n'
+             'sensitivity = {samples = 2, inputs = {ball_damping = {distribution = "uniform", tolerance = 0.5}, '
+             f'"{key}" = {{distribution = "normal", tolerance = 0.01}}}}}}\n\n')  # fmt: skip
+    return ("pico21-balancer", '[[analysis]]\ntype = "campbell"', block + '[[analysis]]\ntype = "campbell"')
+
+
+CORPUS += [
+    ("design-sensitivity-unknown-key", ["design", FILE], _design_sensitivity("races[0].radiu"),
+     ['analysis[0].sensitivity.inputs."races[0].radiu"', "not a named parameter of this machine", "did you mean",
+      "races[0].radius"]),
+    ("design-sensitivity-past-end", ["run", FILE, "--out", "{d}/o"], _design_sensitivity("races[4].radius"),
+     ['analysis[0].sensitivity.inputs."races[4].radius"', "not a named parameter of this machine", "races[0].radius"]),
+    ("design-sensitivity-jeffcott", ["validate", FILE], ("autobalancer", "n_horizons = 10", 'n_horizons = 10\n\n'
+     '[[analysis]]\ntype = "design"\nvary = {ball_mass = ["20 g", "40 g"]}\nobjectives = ["ball-mass"]\n'
+     'param = {spin_speed = ["2400 rpm", "2400 rpm", 1]}\nstarts = 32\nmin_balanced = 0.85\nsensitivity = {inputs = '
+     '{ball_damping = {distribution = "uniform", tolerance = 0.5}, ball_mass = {distribution = "uniform", '
+     'tolerance = 0.1}}}'), ["sensitivity:", "needs a machine model with balls", "jeffcott_balls"]),
+]
 if resources.files("rotorlab.cases").joinpath("washer-knock.toml").is_file():
     CORPUS.append(("mk-center-outside-gap", ["validate", FILE], ("washer-knock", "center_at_rest = true",
                                                                  'center = ["0 mm", "12 mm"]'),

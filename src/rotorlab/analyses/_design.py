@@ -117,6 +117,17 @@ class DesignProblem:
         space, key = self.model.parameters, name.removeprefix("model.")
         return space[key] if key in space else None
 
+    def model_at(self, values: Mapping[str, float]) -> Any:
+        """The base model with a design's values set: through the mapper's variant (its aliases such
+        as ``ball_mass`` and ``model.<key path>``), else ``with_parameters``."""
+        values = {k: float(v) for k, v in values.items()}
+        if self.mapper is None:
+            return self.model.with_parameters(**{k.removeprefix("model."): v for k, v in values.items()})
+        variant = getattr(self.mapper, "_variant", None)  # a machine's starts() keep the base model
+        if variant is not None:
+            return variant(values)
+        return self.mapper.starts({k: np.array([v]) for k, v in values.items()})[0]
+
     def issues(self) -> list[tuple[str, str]]:
         """Every problem as ``(key path, message)``: unknown objectives, parameters, bounds."""
         out = []
@@ -198,11 +209,9 @@ class _Evaluator:
         pb = self.problem
         cpu = time.process_time()
         stability, model = None, None
+        model = pb.model_at(values)
         if pb.mapper is not None:
-            model = pb.mapper.starts({k: np.array([float(v)]) for k, v in values.items()})[0]
             mapper = replace(pb.mapper, model=model)
-        else:
-            model = pb.model.with_parameters(**{k.removeprefix("model."): float(v) for k, v in values.items()})
         if pb.needs_starts:
             mapper = horizon_over(mapper, pb.operating_name, pb.operating, pb.horizon_given, "")[0]
             path = None if self.store is None else self.store / f"{tag}-{self.key(values)}.zarr"

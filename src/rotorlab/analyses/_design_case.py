@@ -8,6 +8,7 @@ from __future__ import annotations
 import json
 import math
 from collections.abc import Callable
+from pathlib import Path
 from typing import TYPE_CHECKING, Any
 
 import numpy as np
@@ -18,7 +19,8 @@ if TYPE_CHECKING:
     import xarray
 
 __all__ = ["design_problem", "run_design_analysis", "design_rows", "design_document", "design_task_size",
-           "recommendation", "design_evidence", "check_agrees"]  # fmt: skip
+           "recommendation", "design_evidence", "check_agrees", "winner_model", "with_sensitivity",
+           "sensitivity_view", "sensitivity_sentence"]  # fmt: skip
 
 
 def design_problem(case_model: Any, spec: Any, *, t_end: float | None = None) -> Any:
@@ -48,13 +50,80 @@ def run_design_analysis(case_model: Any, analysis: Any, progress: Callable[[int,
     """Run one ``design`` analysis of a case (:func:`rotorlab.analyses.design_search`); attrs
     ``analysis``, ``name``, ``model`` added."""
     from rotorlab.analyses._design import design_search
+    from rotorlab.analyses._tolerances import run_tolerances_analysis
 
     problem = design_problem(case_model, analysis, t_end=t_end)
     ds = design_search(problem, optimizer=analysis.optimizer, budget=analysis.budget,
                        optimizer_seed=analysis.optimizer_seed, store=store, resume=resume, executor=executor,
                        verify=analysis.verify, progress=progress)  # fmt: skip
     ds.attrs.update(analysis="design", name=analysis.name, model=str(case_model.type))
+    tolerances = analysis.sensitivity_spec(case_model) if hasattr(analysis, "sensitivity_spec") else None
+    if tolerances is not None and int(ds.attrs["best"]) >= 0:
+        winner = winner_model(problem, ds)
+        path = None if store is None else Path(store) / "sensitivity.zarr"
+        sens = run_tolerances_analysis(case_model, tolerances, store=path, executor=executor, machine=winner,
+                                       resume=resume and path is not None and path.exists())  # fmt: skip
+        ds = with_sensitivity(ds, sens)
     return ds
+
+
+def winner_model(problem: Any, ds: xarray.Dataset) -> Any:
+    """The base model with the winning design's named parameters set
+    (:meth:`~rotorlab.analyses._design.DesignProblem.model_at`)."""
+    best = int(ds.attrs["best"])
+    values = {str(n): float(ds["value"].values[best, k]) for k, n in enumerate(ds["variable"].values)}
+    return problem.model_at(values)
+
+
+#: The attrs of a tolerances result a design keeps (prefixed ``sensitivity_``).
+_SENSITIVITY_ATTRS = ("n_base", "seed", "confidence", "resamples", "starts", "speed", "t_end", "failed",
+                      "distributions")  # fmt: skip
+
+
+def with_sensitivity(ds: xarray.Dataset, sens: xarray.Dataset) -> xarray.Dataset:
+    """The design's dataset with the winner's Sobol indices (``S1``, ``S1_conf``, ``ST``,
+    ``ST_conf``: dims ``output``, ``input``; ``sensitivity_mean``, ``sensitivity_variance``:
+    ``output``) and the tolerances run's attrs (``sensitivity_<attr>``, ``sensitivity_machines``)."""
+    out = ds.assign_coords(output=sens["output"], input=sens["input"])
+    for key in ("S1", "S1_conf", "ST", "ST_conf"):
+        out[key] = sens[key]
+    out["sensitivity_mean"] = sens["mean"]
+    out["sensitivity_variance"] = sens["variance"]
+    attrs = {f"sensitivity_{k}": sens.attrs[k] for k in _SENSITIVITY_ATTRS}
+    attrs["sensitivity_distributions"] = json.dumps(list(attrs["sensitivity_distributions"]))
+    out.attrs.update(attrs, sensitivity_machines=int(sens.sizes["sample"]))
+    return out
+
+
+def sensitivity_view(ds: xarray.Dataset) -> xarray.Dataset | None:
+    """The winner's indices as a tolerances result (what :func:`rotorlab.plot._tolerances.sensitivity_figure`
+    and :func:`rotorlab.analyses._tolerances.most_sensitive` read); None: not computed."""
+    import xarray as xr
+
+    if "ST" not in ds:
+        return None
+    attrs = {k.removeprefix("sensitivity_"): v for k, v in ds.attrs.items() if k.startswith("sensitivity_")}
+    attrs["name"] = f"{ds.attrs.get('name', 'design')} (recommended design)"
+    view = xr.Dataset({k: ds[k] for k in ("S1", "S1_conf", "ST", "ST_conf")}, attrs=attrs)
+    return view.assign_coords(sample=("sample", np.arange(int(attrs["machines"]))))
+
+
+def sensitivity_sentence(ds: xarray.Dataset) -> str | None:
+    """"P(balanced) of the recommended design is most sensitive to X (ST a ± b)", or why no input
+    stands out; None: not computed."""
+    from rotorlab.analyses._tolerances import most_sensitive
+
+    view = sensitivity_view(ds)
+    if view is None:
+        return None
+    top = most_sensitive(view, "p_balanced")
+    machines = f"{int(view.attrs['machines'])} machines x {int(view.attrs['starts'])} starts"
+    if top is None:
+        return (f"P(balanced) of the recommended design was the same for every sampled machine ({machines}): "
+                "no input's tolerance moves it.")  # fmt: skip
+    name, st, half = top
+    return (f"P(balanced) of the recommended design is most sensitive to {name} (ST {people.number(st, 2)} ± "
+            f"{people.number(half, 2)}; {machines}).")
 
 
 def design_task_size(case_model: Any, analysis: Any) -> int:
@@ -140,6 +209,10 @@ def design_document(ds: xarray.Dataset) -> dict[str, Any]:
                   "high": floats(ds["verify_high"].values), "objectives": floats(ds["verify_objective"].values),
                   "inside_search_interval": check_agrees(ds)},
         "cpu_s": float(ds.attrs["cpu_s"]), "rows": design_rows(ds),
+        "sensitivity": None if "ST" not in ds else {
+            "sentence": sensitivity_sentence(ds), "inputs": [str(v) for v in ds["input"].values],
+            "outputs": [str(v) for v in ds["output"].values],
+            **{k: [floats(row) for row in ds[k].values] for k in ("S1", "S1_conf", "ST", "ST_conf")}},
     }  # fmt: skip
 
 
@@ -159,4 +232,6 @@ def design_evidence(ds: Any, rows: Any, facts: Any) -> list[Any]:
                             f"fresh starts falls outside the search's interval ({name})",
                             "raise starts (the search's intervals are too optimistic for its winner)")]  # fmt: skip
     tail = "; confirmed from fresh random starts" if agrees else ""
+    sens = sensitivity_sentence(ds)
+    tail += f"; {sens[:-1]}" if sens else "; its sensitivity not computed"
     return [VerdictLine("design", "yes", recommendation(ds)[:-1] + f"{tail} ({name}).")]

@@ -38,9 +38,10 @@ _SAVES_PER_TURN = 4.3
 _CHUNK = 16
 
 
-def tolerance_study(case_model: Any, spec: Any) -> tuple[Any, list[Any]]:
+def tolerance_study(case_model: Any, spec: Any, machine: Any = None) -> tuple[Any, list[Any]]:
     """The per-sample analysis (:class:`SampleStarts`) and the uncertain inputs of a ``tolerances``
-    analysis (ValueError where the case cannot run it)."""
+    analysis (ValueError where the case cannot run it); ``machine``: a built machine to run around
+    instead of the case's (a design's winner)."""
     from dataclasses import replace
 
     from rotorlab.analyses._tolerance_machine import SampleStarts, UncertainMachine
@@ -48,7 +49,7 @@ def tolerance_study(case_model: Any, spec: Any) -> tuple[Any, list[Any]]:
     from rotorlab.explore._sensitivity import UncertainInput
     from rotorlab.models import ConstantSpeed
 
-    source = spec.machine(case_model)
+    source = spec.machine(case_model) if machine is None else machine
     speed = spec.speed if spec.speed is not None else float(source.drive.speed)
     inputs, units = [], []
     for name in spec.inputs:
@@ -65,8 +66,9 @@ def tolerance_study(case_model: Any, spec: Any) -> tuple[Any, list[Any]]:
 
 def run_tolerances_analysis(case_model: Any, analysis: Any, progress: Callable[[int, int], None] | None = None, *,
                             chunk_size: int | None = None, store: Any = None, resume: bool = False,
-                            executor: Any = None) -> xarray.Dataset:  # fmt: skip
-    """Run one ``tolerances`` analysis of a case.
+                            executor: Any = None, machine: Any = None) -> xarray.Dataset:  # fmt: skip
+    """Run one ``tolerances`` analysis of a case (``machine``: around this built machine instead of
+    the case's, e.g. a design's winner).
 
     Parameters
     ----------
@@ -90,7 +92,7 @@ def run_tolerances_analysis(case_model: Any, analysis: Any, progress: Callable[[
     from rotorlab.explore._sensitivity import run_sensitivity
     from rotorlab.analyses._tolerance_machine import OUTPUTS
 
-    point, inputs = tolerance_study(case_model, analysis)
+    point, inputs = tolerance_study(case_model, analysis, machine)
     size = chunk_size if chunk_size is not None else analysis.chunk
     if size is None and not (store is not None and resume):  # a resumed store keeps its own
         size = _CHUNK

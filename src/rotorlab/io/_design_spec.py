@@ -15,6 +15,9 @@ Layout::
     starts = 1000             # random starts per design and operating value (the same for all)
     budget = 30               # evaluations
     optimizer = "tpe"         # or "differential-evolution"
+    # optional: Sobol indices of the winner (a machine): a ``tolerances`` table without type/name;
+    # seed, t_end, races and the speed default to the design's (the speed: its first operating value)
+    sensitivity = {inputs = {ball_damping = {distribution = "uniform", tolerance = 0.5}, ...}, samples = 16, starts = 4}
 
 Examples
 --------
@@ -35,6 +38,7 @@ from rotorlab.io._coordinates import coordinates_text
 from rotorlab.io._errors import Issue
 from rotorlab.io._fields import AbstractModelSpec, _error, integer, quantity
 from rotorlab.io._sweep_specs import _axes, sweep_coordinates
+from rotorlab.io._tolerances_spec import TolerancesSpec
 
 __all__ = ["DesignSpec", "DEFAULT_DESIGN_STARTS"]
 
@@ -98,6 +102,11 @@ class DesignSpec(BasinStabilitySpec):
         Seed of the optimiser.
     verify : bool
         Re-simulate the winner from fresh random starts (default true).
+    sensitivity : table, optional
+        Sobol indices of the winner's P(balanced), residual vibration and transient peak (a
+        machine): the keys of a ``tolerances`` analysis (``inputs``, ``samples``, ``starts``, ...);
+        ``seed``, ``t_end``, ``races`` and ``speed`` not given are the design's (the speed: the first
+        operating value when the operating range is the speed).
     starts, seed, confidence, ranges, t_end, ...
         As for ``basin-stability`` (``starts`` default 1000; ``ci_width`` is not taken: every
         design gets the same starts).
@@ -113,6 +122,7 @@ class DesignSpec(BasinStabilitySpec):
     budget: integer(ge=1, le=10_000) = Field(30, description="designs evaluated")
     optimizer_seed: integer(ge=0) = Field(0, description="seed of the optimiser")
     verify: bool = Field(True, description="re-simulate the winner from fresh random starts")
+    sensitivity: TolerancesSpec | None = Field(None, description="Sobol indices of the winner (a tolerances table)")
 
     @field_validator("objectives", mode="after")
     @classmethod
@@ -199,6 +209,10 @@ class DesignSpec(BasinStabilitySpec):
             else:
                 issues += _bound_issues(model, name, entry)
         issues += self._starts_issues()
+        if self.sensitivity is not None:
+            for i in self.sensitivity_spec(model).case_issues(model):  # its "type": the sensitivity table's
+                loc = ("sensitivity",) if i.loc == ("type",) else ("sensitivity", *i.loc)
+                issues.append(Issue(loc, i.message, i.value, i.show_value and i.loc != ("type",)))
         from rotorlab.design import DESIGN_OPTIMIZERS
 
         most = DESIGN_OPTIMIZERS[self.optimizer].objectives
@@ -206,6 +220,23 @@ class DesignSpec(BasinStabilitySpec):
             issues.append(Issue(("objectives",), f"the optimiser {self.optimizer!r} takes {most} objective(s); "
                                                  "tpe takes two (a Pareto front)", list(self.objectives)))  # fmt: skip
         return issues
+
+    def sensitivity_spec(self, model: AbstractModelSpec) -> TolerancesSpec | None:
+        """The ``tolerances`` analysis run at the winner: the ``sensitivity`` table, with the
+        design's seed, t_end, races and speed where the table gives none (None: no table)."""
+        if self.sensitivity is None:
+            return None
+        given = self.sensitivity.model_fields_set
+        update: dict[str, Any] = {"name": self.name}
+        if "seed" not in given:
+            update["seed"] = self.seed
+        if "t_end" not in given and self.t_end is not None:
+            update["t_end"] = self.t_end
+        if "races" not in given and self.races is not None:
+            update["races"] = self.races
+        if "speed" not in given and self._speed_from_range(model):
+            update["speed"] = self.param_axis[1]
+        return self.sensitivity.model_copy(update=update)
 
     def _starts_issues(self) -> list[Issue]:
         """Too few starts for ``min_balanced``: even with every start balanced the Wilson lower

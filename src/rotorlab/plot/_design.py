@@ -105,8 +105,16 @@ def tradeoff_figure(ds: xarray.Dataset) -> Figure:
 
 
 def design_figures(ds: xarray.Dataset, name: str) -> dict[str, Any]:
-    """The figures of one design result, by file stem (the trade-off only with two objectives)."""
+    """The figures of one design result, by file stem (the trade-off only with two objectives, the
+    sensitivity bars of the winner only where they were computed)."""
     out = {f"{name}_design": design_figure(ds)}
     if ds.sizes["objective"] > 1:
         out[f"{name}_tradeoff"] = tradeoff_figure(ds)
+    from rotorlab.analyses._design_case import sensitivity_view
+
+    view = sensitivity_view(ds)
+    if view is not None:  # the winner's Sobol indices: the tolerances bars
+        from rotorlab.plot._tolerances import sensitivity_figure
+
+        out[f"{name}_sensitivity"] = sensitivity_figure(view)
     return out

@@ -1,6 +1,7 @@
 """Presentation of the ``design`` analysis: the recommendation in one sentence, its margins (how
 far each constraint is from its limit), the winner's independent check from fresh random starts
-next to the search's interval, the trade-off, and what was not explored (rows of
+next to the search's interval, the trade-off, the winner's sensitivity (the input P(balanced)
+depends on most) and what was not explored (rows of
 :func:`rotorlab.analyses._design_case.design_rows`)."""
 
 from __future__ import annotations
@@ -71,14 +72,17 @@ def not_explored(ds: xarray.Dataset) -> str:
     return (f"Not explored: {ranges}; every other parameter held at the case's value; P(balanced) only at "
             f"{', '.join(_operating(ds))} ({ds.attrs['operating']}), from {int(ds.attrs['starts'])} starts per design; "
             f"{int(ds.attrs['evaluations'])} designs evaluated ({ds.attrs['optimizer']}, budget {ds.attrs['budget']}), "
-            "so a better design between them may exist; run-up transients and housing contact not checked.")
+            "so a better design between them may exist; run-up transients and housing contact not checked"
+            + ("." if "ST" in ds else "; sensitivity not computed (give the analysis a sensitivity table)."))
 
 
 def design_findings(ds: xarray.Dataset, rows: Rows) -> Findings:
     """The recommendation, then its margins, the check and what was not explored."""
-    from rotorlab.analyses._design_case import recommendation
+    from rotorlab.analyses._design_case import recommendation, sensitivity_sentence
 
-    return Findings(recommendation(ds), (*margin_lines(ds), _check_line(ds), not_explored(ds)))
+    sens = sensitivity_sentence(ds)
+    return Findings(recommendation(ds), (*margin_lines(ds), _check_line(ds), *([sens] if sens else []),
+                                         not_explored(ds)))  # fmt: skip
 
 
 def _table(ds: xarray.Dataset, rows: Rows, only_front: bool) -> tuple[list[str], list[list[str]]]:
