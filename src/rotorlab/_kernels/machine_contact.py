@@ -332,7 +332,8 @@ def extra_functions(lay, corr, prefix) -> str:
     if k == 2:
         enter_mode(t, y_new, p, 0.0)
         return 0
-    r = contact_terms(t, y, p, 2.0)
+    # slip: slide against the tangential force of the state's mode (rolling, where it fires)
+    r = contact_terms(t, y, p, y[{i_mode}])
     y_new[{i_mode}] = -1.0 if r[1] > 0.0 else 1.0
     return 0
 ''')

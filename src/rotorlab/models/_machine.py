@@ -539,15 +539,22 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
             p[o["clearance"]:o["clearance"] + 8] = self.clearances[0].to_array()
             p[o["clearance"] + 8:o["clearance"] + 10] = self.clearance_center
             # rate of the contact's constraint stabilisation: the highest natural frequency
-            import scipy.linalg as sla
-
-            lam = sla.eigvals(red["K"], self._m0())
-            p[o["clearance"] + 10] = math.sqrt(max(float(np.max(np.abs(lam))), 1e-300))
+            p[o["clearance"] + 10] = self._stabilisation_rate()
         for part, place in zip(self.parts, (pl for _, pl in lay.placed_parts)):
             blk = part.pack(self)
             p[place.param:place.param + blk.size] = blk
         self._cache["p"] = p
         return p.copy()
+
+    def _stabilisation_rate(self) -> float:
+        """The clearance's Baumgarte rate (1/s): its own, or the highest natural frequency."""
+        a = self.clearances[0].stabilisation
+        if a is not None:
+            return a
+        import scipy.linalg as sla
+
+        lam = sla.eigvals(self.reduced["K"], self._m0())
+        return math.sqrt(max(float(np.max(np.abs(lam))), 1e-300))
 
     # ------------------------------------------------------------------ variants
     def with_drive(self, drive) -> Machine:
