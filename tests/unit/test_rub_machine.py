@@ -86,6 +86,12 @@ def test_preset_machine_energy_is_the_rub_rotors_plus_the_unbalance_coupling_and
         assert mac.energy(y, t) == pytest.approx(float(model.energy(y)) + coupling + gravity, rel=1e-12, abs=1e-12)
 
 
+def test_rigid_and_elastic_stators_share_one_compiled_kernel():
+    """A massless stator is rigid or elastic at run time (its stiffness k_s > 0): one layout,
+    one kernel module, one driver copy for both (the rub rotor had one kernel for both)."""
+    assert RIGID.machine.layout == ELASTIC.machine.layout and RIGID.kernels.rhs is ELASTIC.kernels.rhs
+
+
 def test_pack_fills_both_the_rub_rotors_entries_and_the_machines():
     p = RIGID.pack({"clearance": 0.9, "spin_speed": 2.0})
     v = RIGID.with_parameters(clearance=0.9, spin_speed=2.0)
