@@ -68,8 +68,10 @@ class JeffcottRub(ParametrisedMixin):
     Notes
     -----
     State ``[x, y, vx, vy, dissipated, drive_work, impacts, peak_impulse, mode]`` (the last three
-    discrete); packed parameters and events are documented in
-    :mod:`rotorlab._kernels.jeffcott_rub`. ``energy(y) = m |v|^2 / 2 + k |z|^2 / 2`` (+ the
+    discrete); its 15 packed parameters and events are documented in
+    :mod:`rotorlab._kernels.jeffcott_rub` (now the tests' oracle): the packed vector carries
+    them first, then those of the preset machine (:attr:`machine`) whose generated kernel runs
+    every simulation. ``energy(y) = m |v|^2 / 2 + k |z|^2 / 2`` (+ the
     stator's ``k_s p^2 / 2``); without unbalance, gravity and rotor damping,
     ``energy(y) - energy(y0) = drive_work - dissipated`` exactly.
 
