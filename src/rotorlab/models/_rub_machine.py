@@ -29,7 +29,7 @@ Measured against the old kernel (rub-jeffcott's rotor, its 9 x 7 speed x clearan
 rest, rtol 1e-9; and a rigid-stator map of 20 points): the same statuses and contact modes at
 every saved sample, states within 2.6e-10 (elastic) and 8.4e-13 (rigid) of the largest entry.
 CPU: one run on the scalar driver takes 0.76 the old kernel's time, but an ensemble on the lane
-driver 1.5-1.6 (1.3 required): not resolved yet (a lane holds the 82 packed entries instead of
+driver 1.5-1.6 (1.3 required): not resolved yet (suspected, not measured: a lane reads 82 packed entries instead of
 15, and the vectorised kernel computes both arms of the contact branch).
 """
 
