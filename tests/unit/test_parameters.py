@@ -203,7 +203,8 @@ def _rub_machine():
 def test_a_rub_map_sets_its_points_through_the_named_parameters_bit_for_bit(which):
     """A rub map's points (every coordinate at once) are packed by ``model.pack`` of the named
     parameters: the same vectors as the packed entries the map used to overwrite by index
-    (``rub_parameters``), for the rub rotor and for a machine with a clearance."""
+    (``rub_parameters``), for the rub rotor (its own entries; its preset machine's follow the
+    named values) and for a machine with a clearance."""
     from rotorlab.contact import RubRegimes
 
     model = build_model(load_case("rub-jeffcott").model) if which == "rub_rotor" else _rub_machine()
@@ -213,8 +214,15 @@ def test_a_rub_map_sets_its_points_through_the_named_parameters_bit_for_bit(whic
     old = np.tile(model.to_array(), (5, 1))
     for k, v in coords.items():
         old[:, model.rub_parameters[k][0]] = v
-    np.testing.assert_array_equal(regimes.point_parameters(coords), old)
-    key = regimes.parameter_keys()["clearance"]
+    got = regimes.point_parameters(coords)
+    # the rub rotor's own 15 entries lead its vector (its preset machine's follow them)
+    n_own = 15 if which == "rub_rotor" else old.shape[1]
+    np.testing.assert_array_equal(got[:, :n_own], old[:, :n_own])
+    keys = regimes.parameter_keys()
+    for i in range(5):  # every entry, the machine kernel's too, is the variant model's
+        variant = model.with_parameters(**{keys[k]: float(v[i]) for k, v in coords.items()})
+        np.testing.assert_array_equal(got[i], variant.to_array())
+    key = keys["clearance"]
     assert key == ("clearance" if which == "rub_rotor" else "clearances[0].gap")
     with pytest.raises(ValueError, match=rf"^{re.escape(key)} = -0.001: must be > 0 m$"):
         regimes.point_parameters({"clearance": np.array([1e-3, -1e-3])})

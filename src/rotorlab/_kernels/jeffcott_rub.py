@@ -1,4 +1,10 @@
-"""Compiled kernels of the Jeffcott rotor in a circular clearance (model ``jeffcott_rub``).
+"""Compiled kernels of the Jeffcott rotor in a circular clearance (model ``jeffcott_rub``): the
+tests' oracle only.
+
+The model (:class:`rotorlab.contact.JeffcottRub`) runs its preset machine's generated kernel
+(:mod:`rotorlab.models._rub_machine`); this hand-written one stays as the reference that kernel is
+checked against to 1e-12 (``tests/unit/test_rub_machine.py``), and for its constants: the state
+indices and the model's own 15 packed entries, which lead the preset's packed vector.
 
 Physics and conventions: :mod:`rotorlab.models._jeffcott_rub`; the contact law itself is
 :mod:`rotorlab._kernels.contact`.

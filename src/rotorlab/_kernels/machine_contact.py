@@ -26,6 +26,9 @@ Generated functions (besides ``rhs``)
     as one plastic impulse below the rest speed when the rotor is pressed, then sustained
     contact; rolling while the cone holds).
 
+A rigid and a massless elastic stator share one kernel (layout kind ``"massless"``): the stator's
+stiffness ``k_s`` (0 for a rigid one) picks the law at run time; a moving housing has its own.
+
 Clearance parameters (11, at ``offsets["clearance"]``): ``delta, e, mu, R_r, v_rest, k_s, c_s,
 m_s, c_x, c_y, a`` (:meth:`rotorlab.models.Clearance.to_array`, then the stator's centre: the gap
 vector is ``w = B z - (x_h, y_h) - c``, then the rate ``a`` (1/s) of the Baumgarte stabilisation
@@ -146,18 +149,18 @@ def _core(lay, corr, L: list[str], ind: str, md: str, full: bool) -> None:
     b2(f"wnn = rn_acx * nx + rn_acy * ny{inv}")
     b2("wnt = -rn_acx * ny + rn_acy * nx + Rr * rn_dom")
     b2(f"wtt = -rt_acx * ny + rt_acy * nx + Rr * rt_dom{inv}")
-    if lay.clearance == "elastic":
-        b2(f"npen = penalty_normal_force(-gap, vn, p[{kc + 5}], p[{kc + 6}])")
+    # a massless stator is rigid or elastic at run time: elastic where its stiffness k_s > 0
+    el = "elastic" if lay.clearance == "massless" else "False"
+    if lay.clearance == "massless":
+        b2(f"elastic = p[{kc + 5}] > 0.0")
+        b2(f"npen = penalty_normal_force(-gap, vn, p[{kc + 5}], p[{kc + 6}]) if elastic else 0.0")
     else:
         b2("npen = 0.0")
-    if lay.clearance != "elastic":
-        # Baumgarte stabilisation of the rigid contact: the constraint r'' = 0 becomes
-        # r'' + 2 a r' + a^2 (r - delta) = 0, which brings the integration's drift back (a: the
-        # structure's highest natural frequency, so that it adds no stiffer time scale)
-        b2(f"bnc = bn + 2.0 * p[{kc + 10}] * vn - p[{kc + 10}] * p[{kc + 10}] * gap")
-    else:
-        b2("bnc = bn")
-    b2(f"cN, cF = delassus_forces(bnc, bs, wnn, wnt, wtt, mu, {md}, {lay.clearance != 'elastic'}, npen)")
+    # Baumgarte stabilisation of the rigid contact: the constraint r'' = 0 becomes
+    # r'' + 2 a r' + a^2 (r - delta) = 0, which brings the integration's drift back (a: the
+    # structure's highest natural frequency, so that it adds no stiffer time scale)
+    b2(f"bnc = bn if {el} else bn + 2.0 * p[{kc + 10}] * vn - p[{kc + 10}] * p[{kc + 10}] * gap")
+    b2(f"cN, cF = delassus_forces(bnc, bs, wnn, wnt, wtt, mu, {md}, not {el}, npen)")
     if full:
         for i in range(nz):
             b2(f"cz{i} = -cN * rn_z{i} + cF * rt_z{i}")
@@ -174,7 +177,7 @@ def rhs_contact_lines(lay, corr) -> list[str]:
     L.append(f"    md = y[{lay.n_state - 1}]")
     _core(lay, corr, L, "    ", "md", True)
     diss = ["-cF * sl"]
-    if lay.clearance == "elastic":
+    if lay.clearance == "massless":  # c_s = 0 for a rigid stator
         L.append(f"    cdamp = p[{kc + 6}] * vn * vn if cN > 0.0 else 0.0")
         diss.append("cdamp")
     if lay.clearance == "housing":
@@ -208,7 +211,7 @@ def extra_functions(lay, corr, prefix) -> str:
     sc = _station(lay)
     ih = lay.i_clearance
     house = lay.clearance == "housing"
-    elastic = lay.clearance == "elastic"
+    massless = lay.clearance == "massless"
     i_diss = ih + (4 if house else 0)
     i_drive, i_imp, i_pmax, i_mode = i_diss + 1, i_diss + 2, i_diss + 3, i_diss + 4
     n = lay.n_state
@@ -284,7 +287,7 @@ def extra_functions(lay, corr, prefix) -> str:
           "        g[1] = 1.0", "        g[2] = 1.0", "        g[3] = 1.0", "        return",
           "    r = contact_terms(t, y, p, md)",
           "    g[0] = 1.0",
-          "    g[1] = -r[6]" if elastic else "    g[1] = r[0]",
+          f"    g[1] = -r[6] if p[{kc + 5}] > 0.0 else r[0]" if massless else "    g[1] = r[0]",
           "    if md == 2.0:", "        g[2] = 1.0", f"        g[3] = p[{kc + 2}] * r[0] - abs(r[1])",
           "    else:", f"        g[2] = md * r[4] if p[{kc + 2}] > 0.0 else 1.0", "        g[3] = 1.0"]
     out.append(_DECO + "def events(t, y, p, g):  # pragma: no cover - compiled\n"
@@ -293,11 +296,14 @@ def extra_functions(lay, corr, prefix) -> str:
 
     # reset
     ss_drive = "0.0" if lay.motor else "r[11]"
-    proj = "" if elastic else "        project(y_new, p)\n"
-    contact_branch = (f'''        r = contact_terms(t, y, p, 0.0)
-        enter_mode(t, y_new, p, r[4])
-        return 0
-''' if elastic else f'''        project(y_new, p)
+    proj = (f"        if p[{kc + 5}] == 0.0:\n            project(y_new, p)\n" if massless
+            else "        project(y_new, p)\n")
+    elastic_branch = f'''        if p[{kc + 5}] > 0.0:  # elastic: no impulse, sliding along the slip
+            r = contact_terms(t, y, p, 0.0)
+            enter_mode(t, y_new, p, r[4])
+            return 0
+''' if massless else ""
+    contact_branch = elastic_branch + f'''        project(y_new, p)
         r = contact_terms(t, y_new, p, 1.0)
         vn, sl, bn = r[5], r[4], r[7]
         e = p[{kc + 1}]
@@ -319,7 +325,7 @@ def extra_functions(lay, corr, prefix) -> str:
             r2 = contact_terms(t, y_new, p, 0.0)
             enter_mode(t, y_new, p, 0.0 if stuck else r2[4])
         return 0
-''')
+'''
     out.append(_DECO + f'''def reset(k, t, y, p, y_new):  # pragma: no cover - compiled
     """Reset maps of the clearance's events (see the module docstring)."""
     for i in range({n}):
@@ -332,7 +338,8 @@ def extra_functions(lay, corr, prefix) -> str:
     if k == 2:
         enter_mode(t, y_new, p, 0.0)
         return 0
-    r = contact_terms(t, y, p, 2.0)
+    # slip: slide against the tangential force of the state's mode (rolling, where it fires)
+    r = contact_terms(t, y, p, y[{i_mode}])
     y_new[{i_mode}] = -1.0 if r[1] > 0.0 else 1.0
     return 0
 ''')

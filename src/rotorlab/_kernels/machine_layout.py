@@ -89,9 +89,10 @@ class Layout:
         The structure has a nonzero G.
     energy : bool
         The state carries the drive work and the dissipated energy.
-    clearance : {"", "rigid", "elastic", "housing"}
-        The kind of the machine's clearance (rotor-stator contact), "" for none; see
-        :mod:`rotorlab._kernels.machine_contact`.
+    clearance : {"", "massless", "housing"}
+        The kind of the machine's clearance (rotor-stator contact), "" for none: a massless
+        stator (rigid or elastic, told apart at run time by its stiffness: one compiled kernel
+        for both) or a moving housing; see :mod:`rotorlab._kernels.machine_contact`.
     friction : bool
         The balls have Coulomb or rolling friction (stick-slip modes).
     tilt : tuple of int
@@ -129,7 +130,7 @@ class Layout:
             raise ValueError(f"bad layout tilt={self.tilt!r} for races={self.races!r}")
         if self.drive not in DRIVE_KINDS or self.speed_kind not in SPEED_KINDS:
             raise ValueError(f"bad layout drive={self.drive!r} speed_kind={self.speed_kind!r}")
-        if self.clearance not in ("", "rigid", "elastic", "housing"):
+        if self.clearance not in ("", "massless", "housing"):
             raise ValueError(f"bad layout clearance={self.clearance!r}")
         if self.friction and self.clearance:
             raise ValueError("ball friction and a clearance together are not implemented")

@@ -27,27 +27,13 @@ import numpy as np
 
 from rotorlab._kernels import jeffcott_rub as _k
 from rotorlab.contact._theory import RubRotor
-from rotorlab.models._base import EventSpec, Kernels
+from rotorlab.models._base import Kernels
 from rotorlab.models._checks import check_number as _num
 from rotorlab.models._machine_clearance import pressed_contact_mode
 from rotorlab.models._parameters import rub_slots
 from rotorlab.models._protocol import ParametrisedMixin
 
 __all__ = ["JeffcottRub"]
-
-_KERNELS = Kernels(
-    rhs=_k.rhs,
-    n_state=_k.N_STATE,
-    n_discrete=_k.N_DISCRETE,
-    events=_k.events,
-    reset=_k.reset,
-    event_specs=(
-        EventSpec("contact", -1, "reset"),
-        EventSpec("lift_off", -1, "reset"),
-        EventSpec("stick", -1, "reset"),
-        EventSpec("slip", -1, "reset"),
-    ),
-)
 
 MODES = {0: "free", 1: "sliding (positive slip)", -1: "sliding (negative slip)", 2: "rolling"}
 
@@ -82,8 +68,10 @@ class JeffcottRub(ParametrisedMixin):
     Notes
     -----
     State ``[x, y, vx, vy, dissipated, drive_work, impacts, peak_impulse, mode]`` (the last three
-    discrete); packed parameters and events are documented in
-    :mod:`rotorlab._kernels.jeffcott_rub`. ``energy(y) = m |v|^2 / 2 + k |z|^2 / 2`` (+ the
+    discrete); its 15 packed parameters and events are documented in
+    :mod:`rotorlab._kernels.jeffcott_rub` (now the tests' oracle): the packed vector carries
+    them first, then those of the preset machine (:attr:`machine`) whose generated kernel runs
+    every simulation. ``energy(y) = m |v|^2 / 2 + k |z|^2 / 2`` (+ the
     stator's ``k_s p^2 / 2``); without unbalance, gravity and rotor damping,
     ``energy(y) - energy(y0) = drive_work - dissipated`` exactly.
 
@@ -120,8 +108,21 @@ class JeffcottRub(ParametrisedMixin):
         object.__setattr__(self, "gravity", g)
 
     @property
+    def machine(self):
+        """The :class:`~rotorlab.models.Machine` this rotor is (:mod:`rotorlab.models._rub_machine`):
+        its generated kernel runs every simulation of this model."""
+        from rotorlab.models._rub_machine import rub_machine
+
+        return rub_machine(self)
+
+    @property
     def kernels(self) -> Kernels:
-        return _KERNELS
+        """The preset machine's compiled kernels (events ``contact``, ``lift_off``, ``stick``,
+        ``slip``); the packed vector is :meth:`to_array`."""
+        return self.machine.kernels
+
+    def _compiled_layout(self):
+        return self.machine.layout
 
     def _parameter_slots(self):
         return rub_slots(self)
@@ -131,13 +132,18 @@ class JeffcottRub(ParametrisedMixin):
         return ("x", "y", "vx", "vy", "dissipated", "drive_work", "impacts", "peak_impulse", "mode")
 
     def to_array(self) -> np.ndarray:
+        """The packed parameters: the 15 of :mod:`rotorlab._kernels.jeffcott_rub`, then the
+        preset machine's (its kernel's, ``param_base``)."""
         r = self.rotor
         rigid = r.rigid_stator
-        return np.array([
+        own = np.array([
             r.mass, r.stiffness, r.damping, r.eccentricity, self.spin_speed, r.clearance,
             0.0 if rigid else r.stator_stiffness, r.stator_damping, r.friction, r.rotor_radius,
             self.restitution, self.rest_speed, self.gravity[0], self.gravity[1], 1.0 if rigid else 0.0,
         ])  # fmt: skip
+        p = self.machine.to_array()
+        p[:own.size] = own
+        return p
 
     def initial_state(self, position=(0.0, 0.0), velocity=(0.0, 0.0)) -> np.ndarray:
         """State at rest in the contact accounting: free (mode 0) inside the clearance, pressed
@@ -212,16 +218,8 @@ class JeffcottRub(ParametrisedMixin):
 
     def contact_samples(self, ts, ys, params=None):
         """The contact at saved samples (:class:`rotorlab.contact.ContactSamples`); the normal
-        force from the compiled contact law."""
-        from rotorlab.contact._regimes import ContactSamples
-        from rotorlab.models._rub_rotor import sampled_normal_force
-
-        ys = np.atleast_2d(np.asarray(ys, dtype=float))
-        p = self.to_array() if params is None else np.asarray(params, dtype=float)
-        mode = ys[:, _k.MODE]
-        force = sampled_normal_force(ts, ys, mode, lambda t, row: _k.contact_forces(t, row, p)[0])
-        return ContactSamples(ys[:, [_k.X, _k.Y]], ys[:, [_k.VX, _k.VY]], mode, ys[:, _k.N_IMP],
-                              ys[:, _k.P_MAX], force, np.full(mode.shape, p[_k.P_W]))
+        force from the preset machine's compiled contact law (the states are the machine's)."""
+        return self.machine.contact_samples(ts, ys, self.to_array() if params is None else params)
 
     def gap_state(self, position=(0.0, 0.0), velocity=(0.0, 0.0)) -> np.ndarray:
         """Initial state with the centre at ``position`` (m) moving at ``velocity`` (m/s)."""

@@ -283,7 +283,8 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
                 speed_kind="constant" if self.is_motor else _SPEED_KIND[type(d)],
                 n_table=d.n_table if self.is_motor else 0,
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
-                clearance=self.clearances[0].kind if self.clearances else "",
+                clearance=("housing" if self.clearances[0].kind == "housing" else "massless")
+                if self.clearances else "",
                 friction=self.has_friction,
                 tilt=self._tilt_numbers(), parts=tuple(part.kernel() for part in self.parts),
                 param_base=self.param_base)
@@ -539,15 +540,22 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
             p[o["clearance"]:o["clearance"] + 8] = self.clearances[0].to_array()
             p[o["clearance"] + 8:o["clearance"] + 10] = self.clearance_center
             # rate of the contact's constraint stabilisation: the highest natural frequency
-            import scipy.linalg as sla
-
-            lam = sla.eigvals(red["K"], self._m0())
-            p[o["clearance"] + 10] = math.sqrt(max(float(np.max(np.abs(lam))), 1e-300))
+            p[o["clearance"] + 10] = self._stabilisation_rate()
         for part, place in zip(self.parts, (pl for _, pl in lay.placed_parts)):
             blk = part.pack(self)
             p[place.param:place.param + blk.size] = blk
         self._cache["p"] = p
         return p.copy()
+
+    def _stabilisation_rate(self) -> float:
+        """The clearance's Baumgarte rate (1/s): its own, or the highest natural frequency."""
+        a = self.clearances[0].stabilisation
+        if a is not None:
+            return a
+        import scipy.linalg as sla
+
+        lam = sla.eigvals(self.reduced["K"], self._m0())
+        return math.sqrt(max(float(np.max(np.abs(lam))), 1e-300))
 
     # ------------------------------------------------------------------ variants
     def with_drive(self, drive) -> Machine:

@@ -322,6 +322,10 @@ class Clearance:
         Centre of the stator's circle in the fixed frame (m), the gap vector being measured from
         it; ``"static"``: where the station rests under gravity (the housing built around the
         sagging rotor), see :meth:`rotorlab.models.Machine.clearance_center`.
+    stabilisation : float, optional
+        Rate ``a`` (1/s) of the Baumgarte stabilisation of a rigid sustained contact
+        (:mod:`rotorlab._kernels.machine_contact`); None: the structure's highest natural
+        frequency; 0: none (the rub rotor's law, :attr:`rotorlab.contact.JeffcottRub.machine`).
     """
 
     #: Named parameters of its own numbers: ``clearances[i].<field>`` (its stator's, cone's and
@@ -340,9 +344,12 @@ class Clearance:
     conical: tuple[float, float] | None = None
     rest_speed: float = 1e-5
     center: tuple[float, float] | str = (0.0, 0.0)
+    stabilisation: float | None = None
 
     def __post_init__(self) -> None:
         o = "Clearance"
+        if self.stabilisation is not None:
+            object.__setattr__(self, "stabilisation", _num(o, "stabilisation", self.stabilisation, "1/s"))
         if isinstance(self.center, str):
             if self.center != "static":
                 raise ValueError(f'{o}.center must be (x, y) (m) or "static", got {self.center!r}')
