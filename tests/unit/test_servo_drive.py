@@ -1,0 +1,97 @@
+"""The torque-limited, speed-commanded drive (:class:`rotorlab.models.ServoDrive`).
+
+On the disc of tests/validation/test_machine_sommerfeld.py (1 kg on 1 N/m, critical speed
+1 rad/s, damping 0.05 N s/m, polar inertia J = 0.05 kg m^2), one compiled layout throughout.
+"""
+
+import math
+
+import numpy as np
+import pytest
+
+from rotorlab.integrate import SaveAt, StepControl, solve, solve_ensemble
+from rotorlab.linear import LinearSystem
+from rotorlab.models import Machine, ServoDrive, Unbalance
+
+STRUCTURE = LinearSystem(M=np.diag([1.0, 1.0, 0.3, 0.3]), C=np.diag([0.05, 0.05, 0.0, 0.0]),
+                         G=np.zeros((4, 4)), K=np.diag([1.0, 1.0, 5.0, 5.0]))
+J = 0.05
+CTL = StepControl(rtol=1e-10, atol=1e-12)
+
+
+def machine(limit, unbalance=0.05, **command):
+    kw = dict(operating_speed=2.5, ramp_rate=0.05, gain=1.0) | command
+    return Machine(STRUCTURE, unbalances=(Unbalance(0, unbalance),),
+                   drive=ServoDrive(limit, polar_inertia=J, **kw), n_modes=2, energy_states=True)
+
+
+def speeds(m, ts):
+    sol = solve(m, m.initial_state(spin_speed=0.0), (0.0, ts[-1]), save_at=SaveAt(ts=ts), control=CTL)
+    assert np.all(sol.status == 0) if np.ndim(sol.status) else sol.status == 0
+    return sol, sol.ys[:, m.layout.i_theta + 1]
+
+
+def test_unsaturated_speed_follows_the_proportional_loop_in_closed_form():
+    """Limit never reached, no unbalance: J W' = K (a t - W), so W = a t - (a J / K)(1 - e^(-K t / J))."""
+    a, K = 0.05, 1.0
+    m = machine(100.0, unbalance=0.0, ramp_rate=a, gain=K)
+    ts = np.linspace(0.0, 40.0, 41)
+    _, w = speeds(m, ts)
+    np.testing.assert_allclose(w, a * ts - a * J / K * (1.0 - np.exp(-K * ts / J)), atol=1e-8)
+
+
+def test_saturated_speed_rises_at_limit_over_inertia_then_reaches_the_command():
+    """A constant limit T far below the loop's demand: W = T (t - t_s / 2) / J until the command
+    is met, t_s = T / (K a) the loop's unsaturated start (J W' = K a t there, W ~ 0)."""
+    T = 0.01
+    m = machine(T, unbalance=0.0, ramp_rate=10.0, gain=50.0)  # demand 50 (2.5 - W) >> 0.01
+    ts = np.linspace(0.0, 12.0, 25)
+    _, w = speeds(m, ts)
+    t_s = T / (50.0 * 10.0)
+    early = (ts > 0) & (ts <= 12.0 * 0.9)
+    np.testing.assert_allclose(w[early], T * (ts[early] - t_s / 2) / J, rtol=0, atol=2e-8)
+    _, w_end = speeds(m, np.array([0.0, 2.5 * J / T + 5.0]))
+    assert abs(w_end[-1] - 2.5) < 1e-6  # then held at the operating speed
+
+
+def test_power_ledger_closes_with_the_limited_drive():
+    """drive work = change of kinetic + potential energy + dissipated energy, with the torque
+    switching between the loop and the limit through the resonance."""
+    m = machine(0.02, ramp_rate=0.2, gain=0.05)
+    ts = np.linspace(0.0, 60.0, 61)
+    sol, w = speeds(m, ts)
+    res = m.energy_balance(sol.ts, sol.ys)
+    work = np.abs(sol.ys[:, m.layout.i_energy]).max()
+    assert work > 1e-2
+    assert np.abs(res).max() < 1e-6 * work
+
+
+def test_low_limit_is_captured_at_the_critical_speed_a_higher_one_passes():
+    """With the motor's characteristic T_s (1 - W / 3) as limit (the Sommerfeld test's motor):
+    T_s = 0.0115 N m is captured below the critical speed 1 rad/s, 0.0135 passes (thresholds
+    0.01333-0.01335 N m for the free motor); the servo then settles at its operating speed."""
+    def servo(ts_):
+        return ServoDrive(ts_, polar_inertia=J, no_load_speed=3.0, operating_speed=2.5,
+                          ramp_rate=10.0, gain=5.0)
+    m = Machine(STRUCTURE, unbalances=(Unbalance(0, 0.05),), drive=servo(0.0115), n_modes=2,
+                energy_states=True)
+    P = np.array([m.with_drive(servo(t)).to_array() for t in (0.0115, 0.0135)])
+    sol = solve_ensemble(m, m.initial_state(spin_speed=0.0), (0.0, 400.0), params=P,
+                         control=StepControl(rtol=1e-8, atol=1e-10))
+    assert np.all(sol.status == 0)
+    w = sol.y_final[:, m.layout.i_theta + 1]
+    assert 0.9 < w[0] < 1.0
+    assert abs(w[1] - 2.5) < 0.02
+
+
+def test_named_parameters_and_bad_values():
+    m = machine(0.02)
+    names = {s.parameter.name for s in m._parameter_slots()}
+    for f in ("drive.ramp_rate", "drive.dwell_speed", "drive.dwell_time", "drive.stall_torque"):
+        assert f in names
+    d = ServoDrive(0.02, polar_inertia=J, operating_speed=2.0, ramp_rate=0.5, dwell_speed=1.5,
+                   dwell_time=3.0)
+    assert math.isclose(d.command_duration, 2.0 / 0.5 + 3.0)
+    np.testing.assert_allclose(d.command([1.0, 3.0, 5.0, 6.5, 9.0]), [0.5, 1.5, 1.5, 1.75, 2.0])
+    with pytest.raises(ValueError, match="ServoDrive.ramp_rate"):
+        ServoDrive(0.02, polar_inertia=J, operating_speed=2.0, ramp_rate=0.0)
