@@ -95,3 +95,28 @@ def test_named_parameters_and_bad_values():
     np.testing.assert_allclose(d.command([1.0, 3.0, 5.0, 6.5, 9.0]), [0.5, 1.5, 1.5, 1.75, 2.0])
     with pytest.raises(ValueError, match="ServoDrive.ramp_rate"):
         ServoDrive(0.02, polar_inertia=J, operating_speed=2.0, ramp_rate=0.0)
+
+
+def test_run_up_designer_finds_the_fastest_ramp_the_torque_limit_allows(monkeypatch):
+    """No unbalance, constant limit T = 0.01 N m, J = 0.05 kg m^2: the shortest run-up to 99 % of
+    2.5 rad/s is the torque-limited one, 0.99 * 2.5 J / T = 12.375 s, for every ramp rate above
+    T / J = 0.2 rad/s^2; slower ramps take 0.99 * 2.5 / a. The design search over the ramp rate
+    finds it; a capture makes a design infeasible (run-up-time inf)."""
+    from rotorlab.analyses import _design_run_up as dru
+    from rotorlab.analyses._design import DesignProblem, DesignVariable, design_search
+    from rotorlab.design import DESIGN_OBJECTIVES, DesignPoint
+
+    monkeypatch.setitem(dru.SETTINGS, "n_save", 4000)
+    base = machine(0.01, unbalance=0.0, ramp_rate=0.05, gain=50.0)
+    ops = np.array([2.5])
+    t_slow = DESIGN_OBJECTIVES["run-up-time"].value(DesignPoint(base, ops))
+    assert t_slow == pytest.approx(0.99 * 2.5 / 0.05, rel=2e-3)
+    pb = DesignProblem(base, (DesignVariable("drive.ramp_rate", 0.02, 1.0),), ("run-up-time",), ops)
+    ds = design_search(pb, optimizer="tpe", budget=12, optimizer_seed=1, verify=False)
+    assert bool(ds["feasible"].values.all())
+    best = float(ds["objective_value"].values[ds["pareto"].values, 0][0])
+    assert best == pytest.approx(0.99 * 2.5 * J / 0.01, rel=2e-3)
+    captured = Machine(STRUCTURE, unbalances=(Unbalance(0, 0.05),), n_modes=2, energy_states=True,
+                       drive=ServoDrive(0.0115, polar_inertia=J, no_load_speed=3.0, operating_speed=2.5,
+                                        ramp_rate=10.0, gain=5.0))
+    assert DESIGN_OBJECTIVES["run-up-time"].value(DesignPoint(captured, ops)) == math.inf

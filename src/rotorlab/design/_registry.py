@@ -224,6 +224,24 @@ def _de_run(evaluate, variables: Sequence[tuple[str, float, float]], budget: int
                            init="latinhypercube", polish=False, tol=0.0, atol=0.0, updating="deferred")  # fmt: skip
 
 
+def _run_up_objectives() -> tuple[Objective, ...]:
+    """The run-up designer's objectives (:mod:`rotorlab.analyses._design_run_up`), looked up when
+    evaluated (no import of the analyses here)."""
+    def lazy(name):
+        def value(point):
+            from rotorlab.analyses import _design_run_up
+
+            return getattr(_design_run_up, name)(point)
+        return value
+
+    return (Objective("run-up-time", "s", "time the slowest start needs to reach 99 % of the servo drive's "
+                      "operating speed; infinite (infeasible) when a start is captured", False, lazy("run_up_time")),
+            Objective("run-up-peak", "m", "largest transient peak at a critical speed over the run-ups",
+                      False, lazy("run_up_peak")),
+            Objective("run-up-unbalanced", "1", "one minus the Wilson lower bound (95 %) of P(balanced) at the "
+                      "end of the run-up (limit 0.01: P(balanced) >= 0.99)", False, lazy("run_up_unbalanced")))
+
+
 def _register_builtins() -> None:
     for entry in (
         Objective("ball-mass", "kg", "total mass of the balls", False, ball_mass),
@@ -233,6 +251,7 @@ def _register_builtins() -> None:
                   "over the operating range", True, settle_time),
         Objective("receptance-peak", "m/N", "largest linear receptance of the unbalance's station over the operating "
                   "range (response to a unit rotating force)", False, receptance_peak),
+        *_run_up_objectives(),
     ):  # fmt: skip
         register_objective(entry)
     register_optimizer(Optimizer("tpe", "Optuna's tree-structured Parzen estimator (constrained, multi-objective)",
