@@ -249,6 +249,15 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
     ("design-case-unknown-objective", ["design", FILE], ("autobalancer", "[[analysis]]",
      '[[analysis]]\ntype = "design"\nvary = {ball_mass = ["10 g", "40 g"]}\nobjectives = ["nope"]\n'
      'param = {spin_speed = ["2400 rpm", "2400 rpm", 1]}\n\n[[analysis]]'), ["objectives", "nope", "ball-mass"]),
+    # ---- the run-up designer's servo drive (issue 27 item 2) ----------------------------------------
+    ("servo-negative-ramp-rate", ["validate", FILE], ("washer-horizontal", 'profile = "motor"',
+     'profile = "servo"\noperating_speed = "100 rad/s"\nramp_rate = "-5 rad/s^2"'),
+     ["model.drive.ramp_rate", "-5"]),
+    ("servo-no-operating-speed", ["validate", FILE], ("washer-horizontal", 'profile = "motor"',
+     'profile = "servo"\nramp_rate = "5 rad/s^2"'), ["model.drive.operating_speed"]),
+    ("servo-ramp-rate-wrong-unit", ["validate", FILE], ("washer-horizontal", 'profile = "motor"',
+     'profile = "servo"\noperating_speed = "100 rad/s"\nramp_rate = "5 rad/s"'),
+     ["model.drive.ramp_rate", "angular acceleration"]),
     # ---- impacts / impacts-sweep ----------------------------------------------------------------
     ("impacts-negative-stone", ["impacts", "krasnov-crusher", "--stone-mass", "-1"], None, ["--stone-mass"]),
     ("impacts-zero-t-end", ["impacts", "krasnov-crusher", "--t-end", "0"], None, ["--t-end"]),

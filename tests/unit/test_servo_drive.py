@@ -120,3 +120,27 @@ def test_run_up_designer_finds_the_fastest_ramp_the_torque_limit_allows(monkeypa
                        drive=ServoDrive(0.0115, polar_inertia=J, no_load_speed=3.0, operating_speed=2.5,
                                         ramp_rate=10.0, gain=5.0))
     assert DESIGN_OBJECTIVES["run-up-time"].value(DesignPoint(captured, ops)) == math.inf
+
+
+def test_case_file_servo_drive_builds_the_model(tmp_path):
+    """``[model.drive] profile = "servo"`` with people's units builds the ServoDrive in SI; without a
+    no-load speed the limit is constant."""
+    from importlib import resources
+
+    from rotorlab.io import load_case
+
+    text = resources.files("rotorlab.cases").joinpath("washer-horizontal.toml").read_text(encoding="utf-8")
+    text = text.replace('profile = "motor"\nstall_torque = "10 N*m"\nno_load_speed = "150 rad/s"',
+                        'profile = "servo"\nstall_torque = "10 N*m"\noperating_speed = "955 rpm"\n'
+                        'ramp_rate = "5 rad/s^2"\ndwell_speed = "300 rpm"\ndwell_time = "2 s"\ngain = "3 N*m*s/rad"')
+    text = text.replace("passing_torque = true", "passing_torque = false")
+    path = tmp_path / "case.toml"
+    path.write_text(text, encoding="utf-8")
+    from rotorlab.io._build import build_machine
+
+    d = build_machine(load_case(path).model).drive
+    assert isinstance(d, ServoDrive)
+    assert d.operating_speed == pytest.approx(955 * math.pi / 30)
+    assert (d.ramp_rate, d.dwell_time, d.gain) == (5.0, 2.0, 3.0)
+    assert d.dwell_speed == pytest.approx(10 * math.pi)
+    assert float(d.torque_at(1e4)) == pytest.approx(10.0)  # constant limit
