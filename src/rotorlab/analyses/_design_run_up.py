@@ -108,3 +108,53 @@ def run_up_unbalanced(point) -> float:
     if not runs:
         return 1.0
     return float(1.0 - wilson_interval(sum(o == "balanced" for o in out), runs, 0.95)[0])
+
+
+def design_run_up(case_model, variables, *, peak_limit=None, min_balanced=None, starts=400, seed=0, budget=20,
+                  optimizer="tpe", optimizer_seed=0, check=None) -> dict[str, Any]:
+    """The run-up designer on a case's machine: the design search minimising ``run-up-time`` with
+    the limits ``run-up-peak`` <= ``peak_limit`` and ``run-up-unbalanced`` <= 1 - ``min_balanced``
+    (default 0.99 with balls); ``check(starts, min_balanced)`` may refuse too few starts.
+
+    Returns a JSON-ready dict: ``best`` (values, SI; None if no design is feasible),
+    ``run_up_time`` (s), ``margins`` (>= 0: the limit holds), ``limits``, ``designs``.
+    """
+    from rotorlab.analyses._case import build_model
+    from rotorlab.analyses._design import DesignProblem, DesignVariable, design_search
+
+    model = build_model(case_model)
+    _drive(model)
+    if min_balanced is None and model.n_balls:
+        min_balanced = 0.99
+    limits = {}
+    if peak_limit is not None:
+        limits["run-up-peak"] = float(peak_limit)
+    if min_balanced is not None:
+        if not model.n_balls:
+            raise ValueError("--min-balanced: this machine has no balls (nothing balances)")
+        if check is not None:
+            check(starts, min_balanced)
+        limits["run-up-unbalanced"] = 1.0 - float(min_balanced)
+    vs = tuple(DesignVariable(k, lo, hi) for k, (lo, hi) in variables.items())
+    try:
+        problem = DesignProblem(model, vs, ("run-up-time",), np.array([_drive(model).operating_speed]),
+                                limits=limits)
+    except ValueError as exc:
+        raise ValueError(str(exc).replace("vary.", "--vary ")) from None
+    old = dict(SETTINGS)
+    SETTINGS.update(n_starts=int(starts), seed=int(seed))
+    try:
+        ds = design_search(problem, optimizer=optimizer, budget=budget, optimizer_seed=optimizer_seed, verify=False)
+    finally:
+        SETTINGS.update(old)
+    names = [str(n) for n in ds["variable"].values] if "variable" in ds.coords else list(variables)
+    best = np.flatnonzero(ds["pareto"].values & ds["feasible"].values)
+    doc: dict[str, Any] = {"designs": int(ds.sizes["trial"]), "limits": limits, "best": None, "run_up_time": None,
+                           "margins": None}
+    if best.size:
+        k = int(best[0])
+        doc["best"] = {n: float(v) for n, v in zip(names, ds["value"].values[k])}
+        doc["run_up_time"] = float(ds["objective_value"].values[k, 0])
+        doc["margins"] = {str(c): float(v) for c, v in zip(ds["constraint"].values, ds["margin"].values[k])} \
+            if "constraint" in ds.coords else {}
+    return doc
