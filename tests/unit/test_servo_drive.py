@@ -144,3 +144,28 @@ def test_case_file_servo_drive_builds_the_model(tmp_path):
     assert (d.ramp_rate, d.dwell_time, d.gain) == (5.0, 2.0, 3.0)
     assert d.dwell_speed == pytest.approx(10 * math.pi)
     assert float(d.torque_at(1e4)) == pytest.approx(10.0)  # constant limit
+
+
+def test_peak_limit_is_enforced_and_an_impossible_one_is_no_design():
+    """Unbalance 0.05 kg m on the 1 rad/s disc, constant limit 0.05 N m (T / J = 1 rad/s^2): the
+    transient peak at the critical speed falls as the passage speeds up (0.33 m at 0.02 rad/s^2,
+    0.108 m at 0.1, 0.028 m at 1.0; Lewis 1932). With run-up-peak <= 0.1 m every design slower than
+    about 0.1 rad/s^2 is infeasible and the winner keeps under it; with 0.01 m (below the fastest
+    passage the torque allows) no design is feasible, and none is reported as the winner."""
+    from rotorlab.analyses._design import DesignProblem, DesignVariable, design_search
+
+    base = machine(0.05, unbalance=0.05, ramp_rate=0.1, gain=50.0)
+    ops = np.array([2.5])
+    var = (DesignVariable("drive.ramp_rate", 0.02, 1.0),)
+    ds = design_search(DesignProblem(base, var, ("run-up-time",), ops, limits={"run-up-peak": 0.1}),
+                       budget=8, optimizer_seed=2, verify=False)
+    rate = ds["value"].values[:, 0]
+    feasible = ds["feasible"].values
+    assert feasible.any() and not feasible.all()
+    assert np.all(rate[~feasible] < 0.11) and np.all(rate[feasible] > 0.09)
+    win = np.flatnonzero(ds["pareto"].values)[0]
+    assert ds["margin"].values[win, 0] >= 0.0
+    assert ds["objective_value"].values[win, 0] == pytest.approx(0.99 * 2.5 / max(rate[win], 1.0), rel=0.02)
+    none = design_search(DesignProblem(base, var, ("run-up-time",), ops, limits={"run-up-peak": 0.01}),
+                         budget=4, optimizer_seed=2, verify=False)
+    assert not none["feasible"].values.any() and not none["pareto"].values.any()
