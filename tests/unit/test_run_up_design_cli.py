@@ -50,6 +50,7 @@ def test_shortest_run_up_is_the_torque_limited_one(tmp_path):
     (["--vary", "drive.ramp_rate=1:20", "--starts", "8"], ["--starts", "0.99"]),
     (["--vary", "drive.ramp_rate=1:20", "--peak-limit", "-1"], ["--peak-limit"]),
     (["--vary", "drive.ramp_rate=1:20", "--optimizer", "sgd"], ["--optimizer", "sgd", "tpe"]),
+    (["--vary", "drive.ramp_rate=1:20", "--settle", "-1"], ["--settle"]),
     ([], ["--vary"]),
 ])
 def test_bad_input_exit_2_naming_the_option(tmp_path, argv, words):

@@ -169,3 +169,23 @@ def test_peak_limit_is_enforced_and_an_impossible_one_is_no_design():
     none = design_search(DesignProblem(base, var, ("run-up-time",), ops, limits={"run-up-peak": 0.01}),
                          budget=4, optimizer_seed=2, verify=False)
     assert not none["feasible"].values.any() and not none["pareto"].values.any()
+
+
+def test_balanced_share_constraint_reads_the_run_ups_wilson_bound(monkeypatch):
+    """Two 20 g balls at 0.5 m (capacity 0.02 kg m) run up to 2.5 rad/s (2.5 x the critical speed),
+    8 starts, 300 s to settle: an unbalance of 0.01 kg m is balanced from every start, so
+    run-up-unbalanced = 1 - 8 / (8 + 1.96^2) = 0.3244 (the Wilson bound of 8 / 8); 0.05 kg m is
+    beyond the capacity and never balanced: 1."""
+    from rotorlab.analyses import _design_run_up as dru
+    from rotorlab.design import DESIGN_OBJECTIVES, DesignPoint
+    from rotorlab.models import Ball, BallRace
+
+    monkeypatch.setitem(dru.SETTINGS, "n_starts", 8)
+    monkeypatch.setitem(dru.SETTINGS, "settle", 300.0)
+    z = 1.959963984540054
+    for u, expected in ((0.01, 1.0 - 8.0 / (8.0 + z * z)), (0.05, 1.0)):
+        m = Machine(STRUCTURE, races=(BallRace(0, 0.5, (Ball(0.02, damping=0.005),) * 2),),
+                    unbalances=(Unbalance(0, u),), n_modes=2,
+                    drive=ServoDrive(0.05, polar_inertia=J, operating_speed=2.5, ramp_rate=1.0, gain=50.0))
+        value = DESIGN_OBJECTIVES["run-up-unbalanced"].value(DesignPoint(m, np.array([2.5])))
+        assert value == pytest.approx(expected, rel=1e-9)

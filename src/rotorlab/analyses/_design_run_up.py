@@ -17,7 +17,9 @@ the ensemble). The objectives (registered in :data:`rotorlab.design.DESIGN_OBJEC
     0.01 is "P(balanced) >= 0.99 at 95 % confidence" (it needs >= 380 starts, all balanced).
 
 A run lasts ``SETTLE`` (3) times the longer of the command's duration and the torque-limited
-ramp ``J (W_op - W_0) / T_max(0)``, so the balls have time to settle at the operating speed.
+ramp ``J (W_op - W_0) / T_max(0)``, plus ``SETTINGS["settle"]`` (s, ``--settle``), so the balls
+have time to settle at the operating speed (a run still settling at its end is "not settled",
+never balanced).
 """
 
 from __future__ import annotations
@@ -30,7 +32,7 @@ import numpy as np
 __all__ = ["SETTINGS", "REACHED", "run_up_of", "run_up_time", "run_up_peak", "run_up_unbalanced", "run_up_t_end"]
 
 #: Starts per design and their seed (common random numbers across designs).
-SETTINGS: dict[str, int] = {"n_starts": 400, "seed": 0, "n_save": 2000}
+SETTINGS: dict[str, float] = {"n_starts": 400, "seed": 0, "n_save": 2000, "settle": 0.0}
 #: A run-up has reached the operating speed at this fraction of it.
 REACHED = 0.99
 #: The run lasts this many times the nominal run-up.
@@ -52,7 +54,7 @@ def run_up_t_end(model) -> float:
     d = _drive(model)
     limit = max(float(d.stall_torque), 1e-300)
     nominal = max(d.command_duration, d.polar_inertia * (d.operating_speed - d.initial_speed) / limit)
-    return SETTLE * nominal
+    return SETTLE * nominal + SETTINGS["settle"]
 
 
 def run_up_of(model):
@@ -61,7 +63,7 @@ def run_up_of(model):
 
     d = _drive(model)
     key = (type(model).__name__, model.layout.key if hasattr(model.layout, "key") else repr(model.layout),
-           model.to_array().tobytes(), tuple(sorted(SETTINGS.items())))
+           model.to_array().tobytes(), tuple(sorted(SETTINGS.items())), run_up_t_end(model))
     if _CACHE.get("key") != key:
         rng = np.random.default_rng(SETTINGS["seed"])
         n = model.n_balls
@@ -110,11 +112,11 @@ def run_up_unbalanced(point) -> float:
     return float(1.0 - wilson_interval(sum(o == "balanced" for o in out), runs, 0.95)[0])
 
 
-def design_run_up(case_model, variables, *, peak_limit=None, min_balanced=None, starts=400, seed=0, budget=20,
+def design_run_up(case_model, variables, *, peak_limit=None, min_balanced=None, starts=400, seed=0, settle=0.0, budget=20,
                   optimizer="tpe", optimizer_seed=0, check=None) -> dict[str, Any]:
     """The run-up designer on a case's machine: the design search minimising ``run-up-time`` with
     the limits ``run-up-peak`` <= ``peak_limit`` and ``run-up-unbalanced`` <= 1 - ``min_balanced``
-    (default 0.99 with balls); ``check(starts, min_balanced)`` may refuse too few starts.
+    (default 0.99 with balls), each run-up ``settle`` s longer; ``check(starts, min_balanced)`` may refuse too few starts.
 
     Returns a JSON-ready dict: ``best`` (values, SI; None if no design is feasible),
     ``run_up_time`` (s), ``margins`` (>= 0: the limit holds), ``limits``, ``designs``.
@@ -142,7 +144,7 @@ def design_run_up(case_model, variables, *, peak_limit=None, min_balanced=None, 
     except ValueError as exc:
         raise ValueError(str(exc).replace("vary.", "--vary ")) from None
     old = dict(SETTINGS)
-    SETTINGS.update(n_starts=int(starts), seed=int(seed))
+    SETTINGS.update(n_starts=int(starts), seed=int(seed), settle=float(settle))
     try:
         ds = design_search(problem, optimizer=optimizer, budget=budget, optimizer_seed=optimizer_seed, verify=False)
     finally:

@@ -67,6 +67,8 @@ def run_up_design_command(
                                            help="tpe (default) or differential-evolution.")] = "tpe",
     optimizer_seed: Annotated[int, count_option("--optimizer-seed", low=0, high=MAX_SEED, metavar="S",
                                                 help="Seed of the optimiser.")] = 0,
+    settle: Annotated[float, typer.Option("--settle", metavar="S", help="Time added to each run-up for the balls "
+                                          "to settle at the operating speed (s).")] = 0.0,
     sets: SetOpt = None,
     json_out: JsonOpt = False,
 ) -> None:
@@ -77,6 +79,8 @@ def run_up_design_command(
         variables = _vary(vary)
         if peak_limit is not None and not (math.isfinite(peak_limit) and peak_limit > 0):
             raise BadInput(f"--peak-limit = {peak_limit:g}: must be a finite number > 0 (m)")
+        if not (math.isfinite(settle) and settle >= 0):
+            raise BadInput(f"--settle = {settle:g}: must be a finite number >= 0 (s)")
         if min_balanced is not None and not 0.0 < min_balanced < 1.0:
             raise BadInput(f"--min-balanced = {min_balanced:g}: must be in (0, 1)")
         from rotorlab.design import DESIGN_OPTIMIZERS
@@ -92,7 +96,7 @@ def run_up_design_command(
 
         try:
             doc = design_run_up(loaded.model, variables, peak_limit=peak_limit, min_balanced=min_balanced,
-                                starts=starts, seed=seed, budget=budget, optimizer=optimizer,
+                                starts=starts, seed=seed, settle=settle, budget=budget, optimizer=optimizer,
                                 optimizer_seed=optimizer_seed, check=lambda n, p: _wilson_reachable(n, p))
         except ValueError as exc:
             raise BadInput(f"case {loaded.name}: {exc}") from None
