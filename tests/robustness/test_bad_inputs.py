@@ -258,6 +258,17 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
     ("servo-ramp-rate-wrong-unit", ["validate", FILE], ("washer-horizontal", 'profile = "motor"',
      'profile = "servo"\noperating_speed = "100 rad/s"\nramp_rate = "5 rad/s"'),
      ["model.drive.ramp_rate", "angular acceleration"]),
+    ("run-up-design-motor-case", ["run-up-design", "washer-horizontal", "--vary", "drive.stall_torque=5:20"], None,
+     ["run-up-design", 'profile = "servo"', "'motor'"]),
+    ("run-up-design-unknown-param", ["run-up-design", FILE, "--vary", "drive.ramp_rat=1:20", "--set",
+     "analysis[1].passing_torque=false"],
+     ("washer-horizontal", 'profile = "motor"', 'profile = "servo"\noperating_speed = "100 rad/s"\n'
+      'ramp_rate = "5 rad/s^2"'),
+     ["--vary", "drive.ramp_rat", "drive.ramp_rate"]),
+    ("run-up-design-too-few-starts", ["run-up-design", FILE, "--vary", "drive.ramp_rate=1:20", "--starts", "50",
+     "--set", "analysis[1].passing_torque=false"],
+     ("washer-horizontal", 'profile = "motor"', 'profile = "servo"\noperating_speed = "100 rad/s"\n'
+      'ramp_rate = "5 rad/s^2"'), ["--starts", "50", "--min-balanced", "381"]),
     # ---- impacts / impacts-sweep ----------------------------------------------------------------
     ("impacts-negative-stone", ["impacts", "krasnov-crusher", "--stone-mass", "-1"], None, ["--stone-mass"]),
     ("impacts-zero-t-end", ["impacts", "krasnov-crusher", "--t-end", "0"], None, ["--t-end"]),
