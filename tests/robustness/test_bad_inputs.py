@@ -574,7 +574,7 @@ def test_the_corpus_is_large_and_covers_every_command_and_model_type():
     assert len({entry[0] for entry in CORPUS}) == len(CORPUS)
     commands = {entry[1][0] for entry in CORPUS} | {entry[1][2] for entry in CORPUS if entry[1][0] == "-q"}
     assert commands >= {"run", "simulate", "campbell", "modes", "steady", "stability-chart", "continue", "basin", "sweep",
-                        "show", "impacts", "impacts-sweep", "validate", "cases", "design"}  # fmt: skip
+                        "show", "impacts", "impacts-sweep", "validate", "cases", "design", "run-up-design"}  # fmt: skip
     bases = {entry[2][0] for entry in CORPUS if entry[2]}
     assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher", "rub-jeffcott"}
 
