@@ -249,6 +249,26 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
     ("design-case-unknown-objective", ["design", FILE], ("autobalancer", "[[analysis]]",
      '[[analysis]]\ntype = "design"\nvary = {ball_mass = ["10 g", "40 g"]}\nobjectives = ["nope"]\n'
      'param = {spin_speed = ["2400 rpm", "2400 rpm", 1]}\n\n[[analysis]]'), ["objectives", "nope", "ball-mass"]),
+    # ---- the run-up designer's servo drive (issue 27 item 2) ----------------------------------------
+    ("servo-negative-ramp-rate", ["validate", FILE], ("washer-horizontal", 'profile = "motor"',
+     'profile = "servo"\noperating_speed = "100 rad/s"\nramp_rate = "-5 rad/s^2"'),
+     ["model.drive.ramp_rate", "-5"]),
+    ("servo-no-operating-speed", ["validate", FILE], ("washer-horizontal", 'profile = "motor"',
+     'profile = "servo"\nramp_rate = "5 rad/s^2"'), ["model.drive.operating_speed"]),
+    ("servo-ramp-rate-wrong-unit", ["validate", FILE], ("washer-horizontal", 'profile = "motor"',
+     'profile = "servo"\noperating_speed = "100 rad/s"\nramp_rate = "5 rad/s"'),
+     ["model.drive.ramp_rate", "angular acceleration"]),
+    ("run-up-design-motor-case", ["run-up-design", "washer-horizontal", "--vary", "drive.stall_torque=5:20"], None,
+     ["run-up-design", 'profile = "servo"', "'motor'"]),
+    ("run-up-design-unknown-param", ["run-up-design", FILE, "--vary", "drive.ramp_rat=1:20", "--set",
+     "analysis[1].passing_torque=false"],
+     ("washer-horizontal", 'profile = "motor"', 'profile = "servo"\noperating_speed = "100 rad/s"\n'
+      'ramp_rate = "5 rad/s^2"'),
+     ["--vary", "drive.ramp_rat", "drive.ramp_rate"]),
+    ("run-up-design-too-few-starts", ["run-up-design", FILE, "--vary", "drive.ramp_rate=1:20", "--starts", "50",
+     "--set", "analysis[1].passing_torque=false"],
+     ("washer-horizontal", 'profile = "motor"', 'profile = "servo"\noperating_speed = "100 rad/s"\n'
+      'ramp_rate = "5 rad/s^2"'), ["--starts", "50", "--min-balanced", "381"]),
     # ---- impacts / impacts-sweep ----------------------------------------------------------------
     ("impacts-negative-stone", ["impacts", "krasnov-crusher", "--stone-mass", "-1"], None, ["--stone-mass"]),
     ("impacts-zero-t-end", ["impacts", "krasnov-crusher", "--t-end", "0"], None, ["--t-end"]),
@@ -554,7 +574,7 @@ def test_the_corpus_is_large_and_covers_every_command_and_model_type():
     assert len({entry[0] for entry in CORPUS}) == len(CORPUS)
     commands = {entry[1][0] for entry in CORPUS} | {entry[1][2] for entry in CORPUS if entry[1][0] == "-q"}
     assert commands >= {"run", "simulate", "campbell", "modes", "steady", "stability-chart", "continue", "basin", "sweep",
-                        "show", "impacts", "impacts-sweep", "validate", "cases", "design"}  # fmt: skip
+                        "show", "impacts", "impacts-sweep", "validate", "cases", "design", "run-up-design"}  # fmt: skip
     bases = {entry[2][0] for entry in CORPUS if entry[2]}
     assert bases >= {"autobalancer", "pico21", "friswell-rotor", "strautmanis-torus", "krasnov-crusher", "rub-jeffcott"}
 

@@ -60,6 +60,22 @@ def _table_torque(lay: Layout) -> list[str]:  # piecewise linear, held at the en
     return out
 
 
+def _servo(characteristic: Callable[[Layout], list[str]]) -> Callable[[Layout], list[str]]:
+    """A speed-commanded drive (rotorlab.models._servo): the command from the speed block
+    ``[w0, rate, w_dwell, t_dwell_end, w_op, K]``, its torque K (cmd - om) limited to
+    +-T_max(om) of the characteristic."""
+    def lines(lay: Layout) -> list[str]:
+        k = lay.offsets["speed"]
+        return characteristic(lay) + [
+            "    tlim = max(torque, 0.0)",
+            f"    if t < p[{k + 3}]:",
+            f"        wcmd = min(p[{k}] + p[{k + 1}] * t, p[{k + 2}])",
+            "    else:",
+            f"        wcmd = min(p[{k + 2}] + p[{k + 1}] * (t - p[{k + 3}]), p[{k + 4}])",
+            f"    torque = min(tlim, max(-tlim, p[{k + 5}] * (wcmd - om)))"]
+    return lines
+
+
 @dataclass(frozen=True)
 class DriveLines:
     """The spin lines of a drive kind and, for a motor, its torque lines (None: prescribed)."""
@@ -73,6 +89,8 @@ DRIVES: dict[str, DriveLines] = {
     "profile": DriveLines(_prescribed),
     "linear": DriveLines(_motor_spin, _linear_torque),
     "table": DriveLines(_motor_spin, _table_torque),
+    "servo_linear": DriveLines(_motor_spin, _servo(_linear_torque)),
+    "servo_table": DriveLines(_motor_spin, _servo(_table_torque)),
 }
 
 

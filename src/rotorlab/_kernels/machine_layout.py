@@ -55,7 +55,7 @@ __all__ = ["Layout", "PartPlace", "SPEED_KINDS", "DRIVE_KINDS"]
 # the prescribed speed kinds, each with whether its generated profile is plain arithmetic (the
 # kernel then vectorises in the lane driver); a Hill run-up needs exp, log and series with branches
 SPEED_KINDS = {"constant": True, "ramp": True, "hill": False}
-DRIVE_KINDS = ("profile", "linear", "table")
+DRIVE_KINDS = ("profile", "linear", "table", "servo_linear", "servo_table")
 
 
 class PartPlace(NamedTuple):

@@ -28,6 +28,7 @@ def _load_app() -> Any:
     from rotorlab.cli import _linear  # noqa: F401 - registers the campbell and modes commands
     from rotorlab.cli import _margins  # noqa: F401 - registers the shock-margin and friction-margin commands
     from rotorlab.cli import _new  # noqa: F401 - registers the new command
+    from rotorlab.cli import _run_up_design  # noqa: F401 - registers the run-up-design command
     from rotorlab.cli import _show  # noqa: F401 - registers the show command
     from rotorlab.cli import _steady  # noqa: F401 - registers the steady and stability-chart commands
     from rotorlab.cli import _sweep  # noqa: F401 - registers the sweep command

@@ -38,7 +38,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab._registry import Registry
+from rotorlab._registry import Registry, lazy
 
 __all__ = ["DesignPoint", "Objective", "Optimizer", "DESIGN_OBJECTIVES", "DESIGN_OPTIMIZERS", "register_objective",
            "register_optimizer"]  # fmt: skip
@@ -224,6 +224,20 @@ def _de_run(evaluate, variables: Sequence[tuple[str, float, float]], budget: int
                            init="latinhypercube", polish=False, tol=0.0, atol=0.0, updating="deferred")  # fmt: skip
 
 
+def _run_up_objectives() -> tuple[Objective, ...]:
+    """The run-up designer's objectives (:mod:`rotorlab.analyses._design_run_up`), imported when
+    first evaluated (``lazy``: no import of the analyses here)."""
+    def lazy_value(name):
+        return lazy(f"rotorlab.analyses._design_run_up:{name}")
+
+    return (Objective("run-up-time", "s", "time the slowest start needs to reach 99 % of the servo drive's "
+                      "operating speed; infinite (infeasible) when a start is captured", False, lazy_value("run_up_time")),
+            Objective("run-up-peak", "m", "largest transient peak at a critical speed over the run-ups",
+                      False, lazy_value("run_up_peak")),
+            Objective("run-up-unbalanced", "1", "one minus the Wilson lower bound (95 %) of P(balanced) at the "
+                      "end of the run-up (limit 0.01: P(balanced) >= 0.99)", False, lazy_value("run_up_unbalanced")))
+
+
 def _register_builtins() -> None:
     for entry in (
         Objective("ball-mass", "kg", "total mass of the balls", False, ball_mass),
@@ -233,6 +247,7 @@ def _register_builtins() -> None:
                   "over the operating range", True, settle_time),
         Objective("receptance-peak", "m/N", "largest linear receptance of the unbalance's station over the operating "
                   "range (response to a unit rotating force)", False, receptance_peak),
+        *_run_up_objectives(),
     ):  # fmt: skip
         register_objective(entry)
     register_optimizer(Optimizer("tpe", "Optuna's tree-structured Parzen estimator (constrained, multi-objective)",

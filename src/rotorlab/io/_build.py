@@ -130,6 +130,7 @@ def build_machine(spec: Any) -> Any:
         "motor": lambda: Motor(d.stall_torque if d.speeds is None else (d.speeds, d.torques),
                                d.polar_inertia,
                                float("inf") if d.no_load_speed is None else d.no_load_speed),
+        "servo": lambda: d.build(),
     }
     drive = drives[d.profile]()
     gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)

@@ -63,7 +63,7 @@ from rotorlab.io._multibody_spec import MultibodySpec
 from rotorlab.io._part_specs import PART_SPECS
 from rotorlab.io._station import _Station
 
-__all__ = ["MachineBallSpec", "RaceSpec", "MachineUnbalanceSpec", "GravitySpec", "MotorSpec",
+__all__ = ["MachineBallSpec", "RaceSpec", "MachineUnbalanceSpec", "GravitySpec", "MotorSpec", "ServoSpec",
            "StatorSpec", "ConicalGapSpec", "ClearanceSpec",
            "MachineSpec", "build_machine", "MACHINE_STEADY_PARAMETERS"]
 
@@ -312,7 +312,59 @@ class MotorSpec(AbstractSpeedProfile):
         return self.speeds[-1]
 
 
-_Drive = Annotated[Union[tuple(SPEED_PROFILES.values()) + (MotorSpec,)],  # noqa: UP007
+class ServoSpec(MotorSpec):
+    """A speed-commanded drive whose torque the motor's characteristic limits
+    (:class:`rotorlab.models.ServoDrive`)::
+
+        [model.drive]
+        profile = "servo"
+        stall_torque = "2 N*m"           # the torque limit: the motor's characteristic (or speeds/torques)
+        no_load_speed = "3000 rpm"       # optional with a servo: omitted, the limit is constant
+        polar_inertia = "0.05 kg*m^2"
+        operating_speed = "1200 rpm"     # the command: ramp at ramp_rate, dwell, on to operating_speed
+        ramp_rate = "20 rad/s^2"
+        dwell_speed = "300 rpm"          # optional, with dwell_time (default: no dwell)
+        dwell_time = "2 s"
+        gain = "1 N*m*s/rad"             # speed-loop gain K: T = min(T_max, max(-T_max, K (W_cmd - W)))
+    """
+
+    profile: Literal["servo"] = "servo"  # type: ignore[assignment]
+    operating_speed: quantity("angular_speed", gt=0) = Field(description="the command's final speed (rad/s)")
+    ramp_rate: quantity("angular_acceleration", gt=0) = Field(description="the command's acceleration (rad/s^2)")
+    dwell_speed: quantity("angular_speed", ge=0) = Field(0.0, description="dwell speed (rad/s)")
+    dwell_time: quantity("time", ge=0) = Field(0.0, description="dwell time (s)")
+    gain: quantity("torque_damping", gt=0) = Field(1.0, description="speed-loop gain (N*m*s/rad)")
+
+    @model_validator(mode="before")
+    @classmethod
+    def _constant_limit(cls, data):
+        if isinstance(data, dict) and "stall_torque" in data and "no_load_speed" not in data:
+            data = dict(data, no_load_speed=1e300)  # a constant limit
+        return data
+
+    @model_validator(mode="after")
+    def _command(self):
+        if self.initial_speed > self.operating_speed:
+            raise IssueGroup([Issue(("initial_speed",), f"must be <= operating_speed ({self.operating_speed:g} "
+                                                        "rad/s)", self.initial_speed)])
+        return self
+
+    @property
+    def final_speed(self) -> float:
+        return self.operating_speed
+
+    def build(self):
+        """The :class:`rotorlab.models.ServoDrive`."""
+        from rotorlab.models import ServoDrive
+
+        return ServoDrive(self.stall_torque if self.speeds is None else (self.speeds, self.torques),
+                          self.polar_inertia, self.no_load_speed if self.speeds is None else float("inf"),
+                          operating_speed=self.operating_speed, ramp_rate=self.ramp_rate,
+                          dwell_speed=self.dwell_speed, dwell_time=self.dwell_time, gain=self.gain,
+                          initial_speed=self.initial_speed)
+
+
+_Drive = Annotated[Union[tuple(SPEED_PROFILES.values()) + (MotorSpec, ServoSpec)],  # noqa: UP007
                    Field(discriminator="profile")]
 _Structure = Annotated[Union[MultibodySpec, FeRotorSpec], Field(discriminator="type")]  # noqa: UP007
 

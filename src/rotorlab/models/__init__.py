@@ -27,13 +27,14 @@ from rotorlab.models._machine import (
     Motor,
     Unbalance,
 )
+from rotorlab.models._servo import ServoDrive
 from rotorlab.models._protocol import AbstractParametrisedModel, Parameter, ParameterSpace
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp, speed_from_array
 from rotorlab.models._toroidal_ball import ToroidalBall, WorkingPoint, strautmanis_torus
 
 # In the order the API page shows them (autodoc follows __all__): the models users build first,
 # the interfaces for implementers of a new model last.
-__all__ = ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor",
+__all__ = ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor", "ServoDrive",
            "Clearance", "ElasticStator"]
 __all__ += ["JeffcottBalls", "RotorParams", "BallParams", "Linearization", "fixed_to_rotating",
             "rotating_to_fixed", "ConstantSpeed", "LinearRamp", "HillRunUp", "speed_from_array"]

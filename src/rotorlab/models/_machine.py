@@ -279,7 +279,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
             self._cache["layout"] = _cg.Layout(
                 n_z=self.n_coordinates, races=tuple(len(r.balls) for r in self.races),
                 n_unbalance=len(self._point_unbalances),
-                drive=d.kind if self.is_motor else "profile",
+                drive=d.drive_kind if self.is_motor else "profile",
                 speed_kind="constant" if self.is_motor else _SPEED_KIND[type(d)],
                 n_table=d.n_table if self.is_motor else 0,
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
@@ -502,6 +502,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
         if self.is_motor:
             blk = d.to_array()
             p[o["motor"]:o["motor"] + blk.size] = blk
+            p[o["speed"]:o["speed"] + 6] = d.speed_block()
         else:
             p[o["speed"]:o["speed"] + 6] = d.to_array()
         p[o["gravity"]:o["gravity"] + 2] = self.lateral_gravity

@@ -215,6 +215,15 @@ class Motor:
         return "table" if isinstance(self.torque, tuple) else "linear"
 
     @property
+    def drive_kind(self) -> str:
+        """The layout's drive kind (``rotorlab._kernels.machine_drive.DRIVES``): the characteristic's."""
+        return self.kind
+
+    def speed_block(self) -> np.ndarray:
+        """The machine's speed block with this drive: unused (zeros); a commanded drive fills it."""
+        return np.zeros(6)
+
+    @property
     def n_table(self) -> int:
         return len(self.torque[0]) if self.kind == "table" else 0
 

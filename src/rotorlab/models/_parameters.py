@@ -105,6 +105,8 @@ def _drive_slots(m) -> list[Slot]:
                          lambda mm, v: replace(mm, drive=replace(mm.drive, torque=v))))
         out.append(_slot("drive.no_load_speed", "rad/s", d.no_load_speed, _GT0,
                          lambda mm, v: replace(mm, drive=replace(mm.drive, no_load_speed=v))))
+    if hasattr(type(d), "fields"):  # a commanded drive's own numbers (rotorlab.models._servo)
+        out += owned_slots("drive", d, lambda mm, name, v: replace(mm, drive=replace(mm.drive, **{name: v})))
     return out
 
 
