@@ -127,14 +127,14 @@ def balancer_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
     """The regime mapper of a ``jeffcott_balls`` model (None without balls): its ball starts at
     the analysis' constant speed (integrated in the fixed frame, see
     :class:`~rotorlab.explore.BalancerRegimes`)."""
-    from rotorlab.analyses._builders import jeffcott_balls_model
+    from rotorlab.analyses._case import build_model
     from rotorlab.explore import BalancerRegimes
     from rotorlab.integrate import StepControl
     from rotorlab.models import ConstantSpeed, JeffcottBalls
 
     if case_model.n_balls == 0:
         return None
-    base = jeffcott_balls_model(case_model)
+    base = build_model(case_model)
     omega = analysis.spin_speed(case_model)
     if omega is None:  # spin_speed is a coordinate of every start: any base speed will do
         omega = case_model.critical_speed()
