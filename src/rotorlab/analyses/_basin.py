@@ -112,7 +112,7 @@ def _with_horizon(mapper: Any, given: bool, source: str, explain: dict[str, Any]
 
 def torus_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
     """The regime mapper of a ``toroidal_ball`` model (the ``mapper`` of its model type)."""
-    from rotorlab.analyses._builders import toroidal_ball_model
+    from rotorlab.analyses._case import build_model
     from rotorlab.explore import TorusRegimes
     from rotorlab.integrate import StepControl
 
@@ -120,7 +120,7 @@ def torus_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
         kw["control"] = StepControl(rtol=analysis.rtol or 1e-6, atol=analysis.atol or 1e-8)
     if analysis.spare_turns is not None:
         kw["spare_turns"] = analysis.spare_turns
-    return TorusRegimes(toroidal_ball_model(case_model), **kw)
+    return TorusRegimes(build_model(case_model), **kw)
 
 
 def balancer_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
