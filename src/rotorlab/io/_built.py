@@ -17,7 +17,7 @@ from contextlib import contextmanager
 from contextvars import ContextVar
 from typing import Any
 
-__all__ = ["built_model", "handed_down"]
+__all__ = ["built_model", "handed_down", "handed_down_structure"]
 
 _BUILT: ContextVar[tuple[tuple[Any, Any], ...]] = ContextVar("rotorlab_built_models", default=())
 
@@ -45,4 +45,14 @@ def handed_down(spec: Any, kind: type | None = None) -> Any:
     for s, m in _BUILT.get():
         if s is spec and (kind is None or isinstance(m, kind)):
             return m
+    return None
+
+
+def handed_down_structure(spec: Any) -> Any:
+    """The linear system of a handed-down model whose structure table is ``spec`` (a machine's
+    ``[model.structure]``), or None."""
+    for _, m in _BUILT.get():
+        source = getattr(m, "structure_source", None)
+        if source is not None and source.spec is spec:
+            return source.system
     return None
