@@ -15,16 +15,18 @@ from rotorlab.io import load_case
 
 
 def test_a_case_names_its_compiles(monkeypatch):
-    seen = []
+    seen, models = [], []
 
-    def spy(model, analysis, progress=None):
+    def spy(case_model, analysis, progress=None, model=None):
         seen.append(compiling_for())
+        models.append(model)
         return xarray.Dataset()
 
     monkeypatch.setattr(_case, "run_analysis", spy)
     case = load_case("autobalancer")
     _case.run_case(case)
     assert seen == [f"case '{case.name}', analysis '{a.name}'" for a in case.analyses]
+    assert models[0].n_balls == 2 and all(m is models[0] for m in models)  # built once, handed down
     assert compiling_for() is None  # only while the case runs
     with compile_label("case 'x'"):
         assert compiling_for() == "case 'x'"

@@ -112,7 +112,7 @@ def _with_horizon(mapper: Any, given: bool, source: str, explain: dict[str, Any]
 
 def torus_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
     """The regime mapper of a ``toroidal_ball`` model (the ``mapper`` of its model type)."""
-    from rotorlab.analyses._builders import toroidal_ball_model
+    from rotorlab.analyses._case import build_model
     from rotorlab.explore import TorusRegimes
     from rotorlab.integrate import StepControl
 
@@ -120,21 +120,21 @@ def torus_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
         kw["control"] = StepControl(rtol=analysis.rtol or 1e-6, atol=analysis.atol or 1e-8)
     if analysis.spare_turns is not None:
         kw["spare_turns"] = analysis.spare_turns
-    return TorusRegimes(toroidal_ball_model(case_model), **kw)
+    return TorusRegimes(build_model(case_model), **kw)
 
 
 def balancer_mapper(case_model: Any, analysis: Any, kw: dict[str, Any]) -> Any:
     """The regime mapper of a ``jeffcott_balls`` model (None without balls): its ball starts at
     the analysis' constant speed (integrated in the fixed frame, see
     :class:`~rotorlab.explore.BalancerRegimes`)."""
-    from rotorlab.analyses._builders import jeffcott_balls_model
+    from rotorlab.analyses._case import build_model
     from rotorlab.explore import BalancerRegimes
     from rotorlab.integrate import StepControl
     from rotorlab.models import ConstantSpeed, JeffcottBalls
 
     if case_model.n_balls == 0:
         return None
-    base = jeffcott_balls_model(case_model)
+    base = build_model(case_model)
     omega = analysis.spin_speed(case_model)
     if omega is None:  # spin_speed is a coordinate of every start: any base speed will do
         omega = case_model.critical_speed()

@@ -17,6 +17,7 @@ from typing import TYPE_CHECKING, Any
 
 from rotorlab._compile_cache import compile_label
 from rotorlab.analyses._registry import ANALYSIS_TYPES, MODEL_TYPES, analysis_entry
+from rotorlab.io._built import built_model
 
 if TYPE_CHECKING:
     import xarray
@@ -36,7 +37,8 @@ def _not_runnable(analysis: Any) -> str:
 
 
 def build_model(case_model: Any) -> Any:
-    """Build the model object of a validated case's ``[model]`` table.
+    """Build the model object of a validated case's ``[model]`` table: the one way from a spec
+    to its model (inside :func:`rotorlab.io._built.built_model`, the model built already).
 
     Parameters
     ----------
@@ -79,8 +81,8 @@ def model_quantities(case_model: Any) -> list[dict[str, Any]]:
     return MODEL_TYPES[kind].quantities(case_model) if kind in MODEL_TYPES else []
 
 
-def run_analysis(case_model: Any, analysis: Any,
-                 progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
+def run_analysis(case_model: Any, analysis: Any, progress: Callable[[int, int], None] | None = None,
+                 model: Any = None) -> xarray.Dataset:  # fmt: skip
     """Run one analysis of a case.
 
     Parameters
@@ -92,6 +94,10 @@ def run_analysis(case_model: Any, analysis: Any,
     progress : callable, optional
         ``progress(done, total)``, in the unit of the analysis type (trajectories of a
         simulation or basin; a linear analysis reports 0 of 1, then 1 of 1).
+    model : object, optional
+        The model built from ``case_model`` (:func:`build_model`) when the caller has it; built
+        here otherwise. The analysis runs inside :func:`rotorlab.io._built.built_model`: every
+        build of ``case_model`` below it gives this model (variants derive from it).
 
     Returns
     -------
@@ -110,17 +116,19 @@ def run_analysis(case_model: Any, analysis: Any,
     if analysis.type not in ANALYSIS_TYPES:
         raise ValueError(_not_runnable(analysis))
     kind = getattr(case_model, "type", None)
-    ds = analysis_entry(kind, analysis.type).run(case_model, analysis, progress=progress)
+    with built_model(case_model, build_model(case_model) if model is None else model):
+        ds = analysis_entry(kind, analysis.type).run(case_model, analysis, progress=progress)
+        quantities = model_quantities(case_model)
     ds.attrs["name"] = analysis.name
     ds.attrs["analysis"] = analysis.type
     ds.attrs["model_type"] = str(kind)
-    ds.attrs["model_quantities"] = json.dumps(model_quantities(case_model))
+    ds.attrs["model_quantities"] = json.dumps(quantities)
     return ds
 
 
-def run_case(case: Case,
-             progress: Callable[[str, int, int], None] | None = None) -> dict[str, xarray.Dataset]:  # fmt: skip
-    """Run every analysis of a case, in file order.
+def run_case(case: Case, progress: Callable[[str, int, int], None] | None = None,
+             model: Any = None) -> dict[str, xarray.Dataset]:  # fmt: skip
+    """Run every analysis of a case, in file order, on its model built once.
 
     Parameters
     ----------
@@ -128,6 +136,10 @@ def run_case(case: Case,
         A validated case (:func:`rotorlab.io.load_case`).
     progress : callable, optional
         Called as ``progress(analysis_name, done, total)`` as trajectories finish.
+    model : object, optional
+        ``build_model(case.model)`` when the caller has built it (``rotorlab run`` does, for the
+        sanity checks, the verdict and the report too); built here otherwise, once, and handed
+        to every analysis (:func:`run_analysis`).
 
     Returns
     -------
@@ -142,6 +154,8 @@ def run_case(case: Case,
     for analysis in case.analyses:
         if analysis.type not in ANALYSIS_TYPES:
             raise ValueError(_not_runnable(analysis))
+    if model is None:
+        model = build_model(case.model)
     results = {}
     for analysis in case.analyses:
         report = None
@@ -151,7 +165,7 @@ def run_case(case: Case,
                 progress(name, done, total)
 
         with compile_label(f"case '{case.name}', analysis '{analysis.name}'"):
-            ds = run_analysis(case.model, analysis, progress=report)
+            ds = run_analysis(case.model, analysis, progress=report, model=model)
         ds.attrs["case"] = case.name
         results[analysis.name] = ds
     return results

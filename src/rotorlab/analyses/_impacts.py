@@ -511,10 +511,25 @@ def impact_model(case_model: Any, **overrides: float) -> ImpactRotor:
     (3.0, 160.0, False)
     """
     from rotorlab.io import ImpactRotorSpec
-    from rotorlab.models import CentrifugeRotor, Housing, ImpactRotor, StoneFeed
+    from rotorlab.models import ImpactRotor
 
     if not isinstance(case_model, ImpactRotorSpec):
         raise ValueError(f"needs an impact_rotor model, got {getattr(case_model, 'type', None)!r}")
+    from rotorlab.io._built import handed_down
+
+    model = handed_down(case_model, ImpactRotor)  # the run's model; the overrides derive from it
+    model = _impact_rotor(case_model) if model is None else model
+    for name, value in overrides.items():
+        if name not in SWEEP_PARAMS:
+            raise ValueError(f"unknown override {name!r} (known: {', '.join(SWEEP_PARAMS)})")
+        part, fld, _ = SWEEP_PARAMS[name]
+        model = replace(model, **{part: replace(getattr(model, part), **{fld: float(value)})})
+    return model
+
+
+def _impact_rotor(case_model: Any) -> Any:
+    from rotorlab.models import CentrifugeRotor, Housing, ImpactRotor, StoneFeed
+
     cm, h, s = case_model, case_model.housing, case_model.stones
     rotor = CentrifugeRotor(cm.mass, cm.inertia_transverse, cm.inertia_polar, cm.spin_speed, cm.stiffness_1,
                             cm.stiffness_2, cm.height_1, cm.height_2, cm.internal_friction, cm.translational)  # fmt: skip
@@ -522,13 +537,7 @@ def impact_model(case_model: Any, **overrides: float) -> ImpactRotor:
                       h.count_speed, h.whirl_limit)  # fmt: skip
     feed = StoneFeed(s.mass, s.interval, s.radius, s.height, s.spiral_angle, s.guide_friction, s.start_radius,
                      s.start_speed, s.n_guides, s.guides, s.first_time, s.mass_spread, s.time_jitter)  # fmt: skip
-    model = ImpactRotor(rotor, housing, feed)
-    for name, value in overrides.items():
-        if name not in SWEEP_PARAMS:
-            raise ValueError(f"unknown override {name!r} (known: {', '.join(SWEEP_PARAMS)})")
-        part, fld, _ = SWEEP_PARAMS[name]
-        model = replace(model, **{part: replace(getattr(model, part), **{fld: float(value)})})
-    return model
+    return ImpactRotor(rotor, housing, feed)
 
 
 def _one_run(model: ImpactRotor, analysis: Any, progress: Callable[[int, int], None] | None) -> xarray.Dataset:

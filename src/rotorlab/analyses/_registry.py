@@ -100,6 +100,26 @@ class ModelType:
     mapper: Callable[[Any, Any, dict[str, Any]], Any] | None = None
     analyses: Mapping[str, AnalysisType] = field(default_factory=dict)
 
+    def __post_init__(self) -> None:
+        # within a run, building the run's spec gives the model the run built (rotorlab.io._built)
+        object.__setattr__(self, "build", _handing_down(self.build))
+
+
+def _handing_down(build: Callable[[Any], Any]) -> Callable[[Any], Any]:
+    if getattr(build, "hands_down", False):
+        return build
+
+    def build_once(spec: Any) -> Any:
+        from rotorlab.io._built import handed_down
+
+        built = handed_down(spec)
+        return build(spec) if built is None else built
+
+    build_once.hands_down = True  # type: ignore[attr-defined]
+    build_once.__wrapped__ = build  # type: ignore[attr-defined]
+    build_once.__doc__ = build.__doc__
+    return build_once
+
 
 @dataclass(frozen=True)
 class AnalysisType:

@@ -331,9 +331,9 @@ def _settle_estimate(ts: np.ndarray, distance: np.ndarray, window: np.ndarray) -
 def run_simulate_analysis(case_model: Any, analysis: Any,
                           progress: Callable[[int, int], None] | None = None) -> xarray.Dataset:  # fmt: skip
     """Run a case's ``simulate`` analysis (see :func:`simulate`); ``attrs["name"]`` is its name."""
-    from rotorlab.analyses._builders import jeffcott_balls_model
+    from rotorlab.analyses._case import build_model
 
-    model = jeffcott_balls_model(case_model)
+    model = build_model(case_model)
     omega = analysis.spin_speed(case_model)
     sets = analysis.ball_angle_sets(model.n_balls)
     angles = np.array(sets, dtype=float).reshape(len(sets), model.n_balls)

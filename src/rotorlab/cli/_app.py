@@ -118,10 +118,28 @@ def _load(source: str, sets: list[str] | None = None, settings: Settings | None 
     loaded = load_case(source, overrides=overrides)
     if settings is not None and not settings.quiet:
         from rotorlab.analyses import sanity_warnings
+        from rotorlab.io._built import built_model
 
-        for w in sanity_warnings(loaded):
+        with built_model(loaded.model, model_of(loaded)):
+            warnings = sanity_warnings(loaded)
+        for w in warnings:
             say(f"warning ({w.check}): {w.text}")
     return loaded
+
+
+_MODELS: dict[int, tuple[Any, Any]] = {}
+
+
+def model_of(loaded: Any) -> Any:
+    """The model of a loaded case, built once per command (:func:`rotorlab.analyses.build_model`)."""
+    spec, model = _MODELS.get(id(loaded.model), (None, None))
+    if spec is not loaded.model:
+        from rotorlab.analyses import build_model
+
+        model = build_model(loaded.model)
+        _MODELS.clear()
+        _MODELS[id(loaded.model)] = (loaded.model, model)
+    return model
 
 
 def _json_case(case: Any) -> dict[str, Any]:
@@ -231,34 +249,37 @@ def run_command(
                 raise BadInput(f'analysis[{i}].type = "{a.type}": rotorlab run cannot run this '
                                f"analysis type yet (runnable: {', '.join(ANALYSIS_TYPES)})")  # fmt: skip
         from rotorlab.analyses import sanity_warnings
+        from rotorlab.io._built import built_model
 
-        warnings = sanity_warnings(loaded)
-        for w in () if settings.quiet else warnings:  # before the run, never stopping it (errors stay errors)
-            say(f"warning ({w.check}): {w.text}")
-        count = len(loaded.analyses)
-        info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
-             json_mode=json_out)  # fmt: skip
-        start = time.perf_counter()
-        from rotorlab.analyses import run_case, summarize
+        model = model_of(loaded)  # built once: the analyses, checks, verdict and report share it
+        with built_model(loaded.model, model):
+            warnings = sanity_warnings(loaded)
+            for w in () if settings.quiet else warnings:  # before the run, never stopping it (errors stay errors)
+                say(f"warning ({w.check}): {w.text}")
+            count = len(loaded.analyses)
+            info(settings, f"Running {loaded.name} ({count} {'analysis' if count == 1 else 'analyses'}) ...",
+                 json_mode=json_out)  # fmt: skip
+            start = time.perf_counter()
+            from rotorlab.analyses import run_case, summarize
 
-        from rotorlab.analyses import analysis_entry
+            from rotorlab.analyses import analysis_entry
 
-        entries = {a.name: analysis_entry(loaded.model.type, a.type) for a in loaded.analyses}
-        tasks = {a.name: entries[a.name].task_size(loaded.model, a) for a in loaded.analyses}
-        units = {name: entry.progress_unit for name, entry in entries.items()}
-        with progress_bar(settings, tasks, units) as update:
-            results = run_case(loaded, progress=update)
-        computed = time.perf_counter() - start
-        from rotorlab.report import PRESENTATIONS, write_report
+            entries = {a.name: analysis_entry(loaded.model.type, a.type) for a in loaded.analyses}
+            tasks = {a.name: entries[a.name].task_size(loaded.model, a) for a in loaded.analyses}
+            units = {name: entry.progress_unit for name, entry in entries.items()}
+            with progress_bar(settings, tasks, units) as update:
+                results = run_case(loaded, progress=update, model=model)
+            computed = time.perf_counter() - start
+            from rotorlab.report import PRESENTATIONS, write_report
 
-        shown = {name: PRESENTATIONS[entry.family] for name, entry in entries.items()}
-        tables = {name: summarize(ds) for name, ds in results.items()}
-        with status(settings, "Drawing figures and writing the report ..."):
-            figures = {name: shown[name].figures(ds, name) for name, ds in results.items()}
-            report = write_report(out, loaded, results, figures, tables)
-        from rotorlab.analyses import machine_verdict
+            shown = {name: PRESENTATIONS[entry.family] for name, entry in entries.items()}
+            tables = {name: summarize(ds) for name, ds in results.items()}
+            with status(settings, "Drawing figures and writing the report ..."):
+                figures = {name: shown[name].figures(ds, name) for name, ds in results.items()}
+                report = write_report(out, loaded, results, figures, tables)
+            from rotorlab.analyses import machine_verdict
 
-        verdict = machine_verdict(loaded, results, tables)
+            verdict = machine_verdict(loaded, results, tables)
         files = sorted([report.name, *(f"{n}.nc" for n in results),
                         *(f"{k}.png" for stems in figures.values() for k in stems)])
         total = time.perf_counter() - start
@@ -321,7 +342,8 @@ def run_through_entry(settings: Any, loaded: Any, spec: Any, json_out: bool, out
     info(settings, f"{loaded.name}: {spec.type} ({spec.describe(loaded.model)}) ...", json_mode=json_out)
     with progress_bar(settings, {spec.name: entry.task_size(loaded.model, spec)},
                       {spec.name: entry.progress_unit}) as update:
-        ds = run_analysis(loaded.model, spec, progress=lambda done, n: update(spec.name, done, n))
+        ds = run_analysis(loaded.model, spec, progress=lambda done, n: update(spec.name, done, n),
+                          model=model_of(loaded))
     ds.attrs["case"] = loaded.name
     rows = summarize(ds)
     written = None
@@ -450,7 +472,7 @@ def simulate_command(
             t_end = spec.t_end if spec.t_end is not None else spec.revolutions * 2 * math.pi / min(speeds)
         from rotorlab.analyses import build_model, simulate, summarize
 
-        model = build_model(model_spec)
+        model = model_of(loaded) if model_spec is loaded.model else build_model(model_spec)
         angles = spec.ball_angle_sets(model.n_balls)
         info(settings, f"Simulating {loaded.name}: {len(angles)} start(s) x "
              f"{1 if speeds is None else len(speeds)} speed(s), {t_end:.6g} s ...", json_mode=json_out)  # fmt: skip

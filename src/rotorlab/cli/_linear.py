@@ -18,7 +18,7 @@ from typing import Annotated, Any, Optional
 import typer
 
 from rotorlab._constants import RAD_S_PER_RPM
-from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app
+from rotorlab.cli._app import CaseArg, JsonOpt, SetOpt, _load, _settings, app, model_of
 from rotorlab.cli._options import check_plot_path, check_speed, count_option, parse_speed_range
 from rotorlab.cli._output import BadInput, emit_json, handled, info, status, stdout
 
@@ -202,9 +202,11 @@ def campbell_command(
         info(settings, f"{loaded.name}: {analysis.describe(loaded.model)} ...",
              json_mode=json_out)
         from rotorlab.analyses import campbell_summary, run_linear_analysis, summarize_linear
+        from rotorlab.io._built import built_model
 
         with status(settings, "Computing the Campbell diagram ..."):
-            ds = run_linear_analysis(loaded.model, analysis)
+            with built_model(loaded.model, model_of(loaded)):
+                ds = run_linear_analysis(loaded.model, analysis)
         if plot is not None:
             from rotorlab.plot import campbell_figure
 
@@ -258,8 +260,10 @@ def modes_command(
                              n_modes=modes if modes is not None else (
                                  spec.n_modes if spec is not None else None))
         from rotorlab.analyses import modes_summary, run_linear_analysis, summarize_linear
+        from rotorlab.io._built import built_model
 
-        ds = run_linear_analysis(loaded.model, analysis)
+        with built_model(loaded.model, model_of(loaded)):
+            ds = run_linear_analysis(loaded.model, analysis)
         if json_out:
             emit_json(modes_summary(ds))
             return

@@ -157,6 +157,12 @@ def build_linear_system(spec: Any) -> LinearSystem:
     >>> s.n_nodes, round(s.total_mass, 2)
     (7, 107.12)
     """
+    from rotorlab.io._built import handed_down, handed_down_structure
+    from rotorlab.linear import LinearSystem
+
+    built = handed_down(spec, LinearSystem) or handed_down_structure(spec)
+    if built is not None:  # the run's model, built once (rotorlab.io._built)
+        return built
     kind = getattr(spec, "type", None)
     if kind == "multibody":
         return _multibody(spec)
