@@ -164,10 +164,11 @@ def test_sweep_cli_bad_input_exits_2_and_writes_nothing(tmp_path):
     # a toroidal ball's state names are not a rotor with balls' initial conditions
     res = invoke(*base, "--ic", "psi=0:1:2")
     assert res.exit_code == 2 and "'psi' is not an initial condition of this jeffcott_balls model" in res.stderr
-    # a machine needs a constant speed as a rotor with balls does (the case file's sweep says the same)
+    # a machine needs a constant speed as a rotor with balls does: the case's own analyses that need
+    # one (its tolerances study) already refuse the ramp, naming their key path
     res = invoke("sweep", "pico21-balancer", "--set", 'model.drive={profile="ramp",start=0,stop=1000,duration=1}',
                  "--ic", "psi_1=0:1:2", "--out", str(out))  # fmt: skip
-    assert res.exit_code == 2 and "has no constant speed: give --speed-rpm" in res.stderr and not out.exists()
+    assert res.exit_code == 2 and "analysis[6].speed: give the constant spin speed" in res.stderr and not out.exists()
 
 
 def test_sweep_cli_refuses_foreign_existing_and_damaged_stores(tmp_path):
