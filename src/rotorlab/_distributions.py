@@ -19,7 +19,61 @@ __all__ = ["Distribution", "U_CLIP"]
 #: The design's unit-cube values are kept in [U_CLIP, 1 - U_CLIP] (an open interval for the
 #: quantile functions: a normal's draws stay within 6.1 std of its mean).
 U_CLIP = 0.5 / (1 << 30)
-_KINDS = ("normal", "uniform")
+
+
+class _Normal:
+    """A normal by mean and std, truncated to [low, high] where those are finite."""
+
+    @staticmethod
+    def check(d: Distribution) -> None:
+        if not (math.isfinite(d.mean) and math.isfinite(d.std) and d.std > 0):
+            raise ValueError(f"a normal distribution needs a finite mean and std > 0, got mean = {d.mean:g}, "
+                             f"std = {d.std:g}")  # fmt: skip
+        from scipy import stats
+
+        kept = stats.norm.cdf(d.high, d.mean, d.std) - stats.norm.cdf(d.low, d.mean, d.std)
+        if not kept >= 1e-6:
+            raise ValueError(f"the truncation [{d.low:g}, {d.high:g}] keeps less than 1e-6 of the normal's "
+                             f"probability (mean {d.mean:g}, std {d.std:g})")  # fmt: skip
+
+    @staticmethod
+    def frozen(d: Distribution) -> Any:
+        from scipy import stats
+
+        if math.isinf(d.low) and math.isinf(d.high):
+            return stats.norm(loc=d.mean, scale=d.std)
+        a, b = (d.low - d.mean) / d.std, (d.high - d.mean) / d.std
+        return stats.truncnorm(a, b, loc=d.mean, scale=d.std)
+
+    @staticmethod
+    def describe(d: Distribution) -> str:
+        text = f"normal(mean {d.mean:.6g}, std {d.std:.6g})"
+        if math.isfinite(d.low) or math.isfinite(d.high):
+            text += f" truncated to [{d.low:.6g}, {d.high:.6g}]"
+        return text
+
+
+class _Uniform:
+    """A uniform between finite low and high."""
+
+    @staticmethod
+    def check(d: Distribution) -> None:
+        if not (math.isfinite(d.low) and math.isfinite(d.high)):
+            raise ValueError("a uniform distribution needs finite low and high")
+
+    @staticmethod
+    def frozen(d: Distribution) -> Any:
+        from scipy import stats
+
+        return stats.uniform(loc=d.low, scale=d.high - d.low)
+
+    @staticmethod
+    def describe(d: Distribution) -> str:
+        return f"uniform [{d.low:.6g}, {d.high:.6g}]"
+
+
+#: Each distribution kind: its checks, its scipy frozen distribution and its words.
+_KINDS: dict[str, Any] = {"normal": _Normal, "uniform": _Uniform}
 
 
 @dataclass(frozen=True, slots=True)
@@ -58,28 +112,10 @@ class Distribution:
         lo, hi = float(self.low), float(self.high)
         if math.isnan(lo) or math.isnan(hi) or not lo < hi:
             raise ValueError(f"the bounds must satisfy low < high, got low = {lo:g}, high = {hi:g}")
-        if self.kind == "uniform" and not (math.isfinite(lo) and math.isfinite(hi)):
-            raise ValueError("a uniform distribution needs finite low and high")
-        if self.kind == "normal":
-            if not (math.isfinite(self.mean) and math.isfinite(self.std) and self.std > 0):
-                raise ValueError(f"a normal distribution needs a finite mean and std > 0, got mean = {self.mean:g}, "
-                                 f"std = {self.std:g}")  # fmt: skip
-            from scipy import stats
-
-            kept = stats.norm.cdf(hi, self.mean, self.std) - stats.norm.cdf(lo, self.mean, self.std)
-            if not kept >= 1e-6:
-                raise ValueError(f"the truncation [{lo:g}, {hi:g}] keeps less than 1e-6 of the normal's "
-                                 f"probability (mean {self.mean:g}, std {self.std:g})")  # fmt: skip
+        _KINDS[self.kind].check(self)
 
     def _frozen(self) -> Any:
-        from scipy import stats
-
-        if self.kind == "uniform":
-            return stats.uniform(loc=self.low, scale=self.high - self.low)
-        if math.isinf(self.low) and math.isinf(self.high):
-            return stats.norm(loc=self.mean, scale=self.std)
-        a, b = (self.low - self.mean) / self.std, (self.high - self.mean) / self.std
-        return stats.truncnorm(a, b, loc=self.mean, scale=self.std)
+        return _KINDS[self.kind].frozen(self)
 
     def quantile(self, u: np.ndarray) -> np.ndarray:
         """The values at probabilities ``u`` in (0, 1) (the inverse of the distribution function)."""
@@ -97,9 +133,4 @@ class Distribution:
 
     def describe(self) -> str:
         """The distribution in words, e.g. ``normal(mean 0.005, std 0.0001) truncated to [0, inf)``."""
-        if self.kind == "uniform":
-            return f"uniform [{self.low:.6g}, {self.high:.6g}]"
-        text = f"normal(mean {self.mean:.6g}, std {self.std:.6g})"
-        if math.isfinite(self.low) or math.isfinite(self.high):
-            text += f" truncated to [{self.low:.6g}, {self.high:.6g}]"
-        return text
+        return _KINDS[self.kind].describe(self)
