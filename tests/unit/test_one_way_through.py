@@ -48,6 +48,26 @@ def test_a_single_analysis_command_builds_the_model_once(tmp_path, monkeypatch):
     assert len(calls) == 1
 
 
+def test_validating_and_building_a_machine_case_builds_its_machine_once(monkeypatch):
+    # pico21-balancer's validation asks its machine whether it has steady motions (two stability
+    # charts), `rotorlab validate` and the analyses ask for its critical speed; before, each question
+    # built the machine again (`rotorlab run pico21-balancer`: 3 builds, `validate`: 15)
+    from rotorlab.analyses._case import build_model
+    from rotorlab.io import _build, load_case
+    from rotorlab.io._build import build_machine
+
+    made = []
+    real = _build._machine
+    monkeypatch.setattr(_build, "_machine", lambda spec: made.append(spec) or real(spec))
+    case = load_case("pico21-balancer")
+    assert len(made) == 1  # validation needed the machine: built once
+    machine = build_model(case.model)
+    assert build_machine(case.model) is machine and case.model.critical_speed() > 0
+    assert len(made) == 1
+    edited = case.model.model_copy(update={"n_modes": case.model.n_modes})  # another spec object
+    assert build_machine(edited) is not machine and len(made) == 2
+
+
 def _calls(tree: ast.AST) -> list[str]:
     out = []
     for node in ast.walk(tree):

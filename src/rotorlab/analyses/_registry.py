@@ -101,7 +101,8 @@ class ModelType:
     analyses: Mapping[str, AnalysisType] = field(default_factory=dict)
 
     def __post_init__(self) -> None:
-        # within a run, building the run's spec gives the model the run built (rotorlab.io._built)
+        # within a run, building the run's spec gives the model the run built, and a spec object is
+        # built once (rotorlab.io._built)
         object.__setattr__(self, "build", _handing_down(self.build))
 
 
@@ -110,10 +111,9 @@ def _handing_down(build: Callable[[Any], Any]) -> Callable[[Any], Any]:
         return build
 
     def build_once(spec: Any) -> Any:
-        from rotorlab.io._built import handed_down
+        from rotorlab.io._built import built_once
 
-        built = handed_down(spec)
-        return build(spec) if built is None else built
+        return built_once(spec, build)
 
     build_once.hands_down = True  # type: ignore[attr-defined]
     build_once.__wrapped__ = build  # type: ignore[attr-defined]

@@ -114,14 +114,17 @@ class StructureSource:
 
 def build_machine(spec: Any) -> Any:
     """Build the :class:`rotorlab.models.Machine` of a validated ``machine`` spec (the run's
-    machine when it has built it already, :mod:`rotorlab.io._built`)."""
-    from rotorlab.io._built import handed_down
+    machine when it has built it already, or the one built before from this spec object:
+    :mod:`rotorlab.io._built`)."""
+    from rotorlab.io._built import built_once
+    from rotorlab.models import Machine
+
+    return built_once(spec, _machine, Machine)
+
+
+def _machine(spec: Any) -> Any:
     from rotorlab.models import (Ball, BallRace, ConstantSpeed, Gravity, HillRunUp, LinearRamp,
                                  Machine, Motor)
-
-    built = handed_down(spec, Machine)
-    if built is not None:
-        return built
 
     source = StructureSource(spec.structure)
     races = tuple(BallRace(spec.node_of(r), r.radius,

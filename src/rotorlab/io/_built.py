@@ -8,18 +8,26 @@ verdict facts and the report inside :func:`built_model`. Within it, the builders
 that very spec object (``is``, never equality: an edited copy of a spec is another model), so an
 analysis never builds the case's model again. A variant (another speed, other races) is derived
 from the built model (``with_drive``, ``with_parameters``), never re-built from the spec.
+
+Outside such a block, and for what a case's validation builds before a run starts (whether a
+machine has steady motions, its critical speed, a tolerances study's inputs), the builders
+remember the model of each spec *object* for as long as that object lives (:func:`built_once`):
+validating a case and then running it builds its model once.
 """
 
 from __future__ import annotations
 
-from collections.abc import Iterator
+import weakref
+from collections.abc import Callable, Iterator
 from contextlib import contextmanager
 from contextvars import ContextVar
 from typing import Any
 
-__all__ = ["built_model", "handed_down", "handed_down_structure"]
+__all__ = ["built_model", "built_once", "handed_down", "handed_down_structure"]
 
 _BUILT: ContextVar[tuple[tuple[Any, Any], ...]] = ContextVar("rotorlab_built_models", default=())
+# (id of the spec, builder) -> (weak reference to the spec, its model); an entry leaves with its spec
+_ONCE: dict[tuple[int, Any], tuple[weakref.ref, Any]] = {}
 
 
 @contextmanager
@@ -56,3 +64,33 @@ def handed_down_structure(spec: Any) -> Any:
         if source is not None and source.spec is spec:
             return source.system
     return None
+
+
+def built_once(spec: Any, build: Callable[[Any], Any], kind: type | None = None) -> Any:
+    """The model of ``spec`` built by ``build``: the run's (:func:`handed_down`), else the one
+    ``build`` made before from this very object (``is``: an edited copy is another spec), else
+    ``build(spec)``, remembered while ``spec`` lives (specs and models are immutable).
+
+    >>> class Spec: pass
+    >>> made = []
+    >>> def build(spec):
+    ...     made.append(spec)
+    ...     return f"model {len(made)}"
+    >>> s = Spec()
+    >>> built_once(s, build), built_once(s, build), built_once(Spec(), build)
+    ('model 1', 'model 1', 'model 2')
+    """
+    model = handed_down(spec, kind)
+    if model is not None:
+        return model
+    key = (id(spec), build)
+    entry = _ONCE.get(key)
+    if entry is not None and entry[0]() is spec:
+        return entry[1]
+    model = build(spec)
+    try:
+        ref = weakref.ref(spec, lambda _r, key=key: _ONCE.pop(key, None))
+    except TypeError:  # an object without weak references is not remembered
+        return model
+    _ONCE[key] = (ref, model)
+    return model

@@ -157,16 +157,22 @@ def build_linear_system(spec: Any) -> LinearSystem:
     >>> s.n_nodes, round(s.total_mass, 2)
     (7, 107.12)
     """
-    from rotorlab.io._built import handed_down, handed_down_structure
+    from rotorlab.io._built import built_once, handed_down_structure
     from rotorlab.linear import LinearSystem
 
-    built = handed_down(spec, LinearSystem) or handed_down_structure(spec)
-    if built is not None:  # the run's model, built once (rotorlab.io._built)
+    built = handed_down_structure(spec)
+    if built is not None:  # the run's machine's structure (rotorlab.io._built)
         return built
+    return built_once(spec, _linear_system, LinearSystem)  # built once per spec object
+
+
+#: the builder (a function of this module, looked up when called) of each linear model type
+_LINEAR_BUILDERS = {"multibody": "_multibody", "fe_rotor": "_fe_rotor"}
+
+
+def _linear_system(spec: Any) -> Any:
     kind = getattr(spec, "type", None)
-    if kind == "multibody":
-        return _multibody(spec)
-    if kind == "fe_rotor":
-        return _fe_rotor(spec)
-    raise ValueError(f"model type {kind!r} is not a linear rotor model "
-                     "(linear models: multibody, fe_rotor)")
+    if kind not in _LINEAR_BUILDERS:
+        raise ValueError(f"model type {kind!r} is not a linear rotor model "
+                         f"(linear models: {', '.join(_LINEAR_BUILDERS)})")
+    return globals()[_LINEAR_BUILDERS[kind]](spec)
