@@ -97,21 +97,20 @@ def test_named_parameters_and_bad_values():
         ServoDrive(0.02, polar_inertia=J, operating_speed=2.0, ramp_rate=0.0)
 
 
-def test_run_up_designer_finds_the_fastest_ramp_the_torque_limit_allows(monkeypatch):
+def test_run_up_designer_finds_the_fastest_ramp_the_torque_limit_allows():
     """No unbalance, constant limit T = 0.01 N m, J = 0.05 kg m^2: the shortest run-up to 99 % of
     2.5 rad/s is the torque-limited one, 0.99 * 2.5 J / T = 12.375 s, for every ramp rate above
     T / J = 0.2 rad/s^2; slower ramps take 0.99 * 2.5 / a. The design search over the ramp rate
     finds it; a capture makes a design infeasible (run-up-time inf)."""
-    from rotorlab.analyses import _design_run_up as dru
     from rotorlab.analyses._design import DesignProblem, DesignVariable, design_search
-    from rotorlab.design import DESIGN_OBJECTIVES, DesignPoint
+    from rotorlab.design import DESIGN_OBJECTIVES, DesignPoint, RunUpSettings
 
-    monkeypatch.setitem(dru.SETTINGS, "n_save", 4000)
+    fine = RunUpSettings(n_save=4000)
     base = machine(0.01, unbalance=0.0, ramp_rate=0.05, gain=50.0)
     ops = np.array([2.5])
-    t_slow = DESIGN_OBJECTIVES["run-up-time"].value(DesignPoint(base, ops))
+    t_slow = DESIGN_OBJECTIVES["run-up-time"].value(DesignPoint(base, ops, run_up=fine))
     assert t_slow == pytest.approx(0.99 * 2.5 / 0.05, rel=2e-3)
-    pb = DesignProblem(base, (DesignVariable("drive.ramp_rate", 0.02, 1.0),), ("run-up-time",), ops)
+    pb = DesignProblem(base, (DesignVariable("drive.ramp_rate", 0.02, 1.0),), ("run-up-time",), ops, run_up=fine)
     ds = design_search(pb, optimizer="tpe", budget=12, optimizer_seed=1, verify=False)
     assert bool(ds["feasible"].values.all())
     best = float(ds["objective_value"].values[ds["pareto"].values, 0][0])
@@ -171,21 +170,53 @@ def test_peak_limit_is_enforced_and_an_impossible_one_is_no_design():
     assert not none["feasible"].values.any() and not none["pareto"].values.any()
 
 
-def test_balanced_share_constraint_reads_the_run_ups_wilson_bound(monkeypatch):
+def test_balanced_share_constraint_reads_the_run_ups_wilson_bound():
     """Two 20 g balls at 0.5 m (capacity 0.02 kg m) run up to 2.5 rad/s (2.5 x the critical speed),
     8 starts, 300 s to settle: an unbalance of 0.01 kg m is balanced from every start, so
     run-up-unbalanced = 1 - 8 / (8 + 1.96^2) = 0.3244 (the Wilson bound of 8 / 8); 0.05 kg m is
     beyond the capacity and never balanced: 1."""
-    from rotorlab.analyses import _design_run_up as dru
-    from rotorlab.design import DESIGN_OBJECTIVES, DesignPoint
+    from rotorlab.design import DESIGN_OBJECTIVES, DesignPoint, RunUpSettings
     from rotorlab.models import Ball, BallRace
 
-    monkeypatch.setitem(dru.SETTINGS, "n_starts", 8)
-    monkeypatch.setitem(dru.SETTINGS, "settle", 300.0)
+    settings = RunUpSettings(starts=8, settle=300.0)
     z = 1.959963984540054
     for u, expected in ((0.01, 1.0 - 8.0 / (8.0 + z * z)), (0.05, 1.0)):
         m = Machine(STRUCTURE, races=(BallRace(0, 0.5, (Ball(0.02, damping=0.005),) * 2),),
                     unbalances=(Unbalance(0, u),), n_modes=2,
                     drive=ServoDrive(0.05, polar_inertia=J, operating_speed=2.5, ramp_rate=1.0, gain=50.0))
-        value = DESIGN_OBJECTIVES["run-up-unbalanced"].value(DesignPoint(m, np.array([2.5])))
+        value = DESIGN_OBJECTIVES["run-up-unbalanced"].value(DesignPoint(m, np.array([2.5]), run_up=settings))
         assert value == pytest.approx(expected, rel=1e-9)
+
+
+def test_two_run_up_searches_in_one_process_keep_their_own_settings():
+    """The run-up settings (starts, seed) belong to each design problem: two searches with
+    different settings, one after the other and at the same time in two threads, each give
+    exactly the result it gives alone (a module-level settings table shared by the searches would
+    hand one search the other's starts), and the settings do change the result."""
+    from concurrent.futures import ThreadPoolExecutor
+
+    from rotorlab.analyses._design import DesignProblem, DesignVariable, design_search
+    from rotorlab.design import RunUpSettings
+    from rotorlab.models import Ball, BallRace
+
+    m = Machine(STRUCTURE, races=(BallRace(0, 0.5, (Ball(0.02, damping=0.005),) * 2),),
+                unbalances=(Unbalance(0, 0.01),), n_modes=2,
+                drive=ServoDrive(0.05, polar_inertia=J, operating_speed=2.5, ramp_rate=1.0, gain=50.0))
+    ops = np.array([2.5])
+
+    def search(starts, seed):
+        pb = DesignProblem(m, (DesignVariable("drive.ramp_rate", 0.2, 1.0),), ("run-up-peak",), ops,
+                           run_up=RunUpSettings(starts=starts, seed=seed, n_save=400))
+        ds = design_search(pb, budget=2, optimizer_seed=0, verify=False)
+        return ds["value"].values.copy(), ds["objective_value"].values.copy()
+
+    a, b = search(2, 1), search(3, 2)
+    assert not np.array_equal(a[1], b[1])  # other starts, other transient peaks
+    assert np.array_equal(a[0], b[0])  # the same optimiser seed proposes the same ramp rates
+    with ThreadPoolExecutor(2) as pool:
+        fa, fb = pool.submit(search, 2, 1), pool.submit(search, 3, 2)
+        both = fa.result(), fb.result()
+    for alone, together in zip((a, b), both):
+        np.testing.assert_array_equal(together[0], alone[0])
+        np.testing.assert_array_equal(together[1], alone[1])
+    assert np.array_equal(search(2, 1)[1], a[1])  # and again after the other one

@@ -29,7 +29,7 @@ from typing import Any
 
 import numpy as np
 
-from rotorlab.design import DESIGN_OBJECTIVES, DESIGN_OPTIMIZERS, DesignPoint
+from rotorlab.design import DESIGN_CONSTRAINTS, DESIGN_OBJECTIVES, DESIGN_OPTIMIZERS, DesignPoint, RunUpSettings
 
 __all__ = ["DesignVariable", "DesignProblem", "design_search", "pareto_mask", "VERIFY_SEED_OFFSET"]
 
@@ -86,6 +86,14 @@ class DesignProblem:
     horizon_given : bool
         The mapper's horizon was set (else each design gets the longest default horizon of its
         balanced state over the operating values).
+    chunk : int, optional
+        Starts per task of the sweep engine.
+    constraints : tuple of str
+        Names of :data:`~rotorlab.design.DESIGN_CONSTRAINTS` every feasible design meets
+        (``no-housing-contact``).
+    run_up : RunUpSettings
+        How each design's run-ups are simulated (the run-up objectives and constraints): starts,
+        seed, saved states, settling time. Carried by the problem, so searches never share them.
     """
 
     model: Any
@@ -102,6 +110,8 @@ class DesignProblem:
     confidence: float = 0.95
     horizon_given: bool = False
     chunk: int | None = None
+    constraints: tuple[str, ...] = ()
+    run_up: RunUpSettings = field(default_factory=RunUpSettings)
 
     def __post_init__(self) -> None:
         problems = self.issues()
@@ -139,6 +149,14 @@ class DesignProblem:
                 out.append((key, f"{name!r} is not an objective (allowed: {', '.join(DESIGN_OBJECTIVES)})"))
             elif DESIGN_OBJECTIVES[name].needs_starts and self.mapper is None:
                 out.append(("objectives", f"{name!r} needs random starts, i.e. a model with a regime mapper"))
+            elif DESIGN_OBJECTIVES[name].refuses is not None and DESIGN_OBJECTIVES[name].refuses(self.model):
+                key = "objectives" if name in self.objectives else f"limits.{name}"
+                out.append((key, f"{name!r} {DESIGN_OBJECTIVES[name].refuses(self.model)}"))
+        for name in self.constraints:
+            if name not in DESIGN_CONSTRAINTS:
+                out.append(("constraints", f"{name!r} is not a constraint (allowed: {', '.join(DESIGN_CONSTRAINTS)})"))
+            elif DESIGN_CONSTRAINTS[name].refuses(self.model):
+                out.append(("constraints", f"{name!r} {DESIGN_CONSTRAINTS[name].refuses(self.model)}"))
         if self.min_balanced is not None and self.mapper is None:
             out.append(("min_balanced", "needs a model with a regime mapper (balls)"))
         if not self.variables:
@@ -219,7 +237,7 @@ class _Evaluator:
                 mapper, ListAxis(pb.operating_name, np.asarray(pb.operating, dtype=float)), pb.ranges, seed=seed,
                 starts=pb.starts, confidence=pb.confidence, chunk_size=pb.chunk, store=path,
                 resume=self.resume and path is not None and path.exists(), executor=self.executor)  # fmt: skip
-        at = DesignPoint(model, np.asarray(pb.operating, dtype=float), stability)
+        at = DesignPoint(model, np.asarray(pb.operating, dtype=float), stability, pb.run_up)
         metrics = {n: float(DESIGN_OBJECTIVES[n].value(at)) for n in dict.fromkeys((*pb.objectives, *pb.limits))}
         out: dict[str, Any] = {"values": dict(values), "metrics": metrics, "t_end": math.nan}
         if stability is not None:
@@ -234,6 +252,8 @@ class _Evaluator:
         for name, limit in pb.limits.items():
             margins[f"limits.{name}"] = float((limit - metrics[name]) / abs(limit)) if math.isfinite(metrics[name]) \
                 else -math.inf  # fmt: skip
+        for name in pb.constraints:
+            margins[f"constraints.{name}"] = float(DESIGN_CONSTRAINTS[name].margin(at))
         out["margins"] = margins
         out["cpu_s"] = time.process_time() - cpu
         return out

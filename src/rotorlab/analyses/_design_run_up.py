@@ -1,10 +1,12 @@
-"""The run-up designer: design-search objectives read from run-ups of a speed-commanded,
-torque-limited drive (:class:`rotorlab.models.ServoDrive`).
+"""The run-up designer: design-search objectives and constraints read from run-ups of a
+speed-commanded, torque-limited drive (:class:`rotorlab.models.ServoDrive`).
 
-Each design is run up from rest from :data:`SETTINGS` ``n_starts`` ball starts (uniform random
-angles, the same ``seed`` for every design: common random numbers) with
-:func:`rotorlab.analyses._machine_run_up.run_up_starts`, once per design (the objectives share
-the ensemble). The objectives (registered in :data:`rotorlab.design.DESIGN_OBJECTIVES`):
+Each design is run up from rest from its problem's :class:`~rotorlab.design.RunUpSettings`
+``starts`` ball starts (uniform random angles, the same ``seed`` for every design: common random
+numbers) with :func:`rotorlab.analyses._machine_run_up.run_up_starts`, once per design: the
+ensemble is kept in the design point's ``memo``, which the objectives of that design share and
+which dies with it (no state outlives a design, none is shared between searches). The objectives
+(registered in :data:`rotorlab.design.DESIGN_OBJECTIVES`):
 
 ``run-up-time``
     The time (s) the slowest start takes to reach ``REACHED`` (99 %) of the drive's operating
@@ -16,8 +18,11 @@ the ensemble). The objectives (registered in :data:`rotorlab.design.DESIGN_OBJEC
     One minus the Wilson lower bound (95 %) of P(balanced) at the end of the run-up; the limit
     0.01 is "P(balanced) >= 0.99 at 95 % confidence" (it needs >= 380 starts, all balanced).
 
+and the constraint ``no-housing-contact`` (:data:`rotorlab.design.DESIGN_CONSTRAINTS`,
+:func:`housing_margin`).
+
 A run lasts ``SETTLE`` (3) times the longer of the command's duration and the torque-limited
-ramp ``J (W_op - W_0) / T_max(0)``, plus ``SETTINGS["settle"]`` (s, ``--settle``), so the balls
+ramp ``J (W_op - W_0) / T_max(0)``, plus the settings' ``settle`` (s, ``--settle``), so the balls
 have time to settle at the operating speed (a run still settling at its end is "not settled",
 never balanced).
 """
@@ -29,48 +34,58 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["SETTINGS", "REACHED", "run_up_of", "run_up_time", "run_up_peak", "run_up_unbalanced", "run_up_t_end"]
+__all__ = ["REACHED", "run_up_of", "run_up_time", "run_up_peak", "run_up_unbalanced", "run_up_t_end",
+           "housing_margin", "no_servo_drive", "no_housing_run_up", "design_run_up"]
 
-#: Starts per design and their seed (common random numbers across designs).
-SETTINGS: dict[str, float] = {"n_starts": 400, "seed": 0, "n_save": 2000, "settle": 0.0}
 #: A run-up has reached the operating speed at this fraction of it.
 REACHED = 0.99
 #: The run lasts this many times the nominal run-up.
 SETTLE = 3.0
 
-_CACHE: dict[str, Any] = {}
+_NEEDS_SERVO = "needs a machine driven by a ServoDrive ([model.drive] profile = \"servo\")"
+
+
+def no_servo_drive(model) -> str | None:
+    """Why a model's run-ups cannot be designed (None: it has a servo drive)."""
+    d = getattr(model, "drive", None)
+    return None if d is not None and hasattr(d, "command_duration") else _NEEDS_SERVO
+
+
+def no_housing_run_up(model) -> str | None:
+    """Why ``no-housing-contact`` cannot apply (None: a servo-driven machine with a clearance)."""
+    if not getattr(model, "clearances", ()):
+        return "needs a machine with a clearance ([[model.clearances]]): this one has none, so it cannot touch"
+    return no_servo_drive(model)
 
 
 def _drive(model):
-    d = getattr(model, "drive", None)
-    if d is None or not hasattr(d, "command_duration"):
-        raise ValueError("the run-up objectives need a machine driven by a ServoDrive "
-                         "([model.drive] profile = \"servo\")")
-    return d
+    why = no_servo_drive(model)
+    if why is not None:
+        raise ValueError(f"the run-up objectives {why}")
+    return model.drive
 
 
-def run_up_t_end(model) -> float:
-    """The horizon of a design's run-ups (s)."""
+def run_up_t_end(model, settings) -> float:
+    """The horizon of a design's run-ups (s), ``settings`` a :class:`~rotorlab.design.RunUpSettings`."""
     d = _drive(model)
     limit = max(float(d.stall_torque), 1e-300)
     nominal = max(d.command_duration, d.polar_inertia * (d.operating_speed - d.initial_speed) / limit)
-    return SETTLE * nominal + SETTINGS["settle"]
+    return SETTLE * nominal + float(settings.settle)
 
 
-def run_up_of(model):
-    """The run-up ensemble of a design (cached for the last design): a Dataset over ``ic``."""
+def run_up_of(point):
+    """The run-up ensemble of a design point (computed once per point): a Dataset over ``ic``."""
     from rotorlab.analyses._machine_run_up import run_up_starts
 
-    d = _drive(model)
-    key = (type(model).__name__, model.layout.key if hasattr(model.layout, "key") else repr(model.layout),
-           model.to_array().tobytes(), tuple(sorted(SETTINGS.items())), run_up_t_end(model))
-    if _CACHE.get("key") != key:
-        rng = np.random.default_rng(SETTINGS["seed"])
+    if "run_up" not in point.memo:
+        model, settings = point.model, point.run_up
+        d = _drive(model)
+        rng = np.random.default_rng(settings.seed)
         n = model.n_balls
-        starts = [tuple(rng.uniform(0.0, 2 * np.pi, n)) for _ in range(SETTINGS["n_starts"])] if n else [None]
-        _CACHE.update(key=key, ds=run_up_starts(model, starts, t_end=run_up_t_end(model),
-                                                n_save=SETTINGS["n_save"], initial_speed=d.initial_speed))
-    return _CACHE["ds"]
+        starts = [tuple(rng.uniform(0.0, 2 * np.pi, n)) for _ in range(settings.starts)] if n else [None]
+        point.memo["run_up"] = run_up_starts(model, starts, t_end=run_up_t_end(model, settings),
+                                             n_save=settings.n_save, initial_speed=d.initial_speed)
+    return point.memo["run_up"]
 
 
 def _reach_times(model, ds) -> np.ndarray:
@@ -89,7 +104,7 @@ def _reach_times(model, ds) -> np.ndarray:
 def run_up_time(point) -> float:
     """Time (s) the slowest start needs to reach 99 % of the operating speed; ``inf`` when a start
     is captured (or failed, or never gets there)."""
-    ds = run_up_of(point.model)
+    ds = run_up_of(point)
     if np.any(np.isfinite(np.asarray(ds["captured_at"].values, dtype=float))) or np.any(ds["status"].values < 0):
         return math.inf
     return float(np.max(_reach_times(point.model, ds)))
@@ -97,7 +112,7 @@ def run_up_time(point) -> float:
 
 def run_up_peak(point) -> float:
     """Largest transient peak at a critical speed over the starts (m); ``inf`` if none passed."""
-    peaks = np.asarray(run_up_of(point.model)["critical_peak"].values, dtype=float)
+    peaks = np.asarray(run_up_of(point)["critical_peak"].values, dtype=float)
     return float(np.nanmax(peaks)) if np.any(np.isfinite(peaks)) else math.inf
 
 
@@ -105,24 +120,44 @@ def run_up_unbalanced(point) -> float:
     """One minus the Wilson lower bound (95 %) of P(balanced) at the run-up's end (1)."""
     from rotorlab._wilson import wilson_interval
 
-    out = [str(o) for o in run_up_of(point.model)["outcome"].values]
+    out = [str(o) for o in run_up_of(point)["outcome"].values]
     runs = sum(o != "failed" for o in out)
     if not runs:
         return 1.0
     return float(1.0 - wilson_interval(sum(o == "balanced" for o in out), runs, 0.95)[0])
 
 
+def housing_margin(point) -> float:
+    """Margin of ``no-housing-contact`` (1): ``(gap - d_max) / gap``, ``d_max`` the largest distance
+    of the clearance station from the stator's centre over every saved state of every run-up;
+    where a run-up touched (an impact or sustained contact recorded, or ``d_max >= gap``) minus
+    the share of run-ups that touched; a failed run-up counts as touched (nothing is known)."""
+    ds = run_up_of(point)
+    gap = float(ds.attrs["gap"])
+    far = np.asarray(ds["clearance_distance"].values, dtype=float).reshape(ds.sizes["ic"], -1)
+    worst = np.nanmax(far, axis=1)
+    touched = (np.asarray(ds["impacts"].values, dtype=float).reshape(-1) > 0) | ~(worst < gap) \
+        | (np.asarray(ds["status"].values).reshape(-1) < 0)
+    if touched.any():
+        return -float(np.mean(touched))
+    return float((gap - np.max(worst)) / gap)
+
+
 def design_run_up(case_model, variables, *, peak_limit=None, min_balanced=None, starts=400, seed=0, settle=0.0, budget=20,
-                  optimizer="tpe", optimizer_seed=0, check=None) -> dict[str, Any]:
+                  optimizer="tpe", optimizer_seed=0, check=None, constraints=()) -> dict[str, Any]:
     """The run-up designer on a case's machine: the design search minimising ``run-up-time`` with
     the limits ``run-up-peak`` <= ``peak_limit`` and ``run-up-unbalanced`` <= 1 - ``min_balanced``
-    (default 0.99 with balls), each run-up ``settle`` s longer; ``check(starts, min_balanced)`` may refuse too few starts.
+    (default 0.99 with balls) and the named ``constraints`` (:data:`rotorlab.design.DESIGN_CONSTRAINTS`),
+    each run-up ``settle`` s longer; ``check(starts, min_balanced)`` may refuse too few starts. The
+    settings travel with the problem (:class:`~rotorlab.design.RunUpSettings`): two calls never
+    share them.
 
     Returns a JSON-ready dict: ``best`` (values, SI; None if no design is feasible),
     ``run_up_time`` (s), ``margins`` (>= 0: the limit holds), ``limits``, ``designs``.
     """
     from rotorlab.analyses._case import build_model
     from rotorlab.analyses._design import DesignProblem, DesignVariable, design_search
+    from rotorlab.design import RunUpSettings
 
     model = build_model(case_model)
     _drive(model)
@@ -140,15 +175,11 @@ def design_run_up(case_model, variables, *, peak_limit=None, min_balanced=None, 
     vs = tuple(DesignVariable(k, lo, hi) for k, (lo, hi) in variables.items())
     try:
         problem = DesignProblem(model, vs, ("run-up-time",), np.array([_drive(model).operating_speed]),
-                                limits=limits)
+                                limits=limits, constraints=tuple(constraints),
+                                run_up=RunUpSettings(starts=int(starts), seed=int(seed), settle=float(settle)))
     except ValueError as exc:
         raise ValueError(str(exc).replace("vary.", "--vary ")) from None
-    old = dict(SETTINGS)
-    SETTINGS.update(n_starts=int(starts), seed=int(seed), settle=float(settle))
-    try:
-        ds = design_search(problem, optimizer=optimizer, budget=budget, optimizer_seed=optimizer_seed, verify=False)
-    finally:
-        SETTINGS.update(old)
+    ds = design_search(problem, optimizer=optimizer, budget=budget, optimizer_seed=optimizer_seed, verify=False)
     names = [str(n) for n in ds["variable"].values] if "variable" in ds.coords else list(variables)
     best = np.flatnonzero(ds["pareto"].values & ds["feasible"].values)
     doc: dict[str, Any] = {"designs": int(ds.sizes["trial"]), "limits": limits, "best": None, "run_up_time": None,

@@ -125,7 +125,8 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
         Over ``time``: ``speed`` (rad/s), ``amplitude`` (time, station) radial displacement of
         each node (m), ``ball_angle`` (time, ball) relative to the rotor (rad); under gravity
         ``displacement_from_rest`` (time, station), with a clearance ``clearance_distance``
-        (time) and ``attrs`` ``gap``, ``clearance_station``
+        (time), ``impacts`` (the contact ledger's count at the end) and ``attrs`` ``gap``,
+        ``clearance_station``
         (:func:`~rotorlab.analyses._machine_common.add_figure_variables`). Attributes:
         ``critical_speeds`` (rad/s, forward 1x, balls locked), ``final_speed``,
         ``passed`` and ``captured_at`` (:func:`run_up_verdict`), ``residual_amplitude`` per
@@ -180,6 +181,8 @@ def machine_run_up(machine, *, t_end: float, n_save: int = 2000, ball_angles=Non
                "final_speed": final, "passed": passed, "captured_at": captured,
                "settle_estimate": settle, "status": int(status[0]), "status_detail": notes[0]},
     )
+    if machine.clearances:  # the contact ledger's impact count at the end (sustained contact counts one)
+        ds["impacts"] = ((), float(sol.ys[-1, machine.state_names.index("impacts")]), {"units": "1"})
     return add_figure_variables(ds, machine, sol.ys, ("time",))
 
 

@@ -33,18 +33,54 @@ from __future__ import annotations
 import math
 import re
 from collections.abc import Callable, Sequence
-from dataclasses import dataclass
+from dataclasses import dataclass, field
 from typing import Any
 
 import numpy as np
 
 from rotorlab._registry import Registry, lazy
 
-__all__ = ["DesignPoint", "Objective", "Optimizer", "DESIGN_OBJECTIVES", "DESIGN_OPTIMIZERS", "register_objective",
-           "register_optimizer"]  # fmt: skip
+__all__ = ["DesignPoint", "RunUpSettings", "Objective", "Optimizer", "DESIGN_OBJECTIVES", "DESIGN_OPTIMIZERS",
+           "register_objective", "register_optimizer"]  # fmt: skip
 
 #: A ball's mass among a model's named parameters (``balls[0].mass``, ``races[1].balls[2].mass``).
 _BALL_MASS = re.compile(r"(^|\.)balls\[\d+\]\.mass$")
+
+
+@dataclass(frozen=True)
+class RunUpSettings:
+    """How a design's run-ups are simulated (the run-up objectives and constraints): part of the
+    design problem, so two searches with different settings never share them.
+
+    Parameters
+    ----------
+    starts : int
+        Run-ups from random ball starts per design (uniform angles), >= 1.
+    seed : int
+        Seed of those starts, the same for every design (common random numbers), >= 0.
+    n_save : int
+        Saved states per run-up, >= 10.
+    settle : float
+        Time added to each run-up for the balls to settle at the operating speed (s), >= 0.
+
+    Examples
+    --------
+    >>> RunUpSettings(starts=8, seed=1)
+    RunUpSettings(starts=8, seed=1, n_save=2000, settle=0.0)
+    """
+
+    starts: int = 400
+    seed: int = 0
+    n_save: int = 2000
+    settle: float = 0.0
+
+    def __post_init__(self) -> None:
+        for name, low in (("starts", 1), ("seed", 0), ("n_save", 10)):
+            v = getattr(self, name)
+            if isinstance(v, bool) or not isinstance(v, (int, np.integer)) or v < low:
+                raise ValueError(f"RunUpSettings.{name} must be an integer >= {low}, got {v!r}")
+        if not (isinstance(self.settle, (int, float)) and math.isfinite(self.settle) and self.settle >= 0):
+            raise ValueError(f"RunUpSettings.settle must be a finite number >= 0 (s), got {self.settle!r}")
 
 
 @dataclass(frozen=True)
@@ -60,11 +96,18 @@ class DesignPoint:
     stability : xarray.Dataset or None
         :func:`rotorlab.explore.basin_stability_over`'s result at ``operating`` (None when no
         objective or constraint needs random starts).
+    run_up : RunUpSettings
+        How the design's run-ups are simulated (the problem's).
+    memo : dict
+        Results shared by the objectives of this one design (its run-up ensemble); it lives and
+        dies with the point.
     """
 
     model: Any
     operating: np.ndarray
     stability: Any = None
+    run_up: RunUpSettings = field(default_factory=RunUpSettings)
+    memo: dict = field(default_factory=dict, compare=False, repr=False)
 
 
 @dataclass(frozen=True)
@@ -83,6 +126,9 @@ class Objective:
         Whether it reads the design's random starts (``point.stability``).
     value : callable
         ``value(point) -> float`` (SI).
+    refuses : callable, optional
+        ``refuses(model) -> str | None``: why the objective cannot be computed for this model
+        (None: it can), checked before anything runs.
     """
 
     name: str
@@ -90,6 +136,7 @@ class Objective:
     description: str
     needs_starts: bool
     value: Callable[[DesignPoint], float]
+    refuses: Callable[[Any], str | None] | None = None
 
 
 @dataclass(frozen=True)
@@ -230,12 +277,15 @@ def _run_up_objectives() -> tuple[Objective, ...]:
     def lazy_value(name):
         return lazy(f"rotorlab.analyses._design_run_up:{name}")
 
+    refuses = lazy_value("no_servo_drive")
     return (Objective("run-up-time", "s", "time the slowest start needs to reach 99 % of the servo drive's "
-                      "operating speed; infinite (infeasible) when a start is captured", False, lazy_value("run_up_time")),
+                      "operating speed; infinite (infeasible) when a start is captured", False, lazy_value("run_up_time"),
+                      refuses),
             Objective("run-up-peak", "m", "largest transient peak at a critical speed over the run-ups",
-                      False, lazy_value("run_up_peak")),
+                      False, lazy_value("run_up_peak"), refuses),
             Objective("run-up-unbalanced", "1", "one minus the Wilson lower bound (95 %) of P(balanced) at the "
-                      "end of the run-up (limit 0.01: P(balanced) >= 0.99)", False, lazy_value("run_up_unbalanced")))
+                      "end of the run-up (limit 0.01: P(balanced) >= 0.99)", False, lazy_value("run_up_unbalanced"),
+                      refuses))
 
 
 def _register_builtins() -> None:
