@@ -249,6 +249,15 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
     ("design-case-unknown-objective", ["design", FILE], ("autobalancer", "[[analysis]]",
      '[[analysis]]\ntype = "design"\nvary = {ball_mass = ["10 g", "40 g"]}\nobjectives = ["nope"]\n'
      'param = {spin_speed = ["2400 rpm", "2400 rpm", 1]}\n\n[[analysis]]'), ["objectives", "nope", "ball-mass"]),
+    ("design-unknown-constraint", ["design", "autobalancer", "--vary", "ball_mass=10g:40g", "--objective",
+     "ball-mass", "--param", "spin_speed=2400rpm:2400rpm:1", "--constraint", "nope"], None,
+     ["--constraint", "nope", "no-housing-contact"]),
+    ("design-contact-without-clearance", ["design", "autobalancer", "--vary", "ball_mass=10g:40g", "--objective",
+     "ball-mass", "--param", "spin_speed=2400rpm:2400rpm:1", "--constraint", "no-housing-contact"], None,
+     ["constraints", "no-housing-contact", "needs a machine with a clearance"]),
+    ("design-run-up-objective-motor", ["design", "washer-horizontal", "--vary", "model.drive.stall_torque=5:20",
+     "--objective", "run-up-time", "--param", "spin_speed=100:100:1"], None,
+     ["objectives", "run-up-time", 'profile = "servo"']),
     # ---- the run-up designer's servo drive (issue 27 item 2) ----------------------------------------
     ("servo-negative-ramp-rate", ["validate", FILE], ("washer-horizontal", 'profile = "motor"',
      'profile = "servo"\noperating_speed = "100 rad/s"\nramp_rate = "-5 rad/s^2"'),
@@ -269,6 +278,14 @@ CORPUS: list[tuple[str, list[str], tuple[str, str, str] | None, list[str]]] = [
      "--set", "analysis[1].passing_torque=false"],
      ("washer-horizontal", 'profile = "motor"', 'profile = "servo"\noperating_speed = "100 rad/s"\n'
       'ramp_rate = "5 rad/s^2"'), ["--starts", "50", "--min-balanced", "381"]),
+    ("run-up-design-contact-without-clearance", ["run-up-design", FILE, "--vary", "drive.ramp_rate=1:20",
+     "--constraint", "no-housing-contact", "--set", "analysis[1].passing_torque=false"],
+     ("washer-horizontal", 'profile = "motor"', 'profile = "servo"\noperating_speed = "100 rad/s"\n'
+      'ramp_rate = "5 rad/s^2"'), ["--constraint", "no-housing-contact", "needs a machine with a clearance"]),
+    ("run-up-design-unknown-constraint", ["run-up-design", FILE, "--vary", "drive.ramp_rate=1:20",
+     "--constraint", "nope", "--set", "analysis[1].passing_torque=false"],
+     ("washer-horizontal", 'profile = "motor"', 'profile = "servo"\noperating_speed = "100 rad/s"\n'
+      'ramp_rate = "5 rad/s^2"'), ["--constraint", "nope", "no-housing-contact"]),
     # ---- impacts / impacts-sweep ----------------------------------------------------------------
     ("impacts-negative-stone", ["impacts", "krasnov-crusher", "--stone-mass", "-1"], None, ["--stone-mass"]),
     ("impacts-zero-t-end", ["impacts", "krasnov-crusher", "--t-end", "0"], None, ["--t-end"]),

@@ -68,3 +68,24 @@ def test_motor_case_is_refused_naming_the_drive():
     r = runner.invoke(app, ["run-up-design", "washer-horizontal", "--vary", "drive.stall_torque=5:20"])
     assert r.exit_code == 2
     assert 'profile = "servo"' in r.output and "'motor'" in r.output
+
+
+def test_rotorlab_design_takes_the_run_up_objective_and_a_drive_key_path(tmp_path):
+    """The same shortest run-up through ``rotorlab design`` (the design search's own command, its
+    --store and optimisers): ``run-up-time`` of the servo drive varied by its key path
+    ``model.drive.ramp_rate``; the operating range defaults to the drive's operating speed and
+    without balls there is no P(balanced) to require."""
+    path = tmp_path / "case.toml"
+    path.write_text(case_text(balls=False), encoding="utf-8")
+    r = runner.invoke(app, ["design", str(path), "--vary", "model.drive.ramp_rate=1:50", "--objective",
+                            "run-up-time", "--budget", "6", "--set", "model.unbalances[0].magnitude=0 kg*m", "--json"])
+    assert r.exit_code == 0, r.output
+    doc = json.loads(r.stdout)
+    assert doc["winner"]["objectives"]["run-up-time"] == pytest.approx(0.99 * 100 * 0.8 / 10, rel=2e-3)
+    assert doc["winner"]["values"]["model.drive.ramp_rate"] > 12.5
+    assert doc["operating"] == {"param": "model.drive.operating_speed", "values": [100.0]}
+    slow = [row for row in doc["rows"] if row["values"]["model.drive.ramp_rate"] < 12.5]
+    for row in slow:  # a ramp below T / J sets the pace: 0.99 * 100 / a
+        assert row["objectives"]["run-up-time"] == pytest.approx(99.0 / row["values"]["model.drive.ramp_rate"],
+                                                                 rel=2e-3)
+    assert doc["check"]["inside_search_interval"] is None and sorted(tmp_path.iterdir()) == [path]

@@ -198,6 +198,12 @@ class DesignProblem:
         return ", ".join(names[:40]) + (", ..." if len(names) > 40 else "")
 
     @property
+    def reads_run_ups(self) -> bool:
+        """Whether an objective, limit or constraint reads the designs' run-ups."""
+        return any(DESIGN_OBJECTIVES[n].run_ups for n in (*self.objectives, *self.limits)) or any(
+            DESIGN_CONSTRAINTS[n].run_ups for n in self.constraints)
+
+    @property
     def needs_starts(self) -> bool:
         return self.min_balanced is not None or any(DESIGN_OBJECTIVES[n].needs_starts for n in
                                                     (*self.objectives, *self.limits))  # fmt: skip
@@ -413,5 +419,7 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
              "objective_units": json.dumps({n: DESIGN_OBJECTIVES[n].unit for n in problem.objectives}),
              "bounds": json.dumps({v.name: [v.low, v.high] for v in problem.variables}),
              "cpu_s": search_cpu, "verify_cpu_s": check["cpu_s"] if check else 0.0,
-             "trial_cpu_s": json.dumps([t["cpu_s"] for t in trials])}  # fmt: skip
+             "trial_cpu_s": json.dumps([t["cpu_s"] for t in trials]), "constraints": json.dumps(list(problem.constraints)),
+             "run_ups": int(problem.reads_run_ups), "run_up_starts": int(problem.run_up.starts),
+             "run_up_seed": int(problem.run_up.seed)}  # fmt: skip
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -26,22 +26,41 @@ __all__ = ["design_problem", "run_design_analysis", "design_rows", "design_docum
 def design_problem(case_model: Any, spec: Any, *, t_end: float | None = None) -> Any:
     """The :class:`~rotorlab.analyses._design.DesignProblem` of a case's ``design`` analysis.
 
+    With a run-up objective, limit or constraint (:attr:`rotorlab.io.DesignSpec.reads_run_ups`)
+    the problem holds the machine as built (its servo drive), no regime mapper, the run-ups'
+    settings (``starts``, ``seed``) and, with balls, ``run-up-unbalanced <= 1 - min_balanced``;
+    otherwise the regime mapper of the basin-stability sweep.
+
     Raises
     ------
     ValueError
         The problem's issues (``vary.<name>: ...``: unknown name, bounds outside the
         parameter's range, a structural name), or a model without a regime mapper.
     """
-    from rotorlab.analyses._basin import basin_mapper
     from rotorlab.analyses._design import DesignProblem, DesignVariable
+    from rotorlab.design import RunUpSettings
+
+    name, a, b, n = spec.param_axis
+    variables = tuple(DesignVariable(k, float(v[0]), float(v[1])) for k, v in spec.vary.items())
+    if spec.reads_run_ups:
+        from rotorlab.analyses._case import build_model
+
+        model = build_model(case_model)
+        limits = dict(spec.limits)
+        if spec.min_balanced is not None and getattr(model, "n_balls", 0) and "run-up-unbalanced" not in limits:
+            limits["run-up-unbalanced"] = 1.0 - float(spec.min_balanced)
+        return DesignProblem(
+            model, variables, tuple(spec.objectives), np.linspace(a, b, n), name, None, limits, None, {},
+            spec.design_starts, spec.seed, spec.confidence, constraints=tuple(spec.constraints),
+            run_up=RunUpSettings(starts=spec.design_starts, seed=spec.seed))  # fmt: skip
+    from rotorlab.analyses._basin import basin_mapper
 
     mapper = basin_mapper(case_model, spec, t_end=t_end)
-    name, a, b, n = spec.param_axis
     return DesignProblem(
-        mapper.model, tuple(DesignVariable(k, float(v[0]), float(v[1])) for k, v in spec.vary.items()),
-        tuple(spec.objectives), np.linspace(a, b, n), name, spec.min_balanced, dict(spec.limits), mapper,
-        spec.start_ranges(case_model), spec.design_starts, spec.seed, spec.confidence,
-        horizon_given=t_end is not None or spec.t_end is not None, chunk=spec.chunk)  # fmt: skip
+        mapper.model, variables, tuple(spec.objectives), np.linspace(a, b, n), name, spec.min_balanced,
+        dict(spec.limits), mapper, spec.start_ranges(case_model), spec.design_starts, spec.seed, spec.confidence,
+        horizon_given=t_end is not None or spec.t_end is not None, chunk=spec.chunk,
+        constraints=tuple(spec.constraints))  # fmt: skip
 
 
 def run_design_analysis(case_model: Any, analysis: Any, progress: Callable[[int, int], None] | None = None, *,

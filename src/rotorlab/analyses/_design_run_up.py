@@ -178,7 +178,7 @@ def design_run_up(case_model, variables, *, peak_limit=None, min_balanced=None, 
                                 limits=limits, constraints=tuple(constraints),
                                 run_up=RunUpSettings(starts=int(starts), seed=int(seed), settle=float(settle)))
     except ValueError as exc:
-        raise ValueError(str(exc).replace("vary.", "--vary ")) from None
+        raise ValueError(str(exc).replace("vary.", "--vary ").replace("constraints: ", "--constraint ")) from None
     ds = design_search(problem, optimizer=optimizer, budget=budget, optimizer_seed=optimizer_seed, verify=False)
     names = [str(n) for n in ds["variable"].values] if "variable" in ds.coords else list(variables)
     best = np.flatnonzero(ds["pareto"].values & ds["feasible"].values)

@@ -21,7 +21,8 @@ from rotorlab.cli._sweep_common import OutNcOpt, ResumeOpt, SchedulerOpt, Worker
 __all__ = ["design_command"]
 
 _OPTION_OF = {"vary": "--vary", "objectives": "--objective", "param": "--param", "starts": "--starts",
-              "seed": "--seed", "budget": "--budget", "optimizer": "--optimizer", "optimizer_seed": "--optimizer-seed"}
+              "seed": "--seed", "budget": "--budget", "optimizer": "--optimizer", "optimizer_seed": "--optimizer-seed",
+              "constraints": "--constraint"}
 
 
 def _vary(texts: list[str] | None, loaded: Any) -> dict[str, list[float]]:
@@ -36,7 +37,7 @@ def _vary(texts: list[str] | None, loaded: Any) -> dict[str, list[float]]:
         if name not in known:
             raise BadInput(f"--vary = {text}: {name!r} is not a parameter of this {loaded.model.type} model (allowed: "
                            f"{coordinates_text(known)})")  # fmt: skip
-        name, entry = parse_axis("--vary", text, "param", True, dict(known))
+        name, entry = parse_axis("--vary", text, "param", True, {name: known[name]})  # model.<key path> too
         out[name] = list(entry)
     return out
 
@@ -54,6 +55,15 @@ def _store(store: Path | None, resume: bool) -> None:
         raise BadInput(f"--store = {store}: folder {store.absolute().parent} does not exist")
 
 
+def _reads_run_ups(data: dict[str, Any]) -> bool:
+    """Whether a design's objectives, limits or constraints read run-ups (its ``param`` may be omitted)."""
+    from rotorlab.design import DESIGN_CONSTRAINTS, DESIGN_OBJECTIVES
+
+    names = [*(data.get("objectives") or ()), *(data.get("limits") or {})]
+    return any(getattr(DESIGN_OBJECTIVES.get(n), "run_ups", False) for n in names if isinstance(n, str)) or any(
+        getattr(DESIGN_CONSTRAINTS.get(n), "run_ups", False) for n in (data.get("constraints") or ()) if isinstance(n, str))
+
+
 @app.command("design")
 def design_command(
     ctx: typer.Context,
@@ -66,8 +76,12 @@ def design_command(
     objective: Annotated[Optional[list[str]], typer.Option(  # noqa: UP007
         "--objective", metavar="NAME", help="An objective to minimise (repeatable, at most two: a Pareto "
         "front).")] = None,
+    constraint: Annotated[Optional[list[str]], typer.Option(  # noqa: UP007
+        "--constraint", metavar="NAME", help="A named constraint every feasible design meets, e.g. "
+        "no-housing-contact (repeatable; replaces the case's constraints).")] = None,
     param: Annotated[Optional[str], typer.Option(  # noqa: UP007
-        "--param", metavar="NAME=A:B:N", help="The operating range (spin_speed=1800rpm:2400rpm:3).")] = None,
+        "--param", metavar="NAME=A:B:N", help="The operating range (spin_speed=1800rpm:2400rpm:3; a run-up design: "
+        "default the drive's operating speed).")] = None,
     starts: Annotated[Optional[int], count_option(  # noqa: UP007
         "--starts", high=MAX_STARTS, what="random starts per design and operating value", metavar="N",
         help="Random starts per design and operating value (the same for every design).")] = None,
@@ -108,12 +122,15 @@ def design_command(
         from rotorlab.io._coordinates import mappable_text
         from rotorlab.io._sweep_specs import sweep_coordinates
 
-        if not sweep_coordinates(loaded.model, "ic"):  # P(balanced) needs random starts of a model with balls
-            raise BadInput(f"case {loaded.name}: design needs {mappable_text(loaded.model)}")
         base = find_analysis(loaded, "design", analysis)
         data = base.model_dump() if base is not None else {"type": "design", "name": "design"}
         updates: dict[str, Any] = {"starts": starts, "seed": seed, "budget": budget, "optimizer": optimizer,
-                                   "optimizer_seed": optimizer_seed, "objectives": objective or None}  # fmt: skip
+                                   "optimizer_seed": optimizer_seed, "objectives": objective or None,
+                                   "constraints": constraint or None}  # fmt: skip
+        wanted = {**data, **{k: v for k, v in updates.items() if v is not None}}
+        if not _reads_run_ups(wanted) and not sweep_coordinates(loaded.model, "ic"):  # P(balanced): random starts
+            raise BadInput(f"case {loaded.name}: design needs {mappable_text(loaded.model)} (or a run-up objective "
+                           "of a machine with a servo drive)")
         if vary:
             updates["vary"] = _vary(vary, loaded)
         if param is not None:
@@ -121,6 +138,10 @@ def design_command(
 
             updates["param"] = _axes(param, None, loaded)["param"]
         data.update({k: v for k, v in updates.items() if v is not None})
+        if not data.get("param") and _reads_run_ups(data):  # a run-up design operates at its drive's speed
+            speed = getattr(getattr(loaded.model, "drive", None), "operating_speed", None)
+            if speed is not None:
+                data["param"] = {"model.drive.operating_speed": [float(speed), float(speed), 1]}
         for key, option in (("vary", "--vary NAME=LOW:HIGH"), ("objectives", "--objective NAME"),
                             ("param", "--param NAME=A:B:N")):  # fmt: skip
             if not data.get(key):

@@ -69,6 +69,9 @@ def run_up_design_command(
                                                 help="Seed of the optimiser.")] = 0,
     settle: Annotated[float, typer.Option("--settle", metavar="S", help="Time added to each run-up for the balls "
                                           "to settle at the operating speed (s).")] = 0.0,
+    constraint: Annotated[Optional[list[str]], typer.Option(  # noqa: UP007
+        "--constraint", metavar="NAME", help="A named constraint every feasible design meets, e.g. "
+        "no-housing-contact (a machine with a clearance; repeatable).")] = None,
     sets: SetOpt = None,
     json_out: JsonOpt = False,
 ) -> None:
@@ -83,10 +86,13 @@ def run_up_design_command(
             raise BadInput(f"--settle = {settle:g}: must be a finite number >= 0 (s)")
         if min_balanced is not None and not 0.0 < min_balanced < 1.0:
             raise BadInput(f"--min-balanced = {min_balanced:g}: must be in (0, 1)")
-        from rotorlab.design import DESIGN_OPTIMIZERS
+        from rotorlab.design import DESIGN_CONSTRAINTS, DESIGN_OPTIMIZERS
 
         if optimizer not in DESIGN_OPTIMIZERS:
             raise BadInput(f"--optimizer = {optimizer}: not an optimiser (allowed: {', '.join(DESIGN_OPTIMIZERS)})")
+        for name in constraint or ():
+            if name not in DESIGN_CONSTRAINTS:
+                raise BadInput(f"--constraint = {name}: not a constraint (allowed: {', '.join(DESIGN_CONSTRAINTS)})")
         loaded = _load(case, sets, settings)
         drive = getattr(loaded.model, "drive", None)
         if getattr(drive, "profile", None) != "servo":
@@ -97,7 +103,8 @@ def run_up_design_command(
         try:
             doc = design_run_up(loaded.model, variables, peak_limit=peak_limit, min_balanced=min_balanced,
                                 starts=starts, seed=seed, settle=settle, budget=budget, optimizer=optimizer,
-                                optimizer_seed=optimizer_seed, check=lambda n, p: _wilson_reachable(n, p))
+                                optimizer_seed=optimizer_seed, check=lambda n, p: _wilson_reachable(n, p),
+                                constraints=tuple(constraint or ()))
         except ValueError as exc:
             raise BadInput(f"case {loaded.name}: {exc}") from None
         doc["case"] = loaded.name

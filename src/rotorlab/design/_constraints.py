@@ -37,12 +37,15 @@ class Constraint:
         ``margin(point) -> float``: >= 0 where it holds.
     refuses : callable
         ``refuses(model) -> str | None``: why it cannot apply to ``model`` (None: it can).
+    run_ups : bool
+        Whether it reads the design's run-ups (as :attr:`rotorlab.design.Objective.run_ups`).
     """
 
     name: str
     description: str
     margin: Callable[[Any], float]
     refuses: Callable[[Any], str | None]
+    run_ups: bool = False
 
 
 #: Constraints by name.
@@ -60,4 +63,4 @@ register_constraint(Constraint(
     "the stator's centre over every run-up) / gap; a design whose run-ups touched has minus the share that "
     "touched",
     lazy("rotorlab.analyses._design_run_up:housing_margin"),
-    lazy("rotorlab.analyses._design_run_up:no_housing_run_up")))
+    lazy("rotorlab.analyses._design_run_up:no_housing_run_up"), run_ups=True))

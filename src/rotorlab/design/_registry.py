@@ -129,6 +129,10 @@ class Objective:
     refuses : callable, optional
         ``refuses(model) -> str | None``: why the objective cannot be computed for this model
         (None: it can), checked before anything runs.
+    run_ups : bool
+        Whether it reads the design's run-ups (``point.run_up`` settings): a case's design search
+        then builds the machine as written, with its drive, and P(balanced) is that of the
+        run-ups (``run-up-unbalanced``).
     """
 
     name: str
@@ -137,6 +141,7 @@ class Objective:
     needs_starts: bool
     value: Callable[[DesignPoint], float]
     refuses: Callable[[Any], str | None] | None = None
+    run_ups: bool = False
 
 
 @dataclass(frozen=True)
@@ -280,12 +285,12 @@ def _run_up_objectives() -> tuple[Objective, ...]:
     refuses = lazy_value("no_servo_drive")
     return (Objective("run-up-time", "s", "time the slowest start needs to reach 99 % of the servo drive's "
                       "operating speed; infinite (infeasible) when a start is captured", False, lazy_value("run_up_time"),
-                      refuses),
+                      refuses, True),
             Objective("run-up-peak", "m", "largest transient peak at a critical speed over the run-ups",
-                      False, lazy_value("run_up_peak"), refuses),
+                      False, lazy_value("run_up_peak"), refuses, True),
             Objective("run-up-unbalanced", "1", "one minus the Wilson lower bound (95 %) of P(balanced) at the "
                       "end of the run-up (limit 0.01: P(balanced) >= 0.99)", False, lazy_value("run_up_unbalanced"),
-                      refuses))
+                      refuses, True))
 
 
 def _register_builtins() -> None:

@@ -12,6 +12,7 @@ Layout::
     param = {spin_speed = ["1800 rpm", "2400 rpm", 3]}   # the operating range
     min_balanced = 0.99       # Wilson lower bound of P(balanced) at every operating value
     limits = {residual-vibration = "0.05 mm"}
+    constraints = ["no-housing-contact"]   # named constraints (a run-up design of a machine with a clearance)
     starts = 1000             # random starts per design and operating value (the same for all)
     budget = 30               # evaluations
     optimizer = "tpe"         # or "differential-evolution"
@@ -94,6 +95,16 @@ class DesignSpec(BasinStabilitySpec):
         0.99, at ``confidence``).
     limits : {OBJECTIVE: value}
         Upper limits on objectives (in the objective's unit, or with a unit).
+    constraints : list of str
+        Names of :data:`rotorlab.design.DESIGN_CONSTRAINTS` every feasible design meets
+        (``no-housing-contact``).
+
+    With a run-up objective, limit or constraint (``run-up-time``, ...) the search runs each
+    design's run-ups with the machine's servo drive (``starts`` run-ups from random ball starts,
+    ``seed``) instead of random starts at constant speed, ``vary`` names the machine's named
+    parameters (``model.drive.ramp_rate``, ``model.clearances[0].gap``), and ``min_balanced``
+    (with balls) is the Wilson lower bound of P(balanced) at the run-ups' end
+    (``run-up-unbalanced`` <= 1 - min_balanced).
     optimizer : str
         A name of :data:`rotorlab.design.DESIGN_OPTIMIZERS` (default ``tpe``).
     budget : int
@@ -118,6 +129,7 @@ class DesignSpec(BasinStabilitySpec):
     min_balanced: quantity("dimensionless", gt=0, lt=1) | None = Field(
         0.99, description="least Wilson lower bound of P(balanced) over the operating range (-)")
     limits: dict[str, Any] = Field(default_factory=dict, description="upper limits on objectives (SI)")
+    constraints: list[str] = Field(default_factory=list, description="named constraints every feasible design meets")
     optimizer: str = Field("tpe", description="the optimiser")
     budget: integer(ge=1, le=10_000) = Field(30, description="designs evaluated")
     optimizer_seed: integer(ge=0) = Field(0, description="seed of the optimiser")
@@ -137,6 +149,24 @@ class DesignSpec(BasinStabilitySpec):
         if len(set(value)) != len(value):
             raise _error("the objectives must differ")
         return value
+
+    @field_validator("constraints", mode="after")
+    @classmethod
+    def _known_constraints(cls, value: list[str]) -> list[str]:
+        from rotorlab.design import DESIGN_CONSTRAINTS
+
+        for name in value:
+            if name not in DESIGN_CONSTRAINTS:
+                raise _error(f"{name!r} is not a constraint (allowed: {', '.join(DESIGN_CONSTRAINTS)})")
+        return list(dict.fromkeys(value))
+
+    @property
+    def reads_run_ups(self) -> bool:
+        """Whether an objective, limit or constraint reads the designs' run-ups."""
+        from rotorlab.design import DESIGN_CONSTRAINTS, DESIGN_OBJECTIVES
+
+        return any(DESIGN_OBJECTIVES[n].run_ups for n in (*self.objectives, *self.limits) if n in DESIGN_OBJECTIVES) \
+            or any(DESIGN_CONSTRAINTS[n].run_ups for n in self.constraints)
 
     @field_validator("limits", mode="after")
     @classmethod
@@ -192,6 +222,11 @@ class DesignSpec(BasinStabilitySpec):
         as [low, high] with low < high, no ``ci_width``, at most as many objectives as the
         optimiser takes."""
         issues = [i for i in super().case_issues(model) if i.loc != ("ci_width",)]
+        if self.reads_run_ups and any(i.loc == ("type",) for i in issues):  # run-ups need no regime mapper
+            issues = [i for i in issues if i.loc != ("type",)]
+            known = sweep_coordinates(model, "param")
+            issues += [Issue(("param", n), f"not a parameter of this {model.type} model (allowed: "
+                                           f"{coordinates_text(known)})", n) for n in self.param if n not in known]
         if self.ci_width is not None:
             issues.append(Issue(("ci_width",), "not taken by a design search: give starts (every design gets the "
                                                "same random starts)", self.ci_width))  # fmt: skip
@@ -208,7 +243,8 @@ class DesignSpec(BasinStabilitySpec):
                 issues.append(Issue(("vary", name), "give [low, high] with high > low", list(entry)))
             else:
                 issues += _bound_issues(model, name, entry)
-        issues += self._starts_issues()
+        if sweep_coordinates(model, "ic") or not self.reads_run_ups:  # a run-up design without balls: no P(balanced)
+            issues += self._starts_issues()
         if self.sensitivity is not None:
             for i in self.sensitivity_spec(model).case_issues(model):  # its "type": the sensitivity table's
                 loc = ("sensitivity",) if i.loc == ("type",) else ("sensitivity", *i.loc)
@@ -265,5 +301,6 @@ class DesignSpec(BasinStabilitySpec):
 
     def describe(self, model: AbstractModelSpec) -> str:
         names = ", ".join(self.vary)
-        return (f"design search over {names} for least {' and '.join(self.objectives)} ({self.budget} designs, "
-                f"{self.design_starts} random starts each at {self.param_axis[3]} operating value(s))")
+        each = (f"{self.design_starts} run-up(s) each from random ball starts" if self.reads_run_ups else
+                f"{self.design_starts} random starts each at {self.param_axis[3]} operating value(s)")
+        return f"design search over {names} for least {' and '.join(self.objectives)} ({self.budget} designs, {each})"

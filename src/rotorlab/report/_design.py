@@ -69,10 +69,17 @@ def not_explored(ds: xarray.Dataset) -> str:
     units = json.loads(ds.attrs.get("units", "{}"))
     ranges = ", ".join(f"{n} outside {people.quantity(a, units.get(n, ''))}–{people.quantity(b, units.get(n, ''))}"
                        for n, (a, b) in bounds.items())  # fmt: skip
-    return (f"Not explored: {ranges}; every other parameter held at the case's value; P(balanced) only at "
-            f"{', '.join(_operating(ds))} ({ds.attrs['operating']}), from {int(ds.attrs['starts'])} starts per design; "
+    if int(ds.attrs.get("run_ups", 0)):
+        where = (f"the run-ups from rest under the drive's command only, {int(ds.attrs['run_up_starts'])} per design "
+                 f"(random ball starts, seed {int(ds.attrs['run_up_seed'])})")
+    else:
+        where = (f"P(balanced) only at {', '.join(_operating(ds))} ({ds.attrs['operating']}), from "
+                 f"{int(ds.attrs['starts'])} starts per design; run-up transients not checked")
+    contact = "no-housing-contact" in json.loads(ds.attrs.get("constraints", "[]"))
+    contact_text = "housing contact checked only on those run-ups" if contact else "housing contact not checked"
+    return (f"Not explored: {ranges}; every other parameter held at the case's value; {where}; "
             f"{int(ds.attrs['evaluations'])} designs evaluated ({ds.attrs['optimizer']}, budget {ds.attrs['budget']}), "
-            "so a better design between them may exist; run-up transients and housing contact not checked"
+            f"so a better design between them may exist; {contact_text}"
             + ("." if "ST" in ds else "; sensitivity not computed (give the analysis a sensitivity table)."))
 
 
