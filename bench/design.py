@@ -13,8 +13,14 @@ design of ``zhakash-k2`` (ball mass x ball damping, 1000 starts per evaluation).
    the search and of each evaluation. The TPE run is the speed target's design (<= 30
    CPU-minutes).
 3. The same case with two objectives (ball mass, settle time): TPE's Pareto front, its figure.
+4. Dask scaling (``--skip`` the others): the TPE design of part 2 (``--scaling-budget`` designs,
+   ``--scaling-starts`` starts per speed, chunks of ``--scaling-chunk`` starts) on a local Dask
+   cluster of 1 and of 2 single-threaded workers, ``--repeats`` times each, interleaved
+   (1, 2, 2, 1, 1, 2, ...), one cluster per search: wall and CPU seconds of this process, the
+   load average before each run, and whether every run gave the same bits.
 
     python bench/design.py --starts 1000 --budget 30 --seeds 3 --out bench/_out
+    python bench/design.py --skip dh,zhakash,pareto --scaling-starts 1000 --scaling-budget 6 --repeats 3
 """
 
 from __future__ import annotations
@@ -85,6 +91,33 @@ def zhakash(starts: int, budget: int, seeds: int, out: Path) -> dict:
     return runs
 
 
+def dask_scaling(starts: int, budget: int, chunk: int, repeats: int) -> dict:
+    """Wall and CPU seconds of one design search on 1 and 2 local Dask workers, interleaved."""
+    from rotorlab.analyses._design_case import run_design_analysis
+    from rotorlab.io import DesignSpec, load_case
+    from rotorlab.sweep import DaskExecutor
+
+    case = load_case("zhakash-k2")
+    spec = DesignSpec.model_validate({**_spec(["ball-mass"], starts, budget, "tpe", 0).model_dump(), "chunk": chunk})
+    warm = DesignSpec.model_validate({**spec.model_dump(), "budget": 1, "starts": 8, "chunk": 4, "verify": False})
+    run_design_analysis(case.model, warm, executor=DaskExecutor(workers=2, threads=1))  # imports, driver load
+    order = [w for k in range(repeats) for w in ((1, 2) if k % 2 == 0 else (2, 1))]
+    runs, first = [], None
+    for workers in order:
+        load = os.getloadavg()[0]
+        cpu, wall = _cpu(), time.perf_counter()
+        ds = run_design_analysis(case.model, spec, executor=DaskExecutor(workers=workers, threads=1))
+        cpu, wall = _cpu() - cpu, time.perf_counter() - wall
+        data = ds.copy()
+        data.attrs = {k: v for k, v in ds.attrs.items() if not k.endswith("cpu_s")}
+        same = True if first is None else bool(data.identical(first))
+        first = data if first is None else first
+        runs.append({"workers": workers, "wall_s": wall, "cpu_s": cpu, "load_before": load, "same_bits": same})
+        print(f"  {workers} worker(s): {wall:.1f} s wall, {cpu:.1f} CPU-s, load before {load:.1f}, "
+              f"same bits as the first: {same}", flush=True)
+    return {"runs": runs, "load_after": os.getloadavg()[0], "starts": starts, "budget": budget, "chunk": chunk}
+
+
 def main() -> None:
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     parser.add_argument("--dh-seeds", type=int, default=10)
@@ -94,7 +127,11 @@ def main() -> None:
     parser.add_argument("--seeds", type=int, default=3)
     parser.add_argument("--pareto-budget", type=int, default=40)
     parser.add_argument("--out", type=Path, default=Path("bench/_out"))
-    parser.add_argument("--skip", default="", help="comma-separated parts to skip: dh, zhakash, pareto")
+    parser.add_argument("--scaling-starts", type=int, default=1000)
+    parser.add_argument("--scaling-budget", type=int, default=6)
+    parser.add_argument("--scaling-chunk", type=int, default=250)
+    parser.add_argument("--repeats", type=int, default=3)
+    parser.add_argument("--skip", default="", help="comma-separated parts to skip: dh, zhakash, pareto, dask")
     args = parser.parse_args()
     args.out.mkdir(parents=True, exist_ok=True)
     skip = set(filter(None, args.skip.split(",")))
@@ -166,6 +203,16 @@ def main() -> None:
             print(f"  ball_mass {m * 1e3:.1f} g, ball_damping {b:.3g} N m s: balls {ds.objective_value.values[i, 0] * 1e3:.1f} g, "
                   f"settle {ds.objective_value.values[i, 1]:.2f} s")  # fmt: skip
         summary["pareto_cpu_s"] = cpu
+    if "dask" not in skip:
+        print(f"\nDask scaling: zhakash-k2 TPE design, {args.scaling_budget} designs x 3 speeds x {args.scaling_starts} "
+              f"starts, chunks of {args.scaling_chunk}, {args.repeats} repeats interleaved", flush=True)
+        sc = dask_scaling(args.scaling_starts, args.scaling_budget, args.scaling_chunk, args.repeats)
+        wall = {w: [r["wall_s"] for r in sc["runs"] if r["workers"] == w] for w in (1, 2)}
+        cpu = {w: [r["cpu_s"] for r in sc["runs"] if r["workers"] == w] for w in (1, 2)}
+        print(f"median wall 1 worker {np.median(wall[1]):.1f} s, 2 workers {np.median(wall[2]):.1f} s: speed-up "
+              f"{np.median(wall[1]) / np.median(wall[2]):.2f} (2.0 linear); median CPU-s {np.median(cpu[1]):.1f}, "
+              f"{np.median(cpu[2]):.1f}; load after {sc['load_after']:.1f}")
+        summary["dask_scaling"] = sc
     (args.out / "design_bench.json").write_text(json.dumps(summary, indent=1, default=float))
 
 

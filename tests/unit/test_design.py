@@ -90,7 +90,7 @@ def test_the_winner_is_the_lightest_feasible_design_and_its_fresh_check_lies_in_
     assert light and all(not r["feasible"] and ds.balanced.values[r["trial"], 0] == 0.0 for r in light)
 
 
-def test_same_seeds_give_the_same_result_and_a_resumed_search_the_same_bits(case, searched, tmp_path):
+def test_same_seeds_give_the_same_result_a_resumed_search_and_dask_workers_the_same_bits(case, searched, tmp_path):
     ds, store = searched
     again = run_design_analysis(case.model, _spec())  # in memory, from scratch
     assert _data(again).identical(_data(ds))
@@ -101,6 +101,11 @@ def test_same_seeds_give_the_same_result_and_a_resumed_search_the_same_bits(case
         shutil.rmtree(p)
     resumed = run_design_analysis(case.model, _spec(), store=copy, resume=True)
     assert _data(resumed).identical(_data(ds))
+    # on two local Dask workers (one cluster for the whole search): the same bits
+    from rotorlab.sweep import DaskExecutor
+
+    on_dask = run_design_analysis(case.model, _spec(), executor=DaskExecutor(workers=2, threads=1))
+    assert _data(on_dask).identical(_data(ds))
     # another optimiser seed proposes other designs
     other = run_design_analysis(case.model, _spec(optimizer_seed=1))
     assert not np.array_equal(other.value.values, ds.value.values)
@@ -117,6 +122,15 @@ def test_two_objectives_give_a_pareto_front(case):
     for i in np.flatnonzero(ds.feasible.values & ~front):  # every other feasible one is dominated
         assert np.any(np.all(obj[front] <= obj[i], axis=1))
     assert np.isnan(ds.verify_balanced.values).all() and check_agrees(ds) is None
+    # the report's trade-off figure: the feasible designs' two objectives, the front among them
+    from rotorlab.plot._design import design_figures
+
+    figures = design_figures(ds, "two")
+    assert set(figures) == {"two_design", "two_tradeoff"}
+    ax = figures["two_tradeoff"].axes[0]
+    assert "ball-mass" in ax.get_xlabel() and "residual-vibration" in ax.get_ylabel()
+    (line,) = ax.lines  # the front, joined in order of the first objective
+    np.testing.assert_array_equal(line.get_xdata(), np.sort(obj[front, 0]))
 
 
 def test_the_design_command_and_rotorlab_run_with_a_design_analysis(case, tmp_path):

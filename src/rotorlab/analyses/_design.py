@@ -18,6 +18,7 @@ the optimiser on the stored results and computes only the missing ones.
 
 from __future__ import annotations
 
+import contextlib
 import hashlib
 import json
 import math
@@ -352,31 +353,38 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
     folder = None if store is None else Path(store)
     if folder is not None:
         folder.mkdir(parents=True, exist_ok=True)
-    ev = _Evaluator(problem, folder, resume, executor)
+    with contextlib.ExitStack() as stack:  # one Dask cluster (or client) for every design, not one per design
+        if executor is not None and hasattr(executor, "session"):
+            executor = stack.enter_context(executor.session())
+        ev = _Evaluator(problem, folder, resume, executor)
 
-    def call(values):
-        if len(ev.trials) >= budget:  # the budget holds for any optimiser (a generation may be larger)
-            raise _BudgetSpent
-        out = ev(values)
-        if progress is not None:
-            progress(len(ev.trials), int(budget))
-        return out
+        def call(values):
+            if len(ev.trials) >= budget:  # the budget holds for any optimiser (a generation may be larger)
+                raise _BudgetSpent
+            out = ev(values)
+            if progress is not None:
+                progress(len(ev.trials), int(budget))
+            return out
 
-    cpu = time.process_time()
-    try:
-        entry.run(call, [(v.name, v.low, v.high) for v in problem.variables], int(budget), int(optimizer_seed),
-                  len(problem.objectives))  # fmt: skip
-    except _BudgetSpent:
-        pass
-    search_cpu = time.process_time() - cpu
-    trials = ev.trials
-    costs = np.array([[t["metrics"][n] for n in problem.objectives] for t in trials])
-    margins = np.array([list(t["margins"].values()) for t in trials]).reshape(len(trials), -1)
-    feasible = np.all(margins >= 0.0, axis=1) & np.all(np.isfinite(costs), axis=1)
-    pareto = pareto_mask(costs, feasible)
-    best = int(np.flatnonzero(pareto)[np.argmin(costs[pareto, 0])]) if pareto.any() else -1
-    if len(problem.objectives) == 1:  # one objective: the front is the winner (the first of equals)
-        pareto = np.arange(len(trials)) == best
+        cpu = time.process_time()
+        try:
+            entry.run(call, [(v.name, v.low, v.high) for v in problem.variables], int(budget), int(optimizer_seed),
+                      len(problem.objectives))  # fmt: skip
+        except _BudgetSpent:
+            pass
+        search_cpu = time.process_time() - cpu
+        trials = ev.trials
+        costs = np.array([[t["metrics"][n] for n in problem.objectives] for t in trials])
+        margins = np.array([list(t["margins"].values()) for t in trials]).reshape(len(trials), -1)
+        feasible = np.all(margins >= 0.0, axis=1) & np.all(np.isfinite(costs), axis=1)
+        pareto = pareto_mask(costs, feasible)
+        best = int(np.flatnonzero(pareto)[np.argmin(costs[pareto, 0])]) if pareto.any() else -1
+        if len(problem.objectives) == 1:  # one objective: the front is the winner (the first of equals)
+            pareto = np.arange(len(trials)) == best
+        verify_seed = int(problem.seed) + VERIFY_SEED_OFFSET
+        check = None
+        if verify and best >= 0 and problem.needs_starts:
+            check = ev.point(trials[best]["values"], verify_seed, "verify")
     dim = problem.operating_name
     n_op = len(problem.operating)
     nan_op = np.full(n_op, np.nan)
@@ -394,10 +402,6 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
                           {"units": "1", "confidence": problem.confidence}),
         "t_end": (("trial",), np.array([t["t_end"] for t in trials]), {"units": "s", "description": "horizon"}),
     }  # fmt: skip
-    verify_seed = int(problem.seed) + VERIFY_SEED_OFFSET
-    check = None
-    if verify and best >= 0 and problem.needs_starts:
-        check = ev.point(trials[best]["values"], verify_seed, "verify")
     data["verify_balanced"] = ((dim,), check["balanced"] if check else nan_op, {"units": "1"})
     data["verify_low"] = ((dim,), check["low"] if check else nan_op, {"units": "1"})
     data["verify_high"] = ((dim,), check["high"] if check else nan_op, {"units": "1"})
@@ -419,7 +423,8 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
              "objective_units": json.dumps({n: DESIGN_OBJECTIVES[n].unit for n in problem.objectives}),
              "bounds": json.dumps({v.name: [v.low, v.high] for v in problem.variables}),
              "cpu_s": search_cpu, "verify_cpu_s": check["cpu_s"] if check else 0.0,
-             "trial_cpu_s": json.dumps([t["cpu_s"] for t in trials]), "constraints": json.dumps(list(problem.constraints)),
+             "trial_cpu_s": json.dumps([t["cpu_s"] for t in trials]),
+             "constraints": json.dumps(list(problem.constraints)),
              "run_ups": int(problem.reads_run_ups), "run_up_starts": int(problem.run_up.starts),
              "run_up_seed": int(problem.run_up.seed)}  # fmt: skip
     return xr.Dataset(data, coords=coords, attrs=attrs)

@@ -59,9 +59,10 @@ def _reads_run_ups(data: dict[str, Any]) -> bool:
     """Whether a design's objectives, limits or constraints read run-ups (its ``param`` may be omitted)."""
     from rotorlab.design import DESIGN_CONSTRAINTS, DESIGN_OBJECTIVES
 
-    names = [*(data.get("objectives") or ()), *(data.get("limits") or {})]
-    return any(getattr(DESIGN_OBJECTIVES.get(n), "run_ups", False) for n in names if isinstance(n, str)) or any(
-        getattr(DESIGN_CONSTRAINTS.get(n), "run_ups", False) for n in (data.get("constraints") or ()) if isinstance(n, str))
+    names = [n for n in (*(data.get("objectives") or ()), *(data.get("limits") or {})) if isinstance(n, str)]
+    constraints = [n for n in data.get("constraints") or () if isinstance(n, str)]
+    return any(getattr(DESIGN_OBJECTIVES.get(n), "run_ups", False) for n in names) or any(
+        getattr(DESIGN_CONSTRAINTS.get(n), "run_ups", False) for n in constraints)
 
 
 @app.command("design")
