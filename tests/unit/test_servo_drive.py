@@ -220,3 +220,40 @@ def test_two_run_up_searches_in_one_process_keep_their_own_settings():
         np.testing.assert_array_equal(together[0], alone[0])
         np.testing.assert_array_equal(together[1], alone[1])
     assert np.array_equal(search(2, 1)[1], a[1])  # and again after the other one
+
+
+def test_a_run_up_design_runs_on_the_sweep_engine_resumes_and_runs_on_dask_to_the_same_bits(tmp_path):
+    """The run-ups of each design are a sweep over its starts: a store per design
+    (``eval-runup-<hash>.zarr``); a search resumed after losing some stores, and one on two local
+    Dask workers, give the same bits as the search in memory."""
+    import shutil
+
+    from rotorlab.analyses._design import DesignProblem, DesignVariable, design_search
+    from rotorlab.design import RunUpSettings
+    from rotorlab.models import Ball, BallRace
+    from rotorlab.sweep import DaskExecutor, open_sweep
+
+    m = Machine(STRUCTURE, races=(BallRace(0, 0.5, (Ball(0.02, damping=0.005),) * 2),),
+                unbalances=(Unbalance(0, 0.01),), n_modes=2,
+                drive=ServoDrive(0.05, polar_inertia=J, operating_speed=2.5, ramp_rate=1.0, gain=50.0))
+    pb = DesignProblem(m, (DesignVariable("drive.ramp_rate", 0.2, 1.0),), ("run-up-peak",), np.array([2.5]),
+                       limits={"run-up-unbalanced": 0.9}, run_up=RunUpSettings(starts=5, seed=4, n_save=400))
+
+    def data(ds):
+        out = ds.copy()
+        out.attrs = {k: v for k, v in ds.attrs.items() if not k.endswith("cpu_s")}
+        return out
+
+    ref = design_search(pb, budget=3, optimizer_seed=1)
+    store = tmp_path / "evals"
+    stored = design_search(pb, budget=3, optimizer_seed=1, store=store)
+    assert data(stored).identical(data(ref))
+    kept = sorted(store.glob("eval-runup-*.zarr"))
+    assert len(kept) == 3 and open_sweep(kept[0]).sizes["start"] == 5
+    for p in kept[::2]:
+        shutil.rmtree(p)
+    resumed = design_search(pb, budget=3, optimizer_seed=1, store=store, resume=True)
+    assert data(resumed).identical(data(ref))
+    on_dask = design_search(pb, budget=3, optimizer_seed=1, executor=DaskExecutor(workers=2, threads=1))
+    assert data(on_dask).identical(data(ref))
+    assert np.all(np.isfinite(ref["objective_value"].values))  # every design passed its critical speed

@@ -244,7 +244,14 @@ class _Evaluator:
                 mapper, ListAxis(pb.operating_name, np.asarray(pb.operating, dtype=float)), pb.ranges, seed=seed,
                 starts=pb.starts, confidence=pb.confidence, chunk_size=pb.chunk, store=path,
                 resume=self.resume and path is not None and path.exists(), executor=self.executor)  # fmt: skip
-        at = DesignPoint(model, np.asarray(pb.operating, dtype=float), stability, pb.run_up)
+        memo: dict[str, Any] = {}
+        if pb.reads_run_ups:  # the design's run-ups, on the sweep engine (store, resume, executor)
+            from rotorlab.analyses._run_up_sweep import run_up_ensemble
+
+            path = None if self.store is None else self.store / f"{tag}-runup-{self.key(values)}.zarr"
+            memo["run_up"] = run_up_ensemble(model, pb.run_up, store=path, executor=self.executor,
+                                             resume=self.resume and path is not None and path.exists())  # fmt: skip
+        at = DesignPoint(model, np.asarray(pb.operating, dtype=float), stability, pb.run_up, memo)
         metrics = {n: float(DESIGN_OBJECTIVES[n].value(at)) for n in dict.fromkeys((*pb.objectives, *pb.limits))}
         out: dict[str, Any] = {"values": dict(values), "metrics": metrics, "t_end": math.nan}
         if stability is not None:
@@ -314,7 +321,8 @@ def design_search(problem: DesignProblem, *, optimizer: str = "tpe", budget: int
         Seed of the optimiser.
     store : path, optional
         Folder of the evaluations' Zarr stores (one per design, ``eval-<hash>.zarr``, and the
-        check's ``verify-<hash>.zarr``); with ``resume`` a run continues from them.
+        check's ``verify-<hash>.zarr``; a run-up design's run-ups ``eval-runup-<hash>.zarr``); with
+        ``resume`` a run continues from them.
     executor : optional
         Where the starts run (:func:`rotorlab.sweep.run_sweep`); results do not depend on it.
     verify : bool

@@ -3,9 +3,10 @@ speed-commanded, torque-limited drive (:class:`rotorlab.models.ServoDrive`).
 
 Each design is run up from rest from its problem's :class:`~rotorlab.design.RunUpSettings`
 ``starts`` ball starts (uniform random angles, the same ``seed`` for every design: common random
-numbers) with :func:`rotorlab.analyses._machine_run_up.run_up_starts`, once per design: the
-ensemble is kept in the design point's ``memo``, which the objectives of that design share and
-which dies with it (no state outlives a design, none is shared between searches). The objectives
+numbers) on the sweep engine (:func:`rotorlab.analyses._run_up_sweep.run_up_ensemble`: a store
+per design, resume, Dask), once per design: the ensemble is kept in the design point's ``memo``,
+which the objectives of that design share and which dies with it (no state outlives a design,
+none is shared between searches). The objectives
 (registered in :data:`rotorlab.design.DESIGN_OBJECTIVES`):
 
 ``run-up-time``
@@ -34,7 +35,7 @@ from typing import Any
 
 import numpy as np
 
-__all__ = ["REACHED", "run_up_of", "run_up_time", "run_up_peak", "run_up_unbalanced", "run_up_t_end",
+__all__ = ["REACHED", "run_up_of", "reach_times", "run_up_time", "run_up_peak", "run_up_unbalanced", "run_up_t_end",
            "housing_margin", "no_servo_drive", "no_housing_run_up", "design_run_up"]
 
 #: A run-up has reached the operating speed at this fraction of it.
@@ -74,21 +75,20 @@ def run_up_t_end(model, settings) -> float:
 
 
 def run_up_of(point):
-    """The run-up ensemble of a design point (computed once per point): a Dataset over ``ic``."""
-    from rotorlab.analyses._machine_run_up import run_up_starts
+    """The run-ups of a design point (computed once per point, in-process unless the design search
+    ran them on the sweep engine): a Dataset over ``start``
+    (:func:`rotorlab.analyses._run_up_sweep.run_up_ensemble`)."""
+    from rotorlab.analyses._run_up_sweep import run_up_ensemble
 
     if "run_up" not in point.memo:
-        model, settings = point.model, point.run_up
-        d = _drive(model)
-        rng = np.random.default_rng(settings.seed)
-        n = model.n_balls
-        starts = [tuple(rng.uniform(0.0, 2 * np.pi, n)) for _ in range(settings.starts)] if n else [None]
-        point.memo["run_up"] = run_up_starts(model, starts, t_end=run_up_t_end(model, settings),
-                                             n_save=settings.n_save, initial_speed=d.initial_speed)
+        _drive(point.model)
+        point.memo["run_up"] = run_up_ensemble(point.model, point.run_up)
     return point.memo["run_up"]
 
 
-def _reach_times(model, ds) -> np.ndarray:
+def reach_times(model, ds) -> np.ndarray:
+    """Per run-up of ``ds`` (over ``ic``, with ``time`` and ``speed``): when it reached
+    :data:`REACHED` of the operating speed (s, interpolated between saves; inf: never)."""
     target = REACHED * _drive(model).operating_speed
     t = np.asarray(ds["time"].values, dtype=float)
     w = np.asarray(ds["speed"].values, dtype=float).reshape(-1, t.size)
@@ -107,7 +107,7 @@ def run_up_time(point) -> float:
     ds = run_up_of(point)
     if np.any(np.isfinite(np.asarray(ds["captured_at"].values, dtype=float))) or np.any(ds["status"].values < 0):
         return math.inf
-    return float(np.max(_reach_times(point.model, ds)))
+    return float(np.max(ds["reach_time"].values))
 
 
 def run_up_peak(point) -> float:
@@ -120,11 +120,11 @@ def run_up_unbalanced(point) -> float:
     """One minus the Wilson lower bound (95 %) of P(balanced) at the run-up's end (1)."""
     from rotorlab._wilson import wilson_interval
 
-    out = [str(o) for o in run_up_of(point)["outcome"].values]
-    runs = sum(o != "failed" for o in out)
+    ds = run_up_of(point)
+    runs = int(np.sum(~np.asarray(ds["failed"].values, dtype=bool)))
     if not runs:
         return 1.0
-    return float(1.0 - wilson_interval(sum(o == "balanced" for o in out), runs, 0.95)[0])
+    return float(1.0 - wilson_interval(int(np.sum(np.asarray(ds["balanced"].values, dtype=bool))), runs, 0.95)[0])
 
 
 def housing_margin(point) -> float:
@@ -134,10 +134,8 @@ def housing_margin(point) -> float:
     the share of run-ups that touched; a failed run-up counts as touched (nothing is known)."""
     ds = run_up_of(point)
     gap = float(ds.attrs["gap"])
-    far = np.asarray(ds["clearance_distance"].values, dtype=float).reshape(ds.sizes["ic"], -1)
-    worst = np.nanmax(far, axis=1)
-    touched = (np.asarray(ds["impacts"].values, dtype=float).reshape(-1) > 0) | ~(worst < gap) \
-        | (np.asarray(ds["status"].values).reshape(-1) < 0)
+    worst = np.asarray(ds["clearance_far"].values, dtype=float)
+    touched = (np.asarray(ds["impacts"].values, dtype=float) > 0) | ~(worst < gap) | (ds["status"].values < 0)
     if touched.any():
         return -float(np.mean(touched))
     return float((gap - np.max(worst)) / gap)
