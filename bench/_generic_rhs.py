@@ -26,6 +26,7 @@ import numpy as np
 from numba import njit
 
 from rotorlab._kernels._vmath import sincos
+from rotorlab.integrate._lane_intrinsics import lane_view
 
 LANES = 8  # the lane driver's stride (DEFAULT_LANES): a compile-time constant, as in its copies
 
@@ -103,6 +104,61 @@ def table(lay) -> tuple[np.ndarray, int]:
     return np.concatenate([head] + lists), n_work
 
 
+_view = lane_view(1)
+
+
+@njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def V(a, row):  # pragma: no cover - compiled
+    """Row ``row`` of the lane-interleaved array ``a`` (its ``LANES`` lanes): a view without a
+    reference count whose index ``l >= 0`` carries no wraparound select, so that the loops over
+    lanes vectorise (``a[row * LANES + l]`` with a run-time ``row`` does not)."""
+    return _view(a, row * LANES, LANES)
+
+# ---- the dense products, in two forms (``kernel(dense=...)``): a loop over lanes per term, or
+# eight accumulators held in registers over the terms (the lanes fixed at LANES = 8, written out)
+
+@njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def dot_loops(d, a, ka, sa, b, kb, sb, n, nl):  # pragma: no cover - compiled
+    """``d = sum_j a[ka + j sa] * b[kb + j sb]`` (rows; the first term, then the others added)."""
+    r, q = V(a, ka), V(b, kb)
+    for l in range(nl):
+        d[l] = r[l] * q[l]
+    for j in range(1, n):
+        r, q = V(a, ka + j * sa), V(b, kb + j * sb)
+        for l in range(nl):
+            d[l] += r[l] * q[l]
+
+
+@njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def less_dot_loops(d, a, ka, b, kb, n, nl):  # pragma: no cover - compiled
+    """``d -= a[ka + j] * b[kb + j]`` for j = 0 .. n - 1 in turn (rows)."""
+    for j in range(n):
+        r, q = V(a, ka + j), V(b, kb + j)
+        for l in range(nl):
+            d[l] -= r[l] * q[l]
+
+
+def _blocked_source() -> str:
+    lanes = range(LANES)
+    acc = ", ".join(f"x{l}" for l in lanes)
+    load = "\n".join(f"    x{l} = r[{l}] * q[{l}]" for l in lanes)
+    add = "\n".join(f"        x{l} += r[{l}] * q[{l}]" for l in lanes)
+    sub = "\n".join(f"        x{l} -= r[{l}] * q[{l}]" for l in lanes)
+    get = "\n".join(f"    x{l} = d[{l}]" for l in lanes)
+    put = "\n".join(f"    d[{l}] = x{l}" for l in lanes)
+    return (f"def dot_blocked(d, a, ka, sa, b, kb, sb, n, nl):\n    r, q = V(a, ka), V(b, kb)\n{load}\n"
+            f"    for j in range(1, n):\n        r, q = V(a, ka + j * sa), V(b, kb + j * sb)\n{add}\n{put}\n\n"
+            f"def less_dot_blocked(d, a, ka, b, kb, n, nl):\n{get}\n    for j in range(n):\n"
+            f"        r, q = V(a, ka + j), V(b, kb + j)\n{sub}\n{put}\n")
+
+
+_ns: dict = {"V": V}
+exec(_blocked_source(), _ns)  # noqa: S102 - eight accumulators written out, one per lane
+dot_blocked = njit(nogil=True, inline="always", error_model="numpy")(_ns["dot_blocked"])
+less_dot_blocked = njit(nogil=True, inline="always", error_model="numpy")(_ns["less_dot_blocked"])
+dot, less_dot = dot_loops, less_dot_loops  # what rhs_generic (cached) uses
+
+
 @njit(cache=True, nogil=True, error_model="numpy")
 def rhs_generic(t, y, p, tab, w, out, nl):  # pragma: no cover - compiled
     """``out = rhs(t, y, p)`` for ``nl`` lanes of any layout of the common subset (module docstring).
@@ -110,300 +166,278 @@ def rhs_generic(t, y, p, tab, w, out, nl):  # pragma: no cover - compiled
     ``t``: the lanes' times; ``y``, ``p``, ``out``: lane-interleaved state, packed parameters and
     derivative (stride :data:`LANES`); ``tab``: :func:`table`; ``w``: scratch of ``table(...)[1]``
     rows of :data:`LANES`."""
-    L = LANES
     nz, nr, nb, nu = tab[T_NZ], tab[T_NR], tab[T_NB], tab[T_NU]
     tilt, ns, nt, nused, nfs = tab[T_TILT], tab[T_NS], tab[T_NT], tab[T_NUSED], tab[T_NFS]
-    kom = (tab[T_SPEED] + 1) * L  # the constant speed's row
-    kgx, kgy = tab[T_GRAV] * L, (tab[T_GRAV] + 1) * L
-    kb0, ku0, iphi, iw = tab[T_BALLS], tab[T_UNB], tab[T_IPHI], tab[T_IW]
+    kom = tab[T_SPEED] + 1  # the constant speed's row of p
+    kb0, ku0, iphi, iw, kti = tab[T_BALLS], tab[T_UNB], tab[T_IPHI], tab[T_IW], tab[T_PTILT]
     stb, nall = tab[T_STB], tab[T_NALL]
     brace, bts, used, fst, lds = tab[T_BRACE], tab[T_BTS], tab[T_USED], tab[T_FST], tab[T_LOADS]
-    r_s, r_c, r_mtx, r_mty = tab[R_S] * L, tab[R_C] * L, tab[R_MTX] * L, tab[R_MTY] * L
-    r_ep, r_tp, r_nx, r_ny = tab[R_EP] * L, tab[R_TP] * L, tab[R_NX] * L, tab[R_NY] * L
-    r_f, r_h, r_a, r_lv, r_p = tab[R_F] * L, tab[R_H] * L, tab[R_A] * L, tab[R_LV] * L, tab[R_P] * L
-    r_sm, r_q, r_x, r_d, r_l, r_g = (tab[R_SM] * L, tab[R_Q] * L, tab[R_X] * L, tab[R_D] * L,
-                                     tab[R_L] * L, tab[R_G] * L)
-    r_sth, r_cth, r_eux, r_euy = tab[R_STH] * L, tab[R_CTH] * L, tab[R_EUX] * L, tab[R_EUY] * L
-    r_acc = tab[R_ACC] * L
+    r_s, r_c, r_mtx, r_mty = tab[R_S], tab[R_C], tab[R_MTX], tab[R_MTY]
+    r_ep, r_tp, r_nx, r_ny = tab[R_EP], tab[R_TP], tab[R_NX], tab[R_NY]
+    r_f, r_h, r_a, r_lv, r_p = tab[R_F], tab[R_H], tab[R_A], tab[R_LV], tab[R_P]
+    r_sm, r_q, r_x, r_d, r_l, r_g = tab[R_SM], tab[R_Q], tab[R_X], tab[R_D], tab[R_L], tab[R_G]
+    r_tx, r_ty, r_tvx, r_tvy = tab[R_TX], tab[R_TY], tab[R_TVX], tab[R_TVY]
+    om, gx, gy = V(p, kom), V(p, tab[T_GRAV]), V(p, tab[T_GRAV] + 1)
+    sth, cth, acc = V(w, tab[R_STH]), V(w, tab[R_CTH]), V(w, tab[R_ACC])
     # ---- spin, ball angles, unbalance directions
     for l in range(nl):
-        s, c = sincos(p[kom + l] * t[l])
-        w[r_sth + l] = s
-        w[r_cth + l] = c
+        s, c = sincos(om[l] * t[l])
+        sth[l] = s
+        cth[l] = c
     for b in range(nb):
-        ky = (iphi + b) * L
+        ph, sb, cb = V(y, iphi + b), V(w, r_s + b), V(w, r_c + b)
         for l in range(nl):
-            s, c = sincos(y[ky + l])
-            w[r_s + b * L + l] = s
-            w[r_c + b * L + l] = c
+            s, c = sincos(ph[l])
+            sb[l] = s
+            cb[l] = c
     for u in range(nu):
-        k1, k2 = (ku0 + 3 * u + 1) * L, (ku0 + 3 * u + 2) * L
+        p1, p2, ex, ey = V(p, ku0 + 3 * u + 1), V(p, ku0 + 3 * u + 2), V(w, tab[R_EUX] + u), V(w, tab[R_EUY] + u)
         for l in range(nl):
-            w[r_eux + u * L + l] = w[r_cth + l] * p[k1 + l] - w[r_sth + l] * p[k2 + l]
-            w[r_euy + u * L + l] = w[r_sth + l] * p[k1 + l] + w[r_cth + l] * p[k2 + l]
+            ex[l] = cth[l] * p1[l] - sth[l] * p2[l]
+            ey[l] = sth[l] * p1[l] + cth[l] * p2[l]
     # ---- tilting races: their nodes' tilt and its rate, each ball's e.phi', t.phi' and arm
     if tilt:
         for k in range(nt):
             kb = stb + 4 * nz * (nr + nu + k)  # the tilt station's T (2 x n_z)
-            for row, dst, src in ((0, tab[R_TX], 0), (1, tab[R_TY], 0), (0, tab[R_TVX], nz), (1, tab[R_TVY], nz)):
-                kd = (dst + k) * L
-                for j in range(nz):
-                    kp, kyj = (kb + row * nz + j) * L, (src + j) * L
-                    if j == 0:
-                        for l in range(nl):
-                            w[kd + l] = p[kp + l] * y[kyj + l]
-                    else:
-                        for l in range(nl):
-                            w[kd + l] += p[kp + l] * y[kyj + l]
+            for row, dst, src in ((0, r_tx, 0), (1, r_ty, 0), (0, r_tvx, nz), (1, r_tvy, nz)):
+                dot(V(w, dst + k), p, kb + row * nz, 1, y, src, 1, nz, nl)
         for b in range(nb):
             k = tab[bts + b] - nr  # the ball's tilt station among the tilt stations
-            ktx, kty = (tab[R_TX] + k) * L, (tab[R_TY] + k) * L
-            kvx, kvy = (tab[R_TVX] + k) * L, (tab[R_TVY] + k) * L
-            kj = (kb0 + 4 * b + 2) * L
+            tx, ty, tvx, tvy = V(w, r_tx + k), V(w, r_ty + k), V(w, r_tvx + k), V(w, r_tvy + k)
+            sb, cb, J = V(w, r_s + b), V(w, r_c + b), V(p, kb0 + 4 * b + 2)
+            ep, tp, nx, ny = V(w, r_ep + b), V(w, r_tp + b), V(w, r_nx + b), V(w, r_ny + b)
             for l in range(nl):
-                s, c = w[r_s + b * L + l], w[r_c + b * L + l]
-                w[r_ep + b * L + l] = c * w[kvx + l] + s * w[kvy + l]
-                w[r_tp + b * L + l] = c * w[kvy + l] - s * w[kvx + l]
-                w[r_nx + b * L + l] = 0.5 * p[kj + l] * w[kty + l]
-                w[r_ny + b * L + l] = -0.5 * p[kj + l] * w[ktx + l]
+                ep[l] = cb[l] * tvx[l] + sb[l] * tvy[l]
+                tp[l] = cb[l] * tvy[l] - sb[l] * tvx[l]
+                nx[l] = 0.5 * J[l] * ty[l]
+                ny[l] = -0.5 * J[l] * tx[l]
     # ---- station forces: races (centrifugal), unbalances, tilt stations (the balls' velocity terms)
     for i in range(2 * nfs):
+        f = V(w, r_f + i)
         for l in range(nl):
-            w[r_f + i * L + l] = 0.0
+            f[l] = 0.0
     for b in range(nb):
         r = tab[brace + b]
-        kml, kw = (kb0 + 4 * b + 1) * L, (iw + b) * L
+        ml, wb, sb, cb = V(p, kb0 + 4 * b + 1), V(y, iw + b), V(w, r_s + b), V(w, r_c + b)
+        fx, fy = V(w, r_f + 2 * r), V(w, r_f + 2 * r + 1)
         for l in range(nl):
-            mw = p[kml + l] * y[kw + l] * y[kw + l]
-            w[r_f + 2 * r * L + l] += mw * w[r_c + b * L + l]
-            w[r_f + (2 * r + 1) * L + l] += mw * w[r_s + b * L + l]
+            mw = ml[l] * wb[l] * wb[l]
+            fx[l] += mw * cb[l]
+            fy[l] += mw * sb[l]
     for u in range(nu):
-        kU, fs = (ku0 + 3 * u) * L, nr + u
+        fs = nr + u
+        U, ex, ey = V(p, ku0 + 3 * u), V(w, tab[R_EUX] + u), V(w, tab[R_EUY] + u)
+        fx, fy = V(w, r_f + 2 * fs), V(w, r_f + 2 * fs + 1)
         for l in range(nl):
-            om = p[kom + l]
+            o = om[l]
             dom = 0.0
-            eux, euy = w[r_eux + u * L + l], w[r_euy + u * L + l]
-            w[r_f + 2 * fs * L + l] = p[kU + l] * (om * om * eux + dom * euy)
-            w[r_f + (2 * fs + 1) * L + l] = p[kU + l] * (om * om * euy - dom * eux)
+            fx[l] = U[l] * (o * o * ex[l] + dom * ey[l])
+            fy[l] = U[l] * (o * o * ey[l] - dom * ex[l])
     if tilt:
         for b in range(nb):
             k = tab[bts + b] - nr
             fs = nr + nu + k
-            kvx, kvy = (tab[R_TVX] + k) * L, (tab[R_TVY] + k) * L
-            kj, kd, kw = (kb0 + 4 * b + 2) * L, (tab[T_PTILT] + b) * L, (iw + b) * L
+            tvx, tvy, J, D, wb = V(w, r_tvx + k), V(w, r_tvy + k), V(p, kb0 + 4 * b + 2), V(p, kti + b), V(y, iw + b)
+            sb, cb, ep, tp = V(w, r_s + b), V(w, r_c + b), V(w, r_ep + b), V(w, r_tp + b)
+            fx, fy = V(w, r_f + 2 * fs), V(w, r_f + 2 * fs + 1)
             for l in range(nl):
-                s, c, ep, tp = w[r_s + b * L + l], w[r_c + b * L + l], w[r_ep + b * L + l], w[r_tp + b * L + l]
-                wb, D, J = y[kw + l], p[kd + l], p[kj + l]
-                w[r_f + 2 * fs * L + l] += wb * (D * (tp * c - ep * s) + J * w[kvy + l])
-                w[r_f + (2 * fs + 1) * L + l] += wb * (D * (tp * s + ep * c) - J * w[kvx + l])
+                fx[l] += wb[l] * (D[l] * (tp[l] * cb[l] - ep[l] * sb[l]) + J[l] * tvy[l])
+                fy[l] += wb[l] * (D[l] * (tp[l] * sb[l] + ep[l] * cb[l]) - J[l] * tvx[l])
         for i in range(2 * (nr + nu), 2 * nfs):
+            f = V(w, r_f + i)
             for l in range(nl):
-                w[r_f + i * L + l] = -w[r_f + i * L + l]
+                f[l] = -f[l]
     # ---- h = H R_z: H f_g - H K z - H C z' - Omega H G z' + sum_s H B_s^T f_s
     khk, khc, khg, khf = tab[T_HK], tab[T_HC], tab[T_HG], tab[T_HF]
     for i in range(nz):
-        kh = r_h + i * L
+        h, hf = V(w, r_h + i), V(p, khf + i)
         for l in range(nl):
-            w[kh + l] = p[(khf + i) * L + l]
-        for j in range(nz):
-            kp, kz = (khk + nz * i + j) * L, j * L
-            for l in range(nl):
-                w[kh + l] -= p[kp + l] * y[kz + l]
-        for j in range(nz):
-            kp, kv = (khc + nz * i + j) * L, (nz + j) * L
-            for l in range(nl):
-                w[kh + l] -= p[kp + l] * y[kv + l]
+            h[l] = hf[l]
+        less_dot(h, p, khk + nz * i, y, 0, nz, nl)
+        less_dot(h, p, khc + nz * i, y, nz, nz, nl)
         if tab[T_GYRO]:
-            for j in range(nz):
-                kp, kv = (khg + nz * i + j) * L, (nz + j) * L
-                if j == 0:
-                    for l in range(nl):
-                        w[r_acc + l] = p[kp + l] * y[kv + l]
-                else:
-                    for l in range(nl):
-                        w[r_acc + l] += p[kp + l] * y[kv + l]
+            dot(acc, p, khg + nz * i, 1, y, nz, 1, nz, nl)
             for l in range(nl):
-                w[kh + l] -= p[kom + l] * w[r_acc + l]
+                h[l] -= om[l] * acc[l]
         for q in range(nfs):
             s = tab[fst + q]
-            kp = (stb + 4 * nz * s + 2 * nz + 2 * i) * L
-            kf = r_f + 2 * q * L
+            a0, a1 = V(p, stb + 4 * nz * s + 2 * nz + 2 * i), V(p, stb + 4 * nz * s + 2 * nz + 2 * i + 1)
+            fx, fy = V(w, r_f + 2 * q), V(w, r_f + 2 * q + 1)
             for l in range(nl):
-                w[kh + l] += p[kp + l] * w[kf + l] + p[kp + L + l] * w[kf + L + l]
+                h[l] += a0[l] * fx[l] + a1[l] * fy[l]
     # ---- a_s = B_s h at the Schur unknowns' stations
     for iu in range(nused):
         s = tab[used + iu]
         for row in range(2):
-            ka = r_a + (2 * iu + row) * L
-            for j in range(nz):
-                kp, kh = (stb + 4 * nz * s + row * nz + j) * L, r_h + j * L
-                if j == 0:
-                    for l in range(nl):
-                        w[ka + l] = p[kp + l] * w[kh + l]
-                else:
-                    for l in range(nl):
-                        w[ka + l] += p[kp + l] * w[kh + l]
-    # ---- the loads' vectors (ml t_b); the pair matrices B_s H B_s'^T of the used stations
+            dot(V(w, r_a + 2 * iu + row), p, stb + 4 * nz * s + row * nz, 1, w, r_h, 1, nz, nl)
+    # ---- the loads' vectors (m l t_b); the pair matrices B_s H B_s'^T of the used stations
     for b in range(nb):
-        kml = (kb0 + 4 * b + 1) * L
+        ml, sb, cb, mx, my = V(p, kb0 + 4 * b + 1), V(w, r_s + b), V(w, r_c + b), V(w, r_mtx + b), V(w, r_mty + b)
         for l in range(nl):
-            w[r_mtx + b * L + l] = -p[kml + l] * w[r_s + b * L + l]
-            w[r_mty + b * L + l] = p[kml + l] * w[r_c + b * L + l]
+            mx[l] = -ml[l] * sb[l]
+            my[l] = ml[l] * cb[l]
     for i1 in range(nused):
         s1 = tab[used + i1]
         for i2 in range(i1, nused):
             s2 = tab[used + i2]
             for k in range(4):
                 row, col = k // 2, k % 2
-                kd = r_lv + (4 * (i1 * nused + i2) + k) * L
-                kt = r_lv + (4 * (i2 * nused + i1) + 2 * col + row) * L
+                d = V(w, r_lv + 4 * (i1 * nused + i2) + k)
                 if tilt:  # B_s1 (H B_s2^T) from the packed B and H B^T (as the generated kernel)
-                    for j in range(nz):
-                        kb = (stb + 4 * nz * s1 + row * nz + j) * L
-                        kh = (stb + 4 * nz * s2 + 2 * nz + 2 * j + col) * L
-                        if j == 0:
-                            for l in range(nl):
-                                w[kd + l] = p[kb + l] * p[kh + l]
-                        else:
-                            for l in range(nl):
-                                w[kd + l] += p[kb + l] * p[kh + l]
+                    dot(d, p, stb + 4 * nz * s1 + row * nz, 1, p, stb + 4 * nz * s2 + 2 * nz + col, 2, nz, nl)
                 else:  # the packed pair matrix
-                    kp = (tab[T_LOFF] + 4 * (s1 * nall + s2) + k) * L
+                    a = V(p, tab[T_LOFF] + 4 * (s1 * nall + s2) + k)
                     for l in range(nl):
-                        w[kd + l] = p[kp + l]
+                        d[l] = a[l]
                 if i2 != i1:
+                    e = V(w, r_lv + 4 * (i2 * nused + i1) + 2 * col + row)
                     for l in range(nl):
-                        w[kt + l] = w[kd + l]
+                        e[l] = d[l]
     # ---- P_j = B_s H X_j; S = diag - X^T H X (lower triangle); q
     for j in range(ns):
         nld = tab[lds + N_LOAD * j]
         for iu in range(nused):
             for row in range(2):
-                kd = r_p + (2 * (j * nused + iu) + row) * L
+                d = V(w, r_p + 2 * (j * nused + iu) + row)
                 for m in range(nld):
                     iu2 = tab[lds + N_LOAD * j + 2 + 4 * m]
-                    kvx = tab[lds + N_LOAD * j + 3 + 4 * m] * L
-                    kvy = tab[lds + N_LOAD * j + 4 + 4 * m] * L
-                    k0 = r_lv + (4 * (iu * nused + iu2) + 2 * row) * L
+                    vx, vy = V(w, tab[lds + N_LOAD * j + 3 + 4 * m]), V(w, tab[lds + N_LOAD * j + 4 + 4 * m])
+                    l0 = V(w, r_lv + 4 * (iu * nused + iu2) + 2 * row)
+                    l1 = V(w, r_lv + 4 * (iu * nused + iu2) + 2 * row + 1)
                     if m == 0:
                         for l in range(nl):
-                            w[kd + l] = w[k0 + l] * w[kvx + l]
+                            d[l] = l0[l] * vx[l]
                     else:
                         for l in range(nl):
-                            w[kd + l] += w[k0 + l] * w[kvx + l]
+                            d[l] += l0[l] * vx[l]
                     for l in range(nl):
-                        w[kd + l] += w[k0 + L + l] * w[kvy + l]
+                        d[l] += l1[l] * vy[l]
     for i in range(ns):
         nld = tab[lds + N_LOAD * i]
         for j in range(i + 1):
-            kd = r_sm + (i * ns + j) * L
             for m in range(nld):
                 iu = tab[lds + N_LOAD * i + 2 + 4 * m]
-                kvx = tab[lds + N_LOAD * i + 3 + 4 * m] * L
-                kvy = tab[lds + N_LOAD * i + 4 + 4 * m] * L
-                kpx = r_p + 2 * (j * nused + iu) * L
+                vx, vy = V(w, tab[lds + N_LOAD * i + 3 + 4 * m]), V(w, tab[lds + N_LOAD * i + 4 + 4 * m])
+                px, py = V(w, r_p + 2 * (j * nused + iu)), V(w, r_p + 2 * (j * nused + iu) + 1)
                 if m == 0:
                     for l in range(nl):
-                        w[r_acc + l] = w[kvx + l] * w[kpx + l]
+                        acc[l] = vx[l] * px[l]
                 else:
                     for l in range(nl):
-                        w[r_acc + l] += w[kvx + l] * w[kpx + l]
+                        acc[l] += vx[l] * px[l]
                 for l in range(nl):
-                    w[r_acc + l] += w[kvy + l] * w[kpx + L + l]
+                    acc[l] += vy[l] * py[l]
+            d = V(w, r_sm + i * ns + j)
             if i != j:
                 for l in range(nl):
-                    w[kd + l] = -w[r_acc + l]
+                    d[l] = -acc[l]
             elif i < nb:  # a ball: its inertia J
-                kj = (kb0 + 4 * i + 2) * L
+                J = V(p, kb0 + 4 * i + 2)
                 for l in range(nl):
-                    w[kd + l] = p[kj + l] - w[r_acc + l]
+                    d[l] = J[l] - acc[l]
             else:  # an axial unknown: -1 / D
-                kt = (tab[T_PTILT] + i - nb) * L
+                D = V(p, kti + i - nb)
                 for l in range(nl):
-                    w[kd + l] = -1.0 / p[kt + l] - w[r_acc + l]
+                    d[l] = -1.0 / D[l] - acc[l]
     for b in range(nb):
         r = tab[brace + b]
-        kcb, kml, kw = (kb0 + 4 * b + 3) * L, (kb0 + 4 * b + 1) * L, (iw + b) * L
-        kax, kay = r_a + 2 * r * L, r_a + (2 * r + 1) * L
+        cb_, ml, wb, sb, cb = V(p, kb0 + 4 * b + 3), V(p, kb0 + 4 * b + 1), V(y, iw + b), V(w, r_s + b), V(w, r_c + b)
+        ax, ay, q = V(w, r_a + 2 * r), V(w, r_a + 2 * r + 1), V(w, r_q + b)
         for l in range(nl):
-            s, c, ml = w[r_s + b * L + l], w[r_c + b * L + l], p[kml + l]
-            rel = y[kw + l] - p[kom + l]
-            w[r_q + b * L + l] = (-p[kcb + l] * rel + ml * (-p[kgx + l] * s + p[kgy + l] * c)
-                                  - ml * (-s * w[kax + l] + c * w[kay + l]))
+            s, c, m = sb[l], cb[l], ml[l]
+            rel = wb[l] - om[l]
+            q[l] = -cb_[l] * rel + m * (-gx[l] * s + gy[l] * c) - m * (-s * ax[l] + c * ay[l])
         if tilt:
             it = tab[bts + b]
-            kax, kay = r_a + 2 * it * L, r_a + (2 * it + 1) * L
-            kd = (tab[T_PTILT] + b) * L
+            ax, ay, D, qa = V(w, r_a + 2 * it), V(w, r_a + 2 * it + 1), V(p, kti + b), V(w, r_q + nb + b)
+            ep, tp, nx, ny = V(w, r_ep + b), V(w, r_tp + b), V(w, r_nx + b), V(w, r_ny + b)
             for l in range(nl):
-                w[r_q + b * L + l] += p[kd + l] * w[r_ep + b * L + l] * w[r_tp + b * L + l]
-                w[r_q + b * L + l] -= w[r_nx + b * L + l] * w[kax + l] + w[r_ny + b * L + l] * w[kay + l]
-                w[r_q + (nb + b) * L + l] = -(w[r_c + b * L + l] * w[kax + l] + w[r_s + b * L + l] * w[kay + l])
+                q[l] += D[l] * ep[l] * tp[l]
+                q[l] -= nx[l] * ax[l] + ny[l] * ay[l]
+                qa[l] = -(cb[l] * ax[l] + sb[l] * ay[l])
     # ---- LDL^T of S (no pivoting, as the generated kernel), forward and back substitution
     for j in range(ns):
-        kdj = r_d + j * L
+        dj, sjj = V(w, r_d + j), V(w, r_sm + j * ns + j)
         for l in range(nl):
-            w[kdj + l] = w[r_sm + (j * ns + j) * L + l]
+            dj[l] = sjj[l]
         for k in range(j):
-            kl = r_l + (j * ns + k) * L
+            ljk, dk = V(w, r_l + j * ns + k), V(w, r_d + k)
             for l in range(nl):
-                w[kdj + l] -= w[kl + l] * w[kl + l] * w[r_d + k * L + l]
+                dj[l] -= ljk[l] * ljk[l] * dk[l]
         for i in range(j + 1, ns):
-            kl = r_l + (i * ns + j) * L
+            lij, sij = V(w, r_l + i * ns + j), V(w, r_sm + i * ns + j)
             for l in range(nl):
-                w[kl + l] = w[r_sm + (i * ns + j) * L + l]
+                lij[l] = sij[l]
             for k in range(j):
-                ki, kj, kk = r_l + (i * ns + k) * L, r_l + (j * ns + k) * L, r_d + k * L
+                lik, ljk, dk = V(w, r_l + i * ns + k), V(w, r_l + j * ns + k), V(w, r_d + k)
                 for l in range(nl):
-                    w[kl + l] -= w[ki + l] * w[kj + l] * w[kk + l]
+                    lij[l] -= lik[l] * ljk[l] * dk[l]
             for l in range(nl):
-                w[kl + l] = w[kl + l] / w[kdj + l]
+                lij[l] = lij[l] / dj[l]
     for i in range(ns):
-        kx = r_x + i * L
+        xi, qi = V(w, r_x + i), V(w, r_q + i)
         for l in range(nl):
-            w[kx + l] = w[r_q + i * L + l]
+            xi[l] = qi[l]
         for k in range(i):
-            kl, kk = r_l + (i * ns + k) * L, r_x + k * L
+            lik, xk = V(w, r_l + i * ns + k), V(w, r_x + k)
             for l in range(nl):
-                w[kx + l] -= w[kl + l] * w[kk + l]
+                xi[l] -= lik[l] * xk[l]
     for i in range(ns - 1, -1, -1):
-        kx = r_x + i * L
+        xi, di = V(w, r_x + i), V(w, r_d + i)
         for l in range(nl):
-            w[kx + l] = w[kx + l] / w[r_d + i * L + l]
+            xi[l] = xi[l] / di[l]
         for k in range(i + 1, ns):
-            kl, kk = r_l + (k * ns + i) * L, r_x + k * L
+            lki, xk = V(w, r_l + k * ns + i), V(w, r_x + k)
             for l in range(nl):
-                w[kx + l] -= w[kl + l] * w[kk + l]
-    # ---- the station forces of the solution: g_s = sum_j (vx, vy)_j x_j over the loads at s
+                xi[l] -= lki[l] * xk[l]
+    # ---- the station forces of the solution, in the generated kernel's order: the races, then
+    # per ball n_b x_b + (c, s) mu_b at its race's tilt station
     for i in range(2 * nused):
+        g = V(w, r_g + i)
         for l in range(nl):
-            w[r_g + i * L + l] = 0.0
-    for b in range(nb):  # in the generated kernel's order: races, then per ball n_b x_b + (c, s) mu_b
+            g[l] = 0.0
+    for b in range(nb):
         r = tab[brace + b]
-        kml, kx, kg = (kb0 + 4 * b + 1) * L, r_x + b * L, r_g + 2 * r * L
+        ml, xb, sb, cb = V(p, kb0 + 4 * b + 1), V(w, r_x + b), V(w, r_s + b), V(w, r_c + b)
+        gx_, gy_ = V(w, r_g + 2 * r), V(w, r_g + 2 * r + 1)
         for l in range(nl):
-            w[kg + l] += -p[kml + l] * w[kx + l] * w[r_s + b * L + l]
-            w[kg + L + l] += p[kml + l] * w[kx + l] * w[r_c + b * L + l]
+            gx_[l] += -ml[l] * xb[l] * sb[l]
+            gy_[l] += ml[l] * xb[l] * cb[l]
     if tilt:
         for b in range(nb):
-            kg, kx, ka = r_g + 2 * tab[bts + b] * L, r_x + b * L, r_x + (nb + b) * L
+            it = tab[bts + b]
+            gx_, gy_, xb, xa = V(w, r_g + 2 * it), V(w, r_g + 2 * it + 1), V(w, r_x + b), V(w, r_x + nb + b)
+            nx, ny, sb, cb = V(w, r_nx + b), V(w, r_ny + b), V(w, r_s + b), V(w, r_c + b)
             for l in range(nl):
-                w[kg + l] += w[r_nx + b * L + l] * w[kx + l]
-                w[kg + l] += w[r_c + b * L + l] * w[ka + l]
-                w[kg + L + l] += w[r_ny + b * L + l] * w[kx + l]
-                w[kg + L + l] += w[r_s + b * L + l] * w[ka + l]
+                gx_[l] += nx[l] * xb[l]
+                gx_[l] += cb[l] * xa[l]
+                gy_[l] += ny[l] * xb[l]
+                gy_[l] += sb[l] * xa[l]
     # ---- dy/dt
     for i in range(nz):
-        kv, ko = (nz + i) * L, (nz + i) * L
+        o0, o1, v, h = V(out, i), V(out, nz + i), V(y, nz + i), V(w, r_h + i)
         for l in range(nl):
-            out[i * L + l] = y[kv + l]
-            out[ko + l] = w[r_h + i * L + l]
+            o0[l] = v[l]
+            o1[l] = h[l]
         for iu in range(nused):
             s = tab[used + iu]
-            kp = (stb + 4 * nz * s + 2 * nz + 2 * i) * L
-            kg = r_g + 2 * iu * L
+            a0, a1 = V(p, stb + 4 * nz * s + 2 * nz + 2 * i), V(p, stb + 4 * nz * s + 2 * nz + 2 * i + 1)
+            g0, g1 = V(w, r_g + 2 * iu), V(w, r_g + 2 * iu + 1)
             for l in range(nl):
-                out[ko + l] -= p[kp + l] * w[kg + l] + p[kp + L + l] * w[kg + L + l]
+                o1[l] -= a0[l] * g0[l] + a1[l] * g1[l]
     for b in range(nb):
+        o0, o1, wb, xb = V(out, iphi + b), V(out, iw + b), V(y, iw + b), V(w, r_x + b)
         for l in range(nl):
-            out[(iphi + b) * L + l] = y[(iw + b) * L + l]
-            out[(iw + b) * L + l] = w[r_x + b * L + l]
+            o0[l] = wb[l]
+            o1[l] = xb[l]
+
+
+def kernel(dense: str = "loops", cache: bool = False):
+    """``rhs_generic`` compiled with the dense products of ``dense`` (``"loops"``: a loop over
+    lanes per term; ``"blocked"``: eight accumulators in registers, all lanes always computed)."""
+    import types
+
+    fn = rhs_generic.py_func
+    g = dict(fn.__globals__, dot=globals()[f"dot_{dense}"], less_dot=globals()[f"less_dot_{dense}"])
+    return njit(nogil=True, error_model="numpy", cache=cache)(
+        types.FunctionType(fn.__code__, g, f"rhs_generic_{dense}"))

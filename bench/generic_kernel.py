@@ -95,8 +95,16 @@ def generic_args(model, t, y):
 
 
 def check(args):
-    from _generic_rhs import rhs_generic
+    from _generic_rhs import kernel, rhs_generic
 
+    worst = 0.0
+    for dense in ("loops", "blocked"):
+        worst = max(worst, _check(args, rhs_generic if dense == "loops" else kernel(dense), dense))
+    print(f"largest: {worst:.2e} (limit 1e-12): {'PASS' if worst <= 1e-12 else 'FAIL'}")
+    return 0 if worst <= 1e-12 else 1
+
+
+def _check(args, rhs_generic, dense):
     worst = 0.0
     for name, make in MODELS.items():
         model = make()
@@ -116,10 +124,10 @@ def check(args):
         rel = {k: float(np.max(np.abs(got[:, i:j] - ref[:, i:j])) / np.max(np.abs(ref[:, i:j])))
                for k, (i, j) in blocks.items()}
         worst = max(worst, *rel.values())
-        print(f"{name:12s} layout {lay.key}, {model.n_state} states, {args.n} random states: largest "
-              "difference / largest magnitude per block " + ", ".join(f"{k} {v:.1e}" for k, v in rel.items()))
-    print(f"largest: {worst:.2e} (limit 1e-12): {'PASS' if worst <= 1e-12 else 'FAIL'}")
-    return 0 if worst <= 1e-12 else 1
+        print(f"{dense:7s} {name:12s} layout {lay.key}, {model.n_state} states, {args.n} random states: "
+              "largest difference / largest magnitude per block "
+              + ", ".join(f"{k} {v:.1e}" for k, v in rel.items()))
+    return worst
 
 
 # ---- compile times, each in a fresh process ---------------------------------------------------
@@ -186,13 +194,15 @@ def compile_times(args):
 def _timing_loops():
     from numba import njit
 
-    from _generic_rhs import rhs_generic
+    from _generic_rhs import kernel
 
-    @njit(nogil=True)
-    def loop_generic(t, y, p, tab, w, out, nl, reps, k):
-        for _ in range(reps):
-            y[k] += 1e-12  # a ball angle moves: nothing can be hoisted out of the loop
-            rhs_generic(t, y, p, tab, w, out, nl)
+    def loop_generic(rhs_generic):
+        @njit(nogil=True)
+        def loop(t, y, p, tab, w, out, nl, reps, k):
+            for _ in range(reps):
+                y[k] += 1e-12  # a ball angle moves: nothing can be hoisted out of the loop
+                rhs_generic(t, y, p, tab, w, out, nl)
+        return loop
 
     def loop_lanes(rhs_lanes):
         @njit(nogil=True)
@@ -202,7 +212,13 @@ def _timing_loops():
                 rhs_lanes(W, nl)
         return loop
 
-    return loop_generic, loop_lanes
+    # compiled in this process like the generated loop (and inspectable: numba does not show
+    # the LLVM IR of a function loaded from its cache)
+    generic = {dense: kernel(dense) for dense in DENSE}
+    return {d: (k, loop_generic(k)) for d, k in generic.items()}, loop_lanes
+
+
+DENSE = ("loops", "blocked")
 
 
 def packed_ops(ir, name):
@@ -214,16 +230,14 @@ def packed_ops(ir, name):
 def speed(args):
     from numba import typeof
 
-    from _generic_rhs import rhs_generic
     from rotorlab.integrate._codegen import _in_memory
     from rotorlab.integrate._drivers import _lane_consts, _roles
 
-    loop_generic, loop_lanes = _timing_loops()
+    generic, loop_lanes = _timing_loops()
     cases = []
     for name in args.layouts:
         model = MODELS[name]()
         t, y = random_states(model, L, seed=1)
-        ga = generic_args(model, t, y)
         kg = model.layout.i_phi * L
         ns = _in_memory("rotorlab.integrate._lanes", _roles(model.kernels), _lane_consts(model.kernels, L))
         p = model.to_array()
@@ -233,20 +247,22 @@ def speed(args):
         W[ns["_P"]:] = interleave(np.tile(p, (L, 1)))
         kw = ns["_T"] + model.layout.i_phi * L
         ns["_rhs_lanes"].compile((typeof(W), typeof(L)))
-        rhs_generic(*ga, L)
         ns["_rhs_lanes"](W, L)
-        q = W[ns["_Q"]:ns["_Q"] + model.n_state * L]
-        diff = np.max(np.abs(q - ga[5])) / np.max(np.abs(q))
+        q = W[ns["_Q"]:ns["_Q"] + model.n_state * L].copy()
         loop = loop_lanes(ns["_rhs_lanes"])
         loop(W, L, 1, kw)
-        loop_generic(*ga, L, 1, kg)
-        sig = rhs_generic.signatures[0]
-        print(f"{name}: {model.n_state} states; generic vs generated (8 lanes) {diff:.1e}; packed "
-              f"double ops: generic {packed_ops(rhs_generic.inspect_llvm(sig), 'rhs_generic')}, "
-              f"generated loop {packed_ops(ns['_rhs_lanes'].inspect_llvm(ns['_rhs_lanes'].signatures[0]), '_rhs_lanes')}",
-              flush=True)
+        rl = ns["_rhs_lanes"]
+        print(f"{name}: {model.n_state} states; packed double ops: generated loop "
+              f"{packed_ops(rl.inspect_llvm(rl.signatures[0]), '_rhs_lanes')}", flush=True)
         cases.append((name, "generated", lambda n, f=loop, W=W, kw=kw: f(W, L, n, kw)))
-        cases.append((name, "generic", lambda n, f=loop_generic, a=ga, kg=kg: f(*a, L, n, kg)))
+        for dense, (rhs_generic, lg) in generic.items():
+            ga = generic_args(model, t, y)
+            rhs_generic(*ga, L)
+            diff = np.max(np.abs(q - ga[5])) / np.max(np.abs(q))
+            lg(*ga, L, 1, kg)
+            ops = packed_ops(rhs_generic.inspect_llvm(rhs_generic.signatures[0]), "rhs_generic")
+            print(f"  generic ({dense}): {ops} packed double ops; against the generated loop {diff:.1e}")
+            cases.append((name, f"generic {dense}", lambda n, f=lg, a=ga, kg=kg: f(*a, L, n, kg)))
     res = {}
     for _ in range(args.repeats):
         for name, kind, run in cases:
@@ -254,11 +270,12 @@ def speed(args):
             run(args.reps)
             res.setdefault((name, kind), []).append(args.reps * L / (cpu() - c))
     for (name, kind), v in res.items():
-        print(f"  {name:12s} {kind:9s} rhs evaluations per CPU-s: median {np.median(v):10.0f} "
+        print(f"  {name:12s} {kind:15s} rhs evaluations per CPU-s: median {np.median(v):10.0f} "
               f"(min {min(v):.0f}, max {max(v):.0f}, {len(v)} repeats)")
     for name in args.layouts:
-        r = np.median(res[(name, "generic")]) / np.median(res[(name, "generated")])
-        print(f"  {name:12s} generic / generated = {r:.3f}")
+        for dense in DENSE:
+            r = np.median(res[(name, f"generic {dense}")]) / np.median(res[(name, "generated")])
+            print(f"  {name:12s} generic {dense} / generated = {r:.3f}")
     return 0
 
 
