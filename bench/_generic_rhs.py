@@ -16,7 +16,9 @@ attachment tables read at run time from an integer table, the lanes innermost:
 
 Every array is lane-interleaved with the lane driver's stride (element ``i`` of lane ``l`` at
 ``a[i * LANES + l]``) and every operation is a loop over ``nl`` lanes innermost, so that LLVM
-vectorises each loop across the lanes. The arithmetic follows the generated kernel's term by
+vectorises each loop across the lanes; the dense products (the structure's and the stations'
+matrices) come in two forms, a loop over lanes per term or eight accumulators kept in registers
+(:func:`kernel`). The arithmetic follows the generated kernel's term by
 term (same order of every sum), so the two agree to round-off (the bench checks 1e-12).
 """
 
@@ -36,7 +38,7 @@ LANES = 8  # the lane driver's stride (DEFAULT_LANES): a compile-time constant, 
  T_STB, T_STH, T_LOFF, T_NALL,
  R_STH, R_CTH, R_S, R_C, R_EUX, R_EUY, R_TX, R_TY, R_TVX, R_TVY, R_EP, R_TP, R_NX, R_NY,
  R_MTX, R_MTY, R_F, R_H, R_A, R_LV, R_P, R_SM, R_Q, R_X, R_D, R_L, R_G, R_ACC,
- T_BRACE, T_BTS, T_USED, T_FST, T_LOADS, T_WORK) = range(59)
+ T_BRACE, T_BTS, T_USED, T_FST, T_LOADS, _T_SPARE) = range(59)
 T_HEAD = 59
 N_LOAD = 9  # per Schur unknown: its number of loads, then (station, used index, row vx, row vy) x 2
 

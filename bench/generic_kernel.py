@@ -42,6 +42,7 @@ import numpy as np
 sys.path.insert(0, str(Path(__file__).resolve().parent))
 
 L = 8
+DENSE = ("loops", "blocked")  # the two forms of the generic kernel's dense products
 
 
 def cpu():
@@ -133,7 +134,7 @@ def _check(args, rhs_generic, dense):
 # ---- compile times, each in a fresh process ---------------------------------------------------
 
 def _compile_generic():
-    from numba import njit, typeof
+    from numba import typeof
 
     import _generic_rhs as g
 
@@ -141,10 +142,12 @@ def _compile_generic():
     t, y = random_states(model, L)
     a = generic_args(model, t, y) + (L,)
     sig = tuple(typeof(x) for x in a)
-    fresh = njit(nogil=True, error_model="numpy", cache=False)(g.rhs_generic.py_func)
-    c = cpu()
-    fresh.compile(sig)
-    out = {"generic kernel, compiled": cpu() - c}
+    out = {}
+    for dense in DENSE:
+        fresh = g.kernel(dense)
+        c = cpu()
+        fresh.compile(sig)
+        out[f"generic kernel ({dense}), compiled"] = cpu() - c
     c = cpu()
     g.rhs_generic.compile(sig)  # from numba's cache when it holds it (the second child run)
     out["generic kernel, cache=True dispatcher (loaded or compiled)"] = cpu() - c
@@ -172,7 +175,7 @@ def _compile_generated(name):
 
 def compile_times(args):
     rows = {}
-    for what in ["generic", "generic"] + [f"generated:{n}" for n in ("pico21[0]", "pico21[0,1]")]:
+    for what in ["generic", "generic"] + [f"generated:{n}" for n in ("pico21[0]", "pico21[0,1]")] * 2:
         with tempfile.TemporaryDirectory() as d:
             env = dict(os.environ, ROTORLAB_CACHE_DIR=d, PYTHONPATH=os.pathsep.join(
                 [str(Path(__file__).resolve().parents[1] / "src"), os.environ.get("PYTHONPATH", "")]))
@@ -217,8 +220,6 @@ def _timing_loops():
     generic = {dense: kernel(dense) for dense in DENSE}
     return {d: (k, loop_generic(k)) for d, k in generic.items()}, loop_lanes
 
-
-DENSE = ("loops", "blocked")
 
 
 def packed_ops(ir, name):
