@@ -116,6 +116,15 @@ def V(a, row):  # pragma: no cover - compiled
     lanes vectorise (``a[row * LANES + l]`` with a run-time ``row`` does not)."""
     return _view(a, row * LANES, LANES)
 
+
+@njit(cache=True, nogil=True, inline="always", error_model="numpy")
+def zero(w, row, n, nl):  # pragma: no cover - compiled
+    """Set the rows ``row .. row + n - 1`` of ``w`` to 0 in every lane."""
+    for i in range(n):
+        d = V(w, row + i)
+        for l in range(nl):
+            d[l] = 0.0
+
 # ---- the dense products, in two forms (``kernel(dense=...)``): a loop over lanes per term, or
 # eight accumulators held in registers over the terms (the lanes fixed at LANES = 8, written out)
 
@@ -214,10 +223,7 @@ def rhs_generic(t, y, p, tab, w, out, nl):  # pragma: no cover - compiled
                 nx[l] = 0.5 * J[l] * ty[l]
                 ny[l] = -0.5 * J[l] * tx[l]
     # ---- station forces: races (centrifugal), unbalances, tilt stations (the balls' velocity terms)
-    for i in range(2 * nfs):
-        f = V(w, r_f + i)
-        for l in range(nl):
-            f[l] = 0.0
+    zero(w, r_f, 2 * nfs, nl)
     for b in range(nb):
         r = tab[brace + b]
         ml, wb, sb, cb = V(p, kb0 + 4 * b + 1), V(y, iw + b), V(w, r_s + b), V(w, r_c + b)
@@ -394,10 +400,7 @@ def rhs_generic(t, y, p, tab, w, out, nl):  # pragma: no cover - compiled
                 xi[l] -= lki[l] * xk[l]
     # ---- the station forces of the solution, in the generated kernel's order: the races, then
     # per ball n_b x_b + (c, s) mu_b at its race's tilt station
-    for i in range(2 * nused):
-        g = V(w, r_g + i)
-        for l in range(nl):
-            g[l] = 0.0
+    zero(w, r_g, 2 * nused, nl)
     for b in range(nb):
         r = tab[brace + b]
         ml, xb, sb, cb = V(p, kb0 + 4 * b + 1), V(w, r_x + b), V(w, r_s + b), V(w, r_c + b)
