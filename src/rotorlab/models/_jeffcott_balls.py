@@ -167,6 +167,11 @@ class JeffcottBalls(ParametrisedMixin):
     ``[u, v, du, dv, psi_1..psi_n, dpsi_1..dpsi_n]`` (m, m/s, rad, rad/s); when any ball has
     friction > 0, n trailing stick/slip modes in {-1, 0, +1} follow.
 
+    Both frames integrate on the preset machine's generated kernels (:attr:`machine`,
+    :attr:`kernels`): the fixed frame on :attr:`Machine.kernels`, the co-rotating frame on
+    :attr:`Machine.rotating_kernels` (the fixed frame's equations turned with the spin), with one
+    packed vector (:meth:`to_array`).
+
     Examples
     --------
     >>> rotor = RotorParams(disc_mass=0.96, eccentricity=0.01 / 0.96, stiffness=1.0, damping=0.02)
