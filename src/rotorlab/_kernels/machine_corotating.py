@@ -39,6 +39,7 @@ from rotorlab._kernels.machine_layout import Layout
 __all__ = ["generate_rotating", "rotating_kernel_module"]
 
 _READ = re.compile(r"\by\[(\d+)\]")
+_OUT = re.compile(r"\bout\[(\d+)\]")
 
 
 def _frame_lines(lay: Layout) -> list[str]:
@@ -63,25 +64,39 @@ def _fixed_tuple(lay: Layout) -> str:
     return "(" + ", ".join(f"_f{k}" for k in range(lay.n_state)) + ",)"
 
 
+def _fixed_body(lay: Layout) -> list[str]:
+    """The fixed frame's rhs lines on the fixed state ``_f<k>``, writing ``_o<k>`` for ``out[k]``:
+    its spin lines (the frame's already define them) and its sines of theta taken from the
+    frame's, so that nothing is computed twice."""
+    body, _ = _cg.rhs_lines(lay)
+    spin = spin_lines(lay)
+    for i in range(len(body) - len(spin) + 1):
+        if body[i:i + len(spin)] == spin:
+            del body[i:i + len(spin)]
+            break
+    body = [re.sub(r"^(\s+)(\w+), (\w+) = sincos\(theta\)$", r"\1\2, \3 = _s, _c", line) for line in body]
+    body = [_OUT.sub(lambda m: f"_o{m.group(1)}", _READ.sub(lambda m: f"_f{m.group(1)}", line)) for line in body]
+    left = [line for line in body if re.search(r"\b(y|out)\b", line)]
+    if left:  # pragma: no cover - a generator change the renaming does not cover
+        raise RuntimeError(f"co-rotating kernel: the fixed lines use the state otherwise: {left[0].strip()}")
+    return body
+
+
 def _rhs_rotating(lay: Layout) -> str:
     nz, nb = lay.n_z, lay.n_balls
-    body, _ = _cg.rhs_lines(lay)
-    body = [_READ.sub(lambda m: f"_f{m.group(1)}", line) for line in body]
-    left = [line for line in body if re.search(r"\by\b", line)]
-    if left:  # pragma: no cover - a generator change the renaming does not cover
-        raise RuntimeError(f"co-rotating kernel: the fixed lines read the state otherwise: {left[0].strip()}")
-    L = _frame_lines(lay) + body
-    L.append(f"    _al = out[{lay.i_theta + 1}]" if lay.motor else "    _al = dom")
+    L = _frame_lines(lay) + _fixed_body(lay)
+    o = {k: f"_o{k}" for k in range(lay.n_state)}
+    L.append(f"    _al = _o{lay.i_theta + 1}" if lay.motor else "    _al = dom")
     for x in range(0, nz, 2):  # z_r'' = R^T z'' - 2 w J z_r' - alpha J z_r + w^2 z_r
         q = x + 1
-        L += [f"    _a = out[{nz + x}]", f"    _b = out[{nz + q}]",
-              f"    out[{nz + x}] = _c * _a + _s * _b + 2.0 * om * y[{nz + q}] + _al * y[{q}] + om * om * y[{x}]",
-              f"    out[{nz + q}] = _c * _b - _s * _a - 2.0 * om * y[{nz + x}] - _al * y[{x}] + om * om * y[{q}]"]
-    L += [f"    out[{i}] = y[{nz + i}]" for i in range(nz)]
+        a, b = o[nz + x], o[nz + q]
+        o[nz + x] = f"_c * {a} + _s * {b} + 2.0 * om * y[{nz + q}] + _al * y[{q}] + om * om * y[{x}]"
+        o[nz + q] = f"_c * {b} - _s * {a} - 2.0 * om * y[{nz + x}] - _al * y[{x}] + om * om * y[{q}]"
+    o.update({i: f"y[{nz + i}]" for i in range(nz)})
     for b in range(nb):
-        rate = f"out[{lay.i_phi + b}] - om" if lay.friction else f"y[{lay.i_w + b}]"
-        L.append(f"    out[{lay.i_phi + b}] = {rate}")
-        L.append(f"    out[{lay.i_w + b}] = out[{lay.i_w + b}] - _al")
+        o[lay.i_phi + b] = f"_o{lay.i_phi + b} - om" if lay.friction else f"y[{lay.i_w + b}]"
+        o[lay.i_w + b] = f"_o{lay.i_w + b} - _al"
+    L += [f"    out[{k}] = {o[k]}" for k in range(lay.n_state)]
     return (_DECO + "def rhs_rotating(t, y, p, out):  # pragma: no cover - compiled\n"
             '    """Right-hand side in the co-rotating frame (rotorlab._kernels.machine_corotating)."""\n'
             + "\n".join(L) + "\n")
