@@ -14,9 +14,10 @@ from dataclasses import replace
 import numpy as np
 import pytest
 from scipy.integrate import solve_ivp
-from test_machine import rigid_two_plane
+from test_machine import planar_pair, rigid_two_plane
 
-from rotorlab.models import Clearance, Gravity, Motor, TunedMassAbsorber
+from rotorlab.integrate import StepControl, solve
+from rotorlab.models import Clearance, ConstantSpeed, Gravity, Motor, TunedMassAbsorber
 
 
 def fixed_motion(mac, t0, y0, offsets):
@@ -68,3 +69,22 @@ def test_machines_without_a_corotating_kernel_say_why():
             mac.rotating_kernels
     with pytest.raises(ValueError, match="frame must be 'fixed' or 'rotating', got 'spinning'"):
         base.to_frame(0.0, np.zeros(base.n_state), "spinning")
+
+
+def test_an_isotropic_machine_simulated_in_its_rotating_frame_follows_its_fixed_frame_run():
+    """``solve`` on :meth:`Machine.in_rotating_frame` and on the machine itself, from the same
+    start: the same trajectory, turned (the machine of test_machine's planar trajectory test)."""
+    mac, _ = planar_pair(ConstantSpeed(2.5), n_modes=2)
+    rot = mac.in_rotating_frame()
+    assert rot.kernels is mac.rotating_kernels and rot.state_names[:4] == ("u_1", "u_2", "du_1", "du_2")
+    yf0 = mac.initial_state([0.3, 2.0])
+    yr0 = rot.initial_state([0.3, 2.0])
+    np.testing.assert_allclose(rot.to_fixed(0.0, yr0), yf0, rtol=0, atol=1e-15)
+    ctl = StepControl(rtol=1e-10, atol=1e-12)
+    for t1 in (7.3, 60.0):
+        sf = solve(mac, yf0, (0.0, t1), control=ctl)
+        sr = solve(rot, yr0, (0.0, t1), control=ctl)
+        assert sf.status.name == sr.status.name == "SUCCESS"
+        np.testing.assert_allclose(rot.to_fixed(t1, sr.y_final), sf.y_final, rtol=0, atol=1e-7)
+        i = mac.layout.i_phi  # the frames differ: psi = phi - Omega t
+        assert sr.y_final[i] == pytest.approx(sf.y_final[i] - 2.5 * t1, abs=1e-6) and 2.5 * t1 > 18.0

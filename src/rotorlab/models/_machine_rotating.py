@@ -157,6 +157,19 @@ class _RotatingFrame:
             self._cache["rotating_kernels"] = replace(self.kernels, **kw)
         return self._cache["rotating_kernels"]
 
+    def in_rotating_frame(self):
+        """This machine with its states in the co-rotating frame, a model that
+        :func:`rotorlab.integrate.solve` takes (:class:`rotorlab.models.CoRotatingMachine`).
+
+        Raises
+        ------
+        ValueError
+            With :meth:`why_no_rotating_kernel`'s reason.
+        """
+        from rotorlab.models._machine_corotating import CoRotatingMachine
+
+        return CoRotatingMachine(self)
+
     def to_frame(self, t, y, frame: str) -> np.ndarray:
         """Turn full states ``y`` (shape (..., n_state)) at times ``t`` from the other frame into
         ``frame`` (``"fixed"`` or ``"rotating"``): the pairs of structure coordinates by the spin
