@@ -103,3 +103,67 @@ def test_balls_on_different_radii_keep_their_order():
     for t, y in random_states(jb, seed=1, n=5):
         fj = oracle_rhs(jb, t, y)
         np.testing.assert_allclose(mac.rhs(t, y), fj, rtol=0, atol=1e-12 * np.abs(fj).max())
+
+
+# ---- the co-rotating frame: the preset machine's generated co-rotating kernel (issue 24, item 3)
+def rotating_rotor(speed, friction=0.0):
+    return rotor(speed, friction).with_frame("rotating")
+
+
+@pytest.mark.parametrize("speed", SPEEDS, ids=["constant", "ramp", "hill"])
+def test_rotating_frame_runs_the_preset_machines_corotating_kernel_with_the_rhs_and_energy_of_jeffcott_balls(speed):
+    """``frame="rotating"`` integrates on :attr:`Machine.rotating_kernels` (not on the hand-written
+    kernels, the oracle here): the same right-hand side as ``rhs_rotating`` to 1e-12, and the
+    machine's energy of the state turned into the fixed frame is the model's (plus the disc's spin
+    energy, module docstring)."""
+    jb = rotating_rotor(speed)
+    mac = jb.machine
+    assert jb.kernels.rhs is mac.rotating_kernels.rhs
+    assert jb.kernels.rhs.py_func.__module__.startswith("_rotorlab_machine_")
+    p, po = jb.to_array(), jb.to_array()[: 12 + 6 * jb.n_balls]
+    for t, y in random_states(jb, seed=4):
+        fj = np.empty_like(y)
+        oracle.rhs_rotating(t, y, po, fj)
+        np.testing.assert_allclose(jb.rhs(t, y), fj, rtol=0, atol=1e-12 * np.abs(fj).max())
+        om = jb.spin(t)[1]
+        yf = mac.to_frame(t, y, "fixed")
+        np.testing.assert_allclose(yf, jb.to_frame(t, y, "fixed"), rtol=0, atol=1e-14 * np.abs(yf).max())
+        np.testing.assert_allclose(mac.to_frame(t, yf, "rotating"), y, rtol=0, atol=1e-13 * np.abs(y).max())
+        e_j = float(jb.energy(t, y))
+        assert mac.energy(yf, t) + 0.5 * M1 * ECC**2 * om**2 == pytest.approx(e_j, rel=1e-12, abs=1e-12)
+    fm = np.empty(8)
+    jb.kernels.rhs(1.0, np.zeros(8), p, fm)
+    assert np.abs(fm).max() > 0  # not a kernel that ignores the state
+
+
+@pytest.mark.parametrize("speed", SPEEDS, ids=["constant", "ramp", "hill"])
+def test_rotating_frame_with_friction_has_the_rhs_events_resets_and_energy_of_jeffcott_balls(speed):
+    jb = rotating_rotor(speed, friction=0.2)
+    mac = jb.machine
+    k = jb.kernels
+    assert k.rhs is mac.rotating_kernels.rhs and k.events is mac.rotating_kernels.events
+    assert [e.name for e in k.event_specs] == ["stick_1", "slip_1", "stick_2", "slip_2"]
+    p, po = jb.to_array(), jb.to_array()[: 12 + 6 * jb.n_balls]
+    for j, modes in enumerate([(1.0, -1.0), (0.0, 1.0), (-1.0, 0.0), (0.0, 0.0)]):
+        for t, y in random_states(jb, seed=20 + j, n=8, t_max=20.0):
+            y[8:] = modes
+            y[6:8][np.array(modes) == 0.0] = 0.0  # a stuck ball turns with the frame
+            y_any = y.copy()  # and whatever rate the state holds, it moves with its race
+            y_any[6:8] += np.where(np.array(modes) == 0.0, 0.7, 0.0)
+            for yy in (y, y_any):
+                fj, fm = np.empty(10), np.empty(10)
+                oracle.rhs_rotating(t, yy, po, fj)
+                k.rhs(t, yy, p, fm)
+                np.testing.assert_allclose(fm, fj, rtol=0, atol=1e-12 * np.abs(fj).max())
+                gm, gj = np.empty(4), np.empty(4)
+                k.events(t, yy, p, gm)
+                oracle.events_rotating(t, yy, po, gj)
+                np.testing.assert_allclose(gm, gj, rtol=0, atol=1e-12 * max(1.0, np.abs(gj).max()))
+                for ev in range(4):
+                    rm, rj = np.empty(10), np.empty(10)
+                    k.reset(ev, t, yy, p, rm)
+                    oracle.reset_rotating(ev, t, yy, po, rj)
+                    np.testing.assert_allclose(rm, rj, rtol=0, atol=1e-12 * np.abs(rj).max())
+            om = jb.spin(t)[1]
+            yf = mac.to_frame(t, y, "fixed")
+            assert mac.energy(yf, t) + 0.5 * M1 * ECC**2 * om**2 == pytest.approx(float(jb.energy(t, y)), rel=1e-12)

@@ -107,11 +107,11 @@ def test_model_rejects_bad_configuration():
 def test_packed_order_and_round_trip(speed, frame):
     model = JeffcottBalls(ROTOR, BALLS, speed=speed, frame=frame)
     p = model.to_array()
-    # the fixed frame runs the preset machine's kernel: its packed parameters follow the model's
-    tail = model.machine.to_array()[24:] if frame == "fixed" else np.empty(0)
+    # both frames run the preset machine's kernels: its packed parameters follow the model's
+    tail = model.machine.to_array()[24:]
     assert p.dtype == np.float64 and p.shape == (12 + 6 * 2 + tail.size,)
     np.testing.assert_array_equal(p[24:], tail)
-    assert frame == "rotating" or tail.size == model.machine.layout.n_param - 24 > 0
+    assert tail.size == model.machine.layout.n_param - 24 > 0
     assert p[0] == 2.0 and p[1] == 1.0  # n, friction modes present
     np.testing.assert_array_equal(p[2:6], [3.0, 2e-3, 1.2e4, 5.0])
     np.testing.assert_array_equal(p[6:12], speed.to_array())

@@ -28,7 +28,7 @@ def _declared():
     out = []
     rotor = RotorParams(disc_mass=10.0, eccentricity=1e-4, stiffness=1e5, damping=20.0)
     ball = BallParams(mass=0.05, radius=0.1, damping=1e-4)
-    for frame in ("fixed", "rotating"):  # fixed: the preset machine's kernel; rotating: its own
+    for frame in ("fixed", "rotating"):  # the preset machine's kernel of either frame
         for n in (1, 2, 3):  # the ball count is a compile-time constant of each lane copy
             for speed in (ConstantSpeed(200.0), LinearRamp(0.0, 200.0, 1.0)) if n == 2 else (ConstantSpeed(200.0),):
                 model = JeffcottBalls(rotor, (ball,) * n, speed=speed, frame=frame)

@@ -1,12 +1,11 @@
 """Compiled kernels of the planar Jeffcott rotor with n balls or pendulums (``jeffcott_balls``).
 
 Physics and conventions are documented in :mod:`rotorlab.models._jeffcott_balls`; this module is
-the allocation-free numerics. The model simulates in the fixed frame on its preset machine's
-generated kernel (:mod:`rotorlab.models._jeffcott_machine`); of this module the package runs only
-the co-rotating kernels (``rhs_rotating*``, ``events_rotating``, ``reset_rotating``: the machine has
-no compiled co-rotating frame yet, the measured exception documented there) and
-:func:`stick_torques` (the friction helpers of the model). The fixed-frame kernels stay as the
-tests' oracle (``tests/unit/test_jeffcott_machine.py``).
+the allocation-free numerics. The model simulates in both frames on its preset machine's
+generated kernels (:mod:`rotorlab.models._jeffcott_machine`); of this module the package runs only
+:func:`stick_torques` (the friction helpers of the model). The kernels stay as the tests' oracle
+(``tests/unit/test_jeffcott_machine.py``) and the baseline of ``bench/machine.py`` and
+``bench/corotating.py``.
 
 Packed parameters ``p`` (float64, length ``12 + 6 n``)
 ------------------------------------------------------

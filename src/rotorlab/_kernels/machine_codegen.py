@@ -46,7 +46,23 @@ __all__ = ["Layout", "kernel_module"]
 
 def generate(lay: Layout) -> str:
     """Return the source of the kernel module for ``lay`` (see the module docstring)."""
-    nz, nb = lay.n_z, lay.n_balls
+    lines, corr = rhs_lines(lay)
+    body = "\n".join(lines)
+    header = _HEADER.format(key=lay.key)
+    if lay.clearance:
+        header = header.replace("import profile\n", "import profile\n" + _mc.IMPORTS, 1)
+    src = header + body + "\n"
+    if lay.clearance:
+        src += _mc.extra_functions(lay, corr, prefix)
+    if lay.friction:
+        src += friction_functions(lay, prefix)
+    return src
+
+
+def rhs_lines(lay: Layout) -> tuple[list[str], list[tuple[int, str, str]]]:
+    """The body of the fixed-frame ``rhs(t, y, p, out)`` of ``lay`` (its lines, indented) and the
+    station forces of the ball (and spin) accelerations (see :func:`prefix`)."""
+    nz = lay.n_z
     L: list[str] = []
     a = L.append
     a(f"    # sizes: n_z={nz}, races={lay.races}, unbalances={lay.n_unbalance}, drive={lay.drive}, "
@@ -60,16 +76,7 @@ def generate(lay: Layout) -> str:
     if lay.friction:
         friction_torques(lay, L, corr)
     _tail(lay, L, corr)
-    body = "\n".join(L)
-    header = _HEADER.format(key=lay.key)
-    if lay.clearance:
-        header = header.replace("import profile\n", "import profile\n" + _mc.IMPORTS, 1)
-    src = header + body + "\n"
-    if lay.clearance:
-        src += _mc.extra_functions(lay, corr, prefix)
-    if lay.friction:
-        src += friction_functions(lay, prefix)
-    return src
+    return L, corr
 
 
 def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, str, str]]:
@@ -305,12 +312,14 @@ def _deps_hash(source: str) -> str:
     return h.hexdigest()[:20]
 
 
-def kernel_module(lay: Layout):
-    """Return the imported kernel module for ``lay`` (generated and written on first use)."""
+def kernel_module(lay: Layout, generator=generate):
+    """Return the imported kernel module for ``lay`` (generated and written on first use);
+    ``generator`` writes its source (the fixed frame's :func:`generate`, or the co-rotating
+    frame's :func:`rotorlab._kernels.machine_corotating.generate_rotating`)."""
     from rotorlab._compile_cache import BUILD_LOCK
     from rotorlab._compile_cache import cache_dir as _cache_dir
 
-    source = generate(lay)
+    source = generator(lay)
     digest = _deps_hash(source)
     if digest in _LOADED:
         return _LOADED[digest]

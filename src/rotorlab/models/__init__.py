@@ -27,6 +27,7 @@ from rotorlab.models._machine import (
     Motor,
     Unbalance,
 )
+from rotorlab.models._machine_corotating import CoRotatingMachine
 from rotorlab.models._servo import ServoDrive
 from rotorlab.models._protocol import AbstractParametrisedModel, Parameter, ParameterSpace
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp, speed_from_array
@@ -34,8 +35,8 @@ from rotorlab.models._toroidal_ball import ToroidalBall, WorkingPoint, strautman
 
 # In the order the API page shows them (autodoc follows __all__): the models users build first,
 # the interfaces for implementers of a new model last.
-__all__ = ["Machine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity", "Motor", "ServoDrive",
-           "Clearance", "ElasticStator"]
+__all__ = ["Machine", "CoRotatingMachine", "MachineLinearization", "Ball", "BallRace", "Unbalance", "Gravity",
+           "Motor", "ServoDrive", "Clearance", "ElasticStator"]
 __all__ += ["JeffcottBalls", "RotorParams", "BallParams", "Linearization", "fixed_to_rotating",
             "rotating_to_fixed", "ConstantSpeed", "LinearRamp", "HillRunUp", "speed_from_array"]
 __all__ += ["ToroidalBall", "WorkingPoint", "strautmanis_torus"]

@@ -26,10 +26,11 @@ clockwise angle is numerically our counter-clockwise one); for n = 2 they are ex
 the project's benchmark problem (:data:`rotorlab.models.BENCHMARK`) with M1 e = eps, beta = b. The rotating frame uses
 x + i y = e^{i theta}(u + i v), phi_i = theta + psi_i; steady motions at constant speed are its
 equilibria. The model is a preset of the composed machine (:attr:`JeffcottBalls.machine`,
-:mod:`rotorlab.models._jeffcott_machine`): in the fixed frame it integrates on the machine's
-generated kernel; in the co-rotating frame on its own kernel,
-:mod:`rotorlab._kernels.jeffcott_balls`, which also documents the first ``12 + 6 n`` packed
-parameters (the machine's follow them in the fixed frame).
+:mod:`rotorlab.models._jeffcott_machine`): in both frames it integrates on the machine's
+generated kernels (the co-rotating one turns the fixed frame's lines with the spin,
+:mod:`rotorlab._kernels.machine_corotating`). Its hand-written kernels,
+:mod:`rotorlab._kernels.jeffcott_balls`, are the tests' oracle and document the first
+``12 + 6 n`` packed parameters (the machine's follow them).
 
 Coulomb friction uses the exact normal force of the race on the ball,
 N_i = m_i (l_i phi_i'^2 - x'' cos phi_i - y'' sin phi_i) (radial equation of the ball's mass
@@ -166,6 +167,11 @@ class JeffcottBalls(ParametrisedMixin):
     ``[u, v, du, dv, psi_1..psi_n, dpsi_1..dpsi_n]`` (m, m/s, rad, rad/s); when any ball has
     friction > 0, n trailing stick/slip modes in {-1, 0, +1} follow.
 
+    Both frames integrate on the preset machine's generated kernels (:attr:`machine`,
+    :attr:`kernels`): the fixed frame on :attr:`Machine.kernels`, the co-rotating frame on
+    :attr:`Machine.rotating_kernels` (the fixed frame's equations turned with the spin), with one
+    packed vector (:meth:`to_array`).
+
     Examples
     --------
     >>> rotor = RotorParams(disc_mass=0.96, eccentricity=0.01 / 0.96, stiffness=1.0, damping=0.02)
@@ -220,9 +226,9 @@ class JeffcottBalls(ParametrisedMixin):
 
     @property
     def kernels(self) -> Kernels:
-        """Compiled kernels (shared, cached): in the fixed frame the preset machine's
-        (:attr:`machine`), in the co-rotating frame this model's own (the one exception, see
-        :func:`rotorlab.models._jeffcott_machine.jeffcott_kernels`)."""
+        """Compiled kernels (shared, cached): the preset machine's (:attr:`machine`) of this
+        model's frame, :attr:`Machine.kernels` or :attr:`Machine.rotating_kernels`
+        (:func:`rotorlab.models._jeffcott_machine.jeffcott_kernels`)."""
         from rotorlab.models._jeffcott_machine import jeffcott_kernels
 
         return jeffcott_kernels(self)
@@ -281,16 +287,14 @@ class JeffcottBalls(ParametrisedMixin):
 
     # ---- packing --------------------------------------------------------------------------------
     def to_array(self) -> np.ndarray:
-        """Return the packed parameters: the ``12 + 6 n`` of :mod:`rotorlab._kernels.jeffcott_balls`,
-        in the fixed frame followed by the preset machine's (its kernel's, ``param_base``)."""
+        """Return the packed parameters: the ``12 + 6 n`` of :mod:`rotorlab._kernels.jeffcott_balls`
+        followed by the preset machine's (its kernels' in both frames, ``param_base``)."""
         r = self.rotor
         head = [float(self.n_balls), 1.0 if self.has_friction else 0.0, r.disc_mass,
                 r.eccentricity, r.stiffness, r.damping]  # fmt: skip
         balls = [[b.mass, b.radius, b.inertia, b.damping, b.friction, 1.0 / b.inertia if b.inertia else math.inf]
                  for b in self.balls]  # fmt: skip
         own = np.concatenate([head, self.speed.to_array(), np.ravel(balls)]).astype(float)
-        if self.frame == "rotating":
-            return own
         p = self.machine.to_array()
         p[:own.size] = own
         return p
@@ -302,8 +306,8 @@ class JeffcottBalls(ParametrisedMixin):
         Parameters
         ----------
         p : array_like, shape (12 + 6 n,) or longer
-            Only the first ``12 + 6 n`` entries are read (a fixed-frame vector carries the
-            machine's after them).
+            Only the first ``12 + 6 n`` entries are read (:meth:`to_array` puts the machine's
+            after them).
         frame : {"fixed", "rotating"}
 
         Returns

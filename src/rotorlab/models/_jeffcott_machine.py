@@ -12,16 +12,14 @@ sides, events and energies (``tests/unit/test_jeffcott_machine.py``). The machin
 parameters follow the ``12 + 6 n`` of ``jeffcott_balls`` (``param_base``), so that one vector
 serves the model's own helpers and the machine's kernel.
 
-Every simulation in the fixed frame runs the machine's generated kernel (:func:`jeffcott_kernels`).
-The one exception is the co-rotating frame (``frame="rotating"``, chosen at constant speed by
+Every simulation runs the machine's generated kernels: in the fixed frame :attr:`Machine.kernels`,
+in the co-rotating frame (``frame="rotating"``, chosen at constant speed by
 :meth:`~rotorlab.models.JeffcottBalls.cheapest_frame` where the motion settles to a steady
-whirl): the machine has no compiled co-rotating kernel yet, so it keeps the model's hand-written
-one (:mod:`rotorlab._kernels.jeffcott_balls`). Measured on 64 constant-speed starts (200
-revolutions, rtol 1e-8; ``zhakash-k2`` and ``autobalancer``): the machine's fixed frame takes
-1.01-1.05 the CPU time of the jeffcott fixed-frame kernel, 0.39-0.46 of the co-rotating one at
-2 p (where the fixed frame is chosen), but 1.5-1.6 at 1.2 p and 6.0-6.4 at 0.6 p, against the
-required 1.3: a co-rotating machine kernel (the isotropic machine at constant speed, written by
-the machine's code writer) is what retires it.
+whirl) :attr:`Machine.rotating_kernels`, the fixed frame's lines turned with the spin
+(:mod:`rotorlab._kernels.machine_corotating`); both take the same packed vector. The model's
+hand-written kernels (:mod:`rotorlab._kernels.jeffcott_balls`) are the tests' oracle
+(``tests/unit/test_jeffcott_machine.py``). CPU time against them: ``bench/README.md``
+("Issue 24, session 13").
 """
 
 from __future__ import annotations
@@ -62,48 +60,22 @@ def jeffcott_machine(model):
 
 
 def jeffcott_layout(model):
-    """What decides ``model``'s compiled kernel: the preset machine's layout in the fixed frame,
-    the frame, ball count, friction and speed class of the co-rotating kernel otherwise."""
-    if model.frame == "fixed":
-        return ("fixed", jeffcott_machine(model).layout)
-    return ("rotating", model.n_balls, model.has_friction, _rotating_speed_class(model))
-
-
-def _rotating_speed_class(model) -> int:
-    from rotorlab._kernels import jeffcott_balls as _k
-    from rotorlab._kernels.speed import KIND_CONSTANT, KIND_RAMP
-
-    kind = float(model.speed.to_array()[0])
-    return {KIND_CONSTANT: _k.SPEED_CONSTANT, KIND_RAMP: _k.SPEED_ARITHMETIC}.get(kind, _k.SPEED_ANY)
+    """What decides ``model``'s compiled kernel: the frame and the preset machine's layout."""
+    return (model.frame, jeffcott_machine(replace(model, frame="fixed")).layout)
 
 
 def jeffcott_kernels(model):
-    """The :class:`~rotorlab.models.Kernels` of ``model`` (shared per compiled layout).
-
-    Fixed frame: the preset machine's kernels, their events named ``stick_<i>``, ``slip_<i>`` by
-    the model's ball number ``i``. Co-rotating frame: the model's own kernels (the exception of
-    the module docstring); without friction the lane-friendly ones for a constant speed and a ramp.
-    """
-    from rotorlab.models._base import EventSpec, Kernels, no_events, no_reset
-
+    """The :class:`~rotorlab.models.Kernels` of ``model`` (shared per compiled layout): the preset
+    machine's, of the model's frame, their events named ``stick_<i>``, ``slip_<i>`` by the model's
+    ball number ``i``."""
     key = jeffcott_layout(model)
     if key in _KERNELS:
         return _KERNELS[key]
+    from rotorlab.models._base import EventSpec
+
+    mac = jeffcott_machine(replace(model, frame="fixed"))
+    mk = mac.kernels if model.frame == "fixed" else mac.rotating_kernels
     specs = tuple(EventSpec(f"{kind}_{i}", -1, "reset") for i in range(1, model.n_balls + 1)
                   for kind in ("stick", "slip")) if model.has_friction else ()
-    if model.frame == "fixed":
-        mk = jeffcott_machine(model).kernels
-        _KERNELS[key] = replace(mk, event_specs=specs) if specs else mk
-        return _KERNELS[key]
-    from rotorlab._kernels import jeffcott_balls as _k
-
-    n, speed = model.n_balls, key[3]
-    if specs:
-        _KERNELS[key] = Kernels(rhs=_k.rhs_rotating, n_state=4 + 3 * n, n_discrete=n, events=_k.events_rotating,
-                                reset=_k.reset_rotating, event_specs=specs)
-    elif speed != _k.SPEED_ANY:
-        rhs = _k.rhs_rotating_constant if speed == _k.SPEED_CONSTANT else _k.rhs_rotating_free
-        _KERNELS[key] = Kernels(rhs=rhs, n_state=4 + 2 * n, vectorises=True)
-    else:
-        _KERNELS[key] = Kernels(rhs=_k.rhs_rotating, n_state=4 + 2 * n, events=no_events, reset=no_reset)
+    _KERNELS[key] = replace(mk, event_specs=specs) if specs else mk
     return _KERNELS[key]

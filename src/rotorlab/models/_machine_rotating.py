@@ -11,6 +11,7 @@ from dataclasses import dataclass, replace
 
 import numpy as np
 
+from rotorlab.models._base import Kernels
 from rotorlab.models._jeffcott_physics import Linearization
 
 __all__ = ["EXACT_RTOL", "MachineLinearization", "spectrum_is_stable", "spectrum_verdict"]
@@ -113,6 +114,91 @@ class _RotatingFrame:
         reasons += [None if self.gravity is None else self.gravity.rotating_refusal(), self.drive.rotating_refusal()]
         reasons += [part.rotating_refusal() for part in self.parts]
         return next((why for why in reasons if why), None)
+
+    def why_no_rotating_kernel(self) -> str | None:
+        """Why the machine has no compiled co-rotating kernel (:attr:`rotating_kernels`), or None.
+
+        The structure coordinates must come in lateral pairs that turn with the frame (an
+        unreduced structure's x/y translations and tilts, or an isotropic structure's x/y mode
+        pairs); the frame does not carry a clearance's or a part's own states yet.
+        """
+        if self.n_modes is not None and not self.structure.is_isotropic:
+            return ("the structure is anisotropic and reduced to modes, which do not come in x/y "
+                    "pairs: set n_modes = None or simulate in the fixed frame")
+        if self.clearances:
+            return "the co-rotating kernel does not carry a clearance's states: simulate in the fixed frame"
+        with_states = [part.key for part in self.parts if part.kernel().n_states]
+        if with_states:
+            return (f"the co-rotating kernel does not carry the states of the machine's {with_states[0]}: "
+                    "simulate in the fixed frame")
+        return None
+
+    @property
+    def rotating_kernels(self) -> Kernels:
+        """Compiled kernels of the co-rotating frame (:mod:`rotorlab._kernels.machine_corotating`):
+        states ``[z_r, z_r', psi, psi', ...]`` (the fixed frame's otherwise,
+        :meth:`to_frame`); the fixed frame's equations, turned with the spin.
+
+        Raises
+        ------
+        ValueError
+            With :meth:`why_no_rotating_kernel`'s reason.
+        """
+        if "rotating_kernels" not in self._cache:
+            why = self.why_no_rotating_kernel()
+            if why is not None:
+                raise ValueError(f"no co-rotating kernel: {why}")
+            from rotorlab._kernels.machine_corotating import rotating_kernel_module
+
+            mod = rotating_kernel_module(self.layout)
+            kw = dict(rhs=mod.rhs_rotating)
+            if self.has_friction:
+                kw.update(events=mod.events_rotating, reset=mod.reset_rotating)
+            self._cache["rotating_kernels"] = replace(self.kernels, **kw)
+        return self._cache["rotating_kernels"]
+
+    def in_rotating_frame(self):
+        """This machine with its states in the co-rotating frame, a model that
+        :func:`rotorlab.integrate.solve` takes (:class:`rotorlab.models.CoRotatingMachine`).
+
+        Raises
+        ------
+        ValueError
+            With :meth:`why_no_rotating_kernel`'s reason.
+        """
+        from rotorlab.models._machine_corotating import CoRotatingMachine
+
+        return CoRotatingMachine(self)
+
+    def to_frame(self, t, y, frame: str) -> np.ndarray:
+        """Turn full states ``y`` (shape (..., n_state)) at times ``t`` from the other frame into
+        ``frame`` (``"fixed"`` or ``"rotating"``): the pairs of structure coordinates by the spin
+        angle, their rates with the frame's rate, ball angles and rates by theta and Omega
+        (:mod:`rotorlab._kernels.machine_corotating`); every other state is copied."""
+        if frame not in ("fixed", "rotating"):
+            raise ValueError(f"frame must be 'fixed' or 'rotating', got {frame!r}")
+        lay = self.layout
+        nz, nb = lay.n_z, lay.n_balls
+        y = np.array(y, dtype=float)
+        t = np.broadcast_to(np.asarray(t, dtype=float), y.shape[:-1])
+        if self.is_motor:
+            th, om = y[..., lay.i_theta], y[..., lay.i_theta + 1]
+        else:
+            th, om = self.drive.spin_angle(t), self.drive.spin_speed(t)
+        sg = 1.0 if frame == "fixed" else -1.0
+        c, s = np.cos(th)[..., None], sg * np.sin(th)[..., None]
+        out = y.copy()
+        z, v = y[..., :nz], y[..., nz:2 * nz]
+        if frame == "fixed":
+            v = v + self._rot_pairs(z, 1.0) * om[..., None]
+        for blk, src in ((slice(0, nz), z), (slice(nz, 2 * nz), v)):
+            out[..., blk][..., 0::2] = c * src[..., 0::2] - s * src[..., 1::2]
+            out[..., blk][..., 1::2] = s * src[..., 0::2] + c * src[..., 1::2]
+        if frame == "rotating":
+            out[..., nz:2 * nz] -= self._rot_pairs(out[..., :nz], 1.0) * om[..., None]
+        out[..., lay.i_phi:lay.i_phi + nb] += sg * th[..., None]
+        out[..., lay.i_w:lay.i_w + nb] += sg * om[..., None]
+        return out
 
     def _require_rotating(self) -> float:
         if "why_no_rotating" not in self._cache:  # the machine is frozen: its answer is too
