@@ -46,6 +46,8 @@ from rotorlab._kernels.machine_emit import _DECO, _less_reactions, _sum, reactio
 
 __all__ = ["IMPORTS", "rhs_contact_lines", "rhs_tail_lines", "extra_functions"]
 
+_DECO_INLINE = _DECO.replace("error_model=", 'inline="always", error_model=')
+
 IMPORTS = ("from rotorlab._kernels.contact import (circular_gap, contact_velocities, delassus_forces,\n"
            "    impulse_energy, newton_coulomb_impulse, penalty_normal_force)\n")
 
@@ -222,7 +224,9 @@ def extra_functions(lay, corr, prefix) -> str:
     c = prefix(lay, L)
     _core(lay, c, L, "    ", "md", False)
     L.append("    return cN, cF, nx, ny, sl, vn, gap, bn, wnn, wnt, wtt, ss")
-    out.append(_DECO + "def contact_terms(t, y, p, md):  # pragma: no cover - compiled\n"
+    # inlined (numba IR) into its callers: the lane driver's loop over the lanes' events then
+    # vectorises as the rhs does (a call is opaque to LLVM, and costs the arrays' reference counts)
+    out.append(_DECO_INLINE + "def contact_terms(t, y, p, md):  # pragma: no cover - compiled\n"
                '    """Contact force, geometry and Delassus matrix in mode md (see the module docstring)."""\n'
                + "\n".join(L) + "\n")
 
