@@ -37,6 +37,7 @@ from typing import Any
 from rotorlab._kernels import machine_contact as _mc
 from rotorlab._kernels.machine_drive import spin_lines, torque_lines
 from rotorlab._kernels.machine_emit import _sum, ldl_lines, reactions, solve_lines
+from rotorlab._kernels.machine_fold import fold_fixed
 from rotorlab._kernels.machine_friction import friction_functions, friction_solve, friction_torques
 from rotorlab._kernels.machine_layout import Layout
 from rotorlab._kernels.machine_tilt import tilt_lines, tilt_schur
@@ -56,7 +57,7 @@ def generate(lay: Layout) -> str:
         src += _mc.extra_functions(lay, corr, prefix)
     if lay.friction:
         src += friction_functions(lay, prefix)
-    return src
+    return fold_fixed(src, dict(lay.fixed)) if lay.fixed else src
 
 
 def rhs_lines(lay: Layout) -> tuple[list[str], list[tuple[int, str, str]]]:

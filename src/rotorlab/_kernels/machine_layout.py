@@ -107,6 +107,11 @@ class Layout:
         The kernel parts of the machine's attachments (:class:`rotorlab.models._parts.AbstractKernelPart`:
         frozen objects with ``key``, ``n_states``, ``n_param``, ``n_stations`` and the lines
         they add to the kernel), in order.
+    fixed : tuple of (int, float)
+        Packed entries (absolute index, value) that the kernel takes as compile-time constants:
+        a preset that keeps them for every value of its named parameters gives them
+        (:mod:`rotorlab.models._rub_machine`); the generator folds them into the source
+        (:mod:`rotorlab._kernels.machine_fold`). The packed vector still carries them.
     """
 
     n_z: int
@@ -122,8 +127,10 @@ class Layout:
     tilt: tuple[int, ...] = ()
     parts: tuple[Any, ...] = ()
     param_base: int = 0
+    fixed: tuple[tuple[int, float], ...] = ()
 
     def __post_init__(self) -> None:
+        object.__setattr__(self, "fixed", tuple(sorted((int(k), float(v)) for k, v in self.fixed)))
         object.__setattr__(self, "races", tuple(int(n) for n in self.races))
         object.__setattr__(self, "tilt", tuple(int(k) for k in self.tilt))
         if self.tilt and (len(self.tilt) != len(self.races) or sorted(set(self.tilt)) != list(range(self.n_tilt))):
@@ -309,4 +316,4 @@ class Layout:
                 f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
                 f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}"
                 + "".join(f"p{part.key}" for part in self.parts)
-                + (f"b{self.param_base}" if self.param_base else ""))
+                + (f"b{self.param_base}" if self.param_base else "") + (f"k{len(self.fixed)}" if self.fixed else ""))

@@ -118,11 +118,16 @@ class JeffcottRub(ParametrisedMixin):
     @property
     def kernels(self) -> Kernels:
         """The preset machine's compiled kernels (events ``contact``, ``lift_off``, ``stick``,
-        ``slip``); the packed vector is :meth:`to_array`."""
-        return self.machine.kernels
+        ``slip``), with the preset's structural entries as constants
+        (:func:`rotorlab.models._rub_machine.rub_kernels`); the packed vector is :meth:`to_array`."""
+        from rotorlab.models._rub_machine import rub_kernels
+
+        return rub_kernels(self)
 
     def _compiled_layout(self):
-        return self.machine.layout
+        from rotorlab.models._rub_machine import rub_layout
+
+        return rub_layout(self)
 
     def _parameter_slots(self):
         return rub_slots(self)

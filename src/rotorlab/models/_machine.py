@@ -307,22 +307,23 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
     def kernels(self) -> Kernels:
         """Compiled kernels, generated for this machine's sizes (shared between equal sizes)."""
         if "kernels" not in self._cache:
-            mod = _cg.kernel_module(self.layout)
-            common = dict(rhs=mod.rhs, n_state=self.n_state, vectorises=self.layout.vectorises,
-                          inline_lanes=self._inline_lanes)
-            if self.clearances:
-                self._cache["kernels"] = Kernels(
-                    **common, n_discrete=self.layout.n_discrete, events=mod.events, reset=mod.reset,
-                    event_specs=tuple(EventSpec(n, -1, "reset") for n in CLEARANCE_EVENTS))
-            elif self.has_friction:
-                specs = []
-                for name in self._ball_labels:
-                    specs += [EventSpec(f"stick_{name}", -1, "reset"), EventSpec(f"slip_{name}", -1, "reset")]
-                self._cache["kernels"] = Kernels(**common, n_discrete=self.layout.n_discrete, events=mod.events,
-                                                 reset=mod.reset, event_specs=tuple(specs))
-            else:
-                self._cache["kernels"] = Kernels(**common)
+            self._cache["kernels"] = self.kernels_for(self.layout)
         return self._cache["kernels"]
+
+    def kernels_for(self, layout: _cg.Layout) -> Kernels:
+        """This machine's kernels generated for ``layout``: its own, or one with compile-time
+        constants a preset gives (``Layout.fixed``, :mod:`rotorlab.models._rub_machine`)."""
+        mod = _cg.kernel_module(layout)
+        common = dict(rhs=mod.rhs, n_state=self.n_state, vectorises=layout.vectorises, inline_lanes=self._inline_lanes)
+        if self.clearances:
+            return Kernels(**common, n_discrete=layout.n_discrete, events=mod.events, reset=mod.reset,
+                           event_specs=tuple(EventSpec(n, -1, "reset") for n in CLEARANCE_EVENTS))
+        if self.has_friction:
+            specs = [EventSpec(f"{what}_{name}", -1, "reset")
+                     for name in self._ball_labels for what in ("stick", "slip")]
+            return Kernels(**common, n_discrete=layout.n_discrete, events=mod.events, reset=mod.reset,
+                           event_specs=tuple(specs))
+        return Kernels(**common)
 
     @property
     def _inline_lanes(self) -> bool:

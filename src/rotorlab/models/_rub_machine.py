@@ -39,7 +39,7 @@ from functools import lru_cache
 
 import numpy as np
 
-__all__ = ["rub_machine", "RUB_PARAM_BASE"]
+__all__ = ["rub_machine", "rub_kernels", "rub_layout", "RUB_PARAM_BASE"]
 
 #: The rub rotor's own packed entries in front of the machine's.
 RUB_PARAM_BASE = 15
@@ -66,3 +66,48 @@ def rub_machine(model):
     return Machine(s, unbalances=(Unbalance(0, m * r.eccentricity),), gravity=gravity,
                    drive=ConstantSpeed(model.spin_speed), clearances=(cl,), n_modes=2, unit_modes=True,
                    param_base=RUB_PARAM_BASE)
+
+
+def _structural_entries(lay, rigid: bool, gravity: bool) -> dict[int, float]:
+    """The packed entries of the preset machine that every value of the rub rotor's named
+    parameters leaves the same: the coordinates are x and y themselves (every station's ``B = I``),
+    the structure is diagonal (the off-diagonal entries of ``H B^T``, ``L``, ``H K``, ``H C`` are 0),
+    the unbalance has phase 0, the clearance is centred, without Baumgarte stabilisation and
+    without housing mass; a rigid stator has ``k_s = c_s = 0``, a rotor without gravity ``g = 0``."""
+    out: dict[int, float] = {}
+    o, ns = lay.offsets, lay.n_all_stations
+    for s in range(ns):
+        out.update(zip(range(lay.station_B(s), lay.station_B(s) + 4), (1.0, 0.0, 0.0, 1.0)))
+        out.update({lay.station_HBT(s) + 1: 0.0, lay.station_HBT(s) + 2: 0.0})
+        for s2 in range(ns):
+            out.update({lay.pair_L(s, s2) + 1: 0.0, lay.pair_L(s, s2) + 2: 0.0})
+    out.update({o["HK"] + 1: 0.0, o["HK"] + 2: 0.0, o["HC"] + 1: 0.0, o["HC"] + 2: 0.0})
+    out.update({o["unbalances"] + 1: 1.0, o["unbalances"] + 2: 0.0})
+    kc = o["clearance"]
+    out.update({kc + 7: 0.0, kc + 8: 0.0, kc + 9: 0.0, kc + 10: 0.0})
+    if rigid:
+        out.update({kc + 5: 0.0, kc + 6: 0.0})
+    if not gravity:
+        out.update({o["gravity"]: 0.0, o["gravity"] + 1: 0.0, o["Hf"]: 0.0, o["Hf"] + 1: 0.0})
+    return out
+
+
+@lru_cache(maxsize=256)
+def rub_layout(model):
+    """The preset machine's layout with its structural entries as compile-time constants
+    (``Layout.fixed``, folded into the generated kernel by :mod:`rotorlab._kernels.machine_fold`):
+    the kernel then does the arithmetic of the hand-written one, not that of a general structure.
+    An entry is taken only where the packed vector holds the value it must have (a claim that
+    did not hold would leave the entry a run-time number: slower, never wrong)."""
+    from dataclasses import replace
+
+    mac = rub_machine(model)
+    p = mac.to_array()
+    claims = _structural_entries(mac.layout, model.rotor.rigid_stator, mac.gravity is not None)
+    return replace(mac.layout, fixed=tuple((k, v) for k, v in claims.items() if p[k] == v))
+
+
+@lru_cache(maxsize=256)
+def rub_kernels(model):
+    """The compiled kernels of the rub rotor: its preset machine's, generated for :func:`rub_layout`."""
+    return rub_machine(model).kernels_for(rub_layout(model))
