@@ -224,7 +224,8 @@ class JeffcottRub(ParametrisedMixin):
     def contact_samples(self, ts, ys, params=None):
         """The contact at saved samples (:class:`rotorlab.contact.ContactSamples`); the normal
         force from the preset machine's compiled contact law (the states are the machine's)."""
-        return self.machine.contact_samples(ts, ys, self.to_array() if params is None else params)
+        return self.machine.contact_samples(ts, ys, self.to_array() if params is None else params,
+                                            layout=self._compiled_layout())
 
     def gap_state(self, position=(0.0, 0.0), velocity=(0.0, 0.0)) -> np.ndarray:
         """Initial state with the centre at ``position`` (m) moving at ``velocity`` (m/s)."""

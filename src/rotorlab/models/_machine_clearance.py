@@ -182,9 +182,10 @@ class _ClearanceParts:
             out["stator_stiffness"] = (kc + 5, "N/m")
         return out
 
-    def contact_samples(self, ts, ys, params=None):
+    def contact_samples(self, ts, ys, params=None, layout=None):
         """The clearance's contact at saved samples (:class:`rotorlab.contact.ContactSamples`);
-        the normal force from the compiled contact law (the generated ``contact_terms``)."""
+        the normal force from the compiled contact law (the generated ``contact_terms`` of
+        ``layout``: default this machine's, or a preset's with constants, ``Layout.fixed``)."""
         from rotorlab._kernels.speed import profile
         from rotorlab.models._rub_rotor import ContactSamples, sampled_normal_force
 
@@ -193,7 +194,7 @@ class _ClearanceParts:
         ys = np.atleast_2d(np.asarray(ys, dtype=float))
         ts = np.broadcast_to(np.asarray(ts, dtype=float), ys.shape[:1])
         p = self.to_array() if params is None else np.ascontiguousarray(params, dtype=float)
-        lay, nz = self.layout, self.n_coordinates
+        lay, nz = layout or self.layout, self.n_coordinates
         mod = _cg.kernel_module(lay)
         dw = ys[:, nz:2 * nz] @ self.gap_matrix(self.clearances[0]).T
         if self.clearances[0].kind == "housing":

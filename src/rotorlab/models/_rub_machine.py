@@ -68,12 +68,13 @@ def rub_machine(model):
                    param_base=RUB_PARAM_BASE)
 
 
-def _structural_entries(lay, rigid: bool, gravity: bool) -> dict[int, float]:
-    """The packed entries of the preset machine that every value of the rub rotor's named
-    parameters leaves the same: the coordinates are x and y themselves (every station's ``B = I``),
-    the structure is diagonal (the off-diagonal entries of ``H B^T``, ``L``, ``H K``, ``H C`` are 0),
-    the unbalance has phase 0, the clearance is centred, without Baumgarte stabilisation and
-    without housing mass; a rigid stator has ``k_s = c_s = 0``, a rotor without gravity ``g = 0``."""
+def _structural_entries(lay) -> dict[int, float]:
+    """The packed entries of the preset machine that every rub rotor has, whatever its named
+    parameters: the coordinates are x and y themselves (every station's ``B = I``), the structure
+    is diagonal (the off-diagonal entries of ``H B^T``, ``L``, ``H K``, ``H C`` are 0), the
+    unbalance has phase 0, the clearance is centred, without Baumgarte stabilisation and without
+    housing mass. (A rigid stator's ``k_s = c_s = 0`` and a zero gravity are left run-time
+    numbers: rigid and elastic stators, with gravity or without, share one compiled kernel.)"""
     out: dict[int, float] = {}
     o, ns = lay.offsets, lay.n_all_stations
     for s in range(ns):
@@ -85,10 +86,6 @@ def _structural_entries(lay, rigid: bool, gravity: bool) -> dict[int, float]:
     out.update({o["unbalances"] + 1: 1.0, o["unbalances"] + 2: 0.0})
     kc = o["clearance"]
     out.update({kc + 7: 0.0, kc + 8: 0.0, kc + 9: 0.0, kc + 10: 0.0})
-    if rigid:
-        out.update({kc + 5: 0.0, kc + 6: 0.0})
-    if not gravity:
-        out.update({o["gravity"]: 0.0, o["gravity"] + 1: 0.0, o["Hf"]: 0.0, o["Hf"] + 1: 0.0})
     return out
 
 
@@ -103,7 +100,7 @@ def rub_layout(model):
 
     mac = rub_machine(model)
     p = mac.to_array()
-    claims = _structural_entries(mac.layout, model.rotor.rigid_stator, mac.gravity is not None)
+    claims = _structural_entries(mac.layout)
     return replace(mac.layout, fixed=tuple((k, v) for k, v in claims.items() if p[k] == v))
 
 
