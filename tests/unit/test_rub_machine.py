@@ -99,3 +99,41 @@ def test_pack_fills_both_the_rub_rotors_entries_and_the_machines():
     assert p[oracle.P_D] == 0.9 and p[oracle.P_W] == 2.0
     o = v.machine.layout.offsets
     assert p[o["clearance"]] == 0.9 and p[o["speed"] + 1] == 2.0 and p[o["clearance"] + 10] == 0.0
+
+
+@pytest.mark.parametrize("model", [RIGID, ELASTIC], ids=["rigid", "elastic"])
+def test_kernel_takes_the_entries_every_rub_rotor_shares_as_constants_with_the_same_bits(model):
+    """The rub rotor's kernel is its machine's with the entries every rub rotor shares folded in
+    (``B = I``, the diagonal structure's zeros, phase 0, a centred clearance without
+    stabilisation: :func:`rotorlab.models._rub_machine.rub_layout`): it reads none of them, and
+    gives the machine's own kernel's numbers bit for bit (rhs, events, every reset map) at
+    random states in every contact mode."""
+    import inspect
+    import re
+
+    from rotorlab.models._rub_machine import _structural_entries, rub_layout
+
+    fixed = dict(rub_layout(model).fixed)
+    p = model.to_array()
+    # every claim holds (30 entries: 2 stations' B and H B^T, 4 L blocks, H K, H C, the phase,
+    # the clearance's centre, stabilisation and housing mass)
+    assert fixed == _structural_entries(model.machine.layout) and len(fixed) == 30
+    assert all(p[k] == v for k, v in fixed.items())
+    k, plain = model.kernels, model.machine.kernels
+    for f in (k.rhs, k.events, k.reset):
+        read = {int(i) for i in re.findall(r"\bp\[(\d+)\]", inspect.getsource(f.py_func))}
+        assert not read & fixed.keys(), f.__name__
+    assert {int(i) for i in re.findall(r"\bp\[(\d+)\]", inspect.getsource(plain.rhs.py_func))} & fixed.keys()
+    for t, y in states(model, seed=11):
+        a, b = np.empty(9), np.empty(9)
+        k.rhs(t, y, p, a)
+        plain.rhs(t, y, p, b)
+        np.testing.assert_array_equal(a, b)
+        ga, gb = np.empty(4), np.empty(4)
+        k.events(t, y, p, ga)
+        plain.events(t, y, p, gb)
+        np.testing.assert_array_equal(ga, gb)
+        for ev in range(4):
+            ya, yb = np.empty(9), np.empty(9)
+            assert k.reset(ev, t, y, p, ya) == plain.reset(ev, t, y, p, yb)
+            np.testing.assert_array_equal(ya, yb)

@@ -140,18 +140,22 @@ def _has_events(kernels):
     return int(len(kernels.event_specs) > 0)
 
 
-def is_vectorised(kernels, lanes=None):
-    """Report whether LLVM vectorises the model's ``rhs`` across ``lanes`` lanes on this CPU.
+def is_vectorised(kernels, lanes=None, function="rhs"):
+    """Report whether LLVM vectorises the model's ``rhs`` (or ``events``) across ``lanes`` lanes
+    on this CPU.
 
     Compiles (without caching, a few seconds) the loop over lanes that the lane driver runs for
     each stage, inlined or called as the driver does it (``Kernels.inline_lanes``), and inspects
-    its optimised LLVM IR.
+    its optimised LLVM IR; with ``function="events"`` the loop over the lanes' event functions
+    at the end of every step (compiled on its own).
 
     Parameters
     ----------
     kernels : Kernels
     lanes : int, optional
         Lane width; default the one the driver chooses for an ensemble (:func:`default_lanes`).
+    function : {"rhs", "events"}
+        Which of the model's kernels.
 
     Returns
     -------
@@ -169,15 +173,20 @@ def is_vectorised(kernels, lanes=None):
     # A called _rhs_lanes is compiled on its own, and the worker runs that machine code in the
     # process that compiled it (its copy linked into _probe or the worker is optimised again and
     # may vectorise where the original does not): inspect the original.
-    probe = ns["_probe"] if kernels.inline_lanes else ns["_rhs_lanes"]
     W = np.zeros(ns["_W_SIZE"] + lanes)
-    probe.compile((typeof(W), typeof(lanes)))
+    if function == "events":
+        probe, name = ns["_events_lanes"], "_events_lanes"
+        probe.compile((typeof(W), typeof(lanes), typeof(lanes), typeof(W), typeof(lanes), typeof(lanes)))
+    else:
+        probe = ns["_probe"] if kernels.inline_lanes else ns["_rhs_lanes"]
+        name = "_probe|_rhs_lanes"
+        probe.compile((typeof(W), typeof(lanes)))
     ir = probe.inspect_llvm(probe.signatures[0])
     # the compiled loop (in _rhs_lanes, or inlined into _probe), not the CPython wrappers; the
     # return attributes before the name may hold parentheses (``range(i32 -1, -2)``)
     body = "\n".join(
         f for f in re.split(r"^define ", ir, flags=re.M)
-        if re.match(r"[^@\n]*@_ZN(?!7cpython)[^(\n]*(_probe|_rhs_lanes)", f)
+        if re.match(rf"[^@\n]*@_ZN(?!7cpython)[^(\n]*({name})", f)
     )
     packed = re.findall(r"= f(?:mul|add|sub|div) (?:[a-z]+ )*<\d+ x double>", body)
     libm = re.findall(
