@@ -101,7 +101,8 @@ def bench(names, t_end, repeats, lanes):
         # statuses, impact counts and contact modes (states 6 and 8) at every saved sample
         same = np.array_equal(sm.status, sh.status) and np.array_equal(sm.ys[..., 6::2], sh.ys[..., 6::2])
         dev = np.nanmax(np.abs(sm.ys[..., :4] - sh.ys[..., :4])) / np.nanmax(np.abs(sh.ys[..., :4]))
-        steps = f"{int(sm.stats[:, 1].sum())} / {int(sh.stats[:, 1].sum())} accepted, rhs calls {int(sm.stats[:, 0].sum())} / {int(sh.stats[:, 0].sum())}"
+        nfev, nacc = (f"{int(sm.stats[:, i].sum())} / {int(sh.stats[:, i].sum())}" for i in (0, 1))
+        steps = f"{nacc} accepted, rhs calls {nfev}"
         print(f"{name} map, {len(y0)} points, {t_end:g} s, {'lanes ' + str(lanes) if lanes else 'scalar'}, "
               f"1 thread, {repeats} interleaved repeats")
         print(f"  hand-written {min(th):8.3f} CPU-s (all: {', '.join(f'{t:.3f}' for t in th)})")
@@ -111,11 +112,15 @@ def bench(names, t_end, repeats, lanes):
               f"{dev:.2g} of the largest entry; steps {steps}")
 
 
-if __name__ == "__main__":
-    ap = argparse.ArgumentParser()
-    ap.add_argument("--t-end", type=float, default=1.0)
-    ap.add_argument("--repeats", type=int, default=3)
-    ap.add_argument("--maps", default="elastic,rigid")
+def main(argv=None):
+    ap = argparse.ArgumentParser(description="rub rotor: preset machine / hand-written kernel, CPU time")
+    ap.add_argument("--t-end", type=float, default=1.0, help="simulated time of every point (s)")
+    ap.add_argument("--repeats", type=int, default=3, help="interleaved repeats (the smallest time counts)")
+    ap.add_argument("--maps", default="elastic,rigid", help="comma-separated: elastic, rigid")
     ap.add_argument("--scalar", action="store_true", help="the scalar driver instead of 8 lanes")
-    a = ap.parse_args()
+    a = ap.parse_args(argv)
     bench(a.maps.split(","), a.t_end, a.repeats, None if a.scalar else 8)
+
+
+if __name__ == "__main__":
+    main()

@@ -132,7 +132,7 @@ def fold_fixed(source: str, fixed: dict[int, float]) -> str:
 
     Examples
     --------
-    >>> print(fold_fixed("def f(p, x):\\n    d = 0.0\\n    return p[0] * x + p[1] * x - d * x\\n", {1: 0.0}))
+    >>> print(fold_fixed("def f(p, x):\\n    d = 0.0\\n    return p[0] * x + p[1] * x - d * x\\n", {1: 0.0}), end="")
     def f(p, x):
         d = 0.0
         return p[0] * x
