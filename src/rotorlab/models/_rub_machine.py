@@ -28,12 +28,13 @@ rub map's rows) read the first, the machine's kernel the rest. The old kernel
 Measured against the old kernel (rub-jeffcott's rotor, its 9 x 7 speed x clearance map, 5 s from
 rest, rtol 1e-9; and a rigid-stator map of 20 points): the same statuses and contact modes at
 every saved sample, states within 2.6e-10 (elastic) and 8.4e-13 (rigid) of the largest entry.
-CPU (``bench/rub.py``): the lane ensemble took 1.5-1.7 times the old kernel's, for two measured
+CPU (``bench/rub.py``): the lane ensemble took 1.6-1.8 times the old kernel's, for two measured
 causes: the lane driver's loop over the lanes' event functions called the generated
 ``contact_terms`` per lane (no SIMD; now inlined, it vectorises), and the general structure's
 arithmetic (``B z`` with ``B = I``, products with the diagonal structure's zeros). The kernel
 (:func:`rub_kernels`) therefore takes the entries every rub rotor shares as compile-time
-constants (:func:`rub_layout`, ``Layout.fixed``): the same bits, about the old kernel's time.
+constants (:func:`rub_layout`, ``Layout.fixed``): the same bits, 1.04-1.08 times the old
+kernel's CPU time on lanes (``bench/README.md``, issue 24 session 13).
 """
 
 from __future__ import annotations
