@@ -87,7 +87,7 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
     stations as ``(s, gx name, gy name)``."""
     nz, nb, o = lay.n_z, lay.n_balls, lay.offsets
     races, br = lay.races, lay.ball_race
-    nr, nu = lay.n_races, lay.n_unbalance
+    nr, loads = lay.n_races, lay.spin_loads
     a = L.append
     L += spin_lines(lay)
     # ---- coordinates
@@ -104,13 +104,8 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             a(f"    w{b} = y[{lay.i_w + b}]")
     a(f"    gx = p[{o['gravity']}]")
     a(f"    gy = p[{o['gravity'] + 1}]")
-    if nu:
+    if lay.placed(True):  # the parts fixed to the rotor read the spin angle's sine and cosine
         a("    sth, cth = sincos(theta)")
-    for u in range(nu):
-        k = o["unbalances"] + 3 * u
-        a(f"    U{u} = p[{k}]")
-        a(f"    eux{u} = cth * p[{k + 1}] - sth * p[{k + 2}]")
-        a(f"    euy{u} = sth * p[{k + 1}] + cth * p[{k + 2}]")
     # ---- ball parameters and station forces (centrifugal terms)
     for b in range(nb):
         k = o["balls"] + 4 * b
@@ -126,22 +121,15 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
         a(f"    fx{r} = {_sum([f'ml{b} * w{b} * w{b} * c{b}' for b in bs])}")
         a(f"    fy{r} = {_sum([f'ml{b} * w{b} * w{b} * s{b}' for b in bs])}")
         stations_force.append((r, f"fx{r}", f"fy{r}"))
-    for u in range(nu):
-        s = nr + u
-        if lay.motor:
-            a(f"    fx{s} = U{u} * om * om * eux{u}")
-            a(f"    fy{s} = U{u} * om * om * euy{u}")
-        else:  # U (Omega^2 e_u - Omega' t_u), t_u = (-euy, eux)
-            a(f"    fx{s} = U{u} * (om * om * eux{u} + dom * euy{u})")
-            a(f"    fy{s} = U{u} * (om * om * euy{u} - dom * eux{u})")
-        stations_force.append((s, f"fx{s}", f"fy{s}"))
+    for part, place in lay.placed(True):  # the rotor's attachments (unbalances) on their stations
+        stations_force += part.force_lines(lay, L, place)
     if lay.tilt:  # the balls' velocity terms on their tilting races (moments on phi_r)
         for ts in lay.tilt_stations:
             r, bs = ts, lay.tilt_balls(ts)
             a(f"    fx{ts} = -({_sum([f'w{b} * (D{b} * (tp{b} * c{b} - ep{b} * s{b}) + J{b} * tvy{r})' for b in bs])})")
             a(f"    fy{ts} = -({_sum([f'w{b} * (D{b} * (tp{b} * s{b} + ep{b} * c{b}) - J{b} * tvx{r})' for b in bs])})")
             stations_force.append((ts, f"fx{ts}", f"fy{ts}"))
-    for part, place in lay.placed_parts:  # the attachments' forces on their stations
+    for part, place in lay.placed(False):  # the structure's attachments on their stations
         stations_force += part.force_lines(lay, L, place)
     # ---- h = H R_z
     for i in range(nz):
@@ -157,7 +145,7 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             k = lay.station_HBT(s) + 2 * i
             a(f"    h{i} += p[{k}] * {fx} + p[{k + 1}] * {fy}")
     # ---- a0_s = B_s h for the stations that enter the Schur system
-    need = list(range(nr)) + ([nr + u for u in range(nu)] if lay.motor else [])
+    need = list(range(nr)) + ([ld.station for ld in loads] if lay.motor else [])
     need += lay.tilt_stations
     for s in need:
         kb = lay.station_B(s)
@@ -168,16 +156,11 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
     unknowns += [("m", b) for b in range(nb)] if lay.tilt else []
     n_s = len(unknowns)
 
-    def t_vec(kind, idx):  # (tx, ty) expressions of the unit tangent of a ball / unbalance
-        return (f"(-s{idx})", f"c{idx}") if kind == "b" else (f"(-euy{idx})", f"eux{idx}")
+    def t_vec(b):  # (tx, ty) expressions of the unit tangent of ball b
+        return (f"(-s{b})", f"c{b}")
 
-    def station(kind, idx):
-        return br[idx] if kind == "b" else nr + idx
-
-    def tLt(k1, i1, k2, i2):
-        s1, s2 = station(k1, i1), station(k2, i2)
+    def tLt(s1, t1, s2, t2):  # t1 . B_s1 H B_s2^T t2
         kk = lay.pair_L(s1, s2)
-        t1, t2 = t_vec(k1, i1), t_vec(k2, i2)
         return (f"({t1[0]} * (p[{kk}] * {t2[0]} + p[{kk + 1}] * {t2[1]}) + "
                 f"{t1[1]} * (p[{kk + 2}] * {t2[0]} + p[{kk + 3}] * {t2[1]}))")
 
@@ -187,15 +170,15 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
         for j, (kj, ij) in enumerate(unknowns[: i + 1]):
             if ki == "b" and kj == "b":
                 diag = f"J{ii} - " if i == j else "-"
-                a(f"    S{i}_{j} = {diag}ml{ii} * ml{ij} * {tLt('b', ii, 'b', ij)}")
-            else:  # rows/cols of theta: sums over the unbalances
+                a(f"    S{i}_{j} = {diag}ml{ii} * ml{ij} * {tLt(br[ii], t_vec(ii), br[ij], t_vec(ij))}")
+            else:  # rows/cols of theta: sums over the spin loads of the rotor's parts
                 if ki == "th" and kj == "th":
-                    terms = [f"U{u} * U{u2} * {tLt('u', u, 'u', u2)}"
-                             for u in range(nu) for u2 in range(nu)]
+                    terms = [f"{l1.coef} * {l2.coef} * {tLt(l1.station, l1[2:4], l2.station, l2[2:4])}"
+                             for l1 in loads for l2 in loads]
                     a(f"    S{i}_{j} = p[{o['motor']}] - ({_sum(terms)})")
                 else:
                     b = ij if kj == "b" else ii
-                    terms = [f"U{u} * {tLt('b', b, 'u', u)}" for u in range(nu)]
+                    terms = [f"{ld.coef} * {tLt(br[b], t_vec(b), ld.station, ld[2:4])}" for ld in loads]
                     a(f"    S{i}_{j} = -ml{b} * ({_sum(terms)})")
     # right-hand sides
     for i, (k, idx) in enumerate(unknowns):
@@ -213,11 +196,11 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
         else:
             L += torque_lines(lay)
             terms = ["torque"] + [f"cb{b} * rel{b}" for b in range(nb)]
-            terms += [f"U{u} * (-gx * euy{u} + gy * eux{u})" for u in range(nu)]
-            terms += [f"-U{u} * (-euy{u} * ax{nr + u} + eux{u} * ay{nr + u})" for u in range(nu)]
+            terms += [ld.torque for ld in loads]
+            terms += [f"-{ld.coef} * ({ld.tx} * ax{ld.station} + {ld.ty} * ay{ld.station})" for ld in loads]
             a(f"    q{i} = {_sum(terms)}")
     if lay.friction:
-        friction_solve(lay, L, unknowns, t_vec, station)
+        friction_solve(lay, L, unknowns, t_vec)
         return reactions(lay, L, "g", "x")
     ldl_lines(n_s, L)  # S symmetric positive definite: a Schur complement of the mass matrix
     if not solve:
@@ -229,7 +212,6 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
 def _tail(lay: Layout, L: list[str], corr: list[tuple[int, str, str]]) -> None:
     """Append the writes of dy/dt (structure, balls, spin, energy states; clearance: its own)."""
     nz, nb, o = lay.n_z, lay.n_balls, lay.offsets
-    nr, nu = lay.n_races, lay.n_unbalance
     a = L.append
     cl = bool(lay.clearance)
     for i in range(nz):
@@ -249,12 +231,12 @@ def _tail(lay: Layout, L: list[str], corr: list[tuple[int, str, str]]) -> None:
             a(f"    out[{ie}] = torque * om")
         else:  # drive torque from the spin equation with J = 0
             terms = []
-            for u in range(nu):
-                kb = lay.station_B(nr + u)
+            for ld in lay.spin_loads:
+                kb = lay.station_B(ld.station)
                 axu = _sum([f"p[{kb + j}] * out[{nz + j}]" for j in range(nz)])
                 ayu = _sum([f"p[{kb + nz + j}] * out[{nz + j}]" for j in range(nz)])
-                terms.append(f"U{u} * (-euy{u} * ({axu}) + eux{u} * ({ayu}))")
-                terms.append(f"-U{u} * (-gx * euy{u} + gy * eux{u})")
+                terms.append(f"{ld.coef} * ({ld.tx} * ({axu}) + {ld.ty} * ({ayu}))")
+                terms.append(f"-{ld.torque}")
             terms += [f"-cb{b} * rel{b}" for b in range(nb)]
             if lay.friction:  # the reaction of the races' torques on the balls
                 terms += [f"tq{b}" for b in range(nb)]

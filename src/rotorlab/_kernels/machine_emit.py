@@ -63,7 +63,7 @@ def unit_rhs(lay: Layout, L: list[str], tag: str, s: int, tq: str, ind: str) -> 
     """Append ``{tag}q{i} = -X_i^T H B_s^T f`` for a unit force ``f = ({tag}fx, {tag}fy)`` at
     station ``s`` (and the spin torque ``tq`` on theta's row): the right-hand side of the
     Schur system for the response to a force (the clearance's Delassus terms)."""
-    br, nr, nb = lay.ball_race, lay.n_races, lay.n_balls
+    br, nb = lay.ball_race, lay.n_balls
     a = lambda x: L.append(ind + x)  # noqa: E731
 
     def proj(s2, vx, vy):
@@ -81,10 +81,10 @@ def unit_rhs(lay: Layout, L: list[str], tag: str, s: int, tq: str, ind: str) -> 
           + (f" - ({extra[3:]})" if extra else ""))
     if lay.motor:
         terms = []
-        for u in range(lay.n_unbalance):
-            kk = lay.pair_L(nr + u, s)
-            terms.append(f"U{u} * (-euy{u} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
-                         f" + eux{u} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy))")
+        for ld in lay.spin_loads:  # the rotor's parts (unbalances) on the spin
+            kk = lay.pair_L(ld.station, s)
+            terms.append(f"{ld.coef} * ({ld.tx} * (p[{kk}] * {tag}fx + p[{kk + 1}] * {tag}fy)"
+                         f" + {ld.ty} * (p[{kk + 2}] * {tag}fx + p[{kk + 3}] * {tag}fy))")
         a(f"{tag}q{nb} = {tq} - ({_sum(terms)})")
     if lay.tilt:
         i0 = nb + (1 if lay.motor else 0)
@@ -111,10 +111,11 @@ def reactions(lay: Layout, L: list[str], g: str, x: str, indent: str = "    ") -
         L.append(f"{indent}{g}y{r} = {_sum([f'ml{b} * {x}{b} * c{b}' for b in bs])}")
         corr.append((r, f"{g}x{r}", f"{g}y{r}"))
     if lay.motor:
-        for u in range(lay.n_unbalance):
-            L.append(f"{indent}{g}x{nr + u} = -U{u} * {x}{nb} * euy{u}")
-            L.append(f"{indent}{g}y{nr + u} = U{u} * {x}{nb} * eux{u}")
-            corr.append((nr + u, f"{g}x{nr + u}", f"{g}y{nr + u}"))
+        for ld in lay.spin_loads:
+            s = ld.station
+            L.append(f"{indent}{g}x{s} = {ld.coef} * {x}{nb} * {ld.tx}")
+            L.append(f"{indent}{g}y{s} = {ld.coef} * {x}{nb} * {ld.ty}")
+            corr.append((s, f"{g}x{s}", f"{g}y{s}"))
     if lay.tilt:  # the balls' moments on their races' tilt: n_b phi_b'' + e_b mu_b
         i0 = nb + (1 if lay.motor else 0)
         for ts in lay.tilt_stations:

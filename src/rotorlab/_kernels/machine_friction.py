@@ -11,7 +11,7 @@ from rotorlab._kernels.machine_layout import Layout
 __all__ = ["friction_solve", "friction_torques", "friction_functions"]
 
 
-def friction_solve(lay: Layout, L: list[str], unknowns, t_vec, station) -> None:
+def friction_solve(lay: Layout, L: list[str], unknowns, t_vec) -> None:
     """Append the Schur system with the balls' stick/slip modes and its solution ``x``.
 
     Ball b with friction arm ``kap_b`` (``coulomb l + rolling``, m) and mode ``md_b`` (the state
@@ -42,15 +42,14 @@ def friction_solve(lay: Layout, L: list[str], unknowns, t_vec, station) -> None:
     def E(b, j):  # ml_j e_b . L_(r_b, s_j) t_j (or the unbalances' sum for theta)
         kind, idx = unknowns[j]
         if kind == "b":
-            pairs = [(f"ml{idx}", lay.pair_L(br[b], br[idx]), t_vec("b", idx))]
+            pairs = [(f"ml{idx}", lay.pair_L(br[b], br[idx]), t_vec(idx))]
             if lay.tilt:
                 pairs.append(("1.0", lay.pair_L(br[b], lay.tilt_station(br[idx])),
                               (f"nx{idx}", f"ny{idx}")))
         elif kind == "m":
             pairs = [("1.0", lay.pair_L(br[b], lay.tilt_station(br[idx])), (f"c{idx}", f"s{idx}"))]
         else:
-            pairs = [(f"U{u}", lay.pair_L(br[b], lay.n_races + u), t_vec("u", u))
-                     for u in range(lay.n_unbalance)]
+            pairs = [(ld.coef, lay.pair_L(br[b], ld.station), (ld.tx, ld.ty)) for ld in lay.spin_loads]
         terms = [f"{w} * (c{b} * (p[{k}] * {t[0]} + p[{k + 1}] * {t[1]}) + "
                  f"s{b} * (p[{k + 2}] * {t[0]} + p[{k + 3}] * {t[1]}))" for w, k, t in pairs]
         return f"({_sum(terms)})"

@@ -14,11 +14,13 @@ the kernel does not read)
 ``gravity``        2: g_x, g_y (m/s^2), the lateral components of gravity
 ``balls``          4 per ball (races in order): m (kg), m l (kg m), J = m l^2 + J_c (kg m^2),
                    c (N m s/rad)
-``unbalances``     3 per unbalance: U = m e (kg m), cos beta, sin beta (beta: phase, rad)
-``stations``       per station (races, then unbalances, then the clearance's, then with ``tilt``
-                   one per distinct race node, then the parts'): B (2 x n_z, row-major), then H B^T (n_z x 2,
-                   row-major); ``B z`` is the lateral displacement of the station (a tilt
-                   station's ``B`` is its node's tilt ``T``)
+``part<k>``        the block of each part fixed to the rotor (``rotor``: an unbalance, 3 per
+                   point unbalance: U = m e (kg m), cos beta, sin beta), its size and contents its own
+``stations``       per station (races, then the rotor parts' (the point unbalances), then the
+                   clearance's, then with ``tilt`` one per distinct race node, then the other
+                   parts'): B (2 x n_z, row-major), then H B^T (n_z x 2, row-major); ``B z`` is
+                   the lateral displacement of the station (a tilt station's ``B`` is its node's
+                   tilt ``T``)
 ``L``              per ordered pair of stations (s, s'): B_s H B_s'^T (2 x 2, row-major)
 ``HK, HC, HG``     n_z x n_z each (row-major): H K, H C, H G; ``HG`` only when the structure is
                    gyroscopic
@@ -29,8 +31,8 @@ the kernel does not read)
                    (m)
 ``tilt``           n_b, only with ``tilt``: each ball's ``D = m l^2`` (kg m^2), its inertia
                    about its race's diameters
-``part<k>``        the block of each attachment part ``k`` (:mod:`rotorlab.models._parts`), its
-                   size and contents its own
+``part<k>``        the block of each other attachment part ``k`` (:mod:`rotorlab.models._parts`),
+                   its size and contents its own
 =================  ===========================================================================
 
 ``H = M0^-1`` with ``M0 = M_s + sum_r m_r B_r^T B_r`` (the structure plus the ball masses carried
@@ -50,7 +52,7 @@ from __future__ import annotations
 from dataclasses import dataclass
 from typing import Any, NamedTuple
 
-__all__ = ["Layout", "PartPlace", "SPEED_KINDS", "DRIVE_KINDS"]
+__all__ = ["Layout", "PartPlace", "SpinLoad", "SPEED_KINDS", "DRIVE_KINDS"]
 
 # the prescribed speed kinds, each with whether its generated profile is plain arithmetic (the
 # kernel then vectorises in the lane driver); a Hill run-up needs exp, log and series with branches
@@ -67,6 +69,19 @@ class PartPlace(NamedTuple):
     station: int
 
 
+class SpinLoad(NamedTuple):
+    """How a part fixed to the rotor (an unbalance) couples to the spin at one of its stations:
+    a unit ``theta''`` moves the station by ``coef * (tx, ty)`` (its column of the mass matrix's
+    coupling block is ``coef B_s^T (tx, ty)``), and ``torque`` is the generalised force of its
+    own loads on theta (gravity); each entry is an expression of generated variables."""
+
+    station: int
+    coef: str
+    tx: str
+    ty: str
+    torque: str
+
+
 @dataclass(frozen=True)
 class Layout:
     """Sizes of one machine and the offsets of its packed parameters and states.
@@ -77,8 +92,6 @@ class Layout:
         Structure coordinates (4 per node, or the number of modes kept).
     races : tuple of int
         Balls per race.
-    n_unbalance : int
-        Number of unbalances.
     drive : {"profile", "linear", "table"}
         Prescribed spin, or a motor with a linear or tabulated characteristic.
     speed_kind : {"constant", "ramp", "hill"}
@@ -105,8 +118,9 @@ class Layout:
         own parameters, e.g. those of ``jeffcott_balls``); every offset starts after them.
     parts : tuple
         The kernel parts of the machine's attachments (:class:`rotorlab.models._parts.AbstractKernelPart`:
-        frozen objects with ``key``, ``n_states``, ``n_param``, ``n_stations`` and the lines
-        they add to the kernel), in order.
+        frozen objects with ``key``, ``n_states``, ``n_param``, ``n_stations``, ``rotor`` and the
+        lines they add to the kernel), in order; those fixed to the rotor (``rotor``: the
+        unbalances) have their stations right after the races' and their blocks after the balls'.
     fixed : tuple of (int, float)
         Packed entries (absolute index, value) that the kernel takes as compile-time constants:
         a preset that keeps them for every value of its named parameters gives them
@@ -116,7 +130,6 @@ class Layout:
 
     n_z: int
     races: tuple[int, ...]
-    n_unbalance: int
     drive: str = "profile"
     speed_kind: str = "constant"
     n_table: int = 0
@@ -160,6 +173,11 @@ class Layout:
         return len(self.races)
 
     @property
+    def n_unbalance(self) -> int:
+        """Stations of the parts fixed to the rotor (the point unbalances), after the races'."""
+        return sum(part.n_stations for part in self.parts if part.rotor)
+
+    @property
     def n_stations(self) -> int:
         return self.n_races + self.n_unbalance + (1 if self.clearance else 0)
 
@@ -167,19 +185,30 @@ class Layout:
     def n_all_stations(self) -> int:
         """Stations with packed B, H B^T and pair matrices: the lateral ones, then (with
         ``tilt``) one tilt station per distinct race node, whose ``B`` is that node's tilt ``T``,
-        then the parts' stations."""
-        return self.n_stations + self.n_tilt + sum(part.n_stations for part in self.parts)
+        then the other parts' stations."""
+        return self.n_stations + self.n_tilt + sum(part.n_stations for part in self.parts if not part.rotor)
 
     @property
     def placed_parts(self) -> list[tuple[Any, PartPlace]]:
-        """Each part with its :class:`PartPlace`, in order."""
+        """Each part with its :class:`PartPlace`, in order (the rotor parts' stations after the
+        races', the others' after the tilt stations)."""
         o = self.offsets
-        out, i, s = [], self.i_parts, self.n_stations + self.n_tilt
+        out, i = [], self.i_parts
+        s = {True: self.n_races, False: self.n_stations + self.n_tilt}
         for k, part in enumerate(self.parts):
-            out.append((part, PartPlace(i, o[f"part{k}"], s)))
+            out.append((part, PartPlace(i, o[f"part{k}"], s[part.rotor])))
             i += part.n_states
-            s += part.n_stations
+            s[part.rotor] += part.n_stations
         return out
+
+    def placed(self, rotor: bool) -> list[tuple[Any, PartPlace]]:
+        """The placed parts fixed to the rotor (``rotor``) or not."""
+        return [(part, place) for part, place in self.placed_parts if part.rotor == rotor]
+
+    @property
+    def spin_loads(self) -> list[SpinLoad]:
+        """The :class:`SpinLoad` of every part fixed to the rotor, in order."""
+        return [ld for part, place in self.placed(True) for ld in part.spin_loads(self, place)]
 
     @property
     def i_parts(self) -> int:
@@ -271,7 +300,7 @@ class Layout:
             ("motor", 3 + 2 * self.n_table),
             ("gravity", 2),
             ("balls", 4 * self.n_balls),
-            ("unbalances", 3 * self.n_unbalance),
+        ] + [(f"part{k}", part.n_param) for k, part in enumerate(self.parts) if part.rotor] + [
             ("stations", 4 * nz * ns),
             ("L", 4 * ns * ns),
             ("HK", nz * nz),
@@ -283,7 +312,7 @@ class Layout:
             ("clearance", 11 if self.clearance else 0),
             ("friction", self.n_balls if self.friction else 0),
             ("tilt", self.n_balls if self.tilt else 0),
-        ] + [(f"part{k}", part.n_param) for k, part in enumerate(self.parts)]
+        ] + [(f"part{k}", part.n_param) for k, part in enumerate(self.parts) if not part.rotor]
         out, k = {}, self.param_base
         for name, size in sizes:
             out[name] = k
@@ -315,5 +344,5 @@ class Layout:
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
                 f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
                 f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}"
-                + "".join(f"p{part.key}" for part in self.parts)
+                + "".join(f"p{part.key}" for part in self.parts if not part.rotor)
                 + (f"b{self.param_base}" if self.param_base else "") + (f"k{len(self.fixed)}" if self.fixed else ""))

@@ -33,14 +33,14 @@ def tilt_lines(lay: Layout, L: list[str]) -> None:
 def loads(lay: Layout, kind: str, idx: int) -> list[tuple[int, str, str]]:
     """Where a unit of Schur unknown ``(kind, idx)`` acts on the structure: ``(station, vx, vy)``
     with ``X_j = sum B_s^T (vx, vy)`` (its column of the mass matrix's coupling block)."""
-    br, nr = lay.ball_race, lay.n_races
+    br = lay.ball_race
     if kind == "b":
         out = [(br[idx], f"mtx{idx}", f"mty{idx}")]
         if lay.tilt:
             out.append((lay.tilt_station(br[idx]), f"nx{idx}", f"ny{idx}"))
         return out
     if kind == "th":
-        return [(nr + u, f"(-U{u} * euy{u})", f"(U{u} * eux{u})") for u in range(lay.n_unbalance)]
+        return [(ld.station, f"({ld.coef} * {ld.tx})", f"({ld.coef} * {ld.ty})") for ld in lay.spin_loads]
     return [(lay.tilt_station(br[idx]), f"c{idx}", f"s{idx}")]
 
 

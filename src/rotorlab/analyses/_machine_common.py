@@ -81,7 +81,7 @@ def unbalance_amplitudes(machine, spin_speed: float) -> np.ndarray:
     s = locked_structure(machine)
     om = float(spin_speed)
     D = s.K + 1j * om * (s.C + om * s.G) - om * om * s.M
-    for part in machine.parts:
+    for part in machine.attachments:
         Z = part.dynamic_stiffness(machine, om)
         D = D if Z is None else D + Z
     f = np.zeros(s.n_dof, dtype=complex)

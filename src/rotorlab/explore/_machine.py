@@ -234,12 +234,12 @@ class MachineRegimes:
         HC = p[o["HC"]:o["HC"] + nz * nz].reshape(nz, nz)
         HG = p[o["HG"]:o["HG"] + nz * nz].reshape(nz, nz) if lay.gyroscopic else np.zeros((nz, nz))
         f = np.zeros(nz, dtype=complex)
-        n_races = len(self.model.races)
-        for u in range(len(self.model.unbalances)):
-            U, c, s = p[o["unbalances"] + 3 * u: o["unbalances"] + 3 * u + 3]
-            k = lay.station_HBT(n_races + u)
-            HBt = p[k:k + 2 * nz].reshape(nz, 2)
-            f += om * om * U * (c + 1j * s) * (HBt @ np.array([1.0, -1j]))
+        for part, place in lay.placed(True):  # each point unbalance: (U, cos, sin) and its station
+            for j in range(part.n_stations):
+                U, c, s = p[place.param + 3 * j:place.param + 3 * j + 3]
+                k = lay.station_HBT(place.station + j)
+                HBt = p[k:k + 2 * nz].reshape(nz, 2)
+                f += om * om * U * (c + 1j * s) * (HBt @ np.array([1.0, -1j]))
         D = HK + 1j * om * (HC + om * HG) - om * om * np.eye(nz)
         q = self.model.basis @ np.linalg.solve(D, f)
         X, Y = q[0::4], q[1::4]

@@ -134,7 +134,7 @@ class TunedMassAbsorber(AbstractPart):
         y[place.state:place.state + 2] = B @ y[:nz]
         y[place.state + 2:place.state + 4] = B @ y[nz:2 * nz]
 
-    def energy(self, machine, y, place) -> float:
+    def energy(self, machine, y, place, t: float = 0.0) -> float:
         B = self.stations(machine)[0]
         nz = machine.n_coordinates
         xa, va = y[place.state:place.state + 2], y[place.state + 2:place.state + 4]

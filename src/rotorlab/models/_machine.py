@@ -113,6 +113,7 @@ from rotorlab.models._machine_rotating import MachineLinearization, _RotatingFra
 from rotorlab.models._parameters import machine_slots
 from rotorlab.models._parts import AbstractPart, part_indices
 from rotorlab.models._protocol import ParametrisedMixin
+from rotorlab.models._unbalance_part import UnbalancePart
 from rotorlab.models._machine_validity import _Validity
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
 
@@ -272,13 +273,20 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
         return tuple((u.node, a, me, beta) for u in self.unbalances for a, me, beta in u.point_unbalances())
 
     @property
+    def attachments(self) -> tuple[AbstractPart, ...]:
+        """Every attachment part, in the kernel's order: the unbalances (an
+        :class:`~rotorlab.models._unbalance_part.UnbalancePart` of each), then ``parts``."""
+        if "attachments" not in self._cache:
+            self._cache["attachments"] = tuple(UnbalancePart.of(u) for u in self.unbalances) + self.parts
+        return self._cache["attachments"]
+
+    @property
     def layout(self) -> _cg.Layout:
         """Sizes and offsets of the states and parameters (a machine_codegen Layout)."""
         if "layout" not in self._cache:
             d = self.drive
             self._cache["layout"] = _cg.Layout(
                 n_z=self.n_coordinates, races=tuple(len(r.balls) for r in self.races),
-                n_unbalance=len(self._point_unbalances),
                 drive=d.drive_kind if self.is_motor else "profile",
                 speed_kind="constant" if self.is_motor else _SPEED_KIND[type(d)],
                 n_table=d.n_table if self.is_motor else 0,
@@ -286,7 +294,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
                 clearance=("housing" if self.clearances[0].kind == "housing" else "massless")
                 if self.clearances else "",
                 friction=self.has_friction,
-                tilt=self._tilt_numbers(), parts=tuple(part.kernel() for part in self.parts),
+                tilt=self._tilt_numbers(), parts=tuple(part.kernel() for part in self.attachments),
                 param_base=self.param_base)
         return self._cache["layout"]
 
@@ -356,7 +364,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
             names += ["theta", "omega"]
         if self.energy_states:
             names += ["work", "dissipated"]
-        for part, i in zip(self.parts, part_indices(self.parts)):
+        for part, i in zip(self.attachments, part_indices(self.attachments)):
             names += part.state_names(i)
         if self.clearances:
             if self.clearances[0].kind == "housing":
@@ -439,12 +447,14 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
         ``tilt``) the tilt ``T_r`` of each race's node."""
         nodes = list(dict.fromkeys(r.node for r in self.races)) if self.layout.tilt else []
         extra = [self.tilt_matrix(n) for n in nodes]
-        return self._stations + extra + [B for part in self.parts for B in part.stations(self)]
+        return self._stations + extra + [B for part in self.attachments if not part.kernel().rotor
+                                         for B in part.stations(self)]
 
     @property
     def _stations(self) -> list[np.ndarray]:
+        """The lateral stations: the races', the rotor parts' (unbalances'), the clearance's."""
         return [self.station_matrix(r.node, r.axial_offset) for r in self.races] + \
-               [self.station_matrix(node, a) for node, a, _, _ in self._point_unbalances] + \
+               [B for part in self.attachments if part.kernel().rotor for B in part.stations(self)] + \
                [self.gap_matrix(c) for c in self.clearances]
 
     def gap_matrix(self, clearance: Clearance) -> np.ndarray:
@@ -513,8 +523,6 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
         m, l, J, c, _ = self._ball_arrays
         for b in range(lay.n_balls):
             p[o["balls"] + 4 * b: o["balls"] + 4 * b + 4] = (m[b], m[b] * l[b], J[b], c[b])
-        for u, (_, _, me, beta) in enumerate(self._point_unbalances):
-            p[o["unbalances"] + 3 * u: o["unbalances"] + 3 * u + 3] = (me, math.cos(beta), math.sin(beta))
         red = self.reduced
         H = np.linalg.inv(self._m0())
         H = 0.5 * (H + H.T)
@@ -543,7 +551,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
             p[o["clearance"] + 8:o["clearance"] + 10] = self.clearance_center
             # rate of the contact's constraint stabilisation: the highest natural frequency
             p[o["clearance"] + 10] = self._stabilisation_rate()
-        for part, place in zip(self.parts, (pl for _, pl in lay.placed_parts)):
+        for part, place in zip(self.attachments, (pl for _, pl in lay.placed_parts)):
             blk = part.pack(self)
             p[place.param:place.param + blk.size] = blk
         self._cache["p"] = p

@@ -177,7 +177,7 @@ class _ClearanceParts:
         if isinstance(self.drive, ConstantSpeed):
             out["spin_speed"] = (o["speed"] + 1, "rad/s")
         if self.unbalances and self.unbalances[0].couple == 0.0:  # a couple is two kernel entries
-            out["unbalance"] = (o["unbalances"], "kg m")
+            out["unbalance"] = (self.layout.placed(True)[0][1].param, "kg m")
         if self.clearances[0].kind != "rigid":
             out["stator_stiffness"] = (kc + 5, "N/m")
         return out

@@ -74,7 +74,7 @@ class _Physics:
             if not self.clearances or self.clearances[0].kind != "housing":
                 raise ValueError("initial_state: housing given but the machine has no moving housing")
             y[lay.i_clearance:lay.i_clearance + 4] = np.asarray(housing, dtype=float).reshape(4)
-        for part, (_, place) in zip(self.parts, lay.placed_parts):
+        for part, (_, place) in zip(self.attachments, lay.placed_parts):
             part.initial(self, y, place)
         if self.clearances:
             self._clearance_initial(y, om)
@@ -139,12 +139,12 @@ class _Physics:
                 col = 0.5 * J[b] * (T.T @ np.array([ph[1], -ph[0]]))
                 Mf[:nz, nz + b] += col
                 Mf[nz + b, :nz] += col
-        if self.is_motor:
+        if self.is_motor:  # the rotor's parts (unbalances) couple to theta''
             th = y[lay.i_theta]
             w = np.zeros(nz)
-            for u, (_, _, me, beta) in enumerate(self._point_unbalances):
-                a = th + beta
-                w += me * (st[len(self.races) + u].T @ np.array([-math.sin(a), math.cos(a)]))
+            for col in (part.spin_column(self, th) for part in self.attachments):
+                if col is not None:
+                    w += col
             Mf[:nz, -1] = w
             Mf[-1, :nz] = w
             Mf[-1, -1] = self.drive.polar_inertia
@@ -161,20 +161,12 @@ class _Physics:
         qd = np.concatenate([v, w] + ([[om]] if self.is_motor else []))
         Mf = self.mass_matrix(y)
         kin = 0.5 * qd @ Mf @ qd
-        st = self._stations
-        if not self.is_motor:  # the unbalance-structure coupling with the prescribed spin
-            for u, (_, _, me, beta) in enumerate(self._point_unbalances):
-                a = th + beta
-                kin += me * om * (np.array([-math.sin(a), math.cos(a)]) @ (st[len(self.races) + u] @ v))
         K = self.reduced["K"]
         gx, gy = self.lateral_gravity
         pot = 0.5 * z @ (0.5 * (K + K.T)) @ z - self._weights() @ z
         m, l, J, c, race = self._ball_arrays
         pot -= float(np.sum(m * l * (gx * np.cos(phi) + gy * np.sin(phi))))
-        for _, _, me, beta in self._point_unbalances:
-            a = th + beta
-            pot -= me * (gx * math.cos(a) + gy * math.sin(a))
-        pot += sum(part.energy(self, y, place) for part, (_, place) in zip(self.parts, lay.placed_parts))
+        pot += sum(part.energy(self, y, place, t) for part, (_, place) in zip(self.attachments, lay.placed_parts))
         return float(kin + pot + self._clearance_energy(y))
 
     def energy_balance(self, ts, ys) -> np.ndarray:

@@ -112,7 +112,7 @@ class _RotatingFrame:
             reasons.append("the structure is anisotropic (its supports differ in x and y): the balls "
                            "and the rotor never reach a steady motion; simulate instead")
         reasons += [None if self.gravity is None else self.gravity.rotating_refusal(), self.drive.rotating_refusal()]
-        reasons += [part.rotating_refusal() for part in self.parts]
+        reasons += [part.rotating_refusal() for part in self.attachments]
         return next((why for why in reasons if why), None)
 
     def why_no_rotating_kernel(self) -> str | None:

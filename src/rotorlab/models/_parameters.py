@@ -77,12 +77,6 @@ def _race_slots(m) -> list[Slot]:
     return out
 
 
-def _unbalance_slots(m) -> list[Slot]:
-    # a couple from or to 0 changes the compiled layout (two more point unbalances): refused by pack
-    return [s for i, u in enumerate(m.unbalances)
-            for s in owned_slots(f"unbalances[{i}]", u, _item_setter("unbalances", i))]
-
-
 def _drive_slots(m) -> list[Slot]:
     d = m.drive
     if not m.is_motor:
@@ -161,7 +155,8 @@ def machine_slots(m) -> list[Slot]:
     source, when it was built from a case: ``structure.<key path>``)."""
     from rotorlab.models._parts import part_slots
 
-    out = _race_slots(m) + _unbalance_slots(m) + _drive_slots(m) + _clearance_slots(m) + _gravity_slots(m)
+    # a couple from or to 0 changes the compiled layout (two more point unbalances): refused by pack
+    out = _race_slots(m) + part_slots(m, "unbalances") + _drive_slots(m) + _clearance_slots(m) + _gravity_slots(m)
     out += part_slots(m)
     if m.n_modes is not None:
         out.append(_slot("n_modes", "1", m.n_modes, (None, 1.0, None, float(m.structure.n_dof)),

@@ -60,6 +60,12 @@ class AbstractKernelPart(ABC):
     n_states: ClassVar[int] = 0
     n_param: ClassVar[int] = 0
     n_stations: ClassVar[int] = 0
+    #: fixed to the rotor (it turns with theta: an unbalance); see the module docstring, item 6
+    rotor: ClassVar[bool] = False
+
+    def spin_loads(self, lay, place) -> list:
+        """Its :class:`~rotorlab._kernels.machine_layout.SpinLoad` per station (``rotor`` parts)."""
+        return []
 
     @abstractmethod
     def force_lines(self, lay, L: list[str], place) -> list[tuple[int, str, str]]:
@@ -103,12 +109,17 @@ class AbstractPart(ABC):
         """Set its states in the new initial state ``y`` (structure coordinates already set)."""
 
     @abstractmethod
-    def energy(self, machine, y: np.ndarray, place) -> float:
-        """Its kinetic and potential energy (J) at the fixed-frame state ``y``."""
+    def energy(self, machine, y: np.ndarray, place, t: float = 0.0) -> float:
+        """Its kinetic and potential energy (J) at the fixed-frame state ``y`` at time ``t``."""
 
     @abstractmethod
     def rotating_refusal(self) -> str | None:
         """Why the co-rotating frame has no equilibria with this part, None if it has."""
+
+    def spin_column(self, machine, theta: float) -> np.ndarray | None:
+        """Its column of the mass matrix's coupling block on theta (a part fixed to the rotor,
+        with a motor: shape (n_z,)); None: it does not turn with the rotor."""
+        return None
 
     def dynamic_stiffness(self, machine, omega: float) -> np.ndarray | None:
         """What it adds to the structure's dynamic stiffness ``K + i w C - w^2 M`` over the DOFs
@@ -117,15 +128,18 @@ class AbstractPart(ABC):
         return None
 
 
-def part_slots(m) -> list[Any]:
-    """The named parameters of a machine's parts: ``<key>[i].<field>`` (i counts the parts of
-    one key), each set by replacing that part."""
+def part_slots(m, field: str = "parts") -> list[Any]:
+    """The named parameters of the parts a machine holds in its field ``field`` (``"parts"``, or
+    ``"unbalances"``: each unbalance's :class:`~rotorlab.models._unbalance_part.UnbalancePart`):
+    ``<key>[i].<field>`` (i counts the parts of one key), each set by replacing that item."""
     from rotorlab.models._parameters import owned_slots
 
+    parts = m.parts if field == "parts" else m.attachments[:len(m.unbalances)]
     out = []
-    for k, (part, i) in enumerate(zip(m.parts, part_indices(m.parts))):
+    for k, (part, i) in enumerate(zip(parts, part_indices(parts))):
         def set_(mm, name, v, k=k):
-            return replace(mm, parts=mm.parts[:k] + (replace(mm.parts[k], **{name: v}),) + mm.parts[k + 1:])
+            held = getattr(mm, field)
+            return replace(mm, **{field: held[:k] + (replace(held[k], **{name: v}),) + held[k + 1:]})
 
         out += owned_slots(f"{part.key}[{i}]", part, set_)
     return out
