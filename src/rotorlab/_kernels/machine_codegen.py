@@ -18,9 +18,12 @@ Parts: the packed parameters and states (:class:`Layout`) are laid out in
 :mod:`rotorlab._kernels.machine_tilt`, their stick/slip by :mod:`rotorlab._kernels.machine_friction`
 and a clearance by :mod:`rotorlab._kernels.machine_contact`; this module generates the structure,
 the spin, the Schur system of the ball (and spin) accelerations and the writes of ``dy/dt``. The
-attachment parts (:mod:`rotorlab.models._parts`, in ``Layout.parts``) add their station forces,
-state rates and dissipated power through their own line writers; every generator writes the
-common operations (dense products, the LDL^T solve) through :mod:`rotorlab._kernels.machine_emit`.
+attachment parts (:mod:`rotorlab.models._parts`, in ``Layout.parts``: the unbalances, gravity,
+a tuned mass absorber ...) add their shared variables, station forces, state rates and
+dissipated power through their own line writers, and the parts fixed to the rotor (unbalances)
+their coupling to a motor's spin through their spin loads (``Layout.spin_loads``); every
+generator writes the common operations (dense products, the LDL^T solve) through
+:mod:`rotorlab._kernels.machine_emit`.
 """
 
 from __future__ import annotations
@@ -102,10 +105,8 @@ def prefix(lay: Layout, L: list[str], *, solve: bool = True) -> list[tuple[int, 
             a(f"    w{b} = kst{b} * om + (1.0 - kst{b}) * y[{lay.i_w + b}]")
         else:
             a(f"    w{b} = y[{lay.i_w + b}]")
-    a(f"    gx = p[{o['gravity']}]")
-    a(f"    gy = p[{o['gravity'] + 1}]")
-    if lay.placed(True):  # the parts fixed to the rotor read the spin angle's sine and cosine
-        a("    sth, cth = sincos(theta)")
+    for part, place in lay.placed_parts:  # variables the parts share (gravity's gx, gy)
+        L += part.variable_lines(lay, place)
     # ---- ball parameters and station forces (centrifugal terms)
     for b in range(nb):
         k = o["balls"] + 4 * b

@@ -11,7 +11,6 @@ the kernel does not read)
                    motor
 ``motor``          3 + 2 n_t: polar inertia J (kg m^2), stall torque T_s (N m), no-load speed
                    w_0 (rad/s) [linear]; then n_t speeds (rad/s) and n_t torques (N m) [table]
-``gravity``        2: g_x, g_y (m/s^2), the lateral components of gravity
 ``balls``          4 per ball (races in order): m (kg), m l (kg m), J = m l^2 + J_c (kg m^2),
                    c (N m s/rad)
 ``part<k>``        the block of each part fixed to the rotor (``rotor``: an unbalance, 3 per
@@ -32,7 +31,8 @@ the kernel does not read)
 ``tilt``           n_b, only with ``tilt``: each ball's ``D = m l^2`` (kg m^2), its inertia
                    about its race's diameters
 ``part<k>``        the block of each other attachment part ``k`` (:mod:`rotorlab.models._parts`),
-                   its size and contents its own
+                   its size and contents its own: gravity's (every machine has it) is g_x, g_y
+                   (m/s^2), the lateral components of gravity
 =================  ===========================================================================
 
 ``H = M0^-1`` with ``M0 = M_s + sum_r m_r B_r^T B_r`` (the structure plus the ball masses carried
@@ -298,7 +298,6 @@ class Layout:
         sizes = [
             ("speed", 6),
             ("motor", 3 + 2 * self.n_table),
-            ("gravity", 2),
             ("balls", 4 * self.n_balls),
         ] + [(f"part{k}", part.n_param) for k, part in enumerate(self.parts) if part.rotor] + [
             ("stations", 4 * nz * ns),
@@ -344,5 +343,5 @@ class Layout:
                 f"t{self.n_table}{'g' if self.gyroscopic else ''}{'e' if self.energy else ''}"
                 f"{'c' + self.clearance[0] if self.clearance else ''}{'f' if self.friction else ''}"
                 f"{'a' + ''.join(map(str, self.tilt)) if self.tilt else ''}"
-                + "".join(f"p{part.key}" for part in self.parts if not part.rotor)
+                + "".join(f"p{part.key}" for part in self.parts if part.key and not part.rotor)
                 + (f"b{self.param_base}" if self.param_base else "") + (f"k{len(self.fixed)}" if self.fixed else ""))

@@ -130,7 +130,6 @@ def _machine(spec: Any) -> Any:
     races = tuple(BallRace(spec.node_of(r), r.radius,
                            tuple(Ball(b.mass, b.inertia, b.damping, b.coulomb, b.rolling) for b in r.balls),
                            r.axial_offset) for r in spec.races)
-    unb = tuple(u.unbalance(spec.node_of(u)) for u in spec.unbalances)
     d = spec.drive
     drives = {
         "constant": lambda: ConstantSpeed(d.speed),
@@ -145,10 +144,14 @@ def _machine(spec: Any) -> Any:
     gravity = None if spec.gravity is None else Gravity(spec.gravity.vector)
     from rotorlab.io._part_specs import PART_SPECS
 
-    parts = tuple(item.build(spec.node_of(item)) for key in PART_SPECS for item in getattr(spec, key))
-    return Machine(source.system, races=races, unbalances=unb, gravity=gravity, drive=drive,
+    # each registered key's items: a key that is a field of Machine (unbalances) fills that
+    # field, the others are its parts
+    built = {key: tuple(item.build(spec.node_of(item)) for item in getattr(spec, key)) for key in PART_SPECS}
+    held = {key: items for key, items in built.items() if key in Machine.__dataclass_fields__}
+    parts = tuple(p for key, items in built.items() if key not in held for p in items)
+    return Machine(source.system, races=races, gravity=gravity, drive=drive,
                    n_modes=spec.n_modes, clearances=tuple(_clearance(spec, c) for c in spec.clearances),
-                   parts=parts, structure_source=source)
+                   parts=parts, structure_source=source, **held)
 
 
 def _clearance(spec: Any, c: Any) -> Any:

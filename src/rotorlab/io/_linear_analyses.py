@@ -8,7 +8,7 @@ They run on a linear rotor model (``multibody`` or ``fe_rotor``; see
 
 from __future__ import annotations
 
-from typing import Any, Literal
+from typing import Any, ClassVar, Literal
 
 from pydantic import Field, model_validator
 
@@ -220,6 +220,7 @@ class UnbalanceSpec(_Spec):
     At least one of ``magnitude`` and ``couple`` is given.
     """
 
+    description: ClassVar[str] = "unbalances"  # as a machine's part (rotorlab.io._part_specs)
     at: label() | None = Field(None, description="name of the node")
     node: integer(ge=0) | None = Field(None, description="node index")
     position: quantity("length") | None = Field(None, description="axial position (m)")
@@ -246,6 +247,11 @@ class UnbalanceSpec(_Spec):
         from rotorlab.linear._unbalance import Unbalance
 
         return Unbalance(node, self.magnitude, self.phase, self.axial_offset, self.couple, self.couple_phase)
+
+    def build(self, node: int) -> Any:
+        """The machine's unbalance at ``node`` (a plain :class:`rotorlab.linear.Unbalance`, which
+        :class:`rotorlab.models.Machine` holds in ``unbalances`` and makes its part of)."""
+        return self.unbalance(node)
 
 
 class UnbalanceResponseSpec(_SpeedRange):

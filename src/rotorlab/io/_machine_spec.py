@@ -387,21 +387,20 @@ class MachineSpec(AbstractModelSpec):
     type: Literal["machine"] = "machine"
     structure: _Structure = Field(description="the linear structure (multibody or fe_rotor)")
     races: tuple[RaceSpec, ...] = Field((), description="ball races")
-    unbalances: tuple[MachineUnbalanceSpec, ...] = Field((), description="unbalances")
+    # the attachment parts (rotorlab.models._parts): one key each, ``[[model.<key>]]``
+    __annotations__.update({key: tuple[spec, ...] for key, spec in PART_SPECS.items()})
+    locals().update({key: Field((), description=spec.description) for key, spec in PART_SPECS.items()})
     gravity: GravitySpec | None = Field(None, description="gravity")
     drive: _Drive = Field(description="spin-speed profile or motor")
     n_modes: integer(ge=1) | None = Field(None, description="modes of the structure kept")
     clearances: tuple[ClearanceSpec, ...] = Field(
         (), max_length=1, description="rotor-stator clearances (at most one)")
-    # the attachment parts (rotorlab.models._parts): one key each, ``[[model.<key>]]``
-    __annotations__.update({key: tuple[spec, ...] for key, spec in PART_SPECS.items()})
-    locals().update({key: Field((), description=spec.description) for key, spec in PART_SPECS.items()})
 
     @model_validator(mode="after")
     def _check_places(self):
         issues = []
-        for key, items in (("races", self.races), ("unbalances", self.unbalances),
-                           ("clearances", self.clearances), *((k, getattr(self, k)) for k in PART_SPECS)):
+        for key, items in (("races", self.races), ("clearances", self.clearances),
+                           *((k, getattr(self, k)) for k in PART_SPECS)):
             for i, it in enumerate(items):
                 node, bad, msg = self.structure.locate(it.node, it.at, it.position)
                 if node is None:

@@ -113,6 +113,7 @@ from rotorlab.models._machine_rotating import MachineLinearization, _RotatingFra
 from rotorlab.models._parameters import machine_slots
 from rotorlab.models._parts import AbstractPart, part_indices
 from rotorlab.models._protocol import ParametrisedMixin
+from rotorlab.models._gravity_part import GravityPart
 from rotorlab.models._unbalance_part import UnbalancePart
 from rotorlab.models._machine_validity import _Validity
 from rotorlab.models._speed import ConstantSpeed, HillRunUp, LinearRamp
@@ -275,9 +276,11 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
     @property
     def attachments(self) -> tuple[AbstractPart, ...]:
         """Every attachment part, in the kernel's order: the unbalances (an
-        :class:`~rotorlab.models._unbalance_part.UnbalancePart` of each), then ``parts``."""
+        :class:`~rotorlab.models._unbalance_part.UnbalancePart` of each), gravity (its
+        :class:`~rotorlab.models._gravity_part.GravityPart`, zero without), then ``parts``."""
         if "attachments" not in self._cache:
-            self._cache["attachments"] = tuple(UnbalancePart.of(u) for u in self.unbalances) + self.parts
+            self._cache["attachments"] = (tuple(UnbalancePart.of(u) for u in self.unbalances)
+                                          + (GravityPart.of(self.gravity),) + self.parts)
         return self._cache["attachments"]
 
     @property
@@ -485,15 +488,9 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
         return (0.0, 0.0) if self.gravity is None else self.gravity.lateral
 
     def _weights(self) -> np.ndarray:
-        """f_g in the structure coordinates: structure and ball weights (N)."""
-        gx, gy = self.lateral_gravity
-        s = self.structure
-        eg = np.zeros(s.n_dof)
-        eg[0::4], eg[1::4] = gx, gy
-        f = self.basis.T @ (s.M @ eg)
-        for r, B in zip(self.races, self._stations):
-            f += sum(b.mass for b in r.balls) * (B.T @ np.array([gx, gy]))
-        return f
+        """f_g in the structure coordinates: structure and ball weights (N), gravity's
+        (:meth:`rotorlab.models._gravity_part.GravityPart.weights`)."""
+        return GravityPart.of(self.gravity).weights(self)
 
     def _m0(self) -> np.ndarray:
         m0 = self.reduced["M"].copy()
@@ -516,7 +513,6 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
             p[o["speed"]:o["speed"] + 6] = d.speed_block()
         else:
             p[o["speed"]:o["speed"] + 6] = d.to_array()
-        p[o["gravity"]:o["gravity"] + 2] = self.lateral_gravity
         if lay.friction:  # friction arm of each ball: coulomb l + rolling (m)
             p[o["friction"]:o["friction"] + lay.n_balls] = [
                 b.coulomb * r.radius + b.rolling for r in self.races for b in r.balls]

@@ -157,13 +157,13 @@ class _Physics:
         nz, nb = lay.n_z, lay.n_balls
         z, v = y[:nz], y[nz:2 * nz]
         phi, w = y[lay.i_phi:lay.i_phi + nb], y[lay.i_w:lay.i_w + nb]
-        th, om = self.spin(t, y)
+        om = self.spin(t, y)[1]
         qd = np.concatenate([v, w] + ([[om]] if self.is_motor else []))
         Mf = self.mass_matrix(y)
         kin = 0.5 * qd @ Mf @ qd
         K = self.reduced["K"]
         gx, gy = self.lateral_gravity
-        pot = 0.5 * z @ (0.5 * (K + K.T)) @ z - self._weights() @ z
+        pot = 0.5 * z @ (0.5 * (K + K.T)) @ z  # the weights' -f_g . z: gravity's part
         m, l, J, c, race = self._ball_arrays
         pot -= float(np.sum(m * l * (gx * np.cos(phi) + gy * np.sin(phi))))
         pot += sum(part.energy(self, y, place, t) for part, (_, place) in zip(self.attachments, lay.placed_parts))

@@ -111,8 +111,9 @@ class _RotatingFrame:
         if not self.structure.is_isotropic:
             reasons.append("the structure is anisotropic (its supports differ in x and y): the balls "
                            "and the rotor never reach a steady motion; simulate instead")
-        reasons += [None if self.gravity is None else self.gravity.rotating_refusal(), self.drive.rotating_refusal()]
-        reasons += [part.rotating_refusal() for part in self.attachments]
+        held = self.attachments[:len(self.attachments) - len(self.parts)]  # unbalances, gravity
+        reasons += [part.rotating_refusal() for part in held] + [self.drive.rotating_refusal()]
+        reasons += [part.rotating_refusal() for part in self.parts]
         return next((why for why in reasons if why), None)
 
     def why_no_rotating_kernel(self) -> str | None:

@@ -2,11 +2,17 @@
 packed parameters, kernel lines, energy terms and named parameters.
 
 A :class:`rotorlab.models.Machine` holds its parts in ``parts`` (a tuple of
-:class:`AbstractPart`); the machine loops over them wherever it lays out, packs, names, starts or
-sums something, and the kernel generator (:mod:`rotorlab._kernels.machine_codegen`) loops over
-their kernel parts (:class:`AbstractKernelPart`) through the common operations of
+:class:`AbstractPart`), and makes a part of each of its unbalances
+(:class:`~rotorlab.models._unbalance_part.UnbalancePart`, from ``Machine.unbalances``) and of its
+gravity (:class:`~rotorlab.models._gravity_part.GravityPart`, from ``Machine.gravity``, zero
+without): ``Machine.attachments``, in that order. The machine loops over them wherever it lays
+out, packs, names, starts or sums something, and the kernel generator
+(:mod:`rotorlab._kernels.machine_codegen`) loops over their kernel parts
+(:class:`AbstractKernelPart`) through the common operations of
 :mod:`rotorlab._kernels.machine_emit`. A case file lists a part under its own key
-(``[[model.<key>]]``); its spec registers there (:data:`rotorlab.io._part_specs.PART_SPECS`).
+(``[[model.<key>]]``); its spec registers there (:data:`rotorlab.io._part_specs.PART_SPECS`;
+the unbalances' too, ``[[model.unbalances]]``). The races, the drive, the clearance and ball
+friction are not parts yet (fields and flags of ``Machine`` and ``Layout``).
 
 A part whose attachment is *soft* (a spring, a damper: no rigid constraint on the structure)
 needs nothing else: it reads the displacement and rate of its stations (``B_s z``, ``B_s z'``),
@@ -27,9 +33,13 @@ For implementers
    :class:`~rotorlab._kernels.machine_layout.PartPlace`: ``force_lines(lay, L, place)`` appends
    lines that define the forces on its stations and returns them as ``[(station, fx name, fy
    name)]``; ``rate_lines(lay, place)`` returns the lines writing ``out[...]`` of its states;
-   ``dissipation_terms(lay, place)`` returns the terms of its dissipated power (energy states).
+   ``dissipation_terms(lay, place)`` returns the terms of its dissipated power (energy states);
+   the last two default to none (a part without states, without damping).
    Generated variables: ``z{i}``, ``v{i}`` (structure coordinates and rates), ``gx``, ``gy``
-   (lateral gravity), ``om``, ``theta`` (spin); name yours with a prefix of your own.
+   (lateral gravity), ``om``, ``theta`` (spin), ``dom`` (its rate, prescribed spin), ``sth``,
+   ``cth`` (sine and cosine of theta, written by the first ``rotor`` part); name yours with a prefix of your own.
+   ``variable_lines(lay, place)`` (optional) defines variables every other part may read
+   (gravity's ``gx``, ``gy``), written before all other part lines.
 3. :meth:`AbstractPart.stations` returns the ``B`` (2 x n_z) of its stations
    (:meth:`Machine.station_matrix`), :meth:`AbstractPart.pack` its ``n_param`` numbers.
 4. :meth:`AbstractPart.state_names`, :meth:`AbstractPart.initial` (its states in a new initial
@@ -40,6 +50,14 @@ For implementers
    then includes it).
 5. Register its spec (one line in :mod:`rotorlab.io._part_specs`), add a figure in ``plot/``
    and tests against a closed form.
+6. A part fixed to the rotor (it turns with theta: an unbalance) sets ``rotor = True`` on its
+   kernel part: its stations come right after the races' and its block after the balls'. With a
+   motor, theta'' is an unknown of the Schur system: ``spin_loads(lay, place)`` returns per
+   station a :class:`~rotorlab._kernels.machine_layout.SpinLoad` (its column of the mass
+   matrix's coupling block on theta, ``coef B_s^T (tx, ty)``, and its generalised force on
+   theta); the generator, the tilting races, ball friction and the clearance read the spin's
+   coupling from these only. On the model side :meth:`AbstractPart.spin_column` gives the same
+   column for the mass matrix.
 """
 
 from __future__ import annotations
@@ -63,6 +81,11 @@ class AbstractKernelPart(ABC):
     #: fixed to the rotor (it turns with theta: an unbalance); see the module docstring, item 6
     rotor: ClassVar[bool] = False
 
+    def variable_lines(self, lay, place) -> list[str]:
+        """Lines defining variables that other parts read, written before every other line of
+        the parts (gravity's ``gx``, ``gy``)."""
+        return []
+
     def spin_loads(self, lay, place) -> list:
         """Its :class:`~rotorlab._kernels.machine_layout.SpinLoad` per station (``rotor`` parts)."""
         return []
@@ -71,13 +94,13 @@ class AbstractKernelPart(ABC):
     def force_lines(self, lay, L: list[str], place) -> list[tuple[int, str, str]]:
         ...
 
-    @abstractmethod
     def rate_lines(self, lay, place) -> list[str]:
-        ...
+        """The lines writing ``out[...]`` of its states (none by default)."""
+        return []
 
-    @abstractmethod
     def dissipation_terms(self, lay, place) -> list[str]:
-        ...
+        """The terms of its dissipated power (none by default)."""
+        return []
 
 
 class AbstractPart(ABC):
@@ -134,7 +157,7 @@ def part_slots(m, field: str = "parts") -> list[Any]:
     ``<key>[i].<field>`` (i counts the parts of one key), each set by replacing that item."""
     from rotorlab.models._parameters import owned_slots
 
-    parts = m.parts if field == "parts" else m.attachments[:len(m.unbalances)]
+    parts = m.parts if field == "parts" else m.attachments[:len(m.unbalances)]  # (gravity: _gravity_slots)
     out = []
     for k, (part, i) in enumerate(zip(parts, part_indices(parts))):
         def set_(mm, name, v, k=k):

@@ -56,6 +56,10 @@ class _UnbalanceLines(AbstractKernelPart):
         u0 = place.station - lay.n_races
         return [(u0 + j, place.param + 3 * j, place.station + j) for j in range(self.n)]
 
+    def variable_lines(self, lay, place):
+        """The first part fixed to the rotor writes ``sth, cth``, the sine and cosine of theta."""
+        return ["    sth, cth = sincos(theta)"] if place.station == lay.n_races else []
+
     def force_lines(self, lay, L, place):
         out = []
         for u, k, s in self._points(lay, place):
@@ -72,12 +76,6 @@ class _UnbalanceLines(AbstractKernelPart):
     def spin_loads(self, lay, place):
         return [SpinLoad(s, f"U{u}", f"(-euy{u})", f"eux{u}", f"U{u} * (-gx * euy{u} + gy * eux{u})")
                 for u, _, s in self._points(lay, place)]
-
-    def rate_lines(self, lay, place):
-        return []
-
-    def dissipation_terms(self, lay, place):
-        return []
 
 
 @dataclass(frozen=True)
