@@ -51,7 +51,7 @@ def test_the_case_key_builds_the_part_with_si_values_and_named_parameters():
     m2 = m.with_parameters(**{"absorbers[0].stiffness": 0.225})
     p2 = m.pack({"absorbers[0].stiffness": 0.225})
     np.testing.assert_array_equal(m2.to_array(), p2)
-    assert m2.layout == m.layout and p2[m.layout.placed(False)[0][1].param + 1] == 0.225
+    assert m2.layout == m.layout and p2[m.layout.places("ta")[0].param + 1] == 0.225
     with pytest.raises(ValueError, match=r"absorbers\[0\]\.mass = -1: must be > 0 kg"):
         m.with_parameters(**{"absorbers[0].mass": -1.0})
 
@@ -70,7 +70,7 @@ def test_the_absorber_s_states_names_and_parameter_block_extend_the_layout():
     assert m.state_names[lay.i_parts:lay.i_parts + 4] == ("x_absorber_1", "y_absorber_1", "vx_absorber_1",
                                                          "vy_absorber_1")
     assert lay.n_state == 4 + 4 and lay.key.endswith("pta")
-    (part, place), = lay.placed(False)
+    place, = lay.places("ta")
     p = m.to_array()
     np.testing.assert_array_equal(p[place.param:place.param + 3], [0.1, 0.225, 0.02])
     np.testing.assert_array_equal(p[lay.station_B(place.station):lay.station_B(place.station) + 4],
@@ -129,7 +129,7 @@ def test_power_identity_with_balls_on_tilting_races_a_motor_gravity_and_an_absor
     lay = mac.layout
     assert lay.tilt and lay.motor
     rhs, p = kernel_module(lay).rhs.py_func, mac.to_array()
-    part, place = mac.parts[0], lay.placed(False)[0][1]
+    part, place = mac.parts[0], lay.places("ta")[0]
     rng = np.random.default_rng(3)
     for _ in range(3):
         y = mac.initial_state(rng.uniform(0, 2 * np.pi, 4), ball_rates=rng.normal(0, 0.3, 4), spin_speed=1.1,

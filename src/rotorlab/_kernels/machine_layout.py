@@ -14,7 +14,8 @@ the kernel does not read)
 ``balls``          4 per ball (races in order): m (kg), m l (kg m), J = m l^2 + J_c (kg m^2),
                    c (N m s/rad)
 ``part<k>``        the block of each part fixed to the rotor (``rotor``: an unbalance, 3 per
-                   point unbalance: U = m e (kg m), cos beta, sin beta), its size and contents its own
+                   point unbalance: U = m e (kg m), cos beta, sin beta), its size and contents its
+                   own; ``offsets["unbalances"]`` is where the first one starts
 ``stations``       per station (races, then the rotor parts' (the point unbalances), then the
                    clearance's, then with ``tilt`` one per distinct race node, then the other
                    parts'): B (2 x n_z, row-major), then H B^T (n_z x 2, row-major); ``B z`` is
@@ -205,6 +206,10 @@ class Layout:
         """The placed parts fixed to the rotor (``rotor``) or not."""
         return [(part, place) for part, place in self.placed_parts if part.rotor == rotor]
 
+    def places(self, key: str) -> list[PartPlace]:
+        """The places of the parts whose kernel key is ``key`` (``"ta"``: the absorbers), in order."""
+        return [place for part, place in self.placed_parts if part.key == key]
+
     @property
     def spin_loads(self) -> list[SpinLoad]:
         """The :class:`SpinLoad` of every part fixed to the rotor, in order."""
@@ -299,6 +304,7 @@ class Layout:
             ("speed", 6),
             ("motor", 3 + 2 * self.n_table),
             ("balls", 4 * self.n_balls),
+            ("unbalances", 0),  # where the rotor parts' blocks start: the first unbalance's U, cos, sin
         ] + [(f"part{k}", part.n_param) for k, part in enumerate(self.parts) if part.rotor] + [
             ("stations", 4 * nz * ns),
             ("L", 4 * ns * ns),

@@ -24,8 +24,8 @@ f`` over the DOFs ``x, y, phi_x, phi_y`` of every node, optionally reduced to it
   ``slip_<r>_<b>`` and their reset maps (:func:`rotorlab._kernels.machine_codegen.friction_solve`);
   the friction power ``-tau_b (phi_b' - Omega)`` counts as dissipated. Not with a clearance.
 - **parts** (:mod:`rotorlab.models._parts`): attachments that own their states, packed block,
-  kernel lines, energy and named parameters, e.g. a tuned mass absorber
-  (:class:`rotorlab.models.TunedMassAbsorber`); their states follow the energy states.
+  kernel lines, energy and named parameters: the unbalances and gravity (made from the fields
+  above) and ``parts``, e.g. a :class:`rotorlab.models.TunedMassAbsorber` (states after the energy states).
 
 Equations (fixed frame, always)
 -------------------------------
