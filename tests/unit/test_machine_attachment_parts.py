@@ -88,7 +88,7 @@ def test_the_unbalances_spin_loads_write_the_motor_s_spin_equation():
 
 def test_gravity_is_a_part_in_every_machine_with_the_closed_form_sag_and_energy():
     """Gravity is a part of every machine (zero without): both machines have one layout (one
-    compiled kernel) and gravity's block holds ``(g_x, g_y)``. A disc of mass m on stiffness k
+    compiled kernel) and gravity's block holds ``(g_x, g_y)``, set by ``gravity.vector[k]``. A disc of mass m on stiffness k
     rests at ``y = -m g / k``: there the kernel's accelerations vanish and the energy is ``-(m
     g)^2 / (2 k)`` (the spring's ``k y^2 / 2`` plus gravity's ``-f_g . z``)."""
     m, k, g = 2.0, 800.0, 9.81
@@ -106,6 +106,12 @@ def test_gravity_is_a_part_in_every_machine_with_the_closed_form_sag_and_energy(
     np.testing.assert_allclose(out, 0.0, rtol=0, atol=1e-15)
     assert mac.energy(y) == pytest.approx(-(m * g) ** 2 / (2 * k), rel=1e-14)
     assert bare.energy(y) == pytest.approx(0.5 * k * (m * g / k) ** 2, rel=1e-14)
+    # its named parameters gravity.vector[k] set its block (and the weights' H f_g) only
+    assert [n for n in mac.parameters if n.startswith("gravity")] == [f"gravity.vector[{k}]" for k in range(3)]
+    assert not [n for n in bare.parameters if n.startswith("gravity")]
+    q = mac.pack({"gravity.vector[0]": 1.5})
+    hf = mac.layout.offsets["Hf"]
+    assert set(np.flatnonzero(q != p)) <= {place.param} | set(range(hf, hf + 4)) and q[place.param] == 1.5
 
 
 def test_the_case_key_of_the_unbalances_is_a_registered_part():

@@ -77,6 +77,25 @@ class GravityPart(Gravity, AbstractPart):
             f += sum(b.mass for b in r.balls) * (B.T @ np.array([gx, gy]))
         return f
 
+    @staticmethod
+    def slots(machine) -> list:
+        """Its named parameters ``gravity.vector[k]`` (m/s^2), when the machine has gravity."""
+        from dataclasses import replace
+
+        from rotorlab.models._parameters import _FREE, _slot
+
+        if machine.gravity is None:
+            return []
+        out = []
+        for k in range(3):
+            def set_g(mm, v, k=k):
+                vec = list(mm.gravity.vector)
+                vec[k] = v
+                return replace(mm, gravity=replace(mm.gravity, vector=tuple(vec)))
+
+            out.append(_slot(f"gravity.vector[{k}]", "m/s^2", machine.gravity.vector[k], _FREE, set_g))
+        return out
+
     def energy(self, machine, y, place, t: float = 0.0) -> float:
         """The potential of the weights ``-f_g . z`` (J); the balls', unbalances' and other
         parts' own terms ``-m g . r`` are theirs."""

@@ -136,27 +136,14 @@ def _clearance_slots(m) -> list[Slot]:
     return out
 
 
-def _gravity_slots(m) -> list[Slot]:
-    if m.gravity is None:
-        return []
-    out = []
-    for k in range(3):
-        def set_g(mm, v, k=k):
-            vec = list(mm.gravity.vector)
-            vec[k] = v
-            return replace(mm, gravity=replace(mm.gravity, vector=tuple(vec)))
-
-        out.append(_slot(f"gravity.vector[{k}]", "m/s^2", m.gravity.vector[k], _FREE, set_g))
-    return out
-
-
 def machine_slots(m) -> list[Slot]:
     """The named parameters of a :class:`rotorlab.models.Machine` (then those of its structure's
     source, when it was built from a case: ``structure.<key path>``)."""
+    from rotorlab.models._gravity_part import GravityPart
     from rotorlab.models._parts import part_slots
 
     # a couple from or to 0 changes the compiled layout (two more point unbalances): refused by pack
-    out = _race_slots(m) + part_slots(m, "unbalances") + _drive_slots(m) + _clearance_slots(m) + _gravity_slots(m)
+    out = _race_slots(m) + part_slots(m, "unbalances") + _drive_slots(m) + _clearance_slots(m) + GravityPart.slots(m)
     out += part_slots(m)
     if m.n_modes is not None:
         out.append(_slot("n_modes", "1", m.n_modes, (None, 1.0, None, float(m.structure.n_dof)),

@@ -157,7 +157,7 @@ def part_slots(m, field: str = "parts") -> list[Any]:
     ``<key>[i].<field>`` (i counts the parts of one key), each set by replacing that item."""
     from rotorlab.models._parameters import owned_slots
 
-    parts = m.parts if field == "parts" else m.attachments[:len(m.unbalances)]  # (gravity: _gravity_slots)
+    parts = m.parts if field == "parts" else m.attachments[:len(m.unbalances)]  # gravity's: GravityPart.slots
     out = []
     for k, (part, i) in enumerate(zip(parts, part_indices(parts))):
         def set_(mm, name, v, k=k):
