@@ -91,8 +91,7 @@ Where the code lives: this module holds the machine's sizes, structure reduction
 kernels; its initial states, mass matrix and energy are in ``_machine_physics``, its clearance
 helpers in ``_machine_clearance``, its co-rotating frame (linearization, steady states) in
 ``_machine_rotating`` and its validity limits and sanity monitor in ``_machine_validity`` (mixed
-into :class:`Machine`); the attachments in ``_machine_parts``, the attachment parts' protocol in
-``_parts``.
+into :class:`Machine`); the attachments in ``_machine_parts``, the parts' protocol in ``_parts``.
 """
 
 from __future__ import annotations
@@ -275,9 +274,8 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
 
     @property
     def attachments(self) -> tuple[AbstractPart, ...]:
-        """Every attachment part, in the kernel's order: the unbalances (an
-        :class:`~rotorlab.models._unbalance_part.UnbalancePart` of each), gravity (its
-        :class:`~rotorlab.models._gravity_part.GravityPart`, zero without), then ``parts``."""
+        """Every attachment part in the kernel's order: an UnbalancePart of each unbalance, the
+        GravityPart (zero without gravity), then ``parts`` (:mod:`rotorlab.models._parts`)."""
         if "attachments" not in self._cache:
             self._cache["attachments"] = (tuple(UnbalancePart.of(u) for u in self.unbalances)
                                           + (GravityPart.of(self.gravity),) + self.parts)
