@@ -20,9 +20,9 @@ The cache key
 -------------
 The copy's file name carries the model's rhs, a short hash of the names of all its kernels (its
 events and reset map too), and a hash of its own text, of the source of **every module the kernels
-and the template depend on, transitively** (found through their import statements and globals; the
-standard library and installed third-party packages are left out, the versions of Python, numba,
-NumPy and llvmlite are hashed instead), and of the Python, numba and NumPy versions. Editing e.g.
+and the template depend on, transitively** (:func:`rotorlab._codewriter.dependencies`: found through
+their import statements and globals; the standard library and installed third-party packages are
+left out, the versions of Python, numba, NumPy and llvmlite are hashed instead). Editing e.g.
 ``rotorlab/_kernels/speed.py`` therefore gives a new file, which numba compiles afresh; the copy
 re-compiles the model's kernels from their Python source (``py_func``) rather than linking their
 own cached binaries, whose numba cache only watches their own file. A kernel whose module says
@@ -36,8 +36,10 @@ Each copy has one compiled entry point, its worker (``integrate_worker``, ``inte
 run on several threads by :func:`rotorlab.integrate._drivers.driver`; a copy for a model without
 event functions (``EVENTS = 0``) compiles no event handling.
 
-Before importing a cached copy its bytes are compared with the text generated now; a copy that
-differs (edited, truncated, corrupted) is rewritten and its numba cache dropped. Copies go only to
+The key, the byte check, the write and the import are those of every generated module
+(:mod:`rotorlab._codewriter`, which writes the machine's kernel modules too): before importing a
+cached copy its bytes are compared with the text generated now; a copy that differs (edited,
+truncated, corrupted) is rewritten and its numba cache dropped. Copies go only to
 the cache directory ``$ROTORLAB_CACHE_DIR/drivers`` (default ``$XDG_CACHE_HOME/rotorlab/drivers``,
 ``~/.cache/rotorlab/drivers``); if it is not writable the driver is compiled in memory without
 caching (a few seconds per process), never written elsewhere. Kernels that are not importable
@@ -47,24 +49,17 @@ module-level functions (defined in ``__main__``, closures) are compiled the same
 from __future__ import annotations
 
 import hashlib
-import itertools
 import importlib
-import importlib.util
 import inspect
-import os
-import sys
-import tempfile
-import types
+import itertools
 from pathlib import Path
 from typing import Any
 
+from rotorlab import _codewriter
 from rotorlab._compile_cache import BUILD_LOCK, cache_dir, compiling_for
 
-__all__ = ["build", "dependencies", "source_digest", "cache_dir", "announce_compile"]
+__all__ = ["build", "cache_dir", "announce_compile"]
 
-# third-party packages whose versions (not sources) enter the key
-_VERSIONED = ("numba", "numpy", "llvmlite")
-_SKIP_TOP = {"numba", "numpy", "llvmlite", "scipy", "typing_extensions", "_pytest", "pytest"}
 _LOADED: dict[tuple, tuple[tuple, dict[str, Any]]] = {}
 _UNCACHED = itertools.count()  # numbers the modules compiled in memory
 
@@ -83,90 +78,6 @@ def _importable_name(dispatcher: Any) -> tuple[str, str] | None:
     except (ImportError, AttributeError):
         return None
     return mod, name
-
-
-def _module_of(obj: Any) -> str | None:
-    if isinstance(obj, types.ModuleType):
-        return obj.__name__
-    if isinstance(obj, (types.FunctionType, type)):
-        return getattr(obj, "__module__", None)
-    if type(obj).__name__.endswith("Dispatcher"):  # numba's (and numba-compatible) dispatchers
-        return getattr(getattr(obj, "py_func", None), "__module__", None)
-    return None
-
-
-def _followed(name: str) -> bool:
-    if not _followed_name(name):
-        return False
-    mod = sys.modules.get(name)
-    path = getattr(mod, "__file__", None)
-    if path is None:
-        return False
-    # installed third-party packages are covered by the interpreter's and numba's versions only
-    parts = Path(path).parts
-    return name.split(".", 1)[0] == "rotorlab" or not ("site-packages" in parts or "dist-packages" in parts)
-
-
-def _imports(name: str) -> set[str]:
-    """Modules named by the import statements in the source of module ``name`` (any depth)."""
-    import ast
-
-    path = inspect.getsourcefile(sys.modules[name])
-    if path is None:
-        return set()
-    found: set[str] = set()
-    for node in ast.walk(ast.parse(Path(path).read_text())):
-        if isinstance(node, ast.Import):
-            found.update(a.name for a in node.names)
-        elif isinstance(node, ast.ImportFrom) and node.module and node.level == 0:
-            found.add(node.module)
-            found.update(f"{node.module}.{a.name}" for a in node.names if f"{node.module}.{a.name}" in sys.modules)
-    return found
-
-
-def dependencies(modules: list[str]) -> list[str]:
-    """``modules`` and every module they depend on, transitively, sorted.
-
-    A module's dependencies are the modules its import statements name (constants imported with
-    ``from m import X`` are compiled in, so ``m`` counts) and the defining modules of the
-    functions, classes and numba dispatchers among its globals. The standard library and the
-    compiled-numerics packages (numba, numpy, llvmlite, scipy) are not followed.
-    """
-    seen: set[str] = set()
-    todo = list(modules)
-    while todo:
-        name = todo.pop()
-        if name in seen or not _followed_name(name):
-            continue
-        try:
-            importlib.import_module(name)
-        except ImportError:
-            continue
-        if not _followed(name):
-            continue
-        seen.add(name)
-        found = _imports(name)
-        found.update(filter(None, (_module_of(v) for v in vars(sys.modules[name]).values())))
-        todo.extend(d for d in found if d not in seen and _followed_name(d))
-    return sorted(seen)
-
-
-def _followed_name(name: str) -> bool:
-    top = name.split(".", 1)[0]
-    return not (top in _SKIP_TOP or top in sys.stdlib_module_names or name == "__main__")
-
-
-def source_digest(text: str, modules: list[str]) -> str:
-    """Hash of a generated text, the sources of ``modules`` and the interpreter and library versions."""
-    h = hashlib.sha256(text.encode())
-    h.update(sys.version.encode())
-    for pkg in _VERSIONED:
-        h.update(f"{pkg}={importlib.import_module(pkg).__version__}".encode())
-    for mod in modules:
-        path = inspect.getsourcefile(sys.modules[mod])
-        h.update(mod.encode())
-        h.update(Path(path).read_bytes() if path else b"")
-    return h.hexdigest()[:20]
 
 
 def _template_lines(template: str) -> list[str]:
@@ -293,8 +204,8 @@ def _cached(
     """Write (if needed) and import the copy of ``template``; ``all_consts`` (its own and its
     siblings' constants) name it, so that copies for other lane widths or sizes are kept."""
     text = _render(template, names, consts, siblings)
-    deps = dependencies([template, __name__] + [m for m, _ in names.values()])
-    digest = source_digest(text, deps)
+    deps = _codewriter.dependencies([template, __name__] + [m for m, _ in names.values()])
+    digest = _codewriter.source_digest(text, deps)
     tag = template.rsplit(".", 1)[-1].lstrip("_")
     if all_consts:  # core_e1, lanes_e0i0l8n20: the template, then its constants
         tag += "_" + "".join(f"{k[0].lower()}{v}" for k, v in sorted(all_consts.items()))
@@ -308,26 +219,14 @@ def _cached(
         stem = f"{tag}_{mod.rsplit('.', 1)[-1]}_{fn}_{kset}_{digest}"
     else:  # a sibling template without kernels (the lane driver's workspace layout)
         stem = f"{tag}_{digest}"
-    path = directory / f"{stem}.py"
-    if not (path.exists() and path.read_bytes() == text.encode()):
-        _prune(directory, stem.rsplit("_", 1)[0])
-        _drop_numba_cache(directory, stem)
-        fd, tmp = tempfile.mkstemp(dir=directory, suffix=".tmp")
-        with os.fdopen(fd, "w") as fh:
-            fh.write(text)
-        os.replace(tmp, path)
+    # the copies of the same kernels generated from older sources are pruned
+    path = _codewriter.write(directory, stem, text, prune=stem.rsplit("_", 1)[0])
     mod_name = f"_rotorlab_gen_{stem}"
-    if mod_name in sys.modules:
-        return vars(sys.modules[mod_name])
     announced = None
-    if names:  # a sibling without kernels is compiled as part of the template that imports it
+    if names and not _codewriter.loaded(mod_name):  # a sibling without kernels is compiled with its importer
         lanes = f"{all_consts['LANES']}-lane integrator" if "LANES" in all_consts else "scalar integrator"
         announced = announce_compile(directory, stem, f"{lanes} for {compiling_for() or 'this model'}")
-    spec = importlib.util.spec_from_file_location(mod_name, path)
-    assert spec is not None and spec.loader is not None
-    module = importlib.util.module_from_spec(spec)
-    sys.modules[mod_name] = module
-    spec.loader.exec_module(module)
+    module = _codewriter.load(mod_name, path)
     if announced:  # rotorlab.integrate._drivers says when its compile is done
         module._ANNOUNCED = announced
     return vars(module)
@@ -339,25 +238,12 @@ def announce_compile(directory: Path, stem: str, what: str) -> str | None:
 
     Returns ``what`` if it was announced (the caller then logs the elapsed time when the compile
     is done, :func:`rotorlab.integrate._drivers.compiled`), else None."""
-    if any((directory / "__pycache__").glob(f"{stem}.*.nbi")):
+    if _codewriter.has_numba_cache(directory, stem):
         return None
     import logging
 
     logging.getLogger("rotorlab.compile").info("compiling the %s (first run only) ...", what)
     return what
-
-
-def _drop_numba_cache(directory: Path, stem: str) -> None:
-    for cached in (directory / "__pycache__").glob(f"{stem}.*"):
-        cached.unlink(missing_ok=True)
-
-
-def _prune(directory: Path, prefix: str) -> None:
-    """Delete copies for the same kernels generated from older sources (and their numba cache)."""
-    for old in directory.glob(f"{prefix}_*.py"):
-        if len(old.stem) == len(prefix) + 21:  # prefix + "_" + 20-hex digest
-            _drop_numba_cache(directory, old.stem)
-            old.unlink(missing_ok=True)
 
 
 def _in_memory(template: str, kernels: dict[str, Any], consts: dict[str, int]) -> dict[str, Any]:
@@ -367,11 +253,7 @@ def _in_memory(template: str, kernels: dict[str, Any], consts: dict[str, int]) -
     importing it as a sibling (``# @template``) finds it; siblings are built by :func:`build`."""
     kernels, own_consts, siblings = _split(template, kernels, consts)
     placeholder = {role: ("rotorlab.models._base", "no_rhs") for role in kernels}
-    source = _render(template, placeholder, own_consts, siblings).replace("cache=True", "cache=False")
+    source = _render(template, placeholder, own_consts, siblings)
     lines = [ln for ln in source.splitlines() if "# @kernel " not in ln]
     name = f"_rotorlab_gen_uncached_{template.rsplit('.', 1)[-1]}_{next(_UNCACHED)}"
-    module = types.ModuleType(name)
-    module.__dict__.update(kernels)
-    sys.modules[name] = module
-    exec(compile("\n".join(lines), f"<rotorlab {template}>", "exec"), module.__dict__)  # noqa: S102
-    return module.__dict__
+    return vars(_codewriter.in_memory(name, "\n".join(lines), kernels))
