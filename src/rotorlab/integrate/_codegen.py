@@ -27,10 +27,10 @@ left out, the versions of Python, numba, NumPy and llvmlite are hashed instead).
 re-compiles the model's kernels from their Python source (``py_func``) rather than linking their
 own cached binaries, whose numba cache only watches their own file. A kernel whose module says
 ``KEYED_BY_SOURCES = True`` (the machine's generated kernel modules, named by a hash of every
-source they depend on) is linked as it is by the lane driver's scalar evaluations: compiled once,
-cached with its module, and shared with the Python callers (:func:`rotorlab.integrate._core._own`).
-The lane driver also compiles the kernel inlined into its loop over lanes (that is what
-vectorises), and the scalar driver compiles it with itself (inlined into its step loop).
+source they depend on) is linked as it is by the scalar driver and the lane driver's scalar
+evaluations: compiled once, cached with its module, and shared with the Python callers
+(:func:`rotorlab.integrate._core._own`). The lane driver also compiles the kernel inlined into its
+loop over lanes (that is what vectorises).
 
 Each copy has one compiled entry point, its worker (``integrate_worker``, ``integrate_lanes``),
 run on several threads by :func:`rotorlab.integrate._drivers.driver`; a copy for a model without

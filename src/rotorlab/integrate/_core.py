@@ -75,21 +75,21 @@ N_STATS = 4
 
 
 
-def _own(kernel, shared=False):
-    """The kernel as this module's code calls it: compiled afresh from its Python source, or
-    (``shared``, for a kernel whose module is keyed by its sources) its own dispatcher.
+def _own(kernel):
+    """The kernel as this module's code calls it: its own dispatcher if its module is keyed by its
+    sources, else compiled afresh from its Python source.
 
     A generated copy of this module is keyed on the sources of everything the kernels depend on
     (:mod:`rotorlab.integrate._codegen`); linking the kernel's own cached binary instead would
     bring back whatever numba cached for it, which only watches the kernel's own file. A kernel
     whose module says ``KEYED_BY_SOURCES = True`` (the machine's generated kernels,
     :mod:`rotorlab._kernels.machine_codegen`: the module's name changes with every source it
-    depends on) may be linked as it is: compiled once per model and cached with its module, it
-    serves the lane driver's scalar evaluations and the Python callers alike (``shared``). The
-    scalar driver keeps its own copy, compiled and optimised with its step loop as before (its
-    run time is the reference of ``bench/machine.py``); it costs the kernel's compile once more.
+    depends on) is linked as it is: compiled once per model and cached with its module, it serves
+    both drivers (the scalar one and the lane driver's scalar evaluations) and the Python callers.
+    Linked rather than compiled again with the scalar driver's step loop, it saves that compile
+    (1-16 CPU-s per layout) at the same run time (``bench/README.md``, issue 24, session 13).
     """
-    if shared and getattr(sys.modules.get(kernel.py_func.__module__), "KEYED_BY_SOURCES", False) is True:
+    if getattr(sys.modules.get(kernel.py_func.__module__), "KEYED_BY_SOURCES", False) is True:
         return kernel
     opts = {k: v for k, v in kernel.targetoptions.items() if k != "nopython"}
     opts["cache"] = False

@@ -109,7 +109,7 @@ _rhs_inline = njit(inline="always", nogil=True, error_model="numpy")(rhs.py_func
 # another model's event location compiled in another process under the same counter value
 # (seen: the bouncing ball's lanes ended in another model's states, fresh-clone suite).
 _EV = dict(vars(_core), __name__=__name__)
-_EV.update(rhs=_own(rhs, True), events=_own(events, True), reset=_own(reset, True))
+_EV.update(rhs=_own(rhs), events=_own(events), reset=_own(reset))
 for _name in ("_g_at", "_locate", "_events_in_step", "_resolve_cut", "_initial_step"):
     _EV[_name] = with_kernels(getattr(_core, _name), _EV)
 _events_at = _EV["events"]
