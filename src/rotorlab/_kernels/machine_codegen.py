@@ -31,7 +31,7 @@ from __future__ import annotations
 
 from typing import Any
 
-from rotorlab import _codewriter
+import rotorlab._codewriter as _codewriter
 from rotorlab._compile_cache import BUILD_LOCK, cache_dir
 from rotorlab._kernels import machine_contact as _mc
 from rotorlab._kernels.machine_drive import spin_lines, torque_lines

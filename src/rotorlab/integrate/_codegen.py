@@ -55,7 +55,7 @@ import itertools
 from pathlib import Path
 from typing import Any
 
-from rotorlab import _codewriter
+import rotorlab._codewriter as _codewriter  # not "from rotorlab import": the copies are keyed on what they import
 from rotorlab._compile_cache import BUILD_LOCK, cache_dir, compiling_for
 
 __all__ = ["build", "cache_dir", "announce_compile"]
