@@ -35,7 +35,12 @@ def default_lanes(kernels, n_traj):
 
     16 lanes (two AVX-512 registers per value) were measured against 8 with the kernel inlined
     (``bench/README.md``, issue 11): the same CPU time on the benchmark kernel and on the
-    toroidal ball's basin, so every model keeps 8 (one compiled driver per model)."""
+    toroidal ball's basin, so every model keeps 8 (one compiled driver per model).
+
+    One trajectory stays on the scalar driver even for a kernel that vectorises: on 8 lanes it
+    ran 0.89-1.27 times the scalar's CPU time, and a lane copy compiles 5-15 CPU-s longer than
+    the scalar one, which links the machine's compiled kernel (``bench/README.md``, issue 24,
+    session 13): fewer copies only for a model also run as an ensemble."""
     return DEFAULT_LANES if n_traj > 1 else None
 
 
