@@ -89,7 +89,8 @@ def built_once(spec: Any, build: Callable[[Any], Any], kind: type | None = None)
         return entry[1]
     model = build(spec)
     try:
-        ref = weakref.ref(spec, lambda _r, key=key: _ONCE.pop(key, None))
+        # the dict is bound now: at interpreter exit the module's globals may already be None
+        ref = weakref.ref(spec, lambda _r, key=key, once=_ONCE: once.pop(key, None))
     except TypeError:  # an object without weak references is not remembered
         return model
     _ONCE[key] = (ref, model)
