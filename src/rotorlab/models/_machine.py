@@ -292,8 +292,7 @@ class Machine(_Physics, _ClearanceParts, _RotatingFrame, _Validity, Parametrised
                 speed_kind="constant" if self.is_motor else _SPEED_KIND[type(d)],
                 n_table=d.n_table if self.is_motor else 0,
                 gyroscopic=bool(np.any(self.reduced["G"])), energy=self.energy_states,
-                clearance=("housing" if self.clearances[0].kind == "housing" else "massless")
-                if self.clearances else "",
+                clearance=self.clearances[0].kernel_kind if self.clearances else "",
                 friction=self.has_friction,
                 tilt=self._tilt_numbers(), parts=tuple(part.kernel() for part in self.attachments),
                 param_base=self.param_base)

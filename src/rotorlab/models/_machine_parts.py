@@ -290,6 +290,8 @@ class ElasticStator:
 
 
 CLEARANCE_KINDS = ("rigid", "elastic", "housing")
+#: the generated kernel's contact form of each stator kind (:attr:`Clearance.kernel_kind`)
+KERNEL_CLEARANCE = {"rigid": "massless", "elastic": "massless", "housing": "housing"}
 
 
 @dataclass(frozen=True, slots=True)
@@ -395,6 +397,13 @@ class Clearance:
         if self.stator == "rigid":
             return "rigid"
         return "housing" if self.stator.mass > 0.0 else "elastic"
+
+    @property
+    def kernel_kind(self) -> str:
+        """The form of the generated kernel's contact code (:data:`KERNEL_CLEARANCE` of
+        :attr:`kind`): a stator with mass has states of its own, ``"housing"``; a rigid and a
+        massless elastic stator share one, ``"massless"`` (their numbers are run-time data)."""
+        return KERNEL_CLEARANCE[self.kind]
 
     def to_array(self) -> np.ndarray:
         """``[delta, e, mu, R_r, v_rest, k_s, c_s, m_s]`` (SI; zeros for a rigid stator)."""
