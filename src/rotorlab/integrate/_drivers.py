@@ -145,6 +145,20 @@ def _has_events(kernels):
     return int(len(kernels.event_specs) > 0)
 
 
+def _rhs_probe(ns, kernels, W, lanes):
+    """The loop over lanes of the rhs (inlined into ``_probe``, or called ``_rhs_lanes``)."""
+    return (ns["_probe"] if kernels.inline_lanes else ns["_rhs_lanes"]), "_probe|_rhs_lanes", (W, lanes)
+
+
+def _events_probe(ns, kernels, W, lanes):
+    """The loop over the lanes' event functions."""
+    return ns["_events_lanes"], "_events_lanes", (W, lanes, lanes, W, lanes, lanes)
+
+
+#: what ``is_vectorised(function=...)`` compiles and inspects: (probe, its name pattern, example args)
+_PROBES = {"rhs": _rhs_probe, "events": _events_probe}
+
+
 def is_vectorised(kernels, lanes=None, function="rhs"):
     """Report whether LLVM vectorises the model's ``rhs`` (or ``events``) across ``lanes`` lanes
     on this CPU.
@@ -179,13 +193,10 @@ def is_vectorised(kernels, lanes=None, function="rhs"):
     # process that compiled it (its copy linked into _probe or the worker is optimised again and
     # may vectorise where the original does not): inspect the original.
     W = np.zeros(ns["_W_SIZE"] + lanes)
-    if function == "events":
-        probe, name = ns["_events_lanes"], "_events_lanes"
-        probe.compile((typeof(W), typeof(lanes), typeof(lanes), typeof(W), typeof(lanes), typeof(lanes)))
-    else:
-        probe = ns["_probe"] if kernels.inline_lanes else ns["_rhs_lanes"]
-        name = "_probe|_rhs_lanes"
-        probe.compile((typeof(W), typeof(lanes)))
+    if function not in _PROBES:
+        raise ValueError(f"function must be one of {', '.join(map(repr, _PROBES))}, got {function!r}")
+    probe, name, args = _PROBES[function](ns, kernels, W, lanes)
+    probe.compile(tuple(typeof(a) for a in args))
     ir = probe.inspect_llvm(probe.signatures[0])
     # the compiled loop (in _rhs_lanes, or inlined into _probe), not the CPython wrappers; the
     # return attributes before the name may hold parentheses (``range(i32 -1, -2)``)
