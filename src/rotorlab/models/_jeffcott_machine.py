@@ -64,6 +64,10 @@ def jeffcott_layout(model):
     return (model.frame, jeffcott_machine(replace(model, frame="fixed")).layout)
 
 
+#: the preset machine's kernels of each frame of a jeffcott_balls model
+_FRAME_KERNELS = {"fixed": "kernels", "rotating": "rotating_kernels"}
+
+
 def jeffcott_kernels(model):
     """The :class:`~rotorlab.models.Kernels` of ``model`` (shared per compiled layout): the preset
     machine's, of the model's frame, their events named ``stick_<i>``, ``slip_<i>`` by the model's
@@ -74,7 +78,7 @@ def jeffcott_kernels(model):
     from rotorlab.models._base import EventSpec
 
     mac = jeffcott_machine(replace(model, frame="fixed"))
-    mk = mac.kernels if model.frame == "fixed" else mac.rotating_kernels
+    mk = getattr(mac, _FRAME_KERNELS[model.frame])
     specs = tuple(EventSpec(f"{kind}_{i}", -1, "reset") for i in range(1, model.n_balls + 1)
                   for kind in ("stick", "slip")) if model.has_friction else ()
     _KERNELS[key] = replace(mk, event_specs=specs) if specs else mk
